@@ -1,0 +1,66 @@
+//! Command-line interface: clap derive, one file per subcommand. Data goes to stdout (`--json` for
+//! machine-readable output), messages to stderr. Exit code 0 ok, 1 failed run, 2 bad input.
+
+use clap::{Parser, Subcommand};
+use serde::Serialize;
+
+pub mod generate;
+pub mod inspect;
+pub mod node_time;
+pub mod solve;
+
+/// swarmplan: plan swarm-based drone deliveries with in-flight energy sharing.
+#[derive(Debug, Parser)]
+#[command(name = "swarmplan", version, about, long_about = None)]
+pub struct Cli {
+    /// The subcommand.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// Subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Write a seeded synthetic network or request set.
+    #[command(subcommand)]
+    Generate(generate::GenerateCommand),
+    /// Describe a network, and the swarm a request would fly.
+    Inspect(inspect::InspectArgs),
+    /// Node time at a recharging node: pad-to-drone assignment (P||Cmax).
+    NodeTime(node_time::NodeTimeArgs),
+    /// Plan one request: route, sharing schedules, node times, delivery time.
+    Solve(solve::SolveArgs),
+}
+
+/// Parses the process arguments, runs the subcommand, prints errors, returns the exit code.
+pub fn main() -> i32 {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            let code = if e.use_stderr() { 2 } else { 0 };
+            let _ = e.print();
+            return code;
+        }
+    };
+    let result = match cli.command {
+        Command::Generate(cmd) => generate::run(cmd),
+        Command::Inspect(args) => inspect::run(args),
+        Command::NodeTime(args) => node_time::run(args),
+        Command::Solve(args) => solve::run(args),
+    };
+    match result {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("error: {e}");
+            e.exit_code()
+        }
+    }
+}
+
+/// Prints `value` as pretty JSON to stdout.
+pub fn print_json<T: Serialize>(value: &T) {
+    println!(
+        "{}",
+        serde_json::to_string_pretty(value).expect("serialising plain data cannot fail")
+    );
+}

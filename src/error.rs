@@ -1,0 +1,97 @@
+//! The library's one error type. Outcomes of a solve (optimal, feasible, infeasible) are data, not
+//! errors: `Err` is for bad input and for a backend that broke.
+
+use serde::Serialize;
+use std::fmt;
+
+/// One broken input rule: a stable code, the field it concerns, what is wrong and what to do.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Violation {
+    /// Stable rule code, such as `E1101`; listed in README.md.
+    pub code: &'static str,
+    /// Where the problem is, such as `segments[3].wind_speed_mps` or `--pads`.
+    pub field: String,
+    /// What is wrong, with the offending value.
+    pub cause: String,
+    /// What to do about it.
+    pub action: String,
+}
+
+impl Violation {
+    /// Builds a violation from its four parts.
+    pub fn new(
+        code: &'static str,
+        field: impl Into<String>,
+        cause: impl Into<String>,
+        action: impl Into<String>,
+    ) -> Self {
+        Violation {
+            code,
+            field: field.into(),
+            cause: cause.into(),
+            action: action.into(),
+        }
+    }
+}
+
+impl fmt::Display for Violation {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "[{}] {}: {}; {}", self.code, self.field, self.cause, self.action)
+    }
+}
+
+/// Errors of the library.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// The input breaks one or more rules; every violation found is listed, not only the first.
+    #[error("invalid input, {} problem(s):\n{}", .0.len(), list(.0))]
+    Invalid(Vec<Violation>),
+    /// A file could not be read or written.
+    #[error("cannot access {path}: {source}; check the path and its permissions")]
+    Io {
+        /// The path concerned.
+        path: String,
+        /// The underlying error.
+        #[source]
+        source: std::io::Error,
+    },
+    /// An optimization backend failed in a way that is not a solve outcome.
+    #[error("solver backend {backend} failed: {message}")]
+    Backend {
+        /// The backend's name.
+        backend: String,
+        /// What it reported.
+        message: String,
+    },
+}
+
+fn list(violations: &[Violation]) -> String {
+    violations
+        .iter()
+        .map(|v| format!("  {v}"))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+impl Error {
+    /// A single-violation [`Error::Invalid`].
+    pub fn invalid(
+        code: &'static str,
+        field: impl Into<String>,
+        cause: impl Into<String>,
+        action: impl Into<String>,
+    ) -> Self {
+        Error::Invalid(vec![Violation::new(code, field, cause, action)])
+    }
+
+    /// Process exit code: 2 for bad input (including unreadable files), 1 for a failed run.
+    pub fn exit_code(&self) -> i32 {
+        match self {
+            Error::Invalid(_) | Error::Io { .. } => 2,
+            Error::Backend { .. } => 1,
+        }
+    }
+}
+
+/// Result alias of the library.
+pub type Result<T> = std::result::Result<T, Error>;

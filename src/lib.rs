@@ -1,0 +1,29 @@
+//! # swarmplan
+//!
+//! An optimization-backed planner for swarm-based drone delivery with in-flight energy sharing,
+//! after Alkouz, Abusafia, Lakhdari and Bouguettaya, "In-Flight Energy-Driven Composition of Drone
+//! Swarm Services".
+//!
+//! A swarm of delivery drones (one package each) and support drones (extra batteries) flies a fixed
+//! formation over a skyway network of rooftops. The delivery time of a request is
+//!
+//! ```text
+//! dt = sum over flown segments of tt  +  sum over recharging stops of nt
+//! ```
+//!
+//! where `tt` is a segment's travel time and `nt` the node time: the makespan of charging every drone
+//! to full on the node's `k` pads (identical parallel machines, P||Cmax). On a segment, support drones
+//! share energy with delivery drones in flight at rate `rho` (mAh/min), one consumer at a time.
+//!
+//! Layout: [`problem`] holds the input types and their validation and knows nothing of solvers;
+//! [`solver`] the backend choice and solve status shared by every exact method. Each model the code
+//! builds is written up in `models/` under the name of the module that builds it.
+#![warn(missing_docs)]
+#![forbid(unsafe_code)]
+
+pub mod cli;
+pub mod error;
+pub mod problem;
+pub mod solver;
+
+pub use error::{Error, Violation};

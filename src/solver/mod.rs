@@ -1,0 +1,89 @@
+//! Backend choice and solve outcome, shared by every exact method.
+//!
+//! Backends are chosen by enum, never by string: `microlp` (pure Rust, default) and, with the
+//! `highs` feature, HiGHS. Convex models use clarabel directly. An outcome (optimal, feasible with
+//! an incumbent after a limit, infeasible) is data; `Err` is for bad input and broken backends.
+
+use serde::Serialize;
+
+/// MILP backend.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, clap::ValueEnum)]
+#[serde(rename_all = "kebab-case")]
+pub enum MilpBackend {
+    /// good_lp's pure-Rust `microlp` branch and bound (default build).
+    #[cfg(feature = "microlp")]
+    Microlp,
+    /// HiGHS through good_lp (feature `highs`).
+    #[cfg(feature = "highs")]
+    Highs,
+}
+
+impl MilpBackend {
+    /// Every backend compiled into this build, in a fixed order.
+    pub fn all() -> Vec<MilpBackend> {
+        vec![
+            #[cfg(feature = "microlp")]
+            MilpBackend::Microlp,
+            #[cfg(feature = "highs")]
+            MilpBackend::Highs,
+        ]
+    }
+
+    /// The backend's name as used on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            #[cfg(feature = "microlp")]
+            MilpBackend::Microlp => "microlp",
+            #[cfg(feature = "highs")]
+            MilpBackend::Highs => "highs",
+        }
+    }
+}
+
+/// Outcome of a solve.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SolveStatus {
+    /// Proven optimal.
+    Optimal,
+    /// A feasible incumbent; a time or node limit stopped the proof.
+    Feasible,
+    /// Proven infeasible.
+    Infeasible,
+}
+
+/// Kind of reference a gap is measured against; never mix them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ReferenceKind {
+    /// A proven optimum.
+    Optimal,
+    /// An incumbent of a solve stopped early.
+    Incumbent,
+    /// A lower bound (such as a convex relaxation).
+    Bound,
+}
+
+/// Relative gap `(heuristic - reference) / reference` with the kind of its reference.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Gap {
+    /// The relative gap; `None` when the reference is zero.
+    pub relative: Option<f64>,
+    /// What the reference is.
+    pub reference: ReferenceKind,
+}
+
+impl Gap {
+    /// Gap of `heuristic` against `reference` of the given kind.
+    pub fn new(heuristic: f64, reference: f64, kind: ReferenceKind) -> Gap {
+        let relative = if reference.abs() > 0.0 {
+            Some((heuristic - reference) / reference)
+        } else {
+            None
+        };
+        Gap {
+            relative,
+            reference: kind,
+        }
+    }
+}
