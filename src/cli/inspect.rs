@@ -1,12 +1,218 @@
-//! `swarmplan inspect`.
+//! `swarmplan inspect`: describe a network and, for a request, the swarm it would fly.
 
+use super::inputs::{self, InstanceArgs};
+use crate::energy::{self, Wind};
 use crate::error::{Error, Result};
+use crate::formation::FormationKind;
+use crate::precompose::{self, Positioning, SupportDecision, Swarm};
+use serde::Serialize;
+use std::path::PathBuf;
 
-/// Describe a network.
+/// Describe a network, and the swarm a request would fly.
 #[derive(Debug, clap::Args)]
-pub struct InspectArgs {}
+pub struct InspectArgs {
+    /// Network and profile.
+    #[command(flatten)]
+    pub instance: InstanceArgs,
+    /// Request set (JSON) [default: the shipped paper-195 requests].
+    #[arg(long, value_name = "FILE")]
+    pub request_file: Option<PathBuf>,
+    /// Id of a request to describe the swarm of.
+    #[arg(long, value_name = "ID")]
+    pub request_id: Option<String>,
+    /// Initial positioning of the support drones.
+    #[arg(long, value_enum, default_value = "location-aware")]
+    pub positioning: Positioning,
+    /// Number of support drones, overriding the redundancy table.
+    #[arg(long, value_name = "N")]
+    pub support: Option<usize>,
+    /// Print as JSON.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Network facts.
+#[derive(Debug, Serialize)]
+pub struct NetworkReport {
+    /// Nodes.
+    pub nodes: usize,
+    /// Segments.
+    pub segments: usize,
+    /// Nodes with at least one pad.
+    pub pad_nodes: usize,
+    /// Pads in all.
+    pub pads: u64,
+    /// Total segment length, m.
+    pub total_length_m: f64,
+    /// Mean wind speed over segments, m/s.
+    pub mean_wind_speed_mps: f64,
+    /// Highest wind speed, m/s.
+    pub max_wind_speed_mps: f64,
+    /// The averaged wind the formation is selected on.
+    pub average_wind: Wind,
+    /// The fixed formation.
+    pub formation: FormationKind,
+}
+
+/// A request's swarm.
+#[derive(Debug, Serialize)]
+pub struct SwarmReport {
+    /// Request id.
+    pub request_id: String,
+    /// Shortest-path distance source to destination, m.
+    pub route_distance_m: f64,
+    /// Support decision of the redundancy table.
+    pub support_decision: SupportDecision,
+    /// Support drones used.
+    pub support_drones: usize,
+    /// The swarm with its positions.
+    pub swarm: Swarm,
+    /// Each drone's consumption rate in its initial slot, in still air, mAh/min.
+    pub still_air_rates_mah_per_min: Vec<f64>,
+    /// Each drone's rate flying into the averaged wind (head wind), mAh/min.
+    pub head_wind_rates_mah_per_min: Vec<f64>,
+}
+
+/// The whole report.
+#[derive(Debug, Serialize)]
+pub struct InspectReport {
+    /// Network facts.
+    pub network: NetworkReport,
+    /// The request's swarm, if a request was named.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub request: Option<SwarmReport>,
+}
 
 /// Runs the subcommand.
-pub fn run(_args: InspectArgs) -> Result<i32> {
-    Err(Error::invalid("E0000", "inspect", "not available yet", "wait"))
+pub fn run(args: InspectArgs) -> Result<i32> {
+    let inst = args.instance.load()?;
+    let net = &inst.network;
+    let (formation, average_wind) = precompose::select_formation(net, &inst.profile);
+    let speeds: Vec<f64> = net.segments.iter().map(|s| s.wind_speed_mps).collect();
+    let network = NetworkReport {
+        nodes: net.nodes.len(),
+        segments: net.segments.len(),
+        pad_nodes: net.nodes.iter().filter(|n| n.pads > 0).count(),
+        pads: net.nodes.iter().map(|n| n.pads as u64).sum(),
+        total_length_m: (0..inst.graph.node_count())
+            .flat_map(|u| inst.graph.neighbors(u).into_iter().map(move |v| (u, v)))
+            .filter(|(u, v)| u < v)
+            .filter_map(|(u, v)| inst.graph.path_from_nodes(&[u, v]))
+            .map(|p| p.distance_m)
+            .sum(),
+        mean_wind_speed_mps: speeds.iter().sum::<f64>() / speeds.len().max(1) as f64,
+        max_wind_speed_mps: speeds.iter().cloned().fold(0.0, f64::max),
+        average_wind,
+        formation,
+    };
+    let request = match &args.request_id {
+        None => None,
+        Some(id) => {
+            let set = inputs::load_requests(args.request_file.as_deref())?;
+            let r = set.requests.into_iter().find(|r| &r.id == id).ok_or_else(|| {
+                Error::invalid(
+                    "E3010",
+                    "--request-id",
+                    format!("no request with id `{id}` in the request file"),
+                    "give an id present in the file's `requests[].id`",
+                )
+            })?;
+            inputs::validate_requests(&inst, std::slice::from_ref(&r))?;
+            let s = inst.graph.index_of(&r.source).expect("validated");
+            let t = inst.graph.index_of(&r.destination).expect("validated");
+            let route_distance_m = inst
+                .graph
+                .shortest_path(s, t)
+                .map(|p| p.distance_m)
+                .unwrap_or(f64::INFINITY);
+            let support_decision = precompose::support_count(
+                &inst.profile,
+                &r.packages_kg,
+                route_distance_m,
+                &average_wind,
+            );
+            let support_drones = args.support.unwrap_or(support_decision.count);
+            let swarm = precompose::build_swarm(
+                &inst.profile,
+                formation,
+                &r.packages_kg,
+                support_drones,
+                args.positioning,
+            );
+            let still = Wind {
+                speed_mps: 0.0,
+                from_deg: 0.0,
+            };
+            let heading = average_wind.from_deg;
+            Some(SwarmReport {
+                request_id: r.id.clone(),
+                route_distance_m,
+                support_decision,
+                support_drones,
+                still_air_rates_mah_per_min: energy::consumption_rates_mah_per_min(
+                    &inst.profile,
+                    &swarm,
+                    heading,
+                    &still,
+                ),
+                head_wind_rates_mah_per_min: energy::consumption_rates_mah_per_min(
+                    &inst.profile,
+                    &swarm,
+                    heading,
+                    &average_wind,
+                ),
+                swarm,
+            })
+        }
+    };
+    let report = InspectReport { network, request };
+    if args.json {
+        super::print_json(&report);
+    } else {
+        print_human(&report);
+    }
+    Ok(0)
+}
+
+fn print_human(report: &InspectReport) {
+    let n = &report.network;
+    println!(
+        "network: {} nodes, {} segments ({:.1} km), {} pads on {} nodes",
+        n.nodes,
+        n.segments,
+        n.total_length_m / 1000.0,
+        n.pads,
+        n.pad_nodes
+    );
+    println!(
+        "wind: mean {:.2} m/s, max {:.2} m/s; averaged wind {:.2} m/s from {:.0} deg; formation {:?}",
+        n.mean_wind_speed_mps,
+        n.max_wind_speed_mps,
+        n.average_wind.speed_mps,
+        n.average_wind.from_deg,
+        n.formation
+    );
+    if let Some(r) = &report.request {
+        println!(
+            "request {}: route {:.0} m, {} support drone(s) (table: {})",
+            r.request_id, r.route_distance_m, r.support_drones, r.support_decision.count
+        );
+        println!("  drone role      payload_kg capacity_mah slot  x_m    y_m   still mAh/min  head-wind mAh/min");
+        for d in &r.swarm.drones {
+            let slot = r.swarm.initial_slot[d.id];
+            let p = r.swarm.slots_m[slot];
+            println!(
+                "  {:>5} {:<9} {:>10.3} {:>12.0} {:>4} {:>6.2} {:>6.2} {:>13.2} {:>18.2}",
+                d.id,
+                format!("{:?}", d.role),
+                d.payload_kg,
+                d.capacity_mah,
+                slot,
+                p.x,
+                p.y,
+                r.still_air_rates_mah_per_min[d.id],
+                r.head_wind_rates_mah_per_min[d.id]
+            );
+        }
+    }
 }

@@ -4,7 +4,9 @@
 use clap::{Parser, Subcommand};
 use serde::Serialize;
 
+pub mod batch;
 pub mod generate;
+pub mod inputs;
 pub mod inspect;
 pub mod node_time;
 pub mod solve;
@@ -30,6 +32,8 @@ pub enum Command {
     NodeTime(node_time::NodeTimeArgs),
     /// Plan one request: route, sharing schedules, node times, delivery time.
     Solve(solve::SolveArgs),
+    /// Plan every request of a request set with one or more method combinations.
+    Batch(batch::BatchArgs),
 }
 
 /// Parses the process arguments, runs the subcommand, prints errors, returns the exit code.
@@ -47,6 +51,7 @@ pub fn main() -> i32 {
         Command::Inspect(args) => inspect::run(args),
         Command::NodeTime(args) => node_time::run(args),
         Command::Solve(args) => solve::run(args),
+        Command::Batch(args) => batch::run(args),
     };
     match result {
         Ok(code) => code,

@@ -1,12 +1,143 @@
-//! `swarmplan solve`.
+//! `swarmplan solve`: plan one request and print the plan.
 
+use super::inputs::{self, InstanceArgs};
+use crate::compose::{Context, PlanOptions, RouteMethod};
+use crate::eaas::SharingPolicy;
 use crate::error::{Error, Result};
+use crate::precompose::Positioning;
+use crate::problem::Request;
+use std::path::PathBuf;
 
-/// Plan one request.
+/// Plan one request: route, sharing schedules, node times, delivery time.
 #[derive(Debug, clap::Args)]
-pub struct SolveArgs {}
+pub struct SolveArgs {
+    /// Network and profile.
+    #[command(flatten)]
+    pub instance: InstanceArgs,
+    /// Request set (JSON) holding the request [default: the shipped paper-195 requests].
+    #[arg(long, value_name = "FILE")]
+    pub request_file: Option<PathBuf>,
+    /// Id of the request in the request set.
+    #[arg(long, value_name = "ID", conflicts_with_all = ["from", "to", "packages"])]
+    pub request_id: Option<String>,
+    /// Source node id (with --to and --packages, instead of --request-id).
+    #[arg(long, value_name = "NODE", requires_all = ["to", "packages"])]
+    pub from: Option<String>,
+    /// Destination node id.
+    #[arg(long, value_name = "NODE", requires_all = ["from", "packages"])]
+    pub to: Option<String>,
+    /// Package masses in kg, comma-separated, one delivery drone each (e.g. 1.2,0.8).
+    #[arg(long, value_name = "KG,KG,...", requires_all = ["from", "to"])]
+    pub packages: Option<String>,
+    /// In-flight energy sharing policy.
+    #[arg(long, value_enum, default_value = "pb")]
+    pub sharing: SharingPolicy,
+    /// Initial positioning of the support drones.
+    #[arg(long, value_enum, default_value = "location-aware")]
+    pub positioning: Positioning,
+    /// Route composition method.
+    #[arg(long, value_enum, default_value = "sequential")]
+    pub route: RouteMethod,
+    /// Number of support drones, overriding the redundancy table.
+    #[arg(long, value_name = "N")]
+    pub support: Option<usize>,
+    /// Print the full report as JSON.
+    #[arg(long)]
+    pub json: bool,
+}
 
-/// Runs the subcommand.
-pub fn run(_args: SolveArgs) -> Result<i32> {
-    Err(Error::invalid("E0000", "solve", "not available yet", "wait"))
+/// Runs the subcommand; exit code 0 when the request is delivered, 1 when it fails.
+pub fn run(args: SolveArgs) -> Result<i32> {
+    let instance = args.instance.load()?;
+    let request = match (&args.request_id, &args.from, &args.to, &args.packages) {
+        (Some(id), None, None, None) => {
+            let set = inputs::load_requests(args.request_file.as_deref())?;
+            set.requests
+                .into_iter()
+                .find(|r| &r.id == id)
+                .ok_or_else(|| {
+                    Error::invalid(
+                        "E3010",
+                        "--request-id",
+                        format!("no request with id `{id}` in the request file"),
+                        "give an id present in the file's `requests[].id`",
+                    )
+                })?
+        }
+        (None, Some(from), Some(to), Some(packages)) => Request {
+            id: "cli".to_string(),
+            source: from.clone(),
+            destination: to.clone(),
+            packages_kg: inputs::parse_list(packages, "--packages")?,
+        },
+        _ => {
+            return Err(Error::invalid(
+                "E3011",
+                "--request-id | --from/--to/--packages",
+                "no request given",
+                "pass --request-id ID (with --request-file F), or --from A --to B --packages 1.2,0.8",
+            ))
+        }
+    };
+    inputs::validate_requests(&instance, std::slice::from_ref(&request))?;
+    let context = Context::new(&instance.network, &instance.graph, &instance.profile);
+    let options = PlanOptions {
+        sharing: args.sharing,
+        positioning: args.positioning,
+        route: args.route,
+        support: args.support,
+    };
+    let report = context.plan(&request, &options)?;
+    if args.json {
+        super::print_json(&report);
+    } else {
+        print_human(&report);
+    }
+    Ok(if report.plan.success { 0 } else { 1 })
+}
+
+fn print_human(report: &crate::compose::RequestReport) {
+    let plan = &report.plan;
+    println!(
+        "request {}: {} -> {}, formation {:?}, {} delivery + {} support drones",
+        report.request_id,
+        plan.source,
+        plan.destination,
+        report.formation,
+        report.swarm.drones.len() - report.support_drones,
+        report.support_drones
+    );
+    for hop in &plan.hops {
+        println!(
+            "  fly {} -> {} via {} segment(s): {:.0} m, tt {:.2} min, shared {:.1} mAh in {} transfer(s)",
+            hop.from,
+            hop.to,
+            hop.path.len() - 1,
+            hop.distance_m,
+            hop.tt_min,
+            hop.shared_mah,
+            hop.transfers.len()
+        );
+        if let Some(stop) = &hop.stop {
+            println!(
+                "  recharge at {} on {} pad(s): nt {:.2} min ({:?}), pads {:?}",
+                stop.node, stop.pads, stop.nt_min, stop.status, stop.assignment
+            );
+        }
+    }
+    if plan.success {
+        println!(
+            "delivered: dt {:.2} min = tt {:.2} + nt {:.2}; {} stop(s); {:.2} ms",
+            plan.dt_min,
+            plan.tt_min,
+            plan.nt_min,
+            plan.stops().len(),
+            report.execution_ms
+        );
+    } else {
+        println!(
+            "failed: {}",
+            plan.failure.as_deref().unwrap_or("unknown reason")
+        );
+    }
 }

@@ -1,0 +1,254 @@
+//! `swarmplan batch`: plan every request of a request set with one or more method combinations and
+//! report success counts (with their denominator), delivery and node times, and run time.
+
+use super::inputs::{self, InstanceArgs};
+use crate::compose::{Context, PlanOptions, RequestReport, RouteMethod};
+use crate::eaas::SharingPolicy;
+use crate::error::{Error, Result};
+use crate::precompose::Positioning;
+use crate::problem::{io, Request};
+use serde::Serialize;
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// Plan every request of a request set and summarise.
+#[derive(Debug, clap::Args)]
+pub struct BatchArgs {
+    /// Network and profile.
+    #[command(flatten)]
+    pub instance: InstanceArgs,
+    /// Request set (JSON) [default: the shipped paper-195 requests].
+    #[arg(long, value_name = "FILE")]
+    pub requests: Option<PathBuf>,
+    /// Plan only the first N requests.
+    #[arg(long, value_name = "N")]
+    pub limit: Option<usize>,
+    /// Sharing policies, comma-separated.
+    #[arg(long, value_enum, value_delimiter = ',', default_value = "pb")]
+    pub sharing: Vec<SharingPolicy>,
+    /// Support positionings, comma-separated.
+    #[arg(long, value_enum, value_delimiter = ',', default_value = "location-aware")]
+    pub positioning: Vec<Positioning>,
+    /// Route methods, comma-separated.
+    #[arg(long, value_enum, value_delimiter = ',', default_value = "sequential")]
+    pub route: Vec<RouteMethod>,
+    /// Every combination of sharing, positioning and route (overrides the three lists).
+    #[arg(long)]
+    pub all: bool,
+    /// Number of support drones for every request, overriding the redundancy table.
+    #[arg(long, value_name = "N")]
+    pub support: Option<usize>,
+    /// Worker threads; results are identical for any count.
+    #[arg(long, default_value_t = 1)]
+    pub threads: usize,
+    /// Write every request's outcome (id, success, dt, stops, failure) as JSON to this file.
+    #[arg(long, value_name = "FILE")]
+    pub per_request: Option<PathBuf>,
+    /// Print the summaries as JSON.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Summary of one method combination over a request set.
+#[derive(Debug, Clone, Serialize)]
+pub struct Summary {
+    /// The combination.
+    pub options: PlanOptions,
+    /// Requests delivered.
+    pub succeeded: usize,
+    /// Requests planned (the denominator).
+    pub requests: usize,
+    /// Mean delivery time of the delivered requests, min.
+    pub mean_dt_min: f64,
+    /// Mean total node time of the delivered requests, min.
+    pub mean_nt_min: f64,
+    /// Mean number of recharging stops of the delivered requests.
+    pub mean_stops: f64,
+    /// Energy shared in flight over all delivered requests, mAh.
+    pub shared_mah: f64,
+    /// Wall-clock time for the whole set, ms.
+    pub wall_ms: f64,
+}
+
+/// One request's outcome, for `--per-request`.
+#[derive(Debug, Clone, Serialize)]
+pub struct Outcome {
+    /// The combination.
+    pub options: PlanOptions,
+    /// Request id.
+    pub request_id: String,
+    /// Delivered?
+    pub success: bool,
+    /// Delivery time, min.
+    pub dt_min: f64,
+    /// Node time, min.
+    pub nt_min: f64,
+    /// Stop node ids.
+    pub stops: Vec<String>,
+    /// Failure reason.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub failure: Option<String>,
+}
+
+/// Runs the subcommand.
+pub fn run(args: BatchArgs) -> Result<i32> {
+    if args.threads == 0 {
+        return Err(Error::invalid(
+            "E0004",
+            "--threads",
+            "0 worker threads",
+            "give --threads 1 or more",
+        ));
+    }
+    let instance = args.instance.load()?;
+    let mut requests = inputs::load_requests(args.requests.as_deref())?.requests;
+    if let Some(n) = args.limit {
+        requests.truncate(n);
+    }
+    inputs::validate_requests(&instance, &requests)?;
+    let context = Context::new(&instance.network, &instance.graph, &instance.profile);
+    let combos = combinations(&args);
+    let mut summaries = Vec::new();
+    let mut outcomes = Vec::new();
+    for options in combos {
+        let start = Instant::now();
+        let reports = plan_all(&context, &requests, &options, args.threads)?;
+        let wall_ms = start.elapsed().as_secs_f64() * 1e3;
+        let summary = summarise(options, &reports, wall_ms);
+        if !args.json {
+            eprintln!(
+                "sharing {:<4} positioning {:<14} route {:<14} delivered {}/{} mean dt {:.2} min, {:.0} ms",
+                format!("{:?}", options.sharing).to_lowercase(),
+                format!("{:?}", options.positioning),
+                options.route.name(),
+                summary.succeeded,
+                summary.requests,
+                summary.mean_dt_min,
+                summary.wall_ms
+            );
+        }
+        if args.per_request.is_some() {
+            outcomes.extend(reports.iter().map(|r| Outcome {
+                options,
+                request_id: r.request_id.clone(),
+                success: r.plan.success,
+                dt_min: r.plan.dt_min,
+                nt_min: r.plan.nt_min,
+                stops: r.plan.stops().into_iter().map(String::from).collect(),
+                failure: r.plan.failure.clone(),
+            }));
+        }
+        summaries.push(summary);
+    }
+    if let Some(path) = &args.per_request {
+        io::write_json(path, &outcomes)?;
+    }
+    if args.json {
+        super::print_json(&summaries);
+    } else {
+        println!("sharing,positioning,route,delivered,requests,mean_dt_min,mean_nt_min,mean_stops,wall_ms");
+        for s in &summaries {
+            println!(
+                "{},{},{},{},{},{:.3},{:.3},{:.3},{:.0}",
+                format!("{:?}", s.options.sharing).to_lowercase(),
+                serde_json::to_value(s.options.positioning)
+                    .ok()
+                    .and_then(|v| v.as_str().map(String::from))
+                    .unwrap_or_default(),
+                s.options.route.name(),
+                s.succeeded,
+                s.requests,
+                s.mean_dt_min,
+                s.mean_nt_min,
+                s.mean_stops,
+                s.wall_ms
+            );
+        }
+    }
+    Ok(0)
+}
+
+fn combinations(args: &BatchArgs) -> Vec<PlanOptions> {
+    let (sharing, positioning, route) = if args.all {
+        (
+            vec![SharingPolicy::None, SharingPolicy::Pb, SharingPolicy::Fb],
+            vec![Positioning::LocationAware, Positioning::EnergyAware],
+            RouteMethod::ALL.to_vec(),
+        )
+    } else {
+        (
+            args.sharing.clone(),
+            args.positioning.clone(),
+            args.route.clone(),
+        )
+    };
+    let mut combos = Vec::new();
+    for &r in &route {
+        for &s in &sharing {
+            for &p in &positioning {
+                combos.push(PlanOptions {
+                    sharing: s,
+                    positioning: p,
+                    route: r,
+                    support: args.support,
+                });
+            }
+        }
+    }
+    combos
+}
+
+/// Plans every request; with several threads each takes a contiguous block, and the reports come
+/// back in request order, so the numbers do not depend on the thread count.
+fn plan_all(
+    context: &Context,
+    requests: &[Request],
+    options: &PlanOptions,
+    threads: usize,
+) -> Result<Vec<RequestReport>> {
+    if threads <= 1 || requests.len() < 2 {
+        return requests.iter().map(|r| context.plan(r, options)).collect();
+    }
+    let chunk = requests.len().div_ceil(threads);
+    let results: Vec<Result<Vec<RequestReport>>> = std::thread::scope(|scope| {
+        let handles: Vec<_> = requests
+            .chunks(chunk)
+            .map(|block| {
+                scope.spawn(move || {
+                    block
+                        .iter()
+                        .map(|r| context.plan(r, options))
+                        .collect::<Result<Vec<_>>>()
+                })
+            })
+            .collect();
+        handles
+            .into_iter()
+            .map(|h| h.join().expect("a planning thread panicked"))
+            .collect()
+    });
+    let mut reports = Vec::with_capacity(requests.len());
+    for block in results {
+        reports.extend(block?);
+    }
+    Ok(reports)
+}
+
+fn summarise(options: PlanOptions, reports: &[RequestReport], wall_ms: f64) -> Summary {
+    let delivered: Vec<&RequestReport> = reports.iter().filter(|r| r.plan.success).collect();
+    let k = delivered.len().max(1) as f64;
+    Summary {
+        options,
+        succeeded: delivered.len(),
+        requests: reports.len(),
+        mean_dt_min: delivered.iter().map(|r| r.plan.dt_min).sum::<f64>() / k,
+        mean_nt_min: delivered.iter().map(|r| r.plan.nt_min).sum::<f64>() / k,
+        mean_stops: delivered
+            .iter()
+            .map(|r| r.plan.stops().len() as f64)
+            .sum::<f64>()
+            / k,
+        shared_mah: delivered.iter().map(|r| r.plan.shared_mah).sum(),
+        wall_ms,
+    }
+}

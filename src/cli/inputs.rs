@@ -1,0 +1,105 @@
+//! Loading and validating the instance files shared by several subcommands. Without a path, the
+//! shipped paper-195 instance and `paper` profile embedded in the binary are used.
+
+use crate::error::{Error, Result};
+use crate::network::SkywayGraph;
+use crate::problem::{io, validate, Network, Profile, Request, RequestSet};
+use std::path::{Path, PathBuf};
+
+const EMBEDDED_NETWORK: &str = include_str!("../../instances/paper-195/network.json");
+const EMBEDDED_REQUESTS: &str = include_str!("../../instances/paper-195/requests.json");
+const EMBEDDED_PROFILE: &str = include_str!("../../instances/profiles/paper.toml");
+
+/// File arguments shared by the planning subcommands.
+#[derive(Debug, Clone, clap::Args)]
+pub struct InstanceArgs {
+    /// Skyway network (JSON) [default: the shipped instances/paper-195/network.json].
+    #[arg(long, value_name = "FILE")]
+    pub network: Option<PathBuf>,
+    /// Parameter profile (TOML) [default: the shipped instances/profiles/paper.toml].
+    #[arg(long, value_name = "FILE")]
+    pub profile: Option<PathBuf>,
+}
+
+/// A validated network with its graph, and a validated profile.
+pub struct Instance {
+    /// The network as read.
+    pub network: Network,
+    /// Its graph.
+    pub graph: SkywayGraph,
+    /// The profile.
+    pub profile: Profile,
+}
+
+impl InstanceArgs {
+    /// Reads and validates the network and the profile, reporting every violation of both.
+    pub fn load(&self) -> Result<Instance> {
+        let network: Network = match &self.network {
+            Some(p) => io::read_json(p)?,
+            None => io::parse_json(EMBEDDED_NETWORK, "embedded paper-195 network")?,
+        };
+        let profile: Profile = match &self.profile {
+            Some(p) => io::read_toml(p)?,
+            None => io::parse_toml(EMBEDDED_PROFILE, "embedded paper profile")?,
+        };
+        let mut violations = validate::validate_network(&network);
+        violations.extend(crate::problem::profile::validate_profile(&profile));
+        if !violations.is_empty() {
+            return Err(Error::Invalid(violations));
+        }
+        let graph = SkywayGraph::new(&network)?;
+        Ok(Instance {
+            network,
+            graph,
+            profile,
+        })
+    }
+}
+
+/// Reads a request set: the file given, or the embedded paper-195 requests.
+pub fn load_requests(path: Option<&Path>) -> Result<RequestSet> {
+    match path {
+        Some(p) => io::read_json(p),
+        None => io::parse_json(EMBEDDED_REQUESTS, "embedded paper-195 requests"),
+    }
+}
+
+/// Validates requests against the instance, reporting every violation at once.
+pub fn validate_requests(instance: &Instance, requests: &[Request]) -> Result<()> {
+    let mut violations = Vec::new();
+    for (i, r) in requests.iter().enumerate() {
+        violations.extend(validate::validate_request(
+            r,
+            i,
+            &instance.graph,
+            instance.profile.drone.max_payload_kg,
+        ));
+    }
+    if violations.is_empty() {
+        Ok(())
+    } else {
+        Err(Error::Invalid(violations))
+    }
+}
+
+/// Parses a comma-separated list of numbers; `field` names the option in messages.
+pub fn parse_list(text: &str, field: &str) -> Result<Vec<f64>> {
+    let mut values = Vec::new();
+    let mut violations = Vec::new();
+    for (i, part) in text.split(',').enumerate() {
+        match part.trim().parse::<f64>() {
+            Ok(v) => values.push(v),
+            Err(_) => violations.push(crate::Violation::new(
+                "E0003",
+                format!("{field}[{i}]"),
+                format!("`{}` is not a number", part.trim()),
+                "give comma-separated numbers, such as 1.2,0.8",
+            )),
+        }
+    }
+    if violations.is_empty() {
+        Ok(values)
+    } else {
+        Err(Error::Invalid(violations))
+    }
+}

@@ -1,0 +1,229 @@
+//! Flying one hop: turning a network path into the segment problem of in-flight sharing, and the
+//! node time at a recharging stop.
+
+use super::plan::{Hop, Stop};
+use crate::eaas::{self, SegmentOutcome, SegmentProblem, SharingPolicy};
+use crate::energy::{self, Wind};
+use crate::error::Result;
+use crate::network::{Path, SkywayGraph};
+use crate::node_time::{self, Limits};
+use crate::precompose::{Role, Swarm};
+use crate::problem::Profile;
+use std::cell::RefCell;
+use std::collections::HashMap;
+
+/// Everything fixed while one request is planned: network, profile, swarm and sharing policy.
+pub struct Planner<'a> {
+    graph: &'a SkywayGraph,
+    profile: &'a Profile,
+    swarm: &'a Swarm,
+    sharing: SharingPolicy,
+    /// Consumption-rate matrices `[drone][slot]` per directed edge `(from, to)`, computed once.
+    rates: RefCell<HashMap<(usize, usize), Vec<Vec<f64>>>>,
+}
+
+impl<'a> Planner<'a> {
+    /// A planner for one swarm on one network.
+    pub fn new(
+        graph: &'a SkywayGraph,
+        profile: &'a Profile,
+        swarm: &'a Swarm,
+        sharing: SharingPolicy,
+    ) -> Planner<'a> {
+        Planner {
+            graph,
+            profile,
+            swarm,
+            sharing,
+            rates: RefCell::new(HashMap::new()),
+        }
+    }
+
+    /// The network.
+    pub fn graph(&self) -> &SkywayGraph {
+        self.graph
+    }
+
+    /// The swarm.
+    pub fn swarm(&self) -> &Swarm {
+        self.swarm
+    }
+
+    /// The sharing policy used on every hop.
+    pub fn sharing(&self) -> SharingPolicy {
+        self.sharing
+    }
+
+    /// Ground speed of the swarm, m/min.
+    pub fn speed_m_per_min(&self) -> f64 {
+        self.profile.drone.speed_kmh * 1000.0 / 60.0
+    }
+
+    /// Every drone's capacity, mAh, by drone id: the battery after a full charge.
+    pub fn full_battery_mah(&self) -> Vec<f64> {
+        self.swarm.drones.iter().map(|d| d.capacity_mah).collect()
+    }
+
+    /// The in-flight sharing problem of flying `path` with batteries `battery_mah` at departure.
+    pub fn segment_problem(&self, path: &Path, battery_mah: &[f64]) -> SegmentProblem {
+        let speed = self.speed_m_per_min();
+        let mut cache = self.rates.borrow_mut();
+        let legs = path
+            .legs
+            .iter()
+            .map(|leg| {
+                let rate = cache
+                    .entry((leg.from, leg.to))
+                    .or_insert_with(|| {
+                        energy::rate_matrix_mah_per_min(
+                            self.profile,
+                            self.swarm,
+                            leg.heading_deg,
+                            &Wind {
+                                speed_mps: leg.wind_speed_mps,
+                                from_deg: leg.wind_from_deg,
+                            },
+                        )
+                    })
+                    .clone();
+                eaas::Leg {
+                    duration_min: leg.distance_m / speed,
+                    rate_mah_per_min: rate,
+                }
+            })
+            .collect();
+        let drones = self
+            .swarm
+            .drones
+            .iter()
+            .zip(battery_mah)
+            .map(|(d, &b)| eaas::DroneState {
+                role: match d.role {
+                    Role::Delivery => eaas::Role::Delivery,
+                    Role::Support => eaas::Role::Support,
+                },
+                capacity_mah: d.capacity_mah,
+                battery_mah: b,
+            })
+            .collect();
+        let s = &self.profile.sharing;
+        SegmentProblem {
+            legs,
+            drones,
+            slots_m: self.swarm.slots_m.clone(),
+            initial_slot: self.swarm.initial_slot.clone(),
+            rho_mah_per_min: s.rate_mah_per_min,
+            range_m: s.range_m,
+            gamma_mah: s.gamma_mah,
+            lambda_mah: s.lambda_mah,
+            delta_mah: s.delta_mah,
+        }
+    }
+
+    /// Simulates flying `path` without stopping under `policy`.
+    pub fn fly(
+        &self,
+        path: &Path,
+        battery_mah: &[f64],
+        policy: SharingPolicy,
+    ) -> Result<SegmentOutcome> {
+        eaas::simulate(&self.segment_problem(path, battery_mah), policy)
+    }
+
+    /// The recharging stop at `node` for a swarm arriving with `arrival_mah`: every drone charges to
+    /// full, `ct = (capacity - battery) / pad rate`, and `nt` is the exact optimal makespan on the
+    /// node's pads. `None` when the node has no pads.
+    pub fn stop_at(&self, node: usize, arrival_mah: &[f64]) -> Result<Option<Stop>> {
+        let pads = self.graph.pads(node);
+        if pads == 0 {
+            return Ok(None);
+        }
+        let rate = self
+            .graph
+            .pad_rate_mah_per_min(node, self.profile.pads.charge_rate_mah_per_min);
+        let charge_times_min: Vec<f64> = self
+            .swarm
+            .drones
+            .iter()
+            .zip(arrival_mah)
+            .map(|(d, &b)| (d.capacity_mah - b).max(0.0) / rate)
+            .collect();
+        let solution = node_time::exact(pads as usize, &charge_times_min, &Limits::default())?;
+        Ok(Some(Stop {
+            node: self.graph.id_of(node).to_string(),
+            pads,
+            charge_times_min,
+            nt_min: solution.makespan_min,
+            assignment: solution.assignment,
+            status: solution.status,
+        }))
+    }
+
+    /// Assembles a hop from a flown path.
+    pub(crate) fn hop(
+        &self,
+        path: &Path,
+        departure_mah: &[f64],
+        outcome: SegmentOutcome,
+        stop: Option<Stop>,
+    ) -> Hop {
+        let ids = |i: &usize| self.graph.id_of(*i).to_string();
+        Hop {
+            from: ids(&path.nodes[0]),
+            to: ids(path.nodes.last().expect("a path has at least one node")),
+            path: path.nodes.iter().map(ids).collect(),
+            distance_m: path.distance_m,
+            tt_min: path.distance_m / self.speed_m_per_min(),
+            shared_mah: outcome.shared_mah,
+            transfers: outcome.transfers,
+            departure_battery_mah: departure_mah.to_vec(),
+            arrival_battery_mah: outcome.final_battery_mah,
+            stop,
+        }
+    }
+
+    /// Longest time, min, the swarm could possibly fly without stopping from batteries
+    /// `battery_mah`: drone `d` with smallest possible rate `r_d` over the whole network and slots
+    /// can stay aloft at most `b_d / (r_d - rho)` (a delivery drone can receive at most `rho` while
+    /// some support drone exists). A necessary condition used to skip hopeless candidates.
+    pub(crate) fn endurance_bound_min(&self, battery_mah: &[f64], min_rate: &[f64]) -> f64 {
+        let has_support = self.swarm.drones.iter().any(|d| d.role == Role::Support);
+        let rho = if has_support && self.sharing != SharingPolicy::None {
+            self.profile.sharing.rate_mah_per_min
+        } else {
+            0.0
+        };
+        let mut bound = f64::INFINITY;
+        for (d, (&b, &r)) in self.swarm.drones.iter().zip(battery_mah.iter().zip(min_rate)) {
+            let inflow = if d.role == Role::Delivery { rho } else { 0.0 };
+            let net = r - inflow;
+            if net > 0.0 {
+                bound = bound.min(b / net);
+            }
+        }
+        bound
+    }
+
+    /// Smallest consumption rate of every drone over every directed edge and every slot, mAh/min.
+    pub(crate) fn min_rates_mah_per_min(&self) -> Vec<f64> {
+        let n = self.swarm.drones.len();
+        let mut min_rate = vec![f64::INFINITY; n];
+        for u in 0..self.graph.node_count() {
+            for v in self.graph.neighbors(u) {
+                let path = match self.graph.path_from_nodes(&[u, v]) {
+                    Some(p) => p,
+                    None => continue,
+                };
+                let problem = self.segment_problem(&path, &self.full_battery_mah());
+                for leg in &problem.legs {
+                    for (d, row) in leg.rate_mah_per_min.iter().enumerate() {
+                        for &r in row {
+                            min_rate[d] = min_rate[d].min(r);
+                        }
+                    }
+                }
+            }
+        }
+        min_rate
+    }
+}

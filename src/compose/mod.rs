@@ -1,0 +1,88 @@
+//! Route composition (level 2): Algorithm 1 of the paper (sequential composition) and its A*-style
+//! variant, and the Dijkstra and Floyd–Warshall baselines with edge cost `tt + nt`.
+//! See models/compose.md.
+//!
+//! Every method produces a [`Plan`]: the hops flown between stops, the in-flight sharing schedule of
+//! each hop, the node time and pad assignment at every recharging stop, and the delivery time
+//! `dt = sum tt + sum nt`. A request the swarm cannot complete is a failed plan with its reason,
+//! never an error.
+
+mod baselines;
+mod flight;
+mod plan;
+mod request;
+mod sequential;
+
+pub use flight::Planner;
+pub use plan::{Hop, Plan, Stop};
+pub use request::{Context, PlanOptions, RequestReport};
+
+use serde::Serialize;
+
+/// How the route is composed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, clap::ValueEnum)]
+#[serde(rename_all = "kebab-case")]
+pub enum RouteMethod {
+    /// Algorithm 1: go straight to the destination if possible (without, then with sharing), else
+    /// stop at the reachable recharging node with the least `tt + nt`.
+    Sequential,
+    /// Algorithm 1 with the remaining shortest-path travel time to the destination added to each
+    /// candidate's `tt + nt` (A*-style look-ahead).
+    Astar,
+    /// Fixed route: Dijkstra on edge cost `tt + nt`.
+    Dijkstra,
+    /// Fixed route: Floyd–Warshall all-pairs on edge cost `tt + nt`.
+    FloydWarshall,
+}
+
+impl RouteMethod {
+    /// Every method, in a fixed order.
+    pub const ALL: [RouteMethod; 4] = [
+        RouteMethod::Sequential,
+        RouteMethod::Astar,
+        RouteMethod::Dijkstra,
+        RouteMethod::FloydWarshall,
+    ];
+
+    /// The method's command-line name.
+    pub fn name(self) -> &'static str {
+        match self {
+            RouteMethod::Sequential => "sequential",
+            RouteMethod::Astar => "astar",
+            RouteMethod::Dijkstra => "dijkstra",
+            RouteMethod::FloydWarshall => "floyd-warshall",
+        }
+    }
+}
+
+impl Planner<'_> {
+    /// Composes the route of one request from node index `source` to `destination`.
+    ///
+    /// # Arguments
+    /// * `source`, `destination`: node indices of the planner's graph.
+    /// * `method`: the route method.
+    ///
+    /// # Returns
+    /// A [`Plan`]; `plan.success` is false with `plan.failure` set when the swarm cannot deliver.
+    ///
+    /// # Errors
+    /// Only for malformed internal problems (a bug or inconsistent input that escaped validation).
+    ///
+    /// # Complexity
+    /// Sequential/A*: at most one step per recharging node, each step one Dijkstra tree and one
+    /// segment simulation per recharging node. Dijkstra: one Dijkstra on `tt + nt` costs.
+    /// Floyd–Warshall: O(|V|^3).
+    pub fn compose(
+        &self,
+        source: usize,
+        destination: usize,
+        method: RouteMethod,
+    ) -> crate::error::Result<Plan> {
+        match method {
+            RouteMethod::Sequential => self.compose_sequential(source, destination, false),
+            RouteMethod::Astar => self.compose_sequential(source, destination, true),
+            RouteMethod::Dijkstra => self.compose_fixed_route(source, destination, false),
+            RouteMethod::FloydWarshall => self.compose_fixed_route(source, destination, true),
+        }
+    }
+}

@@ -1,0 +1,117 @@
+//! The output of route composition.
+
+use crate::eaas::Transfer;
+use crate::solver::SolveStatus;
+use serde::Serialize;
+
+/// A composed delivery plan for one request.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Plan {
+    /// Source node id.
+    pub source: String,
+    /// Destination node id.
+    pub destination: String,
+    /// Whether the swarm reaches the destination.
+    pub success: bool,
+    /// Why it does not, when it does not.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub failure: Option<String>,
+    /// Hops flown, each from one stop (or the source) to the next stop (or the destination).
+    pub hops: Vec<Hop>,
+    /// Total travel time, min: sum of the hops' `tt`.
+    pub tt_min: f64,
+    /// Total node time, min: sum of the stops' `nt`.
+    pub nt_min: f64,
+    /// Delivery time `dt = tt + nt`, min (of the part flown, for a failed plan).
+    pub dt_min: f64,
+    /// Energy shared in flight over the whole plan, mAh.
+    pub shared_mah: f64,
+}
+
+/// One hop: a flight without stopping between two stops, possibly over several segments.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Hop {
+    /// Node id the hop starts at.
+    pub from: String,
+    /// Node id the hop ends at.
+    pub to: String,
+    /// Node ids flown over, `from` and `to` included.
+    pub path: Vec<String>,
+    /// Length, m.
+    pub distance_m: f64,
+    /// Travel time `tt`, min.
+    pub tt_min: f64,
+    /// In-flight energy transfers during the hop.
+    pub transfers: Vec<Transfer>,
+    /// Energy shared during the hop, mAh.
+    pub shared_mah: f64,
+    /// Battery of every drone (by drone id) at the start of the hop, mAh.
+    pub departure_battery_mah: Vec<f64>,
+    /// Battery of every drone at the end of the hop, mAh.
+    pub arrival_battery_mah: Vec<f64>,
+    /// The recharging stop at `to`; `None` at the destination.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stop: Option<Stop>,
+}
+
+/// A recharging stop: every drone charges to full on one of the node's pads.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Stop {
+    /// Node id.
+    pub node: String,
+    /// Pads at the node.
+    pub pads: u32,
+    /// Charge time `ct` of every drone (by drone id), min.
+    pub charge_times_min: Vec<f64>,
+    /// Node time `nt` = makespan of the pad assignment, min.
+    pub nt_min: f64,
+    /// Drone ids charged on each pad, in order.
+    pub assignment: Vec<Vec<usize>>,
+    /// Status of the node-time solve.
+    pub status: SolveStatus,
+}
+
+impl Plan {
+    pub(crate) fn new(source: String, destination: String) -> Plan {
+        Plan {
+            source,
+            destination,
+            success: false,
+            failure: None,
+            hops: Vec::new(),
+            tt_min: 0.0,
+            nt_min: 0.0,
+            dt_min: 0.0,
+            shared_mah: 0.0,
+        }
+    }
+
+    pub(crate) fn push(&mut self, hop: Hop) {
+        self.tt_min += hop.tt_min;
+        self.shared_mah += hop.shared_mah;
+        if let Some(stop) = &hop.stop {
+            self.nt_min += stop.nt_min;
+        }
+        self.dt_min = self.tt_min + self.nt_min;
+        self.hops.push(hop);
+    }
+
+    pub(crate) fn finish(mut self) -> Plan {
+        self.success = true;
+        self
+    }
+
+    pub(crate) fn fail(mut self, reason: String) -> Plan {
+        self.success = false;
+        self.failure = Some(reason);
+        self
+    }
+
+    /// Node ids where the swarm stopped to recharge, in order.
+    pub fn stops(&self) -> Vec<&str> {
+        self.hops
+            .iter()
+            .filter_map(|h| h.stop.as_ref().map(|s| s.node.as_str()))
+            .collect()
+    }
+}

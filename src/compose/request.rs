@@ -1,0 +1,123 @@
+//! Planning one request end to end: pre-composition (formation, support drones, positions) then
+//! route composition.
+
+use super::{Plan, Planner, RouteMethod};
+use crate::eaas::SharingPolicy;
+use crate::energy::Wind;
+use crate::error::{Error, Result};
+use crate::formation::FormationKind;
+use crate::network::SkywayGraph;
+use crate::precompose::{self, Positioning, SupportDecision, Swarm};
+use crate::problem::{Network, Profile, Request};
+use serde::Serialize;
+use std::time::Instant;
+
+/// The method combination a request is planned with.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub struct PlanOptions {
+    /// In-flight sharing policy on every hop.
+    pub sharing: SharingPolicy,
+    /// Initial positioning of the support drones.
+    pub positioning: Positioning,
+    /// Route composition method.
+    pub route: RouteMethod,
+    /// Number of support drones; `None` lets the redundancy table decide.
+    pub support: Option<usize>,
+}
+
+/// What is fixed for every request on one network with one profile.
+pub struct Context<'a> {
+    graph: &'a SkywayGraph,
+    profile: &'a Profile,
+    /// The fixed formation, selected from the network's averaged wind.
+    pub formation: FormationKind,
+    /// The network's averaged wind.
+    pub average_wind: Wind,
+}
+
+/// The planned request.
+#[derive(Debug, Clone, Serialize)]
+pub struct RequestReport {
+    /// Request id.
+    pub request_id: String,
+    /// The method combination.
+    pub options: PlanOptions,
+    /// The fixed formation.
+    pub formation: FormationKind,
+    /// What the redundancy table decided.
+    pub support_decision: SupportDecision,
+    /// Support drones flown (the decision or the override).
+    pub support_drones: usize,
+    /// The swarm: drones, slots, initial positions.
+    pub swarm: Swarm,
+    /// The composed plan.
+    pub plan: Plan,
+    /// Wall-clock time of pre-composition and composition, ms (not reproducible, unlike the rest).
+    pub execution_ms: f64,
+}
+
+impl<'a> Context<'a> {
+    /// Selects the formation from the network's averaged wind.
+    pub fn new(network: &Network, graph: &'a SkywayGraph, profile: &'a Profile) -> Context<'a> {
+        let (formation, average_wind) = precompose::select_formation(network, profile);
+        Context {
+            graph,
+            profile,
+            formation,
+            average_wind,
+        }
+    }
+
+    /// Plans one validated request.
+    ///
+    /// # Errors
+    /// [`Error::Invalid`] when the request names an unknown node (validate requests first to get
+    /// every violation at once).
+    pub fn plan(&self, request: &Request, options: &PlanOptions) -> Result<RequestReport> {
+        let start = Instant::now();
+        let index = |id: &str, field: &str| {
+            self.graph.index_of(id).ok_or_else(|| {
+                Error::invalid(
+                    "E3001",
+                    format!("request {}.{field}", request.id),
+                    format!("unknown node id `{id}`"),
+                    "use a node id of the network",
+                )
+            })
+        };
+        let source = index(&request.source, "source")?;
+        let destination = index(&request.destination, "destination")?;
+        let route_distance_m = self
+            .graph
+            .shortest_path(source, destination)
+            .map(|p| p.distance_m)
+            .unwrap_or(f64::INFINITY);
+        let support_decision = precompose::support_count(
+            self.profile,
+            &request.packages_kg,
+            route_distance_m,
+            &self.average_wind,
+        );
+        let support_drones = options.support.unwrap_or(support_decision.count);
+        let swarm = precompose::build_swarm(
+            self.profile,
+            self.formation,
+            &request.packages_kg,
+            support_drones,
+            options.positioning,
+        );
+        let planner = Planner::new(self.graph, self.profile, &swarm, options.sharing);
+        let plan = planner.compose(source, destination, options.route)?;
+        let execution_ms = start.elapsed().as_secs_f64() * 1e3;
+        Ok(RequestReport {
+            request_id: request.id.clone(),
+            options: *options,
+            formation: self.formation,
+            support_decision,
+            support_drones,
+            swarm,
+            plan,
+            execution_ms,
+        })
+    }
+}
