@@ -23,6 +23,7 @@
 
 pub mod cli;
 pub mod error;
+pub mod node_time;
 pub mod problem;
 pub mod solver;
 

@@ -1,12 +1,150 @@
-//! `swarmplan node-time`.
+//! `swarmplan node-time`: the node time of one recharging stop (pad-to-drone assignment, P||Cmax).
+//!
+//! ```text
+//! swarmplan node-time --pads 3 --times 60,50,40,30,20
+//! swarmplan node-time --file stop.json --method milp --backend microlp --time-limit 10 --json
+//! ```
+//! where `stop.json` is `{"pads": 3, "charge_times_min": [60, 50, 40, 30, 20]}`.
 
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, Violation};
+use crate::node_time::{self, Limits, NodeTimeMethod, NodeTimeSolution};
+use crate::problem::io::read_json;
+use crate::solver::{MilpBackend, SolveStatus};
+use serde::Deserialize;
+use std::path::PathBuf;
 
-/// Node time.
+/// Arguments of `swarmplan node-time`.
 #[derive(Debug, clap::Args)]
-pub struct NodeTimeArgs {}
+pub struct NodeTimeArgs {
+    /// Number of identical charging pads at the node (with --times).
+    #[arg(long, required_unless_present = "file", conflicts_with = "file")]
+    pub pads: Option<usize>,
+    /// Charge time of each drone in minutes, comma-separated, e.g. 60,50,40.
+    #[arg(
+        long,
+        required_unless_present = "file",
+        conflicts_with = "file",
+        allow_hyphen_values = true
+    )]
+    pub times: Option<String>,
+    /// JSON file `{"pads": K, "charge_times_min": [...]}` instead of --pads and --times.
+    #[arg(long)]
+    pub file: Option<PathBuf>,
+    /// Method: exact branch and bound, MILP, LPT heuristic, or the paper's brute force.
+    #[arg(long, value_enum, default_value_t = NodeTimeMethod::Exact)]
+    pub method: NodeTimeMethod,
+    /// MILP backend (with --method milp).
+    #[arg(long, value_enum, default_value_t = MilpBackend::all()[0])]
+    pub backend: MilpBackend,
+    /// Time limit in seconds; a stopped solve reports its incumbent as `feasible`.
+    #[arg(long)]
+    pub time_limit: Option<f64>,
+    /// Print the result as JSON on stdout.
+    #[arg(long)]
+    pub json: bool,
+}
 
-/// Runs the subcommand.
-pub fn run(_args: NodeTimeArgs) -> Result<i32> {
-    Err(Error::invalid("E0000", "node_time", "not available yet", "wait"))
+/// Node-time instance file.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NodeTimeFile {
+    /// Optional schema version; only 1 exists.
+    #[serde(default)]
+    pub schema_version: Option<u32>,
+    /// Number of pads `k`.
+    pub pads: usize,
+    /// Charge time of each drone, minutes.
+    pub charge_times_min: Vec<f64>,
+}
+
+/// Parses `60,50,40` into minutes; every unreadable entry is reported (`E4007`).
+fn parse_times(text: &str) -> Result<Vec<f64>> {
+    let mut times = Vec::new();
+    let mut violations = Vec::new();
+    if text.trim().is_empty() {
+        return Ok(times);
+    }
+    for (j, part) in text.split(',').enumerate() {
+        match part.trim().parse::<f64>() {
+            Ok(t) => times.push(t),
+            Err(_) => violations.push(Violation::new(
+                "E4007",
+                format!("--times[{j}]"),
+                format!("`{}` is not a number", part.trim()),
+                "give comma-separated charge times in minutes, e.g. --times 60,50,40",
+            )),
+        }
+    }
+    if violations.is_empty() {
+        Ok(times)
+    } else {
+        Err(Error::Invalid(violations))
+    }
+}
+
+/// Runs the subcommand; returns the exit code.
+pub fn run(args: NodeTimeArgs) -> Result<i32> {
+    let (pads, times) = match &args.file {
+        Some(path) => {
+            let f: NodeTimeFile = read_json(path)?;
+            if let Some(v) = f.schema_version.filter(|&v| v != 1) {
+                return Err(Error::invalid(
+                    "E4008",
+                    "schema_version",
+                    format!("schema version {v} is not known"),
+                    "use schema_version 1 or leave it out",
+                ));
+            }
+            (f.pads, f.charge_times_min)
+        }
+        None => {
+            let pads = args.pads.unwrap_or(0);
+            match parse_times(args.times.as_deref().unwrap_or("")) {
+                Ok(times) => (pads, times),
+                Err(Error::Invalid(mut violations)) => {
+                    // Report the pad count's problems together with the unreadable times.
+                    if let Err(Error::Invalid(more)) = node_time::validate(pads, &[0.0]) {
+                        violations.extend(more);
+                    }
+                    return Err(Error::Invalid(violations));
+                }
+                Err(e) => return Err(e),
+            }
+        }
+    };
+    let limits = Limits {
+        time_limit_s: args.time_limit,
+        node_limit: None,
+    };
+    let solution = node_time::solve(args.method, args.backend, pads, &times, &limits)?;
+    if args.json {
+        crate::cli::print_json(&solution);
+    } else {
+        print_human(&solution, &times, args.backend);
+    }
+    Ok(0)
+}
+
+fn print_human(s: &NodeTimeSolution, times: &[f64], backend: MilpBackend) {
+    let status = match s.status {
+        SolveStatus::Optimal => "optimal",
+        SolveStatus::Feasible => "feasible, not proven optimal",
+        SolveStatus::Infeasible => "infeasible",
+    };
+    let method = if s.method == NodeTimeMethod::Milp {
+        format!("milp on {}", backend.name())
+    } else {
+        s.method.name().to_string()
+    };
+    println!("node time: {} min ({status}; method {method})", s.makespan_min);
+    println!("lower bound: {} min", s.lower_bound_min);
+    for (i, pad) in s.assignment.iter().enumerate() {
+        let load: f64 = pad.iter().map(|&j| times[j]).sum();
+        let drones: Vec<String> = pad
+            .iter()
+            .map(|&j| format!("{j} ({} min)", times[j]))
+            .collect();
+        println!("pad {i}: load {load} min: drones {}", drones.join(", "));
+    }
+    println!("solve time: {:.3} ms", s.solve_ms);
 }

@@ -1,0 +1,285 @@
+//! Exact node time: combinatorial branch and bound for P||Cmax (see `models/node_time.md`).
+//!
+//! Jobs (drones) are taken in decreasing charge time `p_1 >= ... >= p_n`; a node of the search
+//! tree fixes the pads of jobs `1..j`. The search only looks for assignments strictly better than
+//! the incumbent `UB`, so every pad load must stay within the capacity
+//!
+//! ```text
+//! cap = UB - 1            when every p_j is a whole number of minutes,
+//! cap = UB * (1 - 1e-9)   otherwise (REL_TOL),
+//! ```
+//!
+//! and a node is pruned when the useful slack `sum_i (cap - L_i)` over pads whose slack can still
+//! take the shortest job is below the remaining work `sum_{l >= j} p_l`. Symmetry: among pads with
+//! equal load (in particular all empty pads) only one is tried. LPT gives the first `UB`; pads are
+//! tried by increasing load, so the first dive follows LPT's rule. The search stops as soon as `UB` meets the root lower bound or
+//! the tree is exhausted: then `UB` is proven optimal.
+
+use super::lpt::lpt_sorted;
+use super::{
+    all_integral, elapsed_ms, le_tol, lists_from_pad_of, lower_bound_sorted, one_per_pad,
+    sort_desc, validate, validate_limits, Limits, NodeTimeMethod, NodeTimeSolution, REL_TOL,
+};
+use crate::error::Result;
+use crate::solver::SolveStatus;
+use std::time::Instant;
+
+/// How often (in nodes) the search reads the clock.
+const CLOCK_EVERY_NODES: u64 = 1024;
+
+/// Depth-first branch and bound over the positive jobs, sorted decreasingly.
+struct Search<'a> {
+    /// `p[j]`, decreasing, all > 0.
+    p: &'a [f64],
+    /// `rem[j] = p[j] + ... + p[n-1]`.
+    rem: Vec<f64>,
+    /// Number of pads `m` in use.
+    m: usize,
+    integral: bool,
+    /// Root lower bound.
+    lb: f64,
+    /// Incumbent makespan.
+    ub: f64,
+    /// Pad of each sorted job in the incumbent.
+    best: Vec<usize>,
+    /// Largest load an improving assignment may have.
+    cap: f64,
+    loads: Vec<f64>,
+    pad_of: Vec<usize>,
+    /// Load of the pad of job `j` before job `j` was put on it (exact restore on backtrack).
+    prev: Vec<f64>,
+    /// Candidate pads of job `j`: `cands[j*m .. j*m + ncand[j]]`, increasing load.
+    cands: Vec<usize>,
+    ncand: Vec<usize>,
+    /// Next candidate of job `j` to try.
+    next: Vec<usize>,
+    nodes: u64,
+}
+
+impl Search<'_> {
+    fn cap_for(&self, ub: f64) -> f64 {
+        if self.integral {
+            ub - 1.0
+        } else {
+            ub - REL_TOL * ub
+        }
+    }
+
+    fn proven(&self) -> bool {
+        if self.integral {
+            self.ub <= self.lb
+        } else {
+            le_tol(self.ub, self.lb)
+        }
+    }
+
+    /// Fills the candidate list of job `j` under the current capacity.
+    fn expand(&mut self, j: usize) {
+        let m = self.m;
+        let pj = self.p[j];
+        let p_min = self.p[self.p.len() - 1];
+        let cap = self.cap;
+        self.ncand[j] = 0;
+        self.next[j] = 0;
+        // Useful slack bound.
+        let mut useful = 0.0;
+        for &l in &self.loads {
+            let s = cap - l;
+            if s >= p_min {
+                useful += s;
+            }
+        }
+        if useful < self.rem[j] {
+            return;
+        }
+        let base = j * m;
+        let mut count = 0;
+        for i in 0..m {
+            let l = self.loads[i];
+            if l + pj > cap {
+                continue;
+            }
+            // Symmetry: pads with equal load lead to the same subtrees.
+            if self.cands[base..base + count]
+                .iter()
+                .any(|&c| self.loads[c] == l)
+            {
+                continue;
+            }
+            // Insert keeping increasing load.
+            let mut pos = count;
+            while pos > 0 && self.loads[self.cands[base + pos - 1]] > l {
+                self.cands[base + pos] = self.cands[base + pos - 1];
+                pos -= 1;
+            }
+            self.cands[base + pos] = i;
+            count += 1;
+        }
+        self.ncand[j] = count;
+    }
+
+    /// Runs the search; returns `true` when it finished (proof complete), `false` when a limit
+    /// stopped it.
+    fn run(&mut self, start: Instant, limits: &Limits) -> bool {
+        let n = self.p.len();
+        let mut j = 0;
+        self.expand(0);
+        loop {
+            // Take the next candidate of job j that still fits under the (possibly lowered) cap.
+            let mut placed = false;
+            while self.next[j] < self.ncand[j] {
+                let i = self.cands[j * self.m + self.next[j]];
+                self.next[j] += 1;
+                if self.loads[i] + self.p[j] > self.cap {
+                    continue;
+                }
+                self.prev[j] = self.loads[i];
+                self.loads[i] += self.p[j];
+                self.pad_of[j] = i;
+                placed = true;
+                break;
+            }
+            if placed {
+                self.nodes += 1;
+                if self.nodes % CLOCK_EVERY_NODES == 0 && self.limit_hit(start, limits) {
+                    return false;
+                }
+                if j + 1 == n {
+                    // Leaf: every load is within cap < UB, a strictly better incumbent.
+                    self.ub = self.loads.iter().copied().fold(0.0, f64::max);
+                    self.best.copy_from_slice(&self.pad_of);
+                    if self.proven() {
+                        return true;
+                    }
+                    self.cap = self.cap_for(self.ub);
+                    self.loads[self.pad_of[j]] = self.prev[j];
+                    continue;
+                }
+                j += 1;
+                self.expand(j);
+                continue;
+            }
+            // Job j exhausted: backtrack.
+            if j == 0 {
+                return true;
+            }
+            j -= 1;
+            self.loads[self.pad_of[j]] = self.prev[j];
+        }
+    }
+
+    fn limit_hit(&self, start: Instant, limits: &Limits) -> bool {
+        if let Some(max_nodes) = limits.node_limit {
+            if self.nodes >= max_nodes {
+                return true;
+            }
+        }
+        if let Some(t) = limits.time_limit_s {
+            if start.elapsed().as_secs_f64() >= t {
+                return true;
+            }
+        }
+        false
+    }
+}
+
+/// Exact node time by combinatorial branch and bound.
+///
+/// # Arguments
+/// * `pads` - number of identical pads `k`.
+/// * `charge_times_min` - charge time `p_j` of each drone, minutes (zero is fine).
+/// * `limits` - optional time limit (s) and node limit; with neither the result is proven.
+///
+/// # Returns
+/// A [`NodeTimeSolution`] with method `exact`: `Optimal` with `lower_bound_min == makespan_min`
+/// when the proof completed; `Feasible` with the incumbent and the root lower bound
+/// `max(p_max, sum/k, p_k + p_{k+1}, ...)` when a limit stopped it. With `pads >= drones` the node
+/// time is the longest charge time, one drone per pad.
+///
+/// # Errors
+/// Those of [`validate`]; `E4006` for a negative or non-finite time limit.
+///
+/// # Complexity
+/// Worst case exponential (P||Cmax is strongly NP-hard), `O(n k)` memory; typical swarms
+/// (n <= 30, k <= 10) take microseconds to a millisecond, see `examples/bench_node_time.rs`.
+///
+/// # Example
+/// ```
+/// use swarmplan::node_time::{exact, Limits};
+/// use swarmplan::solver::SolveStatus;
+/// let s = exact(3, &[60.0, 50.0, 40.0, 30.0, 20.0], &Limits::default()).unwrap();
+/// assert_eq!(s.makespan_min, 70.0);
+/// assert_eq!(s.status, SolveStatus::Optimal);
+/// ```
+pub fn exact(pads: usize, charge_times_min: &[f64], limits: &Limits) -> Result<NodeTimeSolution> {
+    validate(pads, charge_times_min)?;
+    validate_limits(limits)?;
+    let start = Instant::now();
+    let n = charge_times_min.len();
+    if pads >= n {
+        let makespan = charge_times_min.iter().copied().fold(0.0, f64::max);
+        return Ok(NodeTimeSolution {
+            method: NodeTimeMethod::Exact,
+            makespan_min: makespan,
+            lower_bound_min: makespan,
+            status: SolveStatus::Optimal,
+            assignment: one_per_pad(n),
+            solve_ms: elapsed_ms(start),
+        });
+    }
+    let m = pads;
+    let (order, sorted) = sort_desc(charge_times_min);
+    let integral = all_integral(charge_times_min);
+    let lb = lower_bound_sorted(m, &sorted, integral);
+    // Zero-time drones (at the end of `sorted`) change no load: they join pad 0 at the end.
+    let positive = sorted.iter().take_while(|&&p| p > 0.0).count();
+    let mut pad_sorted = vec![0; n];
+    let ub = lpt_sorted(m, &sorted[..positive], &mut pad_sorted[..positive]);
+    let mut finished = true;
+    let proven_at_root = if integral { ub <= lb } else { le_tol(ub, lb) };
+    if !proven_at_root {
+        let p = &sorted[..positive];
+        let mut rem = vec![0.0; positive + 1];
+        for j in (0..positive).rev() {
+            rem[j] = rem[j + 1] + p[j];
+        }
+        let mut search = Search {
+            p,
+            rem,
+            m,
+            integral,
+            lb,
+            ub,
+            best: pad_sorted[..positive].to_vec(),
+            cap: 0.0,
+            loads: vec![0.0; m],
+            pad_of: vec![0; positive],
+            prev: vec![0.0; positive],
+            cands: vec![0; positive * m],
+            ncand: vec![0; positive],
+            next: vec![0; positive],
+            nodes: 0,
+        };
+        search.cap = search.cap_for(ub);
+        finished = search.run(start, limits);
+        pad_sorted[..positive].copy_from_slice(&search.best);
+    }
+    let mut pad_of = vec![0; n];
+    for (pos, &j) in order.iter().enumerate() {
+        pad_of[j] = pad_sorted[pos];
+    }
+    let assignment = lists_from_pad_of(&pad_of, m);
+    let makespan = super::makespan_of(charge_times_min, &assignment);
+    Ok(NodeTimeSolution {
+        method: NodeTimeMethod::Exact,
+        makespan_min: makespan,
+        lower_bound_min: if finished { makespan } else { lb.min(makespan) },
+        status: if finished {
+            SolveStatus::Optimal
+        } else {
+            SolveStatus::Feasible
+        },
+        assignment,
+        solve_ms: elapsed_ms(start),
+    })
+}

@@ -1,0 +1,294 @@
+//! Node time at a recharging node: the pad-to-drone assignment, identical parallel machines
+//! P||Cmax. See `models/node_time.md`.
+//!
+//! Every drone `j` of the swarm (delivery and support) needs charging time `p_j` (minutes) to reach
+//! a full battery; a node has `k` identical pads, each charging one drone at a time. The node time
+//! `nt` is the makespan
+//!
+//! ```text
+//! nt = min over assignments a: J -> {1..k} of  max_i  sum_{j : a(j) = i} p_j
+//! ```
+//!
+//! Four methods, each in its own file:
+//! - [`exact`] ([`exact.rs`](exact)): combinatorial branch and bound, LPT as first upper bound,
+//!   proven optimal unless a limit stops it;
+//! - [`milp`] ([`milp.rs`](milp)): the assignment MILP with symmetry breaking on every enabled
+//!   [`MilpBackend`];
+//! - [`lpt`] ([`lpt.rs`](lpt)): Graham's longest-processing-time list schedule, a
+//!   `4/3 - 1/(3k)` approximation;
+//! - [`brute`] ([`brute.rs`](brute)): the paper's brute force over every assignment, refused
+//!   above [`brute::BRUTE_MAX_ASSIGNMENTS`] assignments.
+//!
+//! Floating-point tolerance: charge times are `f64` minutes. Two makespans are equal when they
+//! differ by at most [`REL_TOL`] times the larger; "proven optimal" means no assignment has a makespan
+//! below the returned one by more than that. When every time is a whole number of minutes the
+//! search is exact (integer makespans, rounded-up bounds).
+//!
+//! Example, the paper's worked example (section 5): charge times 60, 50, 40, 30, 20 minutes give
+//! 200 minutes on one pad, 70 on three pads and 60 on five.
+//!
+//! ```
+//! use swarmplan::node_time::{exact, Limits};
+//! let times = [60.0, 50.0, 40.0, 30.0, 20.0];
+//! assert_eq!(exact(1, &times, &Limits::default()).unwrap().makespan_min, 200.0);
+//! assert_eq!(exact(3, &times, &Limits::default()).unwrap().makespan_min, 70.0);
+//! assert_eq!(exact(5, &times, &Limits::default()).unwrap().makespan_min, 60.0);
+//! ```
+
+use crate::error::{Error, Result, Violation};
+use crate::solver::{MilpBackend, SolveStatus};
+use serde::Serialize;
+
+pub mod brute;
+pub mod exact;
+pub mod lpt;
+pub mod milp;
+
+pub use brute::brute;
+pub use exact::exact;
+pub use lpt::lpt;
+pub use milp::milp;
+
+/// Relative tolerance under which two makespans count as equal (`1e-9`).
+pub const REL_TOL: f64 = 1e-9;
+
+/// Largest charge time, in minutes, treated as a whole number for the exact integer search
+/// (`2^50`, so every sum of up to 1000 such times is exact in `f64`).
+const INTEGRAL_MAX_MIN: f64 = 1_125_899_906_842_624.0;
+
+/// Method that computes a node time.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, clap::ValueEnum)]
+#[serde(rename_all = "lowercase")]
+pub enum NodeTimeMethod {
+    /// Combinatorial branch and bound, proven optimal unless a limit stops it.
+    Exact,
+    /// Assignment MILP on a [`MilpBackend`].
+    Milp,
+    /// Longest processing time first (Graham 1969), a heuristic.
+    Lpt,
+    /// The paper's brute force over every assignment.
+    Brute,
+}
+
+impl NodeTimeMethod {
+    /// The method's name as used on the command line and in JSON.
+    pub fn name(self) -> &'static str {
+        match self {
+            NodeTimeMethod::Exact => "exact",
+            NodeTimeMethod::Milp => "milp",
+            NodeTimeMethod::Lpt => "lpt",
+            NodeTimeMethod::Brute => "brute",
+        }
+    }
+}
+
+/// Limits of a solve; the default has none.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Limits {
+    /// Wall-clock limit in seconds; `None` for no limit.
+    pub time_limit_s: Option<f64>,
+    /// Limit on branch-and-bound nodes (placements of one drone on one pad) of [`exact`];
+    /// `None` for no limit. Other methods ignore it.
+    pub node_limit: Option<u64>,
+}
+
+/// A node time and the pad assignment that achieves it.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct NodeTimeSolution {
+    /// Method that produced it.
+    pub method: NodeTimeMethod,
+    /// Node time `nt` (minutes): the largest pad load of `assignment`.
+    pub makespan_min: f64,
+    /// A proven lower bound on the optimal node time (minutes); equal to `makespan_min` when
+    /// `status` is `Optimal`.
+    pub lower_bound_min: f64,
+    /// `Optimal` when proven optimal (within [`REL_TOL`]); `Feasible` when a limit stopped the
+    /// proof or the method is a heuristic whose result is not proven.
+    pub status: SolveStatus,
+    /// Drone indices (into the input list, ascending) charged on each pad; one entry per pad,
+    /// `min(pads, drones)` entries (further pads would stay empty).
+    pub assignment: Vec<Vec<usize>>,
+    /// Wall-clock time of the solve in milliseconds.
+    pub solve_ms: f64,
+}
+
+/// Checks a node-time instance and reports every violation at once.
+///
+/// # Arguments
+/// * `pads` - number of identical pads `k` at the node.
+/// * `charge_times_min` - charge time `p_j` of every drone, minutes.
+///
+/// # Errors
+/// [`Error::Invalid`] listing `E4001` (no pads), `E4002` (empty list), `E4003` (negative time),
+/// `E4004` (NaN or infinite time).
+///
+/// # Complexity
+/// `O(n)`.
+pub fn validate(pads: usize, charge_times_min: &[f64]) -> Result<()> {
+    let mut violations = Vec::new();
+    if pads == 0 {
+        violations.push(Violation::new(
+            "E4001",
+            "pads",
+            "the node has 0 pads, so no drone can charge",
+            "give at least 1 pad",
+        ));
+    }
+    if charge_times_min.is_empty() {
+        violations.push(Violation::new(
+            "E4002",
+            "charge_times_min",
+            "the list of charge times is empty",
+            "give one charge time (minutes) per drone that lands at the node",
+        ));
+    }
+    for (j, &p) in charge_times_min.iter().enumerate() {
+        if !p.is_finite() {
+            violations.push(Violation::new(
+                "E4004",
+                format!("charge_times_min[{j}]"),
+                format!("charge time {p} is not a finite number"),
+                "give a finite charge time in minutes",
+            ));
+        } else if p < 0.0 {
+            violations.push(Violation::new(
+                "E4003",
+                format!("charge_times_min[{j}]"),
+                format!("charge time {p} min is negative"),
+                "give a charge time of 0 minutes or more",
+            ));
+        }
+    }
+    if violations.is_empty() {
+        Ok(())
+    } else {
+        Err(Error::Invalid(violations))
+    }
+}
+
+/// Checks the limits: a time limit must be a finite number of seconds, 0 or more (`E4006`).
+pub(crate) fn validate_limits(limits: &Limits) -> Result<()> {
+    match limits.time_limit_s {
+        Some(t) if !(t.is_finite() && t >= 0.0) => Err(Error::invalid(
+            "E4006",
+            "time_limit_s",
+            format!("time limit {t} s is not a finite number of seconds >= 0"),
+            "give a time limit such as 10, or none",
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// Computes the node time with the chosen method.
+///
+/// # Arguments
+/// * `method` - which algorithm.
+/// * `backend` - MILP backend, used by [`NodeTimeMethod::Milp`] only.
+/// * `pads`, `charge_times_min` - the instance, as in [`validate`].
+/// * `limits` - time and node limits.
+///
+/// # Returns
+/// The [`NodeTimeSolution`] of that method.
+///
+/// # Errors
+/// Those of [`validate`]; `E4005` when brute force is asked beyond its size limit;
+/// [`Error::Backend`] when a MILP backend fails.
+///
+/// # Complexity
+/// That of the method called.
+pub fn solve(
+    method: NodeTimeMethod,
+    backend: MilpBackend,
+    pads: usize,
+    charge_times_min: &[f64],
+    limits: &Limits,
+) -> Result<NodeTimeSolution> {
+    match method {
+        NodeTimeMethod::Exact => exact(pads, charge_times_min, limits),
+        NodeTimeMethod::Milp => milp(pads, charge_times_min, backend, limits),
+        NodeTimeMethod::Lpt => lpt(pads, charge_times_min),
+        NodeTimeMethod::Brute => brute(pads, charge_times_min, limits),
+    }
+}
+
+/// Largest pad load of an assignment (minutes), recomputed from the raw times.
+///
+/// # Complexity
+/// `O(n)`.
+pub fn makespan_of(charge_times_min: &[f64], assignment: &[Vec<usize>]) -> f64 {
+    assignment
+        .iter()
+        .map(|pad| pad.iter().map(|&j| charge_times_min[j]).sum::<f64>())
+        .fold(0.0, f64::max)
+}
+
+/// True when every time is a whole number of minutes small enough for exact `f64` sums.
+pub(crate) fn all_integral(charge_times_min: &[f64]) -> bool {
+    charge_times_min.len() <= 1000
+        && charge_times_min
+            .iter()
+            .all(|&p| p.fract() == 0.0 && p <= INTEGRAL_MAX_MIN)
+}
+
+/// Root lower bound on the optimal makespan for times sorted in decreasing order:
+/// `max(p_1, sum/k, max over t >= 1 with t*k < n of p_{tk-t+1} + ... + p_{tk+1})`
+/// (1-based; `t = 1` gives `p_k + p_{k+1}`), rounded up when `integral`.
+///
+/// The last family: among the `t*k + 1` longest jobs some pad holds at least `t + 1` (pigeonhole),
+/// and those weigh at least the `t + 1` shortest of them.
+pub(crate) fn lower_bound_sorted(pads: usize, sorted_desc: &[f64], integral: bool) -> f64 {
+    let n = sorted_desc.len();
+    if n == 0 {
+        return 0.0;
+    }
+    let total: f64 = sorted_desc.iter().sum();
+    let mut lb = sorted_desc[0].max(total / pads as f64);
+    let mut t = 1;
+    while t * pads < n {
+        let last = t * pads; // 0-based index of job t*k+1
+        let s: f64 = sorted_desc[last - t..=last].iter().sum();
+        lb = lb.max(s);
+        t += 1;
+    }
+    if integral {
+        // sum/k may be fractional; a whole-number optimum is at least its ceiling.
+        lb = (lb - 1e-9).ceil().max(0.0);
+    }
+    lb
+}
+
+/// Drone indices sorted by decreasing charge time (ties by index), and the sorted times.
+pub(crate) fn sort_desc(charge_times_min: &[f64]) -> (Vec<usize>, Vec<f64>) {
+    let mut order: Vec<usize> = (0..charge_times_min.len()).collect();
+    order.sort_by(|&a, &b| {
+        charge_times_min[b]
+            .total_cmp(&charge_times_min[a])
+            .then(a.cmp(&b))
+    });
+    let sorted = order.iter().map(|&j| charge_times_min[j]).collect();
+    (order, sorted)
+}
+
+/// True when `a` is at most `b` within [`REL_TOL`].
+pub(crate) fn le_tol(a: f64, b: f64) -> bool {
+    a <= b + REL_TOL * a.abs().max(b.abs())
+}
+
+/// Milliseconds elapsed since `start`.
+pub(crate) fn elapsed_ms(start: std::time::Instant) -> f64 {
+    start.elapsed().as_secs_f64() * 1000.0
+}
+
+/// Assignment when there are at least as many pads as drones: one drone per pad.
+pub(crate) fn one_per_pad(n: usize) -> Vec<Vec<usize>> {
+    (0..n).map(|j| vec![j]).collect()
+}
+
+/// Builds the per-pad lists from `pad_of[j]` (pad of drone `j`), each sorted ascending.
+pub(crate) fn lists_from_pad_of(pad_of: &[usize], pads: usize) -> Vec<Vec<usize>> {
+    let mut lists = vec![Vec::new(); pads];
+    for (j, &i) in pad_of.iter().enumerate() {
+        lists[i].push(j);
+    }
+    lists
+}
