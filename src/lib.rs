@@ -22,7 +22,10 @@
 #![forbid(unsafe_code)]
 
 pub mod cli;
+pub mod energy;
 pub mod error;
+pub mod formation;
+pub mod precompose;
 pub mod problem;
 pub mod solver;
 
