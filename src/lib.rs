@@ -22,8 +22,11 @@
 #![forbid(unsafe_code)]
 
 pub mod cli;
+pub mod energy;
 pub mod error;
 pub mod node_time;
+pub mod formation;
+pub mod precompose;
 pub mod problem;
 pub mod solver;
 

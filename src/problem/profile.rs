@@ -1,6 +1,7 @@
 //! Parameter profile (TOML): every constant of the models, each documented with its source in the
 //! shipped profile files under `instances/profiles/`.
 
+use crate::error::Violation;
 use serde::{Deserialize, Serialize};
 
 /// A parameter profile.
@@ -19,6 +20,18 @@ pub struct Profile {
     pub sharing: SharingParams,
     /// Recharging pads at nodes.
     pub pads: PadParams,
+    /// Energy model constants (models/energy.md). Defaults to the `paper` profile's values.
+    #[serde(default)]
+    pub energy: EnergyParams,
+    /// Formation geometry and wake model (models/formation.md). Defaults to the `paper` values.
+    #[serde(default)]
+    pub formation: FormationParams,
+    /// Redundancy table: failure probability (percent) to number of support drones (paper Table 2).
+    #[serde(default)]
+    pub redundancy: RedundancyParams,
+    /// Failure probability of Eq. 2 (models/precompose.md). Defaults to the `paper` values.
+    #[serde(default)]
+    pub failure: FailureParams,
 }
 
 /// Drone model (paper Table 3: DJI Phantom 3).
@@ -70,4 +83,493 @@ pub struct SharingParams {
 pub struct PadParams {
     /// Default charge rate of one pad, mAh/min (a node may override it).
     pub charge_rate_mah_per_min: f64,
+}
+
+/// Energy model constants; see models/energy.md. Symbols: `r0` base rate, `e_m` payload exponent,
+/// `c_par` parasitic share.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EnergyParams {
+    /// Flight time of an unloaded drone on one battery in still air at cruise, min. The base rate is
+    /// `r0 = drone.battery_mah / endurance_min` (mAh/min).
+    pub endurance_min: f64,
+    /// Exponent `e_m` of the payload factor `((m0 + p) / m0)^e_m` (momentum theory: 3/2).
+    pub payload_exponent: f64,
+    /// Share `c_par` of still-air cruise power spent against parasitic drag; the wind factor is
+    /// `(1 - c_par) + c_par * (v_air / v)^3`, so it stays at least `1 - c_par > 0`.
+    pub parasitic_fraction: f64,
+    /// Safe-flight wind limit, m/s: winds at or above it are refused.
+    pub wind_limit_mps: f64,
+}
+
+impl Default for EnergyParams {
+    fn default() -> Self {
+        EnergyParams {
+            endurance_min: 23.0,
+            payload_exponent: 1.5,
+            parasitic_fraction: 0.1,
+            wind_limit_mps: 13.8,
+        }
+    }
+}
+
+/// Formation geometry and the wake/shielding model over slot positions; see models/formation.md.
+/// Every gain is a fraction of a drone's consumption; every length is in metres.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FormationParams {
+    /// Distance between neighbouring drones in every formation, m (1 m in the paper).
+    pub spacing_m: f64,
+    /// Drag shielding `a_sh` behind an upstream drone (a benefit).
+    pub shield_gain: f64,
+    /// Lateral half-width `sigma_sh` of the shielded region, m.
+    pub shield_width_m: f64,
+    /// Downstream decay length `L_sh` of the shielding (the drafting wake recovers quickly), m.
+    pub shield_decay_m: f64,
+    /// Rotor downwash penalty `a_dw` directly behind an upstream drone.
+    pub downwash_gain: f64,
+    /// Lateral half-width `sigma_dw` of the downwash region, m.
+    pub downwash_width_m: f64,
+    /// Upwash benefit `a_up` beside an upstream drone's wake.
+    pub upwash_gain: f64,
+    /// Lateral offset `b_up` of the upwash peak from the upstream drone's track, m.
+    pub upwash_offset_m: f64,
+    /// Width `sigma_up` of the upwash peak, m.
+    pub upwash_width_m: f64,
+    /// Downstream decay length `L` of the downwash and upwash (trailing vortices persist), m.
+    pub wake_decay_m: f64,
+    /// Downstream distance `s0` over which a wake builds up (factor `s / (s + s0)`), m.
+    pub wake_onset_m: f64,
+    /// Mutual benefit `a_ab` of flying abreast (side-by-side rotors), applied to both drones.
+    pub abreast_gain: f64,
+    /// Lateral offset `b_ab` of the abreast benefit peak, m.
+    pub abreast_offset_m: f64,
+    /// Lateral width `sigma_ab` of the abreast peak, m.
+    pub abreast_width_m: f64,
+    /// Downstream half-width `sigma_as` of the band counted as abreast, m.
+    pub abreast_band_m: f64,
+    /// Smallest position factor; the wake model never brings a drone below it.
+    pub min_position_factor: f64,
+    /// Swarm size used to rank formations when the network's formation is chosen before any
+    /// request is known.
+    pub select_swarm_size: u32,
+    /// Number of equal direction bins (the first centred on north) for the most frequent wind
+    /// direction.
+    pub direction_bins: u32,
+}
+
+impl Default for FormationParams {
+    fn default() -> Self {
+        FormationParams {
+            spacing_m: 1.0,
+            shield_gain: 0.28,
+            shield_width_m: 0.55,
+            shield_decay_m: 1.45,
+            downwash_gain: 0.23,
+            downwash_width_m: 0.12,
+            upwash_gain: 0.17,
+            upwash_offset_m: 1.07,
+            upwash_width_m: 0.18,
+            wake_decay_m: 5.5,
+            wake_onset_m: 0.3,
+            abreast_gain: 0.04,
+            abreast_offset_m: 1.47,
+            abreast_width_m: 1.12,
+            abreast_band_m: 0.92,
+            min_position_factor: 0.5,
+            select_swarm_size: 5,
+            direction_bins: 8,
+        }
+    }
+}
+
+/// A redundancy level of the paper's Table 2: how many support drones for `N` delivery drones.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(try_from = "String", into = "String")]
+pub enum RedundancyLevel {
+    /// `N+k`: k support drones.
+    NPlus(u32),
+    /// `2N`: N support drones.
+    TwoN,
+    /// `2(N+1)`: N+2 support drones.
+    TwoNPlusOne,
+}
+
+impl RedundancyLevel {
+    /// Number of support drones for `n` delivery drones.
+    pub fn support_drones(self, n: usize) -> usize {
+        match self {
+            RedundancyLevel::NPlus(k) => k as usize,
+            RedundancyLevel::TwoN => n,
+            RedundancyLevel::TwoNPlusOne => n + 2,
+        }
+    }
+}
+
+impl TryFrom<String> for RedundancyLevel {
+    type Error = String;
+    fn try_from(text: String) -> Result<Self, String> {
+        let t: String = text
+            .chars()
+            .filter(|c| !c.is_whitespace())
+            .collect::<String>()
+            .to_lowercase();
+        if t == "2n" {
+            return Ok(RedundancyLevel::TwoN);
+        }
+        if t == "2(n+1)" {
+            return Ok(RedundancyLevel::TwoNPlusOne);
+        }
+        if let Some(k) = t.strip_prefix("n+") {
+            if let Ok(k) = k.parse::<u32>() {
+                return Ok(RedundancyLevel::NPlus(k));
+            }
+        }
+        Err(format!(
+            "unknown redundancy level `{text}`: use \"n+K\" (K a whole number), \"2n\" or \"2(n+1)\""
+        ))
+    }
+}
+
+impl From<RedundancyLevel> for String {
+    fn from(level: RedundancyLevel) -> String {
+        match level {
+            RedundancyLevel::NPlus(k) => format!("n+{k}"),
+            RedundancyLevel::TwoN => "2n".to_string(),
+            RedundancyLevel::TwoNPlusOne => "2(n+1)".to_string(),
+        }
+    }
+}
+
+/// One row of the redundancy table: from this failure probability (percent, inclusive) up to the next
+/// row's, use this level.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RedundancyRow {
+    /// Lowest failure probability of the row, percent.
+    pub from_pct: f64,
+    /// Redundancy level of the row.
+    pub level: RedundancyLevel,
+}
+
+/// The redundancy table (paper Table 2).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RedundancyParams {
+    /// Rows in increasing `from_pct`, the first at 0.
+    pub rows: Vec<RedundancyRow>,
+}
+
+impl Default for RedundancyParams {
+    fn default() -> Self {
+        let row = |from_pct: f64, level| RedundancyRow { from_pct, level };
+        RedundancyParams {
+            rows: vec![
+                row(0.0, RedundancyLevel::NPlus(1)),
+                row(20.0, RedundancyLevel::NPlus(2)),
+                row(40.0, RedundancyLevel::NPlus(3)),
+                row(60.0, RedundancyLevel::NPlus(4)),
+                row(80.0, RedundancyLevel::TwoN),
+            ],
+        }
+    }
+}
+
+/// How Eq. 2 combines its four weighted normalised terms.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum FailureModel {
+    /// As written: `P = 100 * prod_i (w_i * p_i)`.
+    Product,
+    /// `P = 100 * sum_i (w_i * p_i) / sum_i w_i`.
+    WeightedSum,
+}
+
+/// Weights `w_1..w_4` of Eq. 2.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FailureWeights {
+    /// `w_1`, payload ratio term.
+    pub payload: f64,
+    /// `w_2`, route distance term.
+    pub distance: f64,
+    /// `w_3`, support capacity term.
+    pub capacity: f64,
+    /// `w_4`, averaged wind term.
+    pub wind: f64,
+}
+
+/// Failure probability of Eq. 2; see models/precompose.md.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FailureParams {
+    /// Product (as written) or weighted sum.
+    pub model: FailureModel,
+    /// Eq. 1's normaliser of the payload ratio, kg (5 kg in the paper; not the max payload).
+    pub payload_norm_kg: f64,
+    /// Route distance mapped to the distance term 1, m.
+    pub distance_norm_m: f64,
+    /// Weights of the four terms.
+    pub weights: FailureWeights,
+}
+
+impl Default for FailureParams {
+    fn default() -> Self {
+        FailureParams {
+            model: FailureModel::Product,
+            payload_norm_kg: 5.0,
+            distance_norm_m: 11_500.0,
+            weights: FailureWeights {
+                payload: 1.0,
+                distance: 1.0,
+                capacity: 1.0,
+                wind: 1.0,
+            },
+        }
+    }
+}
+
+impl Profile {
+    /// Base rate `r0` of an unloaded drone at cruise in still air, mAh/min.
+    pub fn base_rate_mah_per_min(&self) -> f64 {
+        self.drone.battery_mah / self.energy.endurance_min
+    }
+
+    /// Takeoff mass `m0` of a drone with its own battery and no payload, kg.
+    pub fn base_mass_kg(&self) -> f64 {
+        self.drone.empty_mass_kg + self.drone.battery_mass_kg
+    }
+
+    /// Payload of a support drone (its extra batteries), kg.
+    pub fn support_payload_kg(&self) -> f64 {
+        self.support.extra_batteries as f64 * self.drone.battery_mass_kg
+    }
+
+    /// Capacity of a support drone (own battery plus extra batteries), mAh.
+    pub fn support_capacity_mah(&self) -> f64 {
+        (1 + self.support.extra_batteries) as f64 * self.drone.battery_mah
+    }
+
+    /// Cruise ground speed, m/s.
+    pub fn speed_mps(&self) -> f64 {
+        self.drone.speed_kmh / 3.6
+    }
+}
+
+/// Checks a profile's values; reports every violation at once (codes E2xxx, listed in README.md).
+///
+/// # Arguments
+/// * `p` - the profile as read.
+///
+/// # Returns
+/// Every violation found, empty when the profile is usable.
+///
+/// # Complexity
+/// O(rows of the redundancy table).
+pub fn validate_profile(p: &Profile) -> Vec<Violation> {
+    let mut out = Vec::new();
+    if p.schema_version != super::SCHEMA_VERSION {
+        out.push(Violation::new(
+            "E2001",
+            "schema_version",
+            format!(
+                "profile schema version {} but this build reads {}",
+                p.schema_version,
+                super::SCHEMA_VERSION
+            ),
+            format!("set schema_version = {} and compare with instances/profiles/paper.toml", super::SCHEMA_VERSION),
+        ));
+    }
+    // Strictly positive quantities: zero or negative makes the models meaningless.
+    let positive: [(&str, f64); 14] = [
+        ("drone.battery_mah", p.drone.battery_mah),
+        ("drone.voltage_v", p.drone.voltage_v),
+        ("drone.speed_kmh", p.drone.speed_kmh),
+        ("drone.empty_mass_kg", p.drone.empty_mass_kg),
+        ("drone.battery_mass_kg", p.drone.battery_mass_kg),
+        ("drone.max_payload_kg", p.drone.max_payload_kg),
+        ("sharing.rate_mah_per_min", p.sharing.rate_mah_per_min),
+        ("sharing.range_m", p.sharing.range_m),
+        ("sharing.lambda_mah", p.sharing.lambda_mah),
+        ("pads.charge_rate_mah_per_min", p.pads.charge_rate_mah_per_min),
+        ("energy.endurance_min", p.energy.endurance_min),
+        ("energy.wind_limit_mps", p.energy.wind_limit_mps),
+        ("formation.spacing_m", p.formation.spacing_m),
+        ("failure.payload_norm_kg", p.failure.payload_norm_kg),
+    ];
+    for (field, v) in positive {
+        if !(v.is_finite() && v > 0.0) {
+            out.push(Violation::new(
+                "E2002",
+                field,
+                format!("must be a finite number above 0, got {v}"),
+                "set a positive value; see instances/profiles/paper.toml for its source",
+            ));
+        }
+    }
+    let positive_more: [(&str, f64); 10] = [
+        ("energy.payload_exponent", p.energy.payload_exponent),
+        ("formation.shield_width_m", p.formation.shield_width_m),
+        ("formation.shield_decay_m", p.formation.shield_decay_m),
+        ("formation.downwash_width_m", p.formation.downwash_width_m),
+        ("formation.upwash_width_m", p.formation.upwash_width_m),
+        ("formation.wake_decay_m", p.formation.wake_decay_m),
+        ("formation.abreast_width_m", p.formation.abreast_width_m),
+        ("formation.abreast_band_m", p.formation.abreast_band_m),
+        ("formation.min_position_factor", p.formation.min_position_factor),
+        ("failure.distance_norm_m", p.failure.distance_norm_m),
+    ];
+    for (field, v) in positive_more {
+        if !(v.is_finite() && v > 0.0) {
+            out.push(Violation::new(
+                "E2002",
+                field,
+                format!("must be a finite number above 0, got {v}"),
+                "set a positive value; see instances/profiles/paper.toml for its source",
+            ));
+        }
+    }
+    // Non-negative quantities.
+    let non_negative: [(&str, f64); 9] = [
+        ("sharing.gamma_mah", p.sharing.gamma_mah),
+        ("sharing.delta_mah", p.sharing.delta_mah),
+        ("formation.shield_gain", p.formation.shield_gain),
+        ("formation.downwash_gain", p.formation.downwash_gain),
+        ("formation.upwash_gain", p.formation.upwash_gain),
+        ("formation.upwash_offset_m", p.formation.upwash_offset_m),
+        ("formation.wake_onset_m", p.formation.wake_onset_m),
+        ("formation.abreast_gain", p.formation.abreast_gain),
+        ("formation.abreast_offset_m", p.formation.abreast_offset_m),
+    ];
+    for (field, v) in non_negative {
+        if !(v.is_finite() && v >= 0.0) {
+            out.push(Violation::new(
+                "E2003",
+                field,
+                format!("must be a finite number at least 0, got {v}"),
+                "set a value of 0 or more",
+            ));
+        }
+    }
+    let c_par = p.energy.parasitic_fraction;
+    if !(c_par.is_finite() && (0.0..1.0).contains(&c_par)) {
+        out.push(Violation::new(
+            "E2004",
+            "energy.parasitic_fraction",
+            format!("must be in [0, 1), got {c_par}"),
+            "set the share of cruise power spent against drag, e.g. 0.1",
+        ));
+    }
+    let mf = p.formation.min_position_factor;
+    if mf.is_finite() && mf > 1.0 {
+        out.push(Violation::new(
+            "E2005",
+            "formation.min_position_factor",
+            format!("must be at most 1, got {mf}"),
+            "set a floor in (0, 1], e.g. 0.5",
+        ));
+    }
+    if p.formation.select_swarm_size == 0 {
+        out.push(Violation::new(
+            "E2006",
+            "formation.select_swarm_size",
+            "must be at least 1, got 0",
+            "set the swarm size used to rank formations, e.g. 5",
+        ));
+    }
+    if p.formation.direction_bins == 0 {
+        out.push(Violation::new(
+            "E2006",
+            "formation.direction_bins",
+            "must be at least 1, got 0",
+            "set the number of wind direction bins, e.g. 8",
+        ));
+    }
+    if p.support.extra_batteries > 0 && p.support_payload_kg() > p.drone.max_payload_kg {
+        out.push(Violation::new(
+            "E2007",
+            "support.extra_batteries",
+            format!(
+                "{} extra batteries weigh {:.3} kg, over drone.max_payload_kg = {} kg",
+                p.support.extra_batteries,
+                p.support_payload_kg(),
+                p.drone.max_payload_kg
+            ),
+            "carry fewer extra batteries or raise the max payload",
+        ));
+    }
+    if p.sharing.delta_mah.is_finite()
+        && p.drone.battery_mah.is_finite()
+        && p.sharing.delta_mah >= p.support_capacity_mah()
+    {
+        out.push(Violation::new(
+            "E2008",
+            "sharing.delta_mah",
+            format!(
+                "support reserve {} mAh is not below the support capacity {} mAh",
+                p.sharing.delta_mah,
+                p.support_capacity_mah()
+            ),
+            "lower the reserve or add extra batteries",
+        ));
+    }
+    // Redundancy table.
+    let rows = &p.redundancy.rows;
+    if rows.is_empty() {
+        out.push(Violation::new(
+            "E2010",
+            "redundancy.rows",
+            "the redundancy table is empty",
+            "list rows from from_pct = 0 upwards, as in instances/profiles/paper.toml",
+        ));
+    } else {
+        if rows[0].from_pct != 0.0 {
+            out.push(Violation::new(
+                "E2011",
+                "redundancy.rows[0].from_pct",
+                format!("the first row must start at 0, got {}", rows[0].from_pct),
+                "start the table at from_pct = 0",
+            ));
+        }
+        for (i, r) in rows.iter().enumerate() {
+            let ok_range = r.from_pct.is_finite() && (0.0..=100.0).contains(&r.from_pct);
+            let ok_order = i == 0 || r.from_pct > rows[i - 1].from_pct;
+            if !ok_range || !ok_order {
+                out.push(Violation::new(
+                    "E2012",
+                    format!("redundancy.rows[{i}].from_pct"),
+                    format!("must be in [0, 100] and above the previous row's, got {}", r.from_pct),
+                    "list rows in strictly increasing from_pct within 0..100",
+                ));
+            }
+        }
+    }
+    // Failure weights.
+    let w = &p.failure.weights;
+    let weights = [
+        ("failure.weights.payload", w.payload),
+        ("failure.weights.distance", w.distance),
+        ("failure.weights.capacity", w.capacity),
+        ("failure.weights.wind", w.wind),
+    ];
+    for (field, v) in weights {
+        if !(v.is_finite() && (0.0..=1.0).contains(&v)) {
+            out.push(Violation::new(
+                "E2020",
+                field,
+                format!("a weight must be in [0, 1], got {v}"),
+                "set the weight between 0 and 1",
+            ));
+        }
+    }
+    let sum = w.payload + w.distance + w.capacity + w.wind;
+    if p.failure.model == FailureModel::WeightedSum && sum.is_finite() && sum <= 0.0 {
+        out.push(Violation::new(
+            "E2021",
+            "failure.weights",
+            "the weighted sum needs at least one weight above 0",
+            "give at least one term a positive weight",
+        ));
+    }
+    out
 }
