@@ -23,6 +23,8 @@
 
 pub mod cli;
 pub mod error;
+pub mod generate;
+pub mod network;
 pub mod problem;
 pub mod solver;
 
