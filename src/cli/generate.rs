@@ -22,13 +22,13 @@ pub enum GenerateCommand {
 #[derive(Debug, clap::Args)]
 pub struct NetworkArgs {
     /// Number of rooftop nodes.
-    #[arg(long, default_value_t = DEFAULT_NODES, value_parser = parse_nodes)]
+    #[arg(long, default_value_t = DEFAULT_NODES, value_parser = parse_nodes, allow_hyphen_values = true)]
     pub nodes: usize,
     /// Seed of the random generator; the same seed writes the same file.
-    #[arg(long, value_parser = parse_network_seed)]
+    #[arg(long, value_parser = parse_network_seed, allow_hyphen_values = true)]
     pub seed: u64,
     /// Street-grid spacing in metres.
-    #[arg(long, default_value_t = DEFAULT_SPACING_M, value_parser = parse_spacing)]
+    #[arg(long, default_value_t = DEFAULT_SPACING_M, value_parser = parse_spacing, allow_hyphen_values = true)]
     pub spacing_m: f64,
     /// Output JSON file.
     #[arg(short = 'o', long = "output")]
@@ -42,13 +42,13 @@ pub struct RequestsArgs {
     #[arg(long)]
     pub network: PathBuf,
     /// Number of requests.
-    #[arg(long, default_value_t = DEFAULT_REQUESTS, value_parser = parse_count)]
+    #[arg(long, default_value_t = DEFAULT_REQUESTS, value_parser = parse_count, allow_hyphen_values = true)]
     pub count: usize,
     /// Seed of the random generator; the same seed writes the same file.
-    #[arg(long, value_parser = parse_requests_seed)]
+    #[arg(long, value_parser = parse_requests_seed, allow_hyphen_values = true)]
     pub seed: u64,
     /// Largest package mass in kg (the drone's max payload).
-    #[arg(long, default_value_t = DEFAULT_MAX_PACKAGE_KG, value_parser = parse_max_package)]
+    #[arg(long, default_value_t = DEFAULT_MAX_PACKAGE_KG, value_parser = parse_max_package, allow_hyphen_values = true)]
     pub max_package_kg: f64,
     /// Output JSON file.
     #[arg(short = 'o', long = "output")]
@@ -83,7 +83,10 @@ fn parse_requests_seed(s: &str) -> std::result::Result<u64, String> {
 
 fn parse_seed(s: &str, code: &str) -> std::result::Result<u64, String> {
     s.trim().parse::<u64>().map_err(|_| {
-        format!("[{code}] --seed: '{s}' is not a whole number from 0 to {}; give one", u64::MAX)
+        format!(
+            "[{code}] --seed: '{s}' is not a whole number from 0 to {}; give one",
+            u64::MAX
+        )
     })
 }
 

@@ -208,7 +208,9 @@ impl SkywayGraph {
     /// # Complexity
     /// O(1): connected components are labelled once when the graph is built.
     pub fn is_connected(&self, a: usize, b: usize) -> bool {
-        a < self.component.len() && b < self.component.len() && self.component[a] == self.component[b]
+        a < self.component.len()
+            && b < self.component.len()
+            && self.component[a] == self.component[b]
     }
 
     /// Whether every node can reach every other node.

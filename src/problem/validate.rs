@@ -59,7 +59,9 @@ pub fn validate_network(n: &Network) -> Vec<Violation> {
                 "schema_version is {}, this build reads {SCHEMA_VERSION}",
                 n.schema_version
             ),
-            format!("set schema_version to {SCHEMA_VERSION} after checking the file against README.md"),
+            format!(
+                "set schema_version to {SCHEMA_VERSION} after checking the file against README.md"
+            ),
         ));
     }
     if n.nodes.is_empty() {
@@ -336,7 +338,9 @@ pub fn validate_request_set(
                 "schema_version is {}, this build reads {SCHEMA_VERSION}",
                 set.schema_version
             ),
-            format!("set schema_version to {SCHEMA_VERSION} after checking the file against README.md"),
+            format!(
+                "set schema_version to {SCHEMA_VERSION} after checking the file against README.md"
+            ),
         ));
     }
     if set.requests.is_empty() {
