@@ -94,14 +94,14 @@ pub fn generate_requests(graph: &SkywayGraph, params: &RequestParams) -> Result<
     // Group nodes by connected component, in node order.
     let mut groups: Vec<Vec<usize>> = Vec::new();
     let mut group_of = vec![0usize; graph.node_count()];
-    for i in 0..graph.node_count() {
+    for (i, slot) in group_of.iter_mut().enumerate() {
         match groups.iter().position(|g| graph.is_connected(g[0], i)) {
             Some(gi) => {
                 groups[gi].push(i);
-                group_of[i] = gi;
+                *slot = gi;
             }
             None => {
-                group_of[i] = groups.len();
+                *slot = groups.len();
                 groups.push(vec![i]);
             }
         }
