@@ -27,6 +27,8 @@ pub mod error;
 pub mod node_time;
 pub mod formation;
 pub mod precompose;
+pub mod generate;
+pub mod network;
 pub mod problem;
 pub mod solver;
 

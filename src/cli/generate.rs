@@ -1,15 +1,164 @@
-//! `swarmplan generate network|requests`.
+//! `swarmplan generate network|requests`: write a seeded synthetic network or request set.
 
 use crate::error::{Error, Result};
+use crate::generate::network::{DEFAULT_NODES, DEFAULT_SPACING_M, MAX_NODES, MIN_NODES};
+use crate::generate::requests::{DEFAULT_MAX_PACKAGE_KG, DEFAULT_REQUESTS, MAX_REQUESTS};
+use crate::generate::{generate_network, generate_requests, NetworkParams, RequestParams};
+use crate::network::SkywayGraph;
+use crate::problem::io::{read_json, write_json};
+use crate::problem::Network;
+use std::path::PathBuf;
 
 /// What to generate.
 #[derive(Debug, clap::Subcommand)]
 pub enum GenerateCommand {
-    /// A seeded synthetic rooftop network.
-    Network,
+    /// A seeded synthetic rooftop network (connected, node degree 2-4, 0-4 pads, wind < 13.8 m/s).
+    Network(NetworkArgs),
+    /// A seeded request set over a network (connected source/destination, 2-8 packages each).
+    Requests(RequestsArgs),
 }
 
-/// Runs the subcommand.
-pub fn run(_cmd: GenerateCommand) -> Result<i32> {
-    Err(Error::invalid("E0000", "generate", "not available yet", "wait"))
+/// Arguments of `generate network`.
+#[derive(Debug, clap::Args)]
+pub struct NetworkArgs {
+    /// Number of rooftop nodes.
+    #[arg(long, default_value_t = DEFAULT_NODES, value_parser = parse_nodes, allow_hyphen_values = true)]
+    pub nodes: usize,
+    /// Seed of the random generator; the same seed writes the same file.
+    #[arg(long, value_parser = parse_network_seed, allow_hyphen_values = true)]
+    pub seed: u64,
+    /// Street-grid spacing in metres.
+    #[arg(long, default_value_t = DEFAULT_SPACING_M, value_parser = parse_spacing, allow_hyphen_values = true)]
+    pub spacing_m: f64,
+    /// Output JSON file.
+    #[arg(short = 'o', long = "output")]
+    pub output: PathBuf,
+}
+
+/// Arguments of `generate requests`.
+#[derive(Debug, clap::Args)]
+pub struct RequestsArgs {
+    /// Network JSON file the requests run on.
+    #[arg(long)]
+    pub network: PathBuf,
+    /// Number of requests.
+    #[arg(long, default_value_t = DEFAULT_REQUESTS, value_parser = parse_count, allow_hyphen_values = true)]
+    pub count: usize,
+    /// Seed of the random generator; the same seed writes the same file.
+    #[arg(long, value_parser = parse_requests_seed, allow_hyphen_values = true)]
+    pub seed: u64,
+    /// Largest package mass in kg (the drone's max payload).
+    #[arg(long, default_value_t = DEFAULT_MAX_PACKAGE_KG, value_parser = parse_max_package, allow_hyphen_values = true)]
+    pub max_package_kg: f64,
+    /// Output JSON file.
+    #[arg(short = 'o', long = "output")]
+    pub output: PathBuf,
+}
+
+fn parse_nodes(s: &str) -> std::result::Result<usize, String> {
+    match s.trim().parse::<usize>() {
+        Ok(n) if (MIN_NODES..=MAX_NODES).contains(&n) => Ok(n),
+        _ => Err(format!(
+            "[E1901] --nodes: '{s}' is not a whole number from {MIN_NODES} to {MAX_NODES}; give one"
+        )),
+    }
+}
+
+fn parse_spacing(s: &str) -> std::result::Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && (1.0..=100_000.0).contains(&v) => Ok(v),
+        _ => Err(format!(
+            "[E1902] --spacing-m: '{s}' is not a number from 1 to 100000; give a spacing in metres"
+        )),
+    }
+}
+
+fn parse_network_seed(s: &str) -> std::result::Result<u64, String> {
+    parse_seed(s, "E1903")
+}
+
+fn parse_requests_seed(s: &str) -> std::result::Result<u64, String> {
+    parse_seed(s, "E3904")
+}
+
+fn parse_seed(s: &str, code: &str) -> std::result::Result<u64, String> {
+    s.trim().parse::<u64>().map_err(|_| {
+        format!(
+            "[{code}] --seed: '{s}' is not a whole number from 0 to {}; give one",
+            u64::MAX
+        )
+    })
+}
+
+fn parse_count(s: &str) -> std::result::Result<usize, String> {
+    match s.trim().parse::<usize>() {
+        Ok(n) if (1..=MAX_REQUESTS).contains(&n) => Ok(n),
+        _ => Err(format!(
+            "[E3901] --count: '{s}' is not a whole number from 1 to {MAX_REQUESTS}; give one"
+        )),
+    }
+}
+
+fn parse_max_package(s: &str) -> std::result::Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && (0.001..=1000.0).contains(&v) => Ok(v),
+        _ => Err(format!(
+            "[E3902] --max-package-kg: '{s}' is not a mass from 0.001 to 1000 kg; give one (paper: 1.4)"
+        )),
+    }
+}
+
+/// Runs the subcommand: writes the file and reports what it wrote on stderr.
+///
+/// # Errors
+/// [`Error::Invalid`] for parameters out of range or an invalid network file (exit code 2);
+/// [`Error::Io`] when a file cannot be read or written.
+pub fn run(cmd: GenerateCommand) -> Result<i32> {
+    match cmd {
+        GenerateCommand::Network(a) => {
+            let network = generate_network(&NetworkParams {
+                nodes: a.nodes,
+                seed: a.seed,
+                spacing_m: a.spacing_m,
+            })?;
+            write_json(&a.output, &network)?;
+            eprintln!(
+                "wrote {} nodes, {} segments (seed {}) to {}",
+                network.nodes.len(),
+                network.segments.len(),
+                a.seed,
+                a.output.display()
+            );
+        }
+        GenerateCommand::Requests(a) => {
+            let network: Network = read_json(&a.network)?;
+            let graph = SkywayGraph::new(&network).map_err(|e| match e {
+                Error::Invalid(v) => Error::Invalid(
+                    v.into_iter()
+                        .map(|mut x| {
+                            x.field = format!("{}: {}", a.network.display(), x.field);
+                            x
+                        })
+                        .collect(),
+                ),
+                other => other,
+            })?;
+            let set = generate_requests(
+                &graph,
+                &RequestParams {
+                    count: a.count,
+                    seed: a.seed,
+                    max_package_kg: a.max_package_kg,
+                },
+            )?;
+            write_json(&a.output, &set)?;
+            eprintln!(
+                "wrote {} requests (seed {}) to {}",
+                set.requests.len(),
+                a.seed,
+                a.output.display()
+            );
+        }
+    }
+    Ok(0)
 }

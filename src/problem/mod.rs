@@ -6,6 +6,7 @@ pub mod io;
 pub mod network;
 pub mod profile;
 pub mod request;
+pub mod validate;
 
 pub use network::{Network, Node, Segment};
 pub use profile::Profile;

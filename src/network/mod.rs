@@ -1,0 +1,226 @@
+//! The skyway network as a graph: rooftop nodes joined by segments that can be flown both ways.
+//!
+//! [`SkywayGraph`] is built from a validated [`Network`] on a petgraph [`UnGraph`]. Node `i` of the
+//! graph is `network.nodes[i]` and edge `e` is `network.segments[e]`, so indices are stable and match
+//! the file order. Shortest paths and legs live in [`paths`].
+//!
+//! Conventions: `x_m` is easting and `y_m` northing; a heading is the direction flown, degrees
+//! clockwise from north in `[0, 360)`; `wind_from_deg` is where the wind blows from (meteorological).
+
+pub mod paths;
+
+pub use paths::{Leg, Path};
+
+use crate::error::{Error, Result};
+use crate::problem::validate::{euclidean_m, validate_network};
+use crate::problem::Network;
+use petgraph::graph::{NodeIndex, UnGraph};
+use petgraph::unionfind::UnionFind;
+use petgraph::visit::EdgeRef;
+use std::collections::HashMap;
+
+/// One segment of the graph, with its length resolved.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SkywaySegment {
+    /// Index of the `from` node as written in the file.
+    pub a: usize,
+    /// Index of the `to` node as written in the file.
+    pub b: usize,
+    /// Length in metres: the file's `distance_m`, or the Euclidean distance when absent.
+    pub distance_m: f64,
+    /// Wind speed on the segment, m/s.
+    pub wind_speed_mps: f64,
+    /// Direction the wind blows from, degrees clockwise from north.
+    pub wind_from_deg: f64,
+}
+
+#[derive(Debug, Clone)]
+struct NodeData {
+    id: String,
+    x_m: f64,
+    y_m: f64,
+    pads: u32,
+    pad_rate_mah_per_min: Option<f64>,
+}
+
+/// A validated skyway network on a petgraph undirected graph; edge weights are segment indices.
+#[derive(Debug, Clone)]
+pub struct SkywayGraph {
+    graph: UnGraph<(), usize>,
+    nodes: Vec<NodeData>,
+    segments: Vec<SkywaySegment>,
+    index: HashMap<String, usize>,
+    component: Vec<usize>,
+}
+
+impl SkywayGraph {
+    /// Builds the graph of a network after checking every network rule.
+    ///
+    /// # Arguments
+    /// * `network` - the network as read from its file.
+    ///
+    /// # Returns
+    /// The graph; node and segment indices follow the file order.
+    ///
+    /// # Errors
+    /// [`Error::Invalid`] with every violation of [`validate_network`] (codes E1xxx).
+    ///
+    /// # Complexity
+    /// O(V + E) expected time.
+    pub fn new(network: &Network) -> Result<SkywayGraph> {
+        let violations = validate_network(network);
+        if !violations.is_empty() {
+            return Err(Error::Invalid(violations));
+        }
+        let nodes: Vec<NodeData> = network
+            .nodes
+            .iter()
+            .map(|n| NodeData {
+                id: n.id.clone(),
+                x_m: n.x_m,
+                y_m: n.y_m,
+                pads: n.pads,
+                pad_rate_mah_per_min: n.pad_charge_rate_mah_per_min,
+            })
+            .collect();
+        let index: HashMap<String, usize> = nodes
+            .iter()
+            .enumerate()
+            .map(|(i, n)| (n.id.clone(), i))
+            .collect();
+        let mut graph = UnGraph::with_capacity(nodes.len(), network.segments.len());
+        for _ in &nodes {
+            graph.add_node(());
+        }
+        let mut segments = Vec::with_capacity(network.segments.len());
+        let mut components = UnionFind::new(nodes.len());
+        for (e, s) in network.segments.iter().enumerate() {
+            // Validation guarantees both ids exist.
+            let (a, b) = (index[&s.from], index[&s.to]);
+            let distance_m = s.distance_m.unwrap_or_else(|| {
+                euclidean_m((nodes[a].x_m, nodes[a].y_m), (nodes[b].x_m, nodes[b].y_m))
+            });
+            graph.add_edge(NodeIndex::new(a), NodeIndex::new(b), e);
+            components.union(a, b);
+            segments.push(SkywaySegment {
+                a,
+                b,
+                distance_m,
+                wind_speed_mps: s.wind_speed_mps,
+                wind_from_deg: s.wind_from_deg,
+            });
+        }
+        let component = components.into_labeling();
+        Ok(SkywayGraph {
+            graph,
+            nodes,
+            segments,
+            index,
+            component,
+        })
+    }
+
+    /// Number of nodes.
+    pub fn node_count(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// Number of segments.
+    pub fn segment_count(&self) -> usize {
+        self.segments.len()
+    }
+
+    /// Index of the node with this id, `None` if there is none.
+    pub fn index_of(&self, id: &str) -> Option<usize> {
+        self.index.get(id).copied()
+    }
+
+    /// Id of node `i`. Panics if `i >= node_count()` (a programming error, not bad input).
+    pub fn id_of(&self, i: usize) -> &str {
+        &self.nodes[i].id
+    }
+
+    /// Number of recharging pads at node `i` (`k` in the node-time model).
+    pub fn pads(&self, i: usize) -> u32 {
+        self.nodes[i].pads
+    }
+
+    /// Pad charge rate at node `i`: the node's own rate if the file gives one, else `default`
+    /// (the profile's rate).
+    pub fn pad_rate_mah_per_min(&self, i: usize, default: f64) -> f64 {
+        self.nodes[i].pad_rate_mah_per_min.unwrap_or(default)
+    }
+
+    /// Position of node `i`: (easting, northing) in metres.
+    pub fn position_m(&self, i: usize) -> (f64, f64) {
+        (self.nodes[i].x_m, self.nodes[i].y_m)
+    }
+
+    /// Segment `e` (file order). Panics if `e >= segment_count()`.
+    pub fn segment(&self, e: usize) -> &SkywaySegment {
+        &self.segments[e]
+    }
+
+    /// Every segment in file order.
+    pub fn segments(&self) -> &[SkywaySegment] {
+        &self.segments
+    }
+
+    /// Index of the segment joining `a` and `b` (either direction), `None` if they are not adjacent.
+    pub fn segment_between(&self, a: usize, b: usize) -> Option<usize> {
+        if a >= self.nodes.len() || b >= self.nodes.len() {
+            return None;
+        }
+        self.graph
+            .find_edge(NodeIndex::new(a), NodeIndex::new(b))
+            .map(|e| self.graph[e])
+    }
+
+    /// Neighbours of node `i` with the joining segment, as `(neighbour, segment)` pairs sorted by
+    /// neighbour index.
+    ///
+    /// # Complexity
+    /// O(d log d) for degree d.
+    pub fn neighbors(&self, i: usize) -> Vec<(usize, usize)> {
+        let mut out: Vec<(usize, usize)> = self
+            .graph
+            .edges(NodeIndex::new(i))
+            .map(|e| {
+                let other = if e.source().index() == i {
+                    e.target().index()
+                } else {
+                    e.source().index()
+                };
+                (other, *e.weight())
+            })
+            .collect();
+        out.sort_unstable();
+        out
+    }
+
+    /// Number of segments at node `i`.
+    pub fn degree(&self, i: usize) -> usize {
+        self.graph.edges(NodeIndex::new(i)).count()
+    }
+
+    /// Whether some chain of segments joins `a` and `b` (a node is connected to itself).
+    ///
+    /// # Complexity
+    /// O(1): connected components are labelled once when the graph is built.
+    pub fn is_connected(&self, a: usize, b: usize) -> bool {
+        a < self.component.len()
+            && b < self.component.len()
+            && self.component[a] == self.component[b]
+    }
+
+    /// Whether every node can reach every other node.
+    pub fn is_fully_connected(&self) -> bool {
+        self.component.iter().all(|&c| c == self.component[0])
+    }
+
+    /// The underlying petgraph graph: node `i` is `NodeIndex::new(i)`, the edge weight is the segment
+    /// index.
+    pub fn graph(&self) -> &UnGraph<(), usize> {
+        &self.graph
+    }
+}

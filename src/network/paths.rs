@@ -1,0 +1,188 @@
+//! Legs, paths and shortest paths over a [`SkywayGraph`].
+//!
+//! Edge cost here is the segment length `distance_m`; travel time `tt` and node time `nt` are
+//! priced by the composition code on top of these paths.
+
+use super::SkywayGraph;
+use petgraph::algo::{dijkstra, floyd_warshall};
+use petgraph::graph::NodeIndex;
+
+/// One segment flown in one direction.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Leg {
+    /// Node the leg starts at.
+    pub from: usize,
+    /// Node the leg ends at.
+    pub to: usize,
+    /// Index of the segment flown.
+    pub segment: usize,
+    /// Length in metres.
+    pub distance_m: f64,
+    /// Direction flown, degrees clockwise from north in `[0, 360)`, from the node coordinates
+    /// (`atan2(dx, dy)` with x east and y north).
+    pub heading_deg: f64,
+    /// The segment's wind speed, m/s.
+    pub wind_speed_mps: f64,
+    /// The segment's wind direction (where it blows from), degrees clockwise from north.
+    pub wind_from_deg: f64,
+}
+
+/// A route: the nodes visited in order and the legs between them.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Path {
+    /// Nodes in flight order, source first; `legs.len() + 1` of them.
+    pub nodes: Vec<usize>,
+    /// Legs in flight order.
+    pub legs: Vec<Leg>,
+    /// Total length in metres (sum of the legs).
+    pub distance_m: f64,
+}
+
+/// Direction from `a` to `b` in degrees clockwise from north, in `[0, 360)`; 0 when `a == b`.
+pub fn heading_deg(a: (f64, f64), b: (f64, f64)) -> f64 {
+    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    if dx == 0.0 && dy == 0.0 {
+        return 0.0;
+    }
+    let h = dx.atan2(dy).to_degrees();
+    let h = if h < 0.0 { h + 360.0 } else { h };
+    if h >= 360.0 {
+        0.0
+    } else {
+        h
+    }
+}
+
+impl SkywayGraph {
+    /// The leg flying from node `from` to adjacent node `to`, `None` if no segment joins them.
+    pub fn leg(&self, from: usize, to: usize) -> Option<Leg> {
+        let e = self.segment_between(from, to)?;
+        let s = &self.segments[e];
+        Some(Leg {
+            from,
+            to,
+            segment: e,
+            distance_m: s.distance_m,
+            heading_deg: heading_deg(self.position_m(from), self.position_m(to)),
+            wind_speed_mps: s.wind_speed_mps,
+            wind_from_deg: s.wind_from_deg,
+        })
+    }
+
+    /// The path visiting `nodes` in order.
+    ///
+    /// # Returns
+    /// `None` if `nodes` is empty, names an index out of range, or two consecutive nodes are not
+    /// joined by a segment. A single node gives a path with no legs and length 0.
+    ///
+    /// # Complexity
+    /// O(n d) for n nodes of degree at most d.
+    pub fn path_from_nodes(&self, nodes: &[usize]) -> Option<Path> {
+        if nodes.is_empty() || nodes.iter().any(|&i| i >= self.node_count()) {
+            return None;
+        }
+        let legs = nodes
+            .windows(2)
+            .map(|w| self.leg(w[0], w[1]))
+            .collect::<Option<Vec<Leg>>>()?;
+        let distance_m = legs.iter().map(|l| l.distance_m).sum();
+        Some(Path {
+            nodes: nodes.to_vec(),
+            legs,
+            distance_m,
+        })
+    }
+
+    /// Length of the shortest path from `from` to every node (Dijkstra, petgraph).
+    ///
+    /// # Returns
+    /// One entry per node: metres, `f64::INFINITY` when unreachable, 0 at `from`.
+    ///
+    /// # Complexity
+    /// O((V + E) log V).
+    pub fn distances_from_m(&self, from: usize) -> Vec<f64> {
+        let mut out = vec![f64::INFINITY; self.node_count()];
+        if from >= self.node_count() {
+            return out;
+        }
+        let found = dijkstra(&self.graph, NodeIndex::new(from), None, |e| {
+            self.segments[*e.weight()].distance_m
+        });
+        for (n, d) in found {
+            out[n.index()] = d;
+        }
+        out
+    }
+
+    /// Shortest-path lengths between every pair of nodes (Floyd–Warshall, petgraph).
+    ///
+    /// # Returns
+    /// `d[i][j]` in metres, `f64::INFINITY` when unreachable.
+    ///
+    /// # Complexity
+    /// O(V^3) time, O(V^2) memory.
+    pub fn all_pairs_distances_m(&self) -> Vec<Vec<f64>> {
+        let n = self.node_count();
+        let mut out = vec![vec![f64::INFINITY; n]; n];
+        // Edge costs are positive (validated), so there is no negative cycle.
+        if let Ok(map) = floyd_warshall(&self.graph, |e| self.segments[*e.weight()].distance_m) {
+            for ((a, b), d) in map {
+                if d < f64::MAX {
+                    out[a.index()][b.index()] = d;
+                }
+            }
+        }
+        out
+    }
+
+    /// Shortest path by distance from `from` to `to` (Dijkstra, petgraph).
+    ///
+    /// Tie-breaking is deterministic: distances to `to` are computed first, then the path is walked
+    /// from `from`, each time stepping to the lowest-index neighbour that lies on a shortest path
+    /// (lengths equal within a relative 1e-9). Among equally short paths this returns the one whose
+    /// node sequence is lexicographically smallest by node index (file order).
+    ///
+    /// # Arguments
+    /// * `from`, `to` - node indices.
+    ///
+    /// # Returns
+    /// The path, or `None` if either index is out of range or `to` is unreachable from `from`.
+    /// `from == to` gives a path with no legs.
+    ///
+    /// # Complexity
+    /// O((V + E) log V).
+    pub fn shortest_path(&self, from: usize, to: usize) -> Option<Path> {
+        let n = self.node_count();
+        if from >= n || to >= n || !self.is_connected(from, to) {
+            return None;
+        }
+        // The graph is undirected, so distances to `to` equal distances from `to`.
+        let d = self.distances_from_m(to);
+        let eps = 1e-9 * d[from].max(1.0);
+        let mut nodes = vec![from];
+        let mut u = from;
+        while u != to {
+            if nodes.len() > n {
+                return None;
+            }
+            let mut next: Option<usize> = None;
+            let mut fallback: Option<(f64, usize)> = None;
+            for (v, e) in self.neighbors(u) {
+                if d[v] >= d[u] {
+                    continue;
+                }
+                let via = d[v] + self.segments[e].distance_m;
+                if via <= d[u] + eps {
+                    next = Some(v);
+                    break; // neighbours come sorted by index
+                }
+                if fallback.is_none_or(|(best, _)| via < best) {
+                    fallback = Some((via, v));
+                }
+            }
+            u = next.or(fallback.map(|(_, v)| v))?;
+            nodes.push(u);
+        }
+        self.path_from_nodes(&nodes)
+    }
+}

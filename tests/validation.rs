@@ -1,0 +1,195 @@
+//! Validation reports every violation at once, each with its code and field. Expected lists are the
+//! ones written out by hand in instances/tiny/README.md.
+
+use std::path::PathBuf;
+use swarmplan::error::Error;
+use swarmplan::network::SkywayGraph;
+use swarmplan::problem::io::{parse_json, read_json};
+use swarmplan::problem::validate::{validate_network, validate_request, validate_request_set};
+use swarmplan::problem::{Network, Request, RequestSet};
+
+fn tiny(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("instances/tiny")
+        .join(name)
+}
+
+fn codes_and_fields(v: &[swarmplan::Violation]) -> Vec<(&'static str, String)> {
+    v.iter().map(|x| (x.code, x.field.clone())).collect()
+}
+
+fn pairs(list: &[(&'static str, &str)]) -> Vec<(&'static str, String)> {
+    list.iter().map(|(c, f)| (*c, f.to_string())).collect()
+}
+
+#[test]
+fn invalid_network_reports_all_eleven_violations_with_fields() {
+    let n: Network = read_json(&tiny("invalid-network.json")).unwrap();
+    let v = validate_network(&n);
+    assert_eq!(
+        codes_and_fields(&v),
+        pairs(&[
+            ("E1102", "nodes[2].id"),
+            ("E1101", "nodes[3].id"),
+            ("E1104", "nodes[3].pad_charge_rate_mah_per_min"),
+            ("E1105", "nodes"),
+            ("E1206", "segments[0].wind_speed_mps"),
+            ("E1201", "segments[1].to"),
+            ("E1202", "segments[2]"),
+            ("E1203", "segments[3]"),
+            ("E1204", "segments[3].distance_m"),
+            ("E1205", "segments[3].wind_speed_mps"),
+            ("E1207", "segments[3].wind_from_deg"),
+        ])
+    );
+    // Every violation says what is wrong and what to do.
+    assert!(v
+        .iter()
+        .all(|x| !x.cause.is_empty() && !x.action.is_empty()));
+    assert!(v[4].cause.contains("14"));
+    // Building a graph refuses the network with the same list.
+    match SkywayGraph::new(&n) {
+        Err(Error::Invalid(list)) => assert_eq!(list, v),
+        other => panic!("expected Error::Invalid, got {other:?}"),
+    }
+}
+
+#[test]
+fn non_finite_numbers_and_schema_version_are_reported() {
+    // JSON has no NaN, so these come from code (e.g. a network built by a program).
+    let mut n: Network = read_json(&tiny("line4.json")).unwrap();
+    n.schema_version = 9;
+    n.nodes[1].x_m = f64::NAN;
+    n.nodes[2].y_m = f64::INFINITY;
+    n.segments[0].wind_speed_mps = f64::NAN;
+    n.segments[1].wind_from_deg = f64::NAN;
+    n.segments[2].distance_m = Some(f64::NAN);
+    let v = validate_network(&n);
+    assert_eq!(
+        codes_and_fields(&v),
+        pairs(&[
+            ("E1001", "schema_version"),
+            ("E1103", "nodes[1].x_m"),
+            ("E1103", "nodes[2].y_m"),
+            // B's x is NaN, so the default A-B and B-C lengths are NaN as well.
+            ("E1204", "segments[0].distance_m"),
+            ("E1205", "segments[0].wind_speed_mps"),
+            ("E1204", "segments[1].distance_m"),
+            ("E1207", "segments[1].wind_from_deg"),
+            ("E1204", "segments[2].distance_m"),
+        ])
+    );
+}
+
+#[test]
+fn wind_just_under_the_limit_is_valid_and_at_the_limit_is_not() {
+    let mut n: Network = read_json(&tiny("line4.json")).unwrap();
+    assert!(validate_network(&n).is_empty()); // C-D has 13.7 m/s
+    n.segments[2].wind_speed_mps = 13.8;
+    assert_eq!(
+        codes_and_fields(&validate_network(&n)),
+        pairs(&[("E1206", "segments[2].wind_speed_mps")])
+    );
+}
+
+#[test]
+fn coincident_nodes_without_distance_are_reported() {
+    let mut n: Network = read_json(&tiny("line4.json")).unwrap();
+    n.nodes[1].x_m = 0.0; // B on top of A: A-B has Euclidean length 0
+    assert_eq!(
+        codes_and_fields(&validate_network(&n)),
+        pairs(&[("E1204", "segments[0].distance_m")])
+    );
+}
+
+#[test]
+fn invalid_requests_report_all_eight_violations_with_fields() {
+    let n: Network = read_json(&tiny("line4.json")).unwrap();
+    let g = SkywayGraph::new(&n).unwrap();
+    let set: RequestSet = read_json(&tiny("line4-invalid-requests.json")).unwrap();
+    let v = validate_request_set(&set, &g, 1.4);
+    assert_eq!(
+        codes_and_fields(&v),
+        pairs(&[
+            ("E3001", "schema_version"),
+            ("E3201", "requests[0].destination"),
+            ("E3102", "requests[1].id"),
+            ("E3202", "requests[1].destination"),
+            ("E3301", "requests[1].packages_kg"),
+            ("E3303", "requests[2].packages_kg[0]"),
+            ("E3302", "requests[2].packages_kg[1]"),
+            ("E3302", "requests[2].packages_kg[2]"),
+        ])
+    );
+}
+
+#[test]
+fn valid_requests_pass_and_a_disconnected_destination_does_not() {
+    let n: Network = read_json(&tiny("line4.json")).unwrap();
+    let g = SkywayGraph::new(&n).unwrap();
+    let set: RequestSet = read_json(&tiny("line4-requests.json")).unwrap();
+    assert!(validate_request_set(&set, &g, 1.4).is_empty());
+    // r2 carries a 1.4 kg package: over a 1.0 kg payload.
+    assert_eq!(
+        codes_and_fields(&validate_request_set(&set, &g, 1.0)),
+        pairs(&[
+            ("E3303", "requests[0].packages_kg[1]"),
+            ("E3303", "requests[1].packages_kg[0]")
+        ])
+    );
+
+    let island: Network = read_json(&tiny("island.json")).unwrap();
+    let g = SkywayGraph::new(&island).unwrap();
+    let r = Request {
+        id: "".into(),
+        source: "X".into(),
+        destination: "Q".into(),
+        packages_kg: vec![0.5, f64::NAN],
+    };
+    assert_eq!(
+        codes_and_fields(&validate_request(&r, 17, &g, 1.4)),
+        pairs(&[
+            ("E3101", "requests[17].id"),
+            ("E3203", "requests[17].destination"),
+            ("E3302", "requests[17].packages_kg[1]"),
+        ])
+    );
+    let empty = RequestSet {
+        schema_version: 1,
+        seed: None,
+        requests: vec![],
+    };
+    assert_eq!(
+        codes_and_fields(&validate_request_set(&empty, &g, 1.4)),
+        pairs(&[("E3002", "requests")])
+    );
+}
+
+#[test]
+fn malformed_json_and_unknown_fields_are_coded_errors() {
+    let bad = r#"{ "schema_version": 1, "nodes": [ { "id": "A", "x_m": 0.0 "#;
+    match parse_json::<Network>(bad, "broken.json") {
+        Err(Error::Invalid(v)) => {
+            assert_eq!(v.len(), 1);
+            assert_eq!(v[0].code, "E0001");
+            assert_eq!(v[0].field, "broken.json");
+            assert!(v[0].cause.contains("line 1"));
+        }
+        other => panic!("expected E0001, got {other:?}"),
+    }
+    let unknown = r#"{ "schema_version": 1, "nodes": [], "segments": [], "roads": [] }"#;
+    match parse_json::<Network>(unknown, "unknown.json") {
+        Err(e) => assert_eq!(e.exit_code(), 2),
+        Ok(_) => panic!("unknown field accepted"),
+    }
+    // A well-formed but empty network: no nodes (E1002); no pads cannot be judged without nodes.
+    let empty: Network = parse_json(
+        r#"{ "schema_version": 1, "nodes": [], "segments": [] }"#,
+        "e",
+    )
+    .unwrap();
+    assert_eq!(
+        codes_and_fields(&validate_network(&empty)),
+        pairs(&[("E1002", "nodes")])
+    );
+}
