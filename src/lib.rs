@@ -21,7 +21,9 @@
 #![warn(missing_docs)]
 #![forbid(unsafe_code)]
 
+pub mod check;
 pub mod cli;
+pub mod eaas;
 pub mod error;
 pub mod problem;
 pub mod solver;
