@@ -59,16 +59,27 @@ pub fn check_segment(problem: &SegmentProblem, outcome: &SegmentOutcome) -> Vec<
             return out;
         }
         if problem.drones[x.support].role != Role::Support {
-            out.push(v("C3002", f.clone(), format!("giver {} is not a support drone", x.support)));
+            out.push(v(
+                "C3002",
+                f.clone(),
+                format!("giver {} is not a support drone", x.support),
+            ));
         }
         if problem.drones[x.consumer].role != Role::Delivery {
-            out.push(v("C3003", f.clone(), format!("consumer {} is not a delivery drone", x.consumer)));
+            out.push(v(
+                "C3003",
+                f.clone(),
+                format!("consumer {} is not a delivery drone", x.consumer),
+            ));
         }
         if !(x.start_min >= -T_TOL && x.end_min > x.start_min && x.end_min <= tt + T_TOL) {
             out.push(v(
                 "C3004",
                 f.clone(),
-                format!("interval [{}, {}] not a positive span within [0, {tt}]", x.start_min, x.end_min),
+                format!(
+                    "interval [{}, {}] not a positive span within [0, {tt}]",
+                    x.start_min, x.end_min
+                ),
             ));
         }
         let expect = rho * (x.end_min - x.start_min);
@@ -76,7 +87,10 @@ pub fn check_segment(problem: &SegmentProblem, outcome: &SegmentOutcome) -> Vec<
             out.push(v(
                 "C3005",
                 f.clone(),
-                format!("energy {} mAh but rho x duration = {expect} mAh", x.energy_mah),
+                format!(
+                    "energy {} mAh but rho x duration = {expect} mAh",
+                    x.energy_mah
+                ),
             ));
         }
         let ps = problem.slots_m[problem.initial_slot[x.support]];
@@ -86,7 +100,10 @@ pub fn check_segment(problem: &SegmentProblem, outcome: &SegmentOutcome) -> Vec<
             out.push(v(
                 "C3006",
                 f.clone(),
-                format!("consumer slot {} is {dist} m from the support drone, range {}", x.consumer_slot, problem.range_m),
+                format!(
+                    "consumer slot {} is {dist} m from the support drone, range {}",
+                    x.consumer_slot, problem.range_m
+                ),
             ));
         }
         if x.consumer_slot != problem.initial_slot[x.consumer] {
@@ -95,7 +112,10 @@ pub fn check_segment(problem: &SegmentProblem, outcome: &SegmentOutcome) -> Vec<
                 _ => out.push(v(
                     "C3007",
                     f.clone(),
-                    format!("slot {} is not held by another delivery drone to swap with", x.consumer_slot),
+                    format!(
+                        "slot {} is not held by another delivery drone to swap with",
+                        x.consumer_slot
+                    ),
                 )),
             }
         }
@@ -118,16 +138,34 @@ pub fn check_segment(problem: &SegmentProblem, outcome: &SegmentOutcome) -> Vec<
             }
             let f = format!("transfers[{i}], transfers[{j}]");
             if a.support == b.support {
-                out.push(v("C3008", f.clone(), format!("support drone {} gives to two consumers at once", a.support)));
+                out.push(v(
+                    "C3008",
+                    f.clone(),
+                    format!("support drone {} gives to two consumers at once", a.support),
+                ));
             }
             if a.consumer == b.consumer {
-                out.push(v("C3009", f.clone(), format!("consumer {} takes from two support drones at once", a.consumer)));
+                out.push(v(
+                    "C3009",
+                    f.clone(),
+                    format!(
+                        "consumer {} takes from two support drones at once",
+                        a.consumer
+                    ),
+                ));
             }
             let da = [Some(a.consumer), partner(a)];
             let db = [Some(b.consumer), partner(b)];
-            let clash = da.iter().flatten().any(|d| db.iter().flatten().any(|e| d == e));
+            let clash = da
+                .iter()
+                .flatten()
+                .any(|d| db.iter().flatten().any(|e| d == e));
             if clash && a.consumer != b.consumer {
-                out.push(v("C3010", f, "overlapping transfers move the same drone".to_string()));
+                out.push(v(
+                    "C3010",
+                    f,
+                    "overlapping transfers move the same drone".to_string(),
+                ));
             }
         }
     }
@@ -189,7 +227,8 @@ pub fn check_segment(problem: &SegmentProblem, outcome: &SegmentOutcome) -> Vec<
             let nb = bat[d] - draw[d] * h;
             if nb < -e_tol(0.0) && draw[d] > 0.0 {
                 let t = a + bat[d].max(0.0) / draw[d];
-                if first_below.is_none_or(|(fd, ft)| t < ft - T_TOL || (t <= ft + T_TOL && d < fd)) {
+                if first_below.is_none_or(|(fd, ft)| t < ft - T_TOL || (t <= ft + T_TOL && d < fd))
+                {
                     first_below = Some((d, t));
                 }
             }
@@ -199,7 +238,10 @@ pub fn check_segment(problem: &SegmentProblem, outcome: &SegmentOutcome) -> Vec<
                 out.push(v(
                     "C3011",
                     format!("drones[{d}]"),
-                    format!("battery {nb} mAh above capacity {} at t = {b} min", problem.drones[d].capacity_mah),
+                    format!(
+                        "battery {nb} mAh above capacity {} at t = {b} min",
+                        problem.drones[d].capacity_mah
+                    ),
                 ));
             }
         }
@@ -208,12 +250,15 @@ pub fn check_segment(problem: &SegmentProblem, outcome: &SegmentOutcome) -> Vec<
                 out.push(v(
                     "C3012",
                     format!("drones[{}]", x.support),
-                    format!("shares at {} mAh, below the reserve delta = {}", bat[x.support], problem.delta_mah),
+                    format!(
+                        "shares at {} mAh, below the reserve delta = {}",
+                        bat[x.support], problem.delta_mah
+                    ),
                 ));
             }
         }
     }
-    for d in 0..n {
+    for (d, &given_d) in given.iter().enumerate() {
         if problem.drones[d].role != Role::Support {
             continue;
         }
@@ -224,11 +269,14 @@ pub fn check_segment(problem: &SegmentProblem, outcome: &SegmentOutcome) -> Vec<
             .map(|l| l.rate_mah_per_min[d][q] * l.duration_min)
             .sum();
         let spare = (problem.drones[d].battery_mah - own - problem.delta_mah).max(0.0);
-        if given[d] > spare + e_tol(spare) {
+        if given_d > spare + e_tol(spare) {
             out.push(v(
                 "C3013",
                 format!("drones[{d}]"),
-                format!("shares {} mAh, more than its spare {spare} mAh above delta at tt", given[d]),
+                format!(
+                    "shares {} mAh, more than its spare {spare} mAh above delta at tt",
+                    given_d
+                ),
             ));
         }
     }
@@ -240,7 +288,9 @@ pub fn check_segment(problem: &SegmentProblem, outcome: &SegmentOutcome) -> Vec<
             "C3014",
             "feasible".into(),
             match first_below {
-                Some((d, t)) => format!("reported feasible, but drone {d} is below zero from t = {t} min"),
+                Some((d, t)) => {
+                    format!("reported feasible, but drone {d} is below zero from t = {t} min")
+                }
                 None => "reported infeasible, but no battery goes below zero".into(),
             },
         ));
@@ -250,26 +300,41 @@ pub fn check_segment(problem: &SegmentProblem, outcome: &SegmentOutcome) -> Vec<
             out.push(v(
                 "C3015",
                 "failure".into(),
-                format!("reported drone {} at {} min, re-integration gives drone {d} at {t} min", f.drone, f.time_min),
+                format!(
+                    "reported drone {} at {} min, re-integration gives drone {d} at {t} min",
+                    f.drone, f.time_min
+                ),
             ));
         }
     }
     if outcome.failure.is_some() == outcome.feasible {
-        out.push(v("C3015", "failure".into(), "failure present iff infeasible".into()));
+        out.push(v(
+            "C3015",
+            "failure".into(),
+            "failure present iff infeasible".into(),
+        ));
     }
-    let same = |a: &[f64], b: &[f64]| a.len() == b.len() && a.iter().zip(b).all(|(x, y)| (x - y).abs() <= e_tol(*y));
+    let same = |a: &[f64], b: &[f64]| {
+        a.len() == b.len() && a.iter().zip(b).all(|(x, y)| (x - y).abs() <= e_tol(*y))
+    };
     if !same(&outcome.final_battery_mah, &bat) {
         out.push(v(
             "C3016",
             "final_battery_mah".into(),
-            format!("reported {:?}, re-integration gives {bat:?}", outcome.final_battery_mah),
+            format!(
+                "reported {:?}, re-integration gives {bat:?}",
+                outcome.final_battery_mah
+            ),
         ));
     }
     if !same(&outcome.min_battery_mah, &low) {
         out.push(v(
             "C3017",
             "min_battery_mah".into(),
-            format!("reported {:?}, re-integration gives {low:?}", outcome.min_battery_mah),
+            format!(
+                "reported {:?}, re-integration gives {low:?}",
+                outcome.min_battery_mah
+            ),
         ));
     }
     let total: f64 = ts.iter().map(|x| x.energy_mah).sum();
@@ -277,7 +342,10 @@ pub fn check_segment(problem: &SegmentProblem, outcome: &SegmentOutcome) -> Vec<
         out.push(v(
             "C3018",
             "shared_mah".into(),
-            format!("reported {} mAh, transfers sum to {total} mAh", outcome.shared_mah),
+            format!(
+                "reported {} mAh, transfers sum to {total} mAh",
+                outcome.shared_mah
+            ),
         ));
     }
     out

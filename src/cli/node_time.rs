@@ -8,5 +8,10 @@ pub struct NodeTimeArgs {}
 
 /// Runs the subcommand.
 pub fn run(_args: NodeTimeArgs) -> Result<i32> {
-    Err(Error::invalid("E0000", "node_time", "not available yet", "wait"))
+    Err(Error::invalid(
+        "E0000",
+        "node_time",
+        "not available yet",
+        "wait",
+    ))
 }

@@ -14,8 +14,8 @@
 use super::reorder::{busy_drones, choose_consumer_slot};
 use super::simulate::{evaluate, leg_at};
 use super::{
-    responsible_support, sharing_budget_mah, travel_time_min, PolicyOptions, Role,
-    SegmentProblem, Transfer, ENERGY_TOL_MAH, MAX_PLANNING_STEPS, TIME_TOL_MIN,
+    responsible_support, sharing_budget_mah, travel_time_min, PolicyOptions, Role, SegmentProblem,
+    Transfer, ENERGY_TOL_MAH, MAX_PLANNING_STEPS, TIME_TOL_MIN,
 };
 
 /// FB's schedule.
@@ -115,7 +115,7 @@ pub(super) fn plan(problem: &SegmentProblem, options: &PolicyOptions) -> Vec<Tra
         if !acted {
             let first_free = plan
                 .iter()
-                .filter(|x| x.start_min < end && start < x.end_min && x.end_min > start)
+                .filter(|x| x.start_min < end && start < x.end_min)
                 .map(|x| x.end_min)
                 .fold(f64::INFINITY, f64::min);
             ct[s] = if blocked && first_free.is_finite() {

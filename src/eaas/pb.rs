@@ -16,8 +16,8 @@
 use super::reorder::{busy_drones, choose_consumer_slot};
 use super::simulate::{evaluate, Run};
 use super::{
-    responsible_support, sharing_budget_mah, travel_time_min, PolicyOptions, Role,
-    SegmentProblem, Transfer, ENERGY_TOL_MAH, MAX_PLANNING_STEPS, TIME_TOL_MIN,
+    responsible_support, sharing_budget_mah, travel_time_min, PolicyOptions, Role, SegmentProblem,
+    Transfer, ENERGY_TOL_MAH, MAX_PLANNING_STEPS, TIME_TOL_MIN,
 };
 
 /// An energy request `er = (drone, st, re)`.
@@ -119,8 +119,8 @@ pub(super) fn plan(problem: &SegmentProblem, options: &PolicyOptions) -> Vec<Tra
 fn requests(problem: &SegmentProblem, run: &Run, owner: &[Option<usize>], tt: f64) -> Vec<Request> {
     let gamma = problem.gamma_mah;
     let mut out = Vec::new();
-    for d in 0..problem.drones.len() {
-        if owner[d].is_none() {
+    for (d, who) in owner.iter().enumerate() {
+        if who.is_none() {
             continue;
         }
         let t0 = run
@@ -142,7 +142,11 @@ fn requests(problem: &SegmentProblem, run: &Run, owner: &[Option<usize>], tt: f6
                 if t1 <= t0 {
                     continue;
                 }
-                let (ta, ba) = if w[0].0 < t0 { (t0, b0) } else { (w[0].0, w[0].1[d]) };
+                let (ta, ba) = if w[0].0 < t0 {
+                    (t0, b0)
+                } else {
+                    (w[0].0, w[0].1[d])
+                };
                 if ba >= gamma && b1 < gamma {
                     let st = ta + (ba - gamma) / (ba - b1) * (t1 - ta);
                     found = Some((st, gamma));
