@@ -538,3 +538,54 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn swap_slot_is_the_nearest_in_range_with_ties_to_the_lower_slot() {
+    use swarmplan::eaas::reorder::choose_consumer_slot;
+    // Support d0 in slot 0 at (0, 0); slots 1 at (1, 0) and 2 at (0, 1) are both 1 m away;
+    // slot 3 at (0.5, 0.5) is 0.707 m away but held by a support drone; consumer d4 in slot 4 at
+    // (3, 0). Range 1.2.
+    let p = SegmentProblem {
+        legs: vec![uniform_leg(1.0, &[1.0; 5])],
+        drones: vec![
+            drone(Role::Support, 100.0, 100.0),
+            drone(Role::Delivery, 100.0, 100.0),
+            drone(Role::Delivery, 100.0, 100.0),
+            drone(Role::Support, 100.0, 100.0),
+            drone(Role::Delivery, 100.0, 50.0),
+        ],
+        slots_m: vec![
+            Vector2::new(0.0, 0.0),
+            Vector2::new(1.0, 0.0),
+            Vector2::new(0.0, 1.0),
+            Vector2::new(0.5, 0.5),
+            Vector2::new(3.0, 0.0),
+        ],
+        initial_slot: vec![0, 1, 2, 3, 4],
+        rho_mah_per_min: 1.0,
+        range_m: 1.2,
+        gamma_mah: 0.0,
+        lambda_mah: 1.0,
+        delta_mah: 0.0,
+    };
+    let free = vec![false; 5];
+    assert_eq!(choose_consumer_slot(&p, 0, 4, &free), Some(1));
+    let mut busy = free.clone();
+    busy[1] = true;
+    assert_eq!(choose_consumer_slot(&p, 0, 4, &busy), Some(2));
+    busy[2] = true;
+    assert_eq!(choose_consumer_slot(&p, 0, 4, &busy), None);
+    // A consumer already within range stays put.
+    assert_eq!(choose_consumer_slot(&p, 0, 1, &free), Some(1));
+}
+
+#[test]
+fn problem_round_trips_through_json_with_slots_as_pairs() {
+    let p = two_drones();
+    let text = serde_json::to_string(&p).unwrap();
+    assert!(text.contains("\"slots_m\":[[0.0,0.0],[1.0,0.0]]"), "{text}");
+    let back: SegmentProblem = serde_json::from_str(&text).unwrap();
+    assert_eq!(back, p);
+    let policy: SharingPolicy = serde_json::from_str("\"fb\"").unwrap();
+    assert_eq!(policy, SharingPolicy::Fb);
+}
