@@ -21,8 +21,10 @@
 #![warn(missing_docs)]
 #![forbid(unsafe_code)]
 
+pub mod check;
 pub mod cli;
 pub mod energy;
+pub mod eaas;
 pub mod error;
 pub mod node_time;
 pub mod formation;

@@ -1,0 +1,8 @@
+//! Independent checkers: re-verify a plan from the raw problem, without the planners' code paths
+//! (only the input and output types are shared).
+//!
+//! Codes `C3xxx` concern segment schedules ([`segment`]).
+
+pub mod segment;
+
+pub use segment::check_segment;

@@ -1,0 +1,492 @@
+//! In-flight energy sharing (EaaS) on one segment: the flight between two stops, see
+//! `models/eaas.md`.
+//!
+//! Time runs over `[0, tt]`, `tt` = the sum of the legs' durations. Drone `d` flying in formation
+//! slot `q` on leg `l` consumes `rate[l][d][q]` mAh/min (piecewise constant in time). A support drone
+//! `s` shares with one delivery drone `c` at a time, at rate `rho` mAh/min: `s` loses `rho` on top of
+//! its own consumption, `c` gains `rho`. The consumer must be within `range_m` of the support drone;
+//! if it is not, fixed re-ordering swaps it, for the duration of the transfer, with the drone in the
+//! slot nearest the support drone ([`reorder`]). A support drone shares only energy it can spare:
+//! its battery at the segment end, after its own consumption, never falls below the reserve `delta`
+//! because of sharing.
+//!
+//! Policies: [`SharingPolicy::None`] (baseline), [`SharingPolicy::Pb`] (priority-based, the paper's
+//! Algorithm 2, threshold `gamma`) and [`SharingPolicy::Fb`] (fairness-based, Algorithm 3, round
+//! `lambda`). [`simulate`] runs a policy and returns the schedule with every drone's battery; the
+//! independent checker in [`crate::check`] re-verifies it from the raw [`SegmentProblem`].
+
+use crate::error::{Error, Result, Violation};
+use nalgebra::Vector2;
+use serde::{Deserialize, Serialize};
+
+mod fb;
+mod none;
+mod pb;
+pub mod reorder;
+mod simulate;
+
+/// Time tolerance, minutes: events closer than this are simultaneous.
+pub const TIME_TOL_MIN: f64 = 1e-9;
+/// Energy tolerance, mAh: batteries within this of a bound are on it.
+pub const ENERGY_TOL_MAH: f64 = 1e-6;
+/// Upper bound on the number of planning iterations of PB and FB (each adds at most one transfer);
+/// a guard against pathological inputs, far above what a segment needs.
+pub const MAX_PLANNING_STEPS: usize = 10_000;
+
+/// One segment's sharing problem, in plain numbers (see `models/eaas.md`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SegmentProblem {
+    /// Consecutive legs of the flight between two stops; `tt` = the sum of their durations.
+    pub legs: Vec<Leg>,
+    /// Drones; the index is the drone id. Delivery drones first, then support drones.
+    pub drones: Vec<DroneState>,
+    /// Formation slot positions in the body frame, metres; as many slots as drones.
+    #[serde(with = "slots_serde")]
+    pub slots_m: Vec<Vector2<f64>>,
+    /// `initial_slot[d]` = slot of drone `d` outside transfers; a permutation.
+    pub initial_slot: Vec<usize>,
+    /// Sharing rate `rho`, mAh/min.
+    pub rho_mah_per_min: f64,
+    /// Largest support-consumer distance for a transfer, metres (1.2 m in the paper).
+    pub range_m: f64,
+    /// PB request threshold `gamma`, mAh.
+    pub gamma_mah: f64,
+    /// FB round energy `lambda`, mAh.
+    pub lambda_mah: f64,
+    /// Support reserve `delta`, mAh.
+    pub delta_mah: f64,
+}
+
+/// A leg of a segment: constant consumption rates for a duration.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Leg {
+    /// Duration of the leg, minutes.
+    pub duration_min: f64,
+    /// `rate_mah_per_min[d][q]` = consumption of drone `d` flying in slot `q`, mAh/min.
+    pub rate_mah_per_min: Vec<Vec<f64>>,
+}
+
+/// Role of a drone in the swarm.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Role {
+    /// Carries one package; may receive energy.
+    Delivery,
+    /// Carries extra batteries; may give energy, never moves in the formation.
+    Support,
+}
+
+/// A drone's battery at the start of the segment.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DroneState {
+    /// Delivery or support.
+    pub role: Role,
+    /// Battery capacity, mAh.
+    pub capacity_mah: f64,
+    /// Battery at the segment start, mAh.
+    pub battery_mah: f64,
+}
+
+/// Which sharing policy runs on a segment.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, clap::ValueEnum)]
+#[serde(rename_all = "lowercase")]
+pub enum SharingPolicy {
+    /// No sharing (baseline).
+    None,
+    /// Priority-based sharing (the paper's Algorithm 2).
+    Pb,
+    /// Fairness-based sharing (the paper's Algorithm 3).
+    Fb,
+}
+
+/// Readings of the paper where it can be taken two ways; [`Default`] gives ours.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PolicyOptions {
+    /// PB: a request whose start `st` is earlier than its support drone's next free time starts
+    /// when the support drone becomes free (`true`, default); `false` skips it, as Algorithm 2's
+    /// literal test `er.st >= SD.st` does.
+    pub pb_wait_for_support: bool,
+    /// FB: a full drone's round still costs the support drone `lambda` of its sharing budget and
+    /// one round of time, as Algorithm 3's literal pseudo-code does (`true`); default `false`
+    /// skips it at no cost.
+    pub fb_charge_skipped: bool,
+}
+
+impl Default for PolicyOptions {
+    fn default() -> Self {
+        PolicyOptions {
+            pb_wait_for_support: true,
+            fb_charge_skipped: false,
+        }
+    }
+}
+
+/// One energy transfer of a schedule.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Transfer {
+    /// Giving support drone.
+    pub support: usize,
+    /// Receiving delivery drone.
+    pub consumer: usize,
+    /// Start, minutes from the segment start.
+    pub start_min: f64,
+    /// End, minutes from the segment start.
+    pub end_min: f64,
+    /// Energy moved, mAh: `rho * (end_min - start_min)`.
+    pub energy_mah: f64,
+    /// Slot the consumer occupied during the transfer; when it differs from the consumer's
+    /// initial slot, the drone initially there holds the consumer's initial slot meanwhile.
+    pub consumer_slot: usize,
+}
+
+/// Why a segment is infeasible.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FailureReason {
+    /// The drone's battery fell below zero in flight.
+    BatteryDepleted,
+}
+
+/// The first failure on a segment.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SegmentFailure {
+    /// Failing drone.
+    pub drone: usize,
+    /// When it fails, minutes from the segment start.
+    pub time_min: f64,
+    /// Why.
+    pub reason: FailureReason,
+}
+
+/// Result of flying one segment under a sharing policy.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SegmentOutcome {
+    /// No drone's battery below zero at any instant.
+    pub feasible: bool,
+    /// The first failure (earliest time, then lowest drone id), when infeasible.
+    pub failure: Option<SegmentFailure>,
+    /// Transfers, by start time then support drone.
+    pub transfers: Vec<Transfer>,
+    /// Every drone's battery at `tt`, mAh (negative for a drone that failed: the flight is
+    /// evaluated to the end so the shortfall is visible).
+    pub final_battery_mah: Vec<f64>,
+    /// Every drone's lowest battery over `[0, tt]`, mAh.
+    pub min_battery_mah: Vec<f64>,
+    /// Total energy shared, mAh.
+    pub shared_mah: f64,
+}
+
+/// Flies a segment under a sharing policy, with the default [`PolicyOptions`].
+///
+/// # Arguments
+/// * `problem` - the segment: legs with rates, drones, formation, `rho`, `range_m`, `gamma`,
+///   `lambda`, `delta`.
+/// * `policy` - none, PB or FB.
+///
+/// # Returns
+/// The schedule and every drone's final and lowest battery; infeasibility is data
+/// ([`SegmentOutcome::feasible`], [`SegmentOutcome::failure`]).
+///
+/// # Errors
+/// [`Error::Invalid`] (codes `E3001`-`E3012`, every violation at once) for a malformed problem:
+/// mismatched sizes, non-finite or negative numbers, a non-permutation `initial_slot`.
+///
+/// # Complexity
+/// One evaluation costs `O(P * D)` for `P` pieces (legs + 2 x transfers) and `D` drones. None
+/// evaluates once; PB and FB evaluate once per transfer they add, plus candidate scans, so
+/// `O(T * (P * D + D * S))` for `T` transfers and `S` slots.
+///
+/// # Example
+/// ```
+/// use swarmplan::eaas::*;
+/// use nalgebra::Vector2;
+/// let p = SegmentProblem {
+///     legs: vec![Leg { duration_min: 10.0, rate_mah_per_min: vec![vec![10.0, 10.0], vec![5.0, 5.0]] }],
+///     drones: vec![
+///         DroneState { role: Role::Delivery, capacity_mah: 200.0, battery_mah: 80.0 },
+///         DroneState { role: Role::Support, capacity_mah: 500.0, battery_mah: 500.0 },
+///     ],
+///     slots_m: vec![Vector2::new(0.0, 0.0), Vector2::new(1.0, 0.0)],
+///     initial_slot: vec![0, 1],
+///     rho_mah_per_min: 4.0, range_m: 1.2, gamma_mah: 50.0, lambda_mah: 20.0, delta_mah: 100.0,
+/// };
+/// let none = simulate(&p, SharingPolicy::None).unwrap();
+/// assert!(!none.feasible); // 80 - 10 * 10 = -20
+/// let pb = simulate(&p, SharingPolicy::Pb).unwrap();
+/// assert!(pb.feasible);
+/// ```
+pub fn simulate(problem: &SegmentProblem, policy: SharingPolicy) -> Result<SegmentOutcome> {
+    simulate_with(problem, policy, &PolicyOptions::default())
+}
+
+/// [`simulate`] with explicit [`PolicyOptions`] (the paper's literal readings).
+///
+/// # Errors
+/// As [`simulate`].
+///
+/// # Complexity
+/// As [`simulate`].
+pub fn simulate_with(
+    problem: &SegmentProblem,
+    policy: SharingPolicy,
+    options: &PolicyOptions,
+) -> Result<SegmentOutcome> {
+    validate(problem)?;
+    let plan = match policy {
+        SharingPolicy::None => none::plan(problem),
+        SharingPolicy::Pb => pb::plan(problem, options),
+        SharingPolicy::Fb => fb::plan(problem, options),
+    };
+    let run = simulate::evaluate(problem, &plan);
+    Ok(run.into_outcome())
+}
+
+/// Every drone's battery at every breakpoint (leg ends, transfer starts and ends, consumers
+/// filling up, support drones reaching their reserve) of the schedule `transfers`; between
+/// breakpoints batteries are linear.
+///
+/// # Arguments
+/// * `problem` - the segment.
+/// * `transfers` - a schedule, typically [`SegmentOutcome::transfers`].
+///
+/// # Returns
+/// `(t_min, battery_mah per drone)` pairs, `t` ascending from 0 to `tt`.
+///
+/// # Errors
+/// [`Error::Invalid`] for a malformed problem, or a transfer naming a drone or slot that does not
+/// exist (`E3013`).
+///
+/// # Complexity
+/// `O(P * D)` plus sorting the transfers.
+pub fn battery_trace(
+    problem: &SegmentProblem,
+    transfers: &[Transfer],
+) -> Result<Vec<(f64, Vec<f64>)>> {
+    validate(problem)?;
+    let n = problem.drones.len();
+    let bad: Vec<Violation> = transfers
+        .iter()
+        .enumerate()
+        .filter(|(_, x)| x.support >= n || x.consumer >= n || x.consumer_slot >= n)
+        .map(|(i, x)| {
+            Violation::new(
+                "E3013",
+                format!("transfers[{i}]"),
+                format!(
+                    "support {}, consumer {} or slot {} out of range (0..{n})",
+                    x.support, x.consumer, x.consumer_slot
+                ),
+                "name existing drones and slots",
+            )
+        })
+        .collect();
+    if !bad.is_empty() {
+        return Err(Error::Invalid(bad));
+    }
+    Ok(simulate::evaluate(problem, transfers).trace)
+}
+
+/// Segment travel time `tt`, minutes: the sum of the legs' durations.
+pub fn travel_time_min(problem: &SegmentProblem) -> f64 {
+    problem.legs.iter().map(|l| l.duration_min).sum()
+}
+
+/// Delivery drones each support drone is responsible for (the paper: "each support drone will be
+/// responsible for charging a subset of the delivery drones"): every delivery drone goes to the
+/// support drone nearest to it in the initial formation, ties to the lower support id. Returns,
+/// per drone id, the responsible support drone (`None` for support drones, and for every drone
+/// when the swarm has no support drone). Each subset is served in drone id order.
+pub fn responsible_support(problem: &SegmentProblem) -> Vec<Option<usize>> {
+    let supports: Vec<usize> = (0..problem.drones.len())
+        .filter(|&d| problem.drones[d].role == Role::Support)
+        .collect();
+    (0..problem.drones.len())
+        .map(|d| {
+            if problem.drones[d].role == Role::Support {
+                return None;
+            }
+            let mut best: Option<(f64, usize)> = None;
+            for &s in &supports {
+                let dist = reorder::slot_distance_m(
+                    problem,
+                    problem.initial_slot[d],
+                    problem.initial_slot[s],
+                );
+                if best.is_none_or(|(bd, _)| dist < bd - 1e-12) {
+                    best = Some((dist, s));
+                }
+            }
+            best.map(|(_, s)| s)
+        })
+        .collect()
+}
+
+/// Energy support drone `s` may share on the segment, mAh: its battery at `tt` without sharing
+/// (it never moves, so its own consumption is fixed) minus `delta`, floored at zero.
+pub fn sharing_budget_mah(problem: &SegmentProblem, s: usize) -> f64 {
+    let q = problem.initial_slot[s];
+    let own: f64 = problem
+        .legs
+        .iter()
+        .map(|l| l.rate_mah_per_min[s][q] * l.duration_min)
+        .sum();
+    (problem.drones[s].battery_mah - own - problem.delta_mah).max(0.0)
+}
+
+/// Checks a problem's shape and numbers; every violation at once.
+///
+/// # Errors
+/// [`Error::Invalid`] with codes `E3001`-`E3012`.
+pub fn validate(problem: &SegmentProblem) -> Result<()> {
+    let mut v = Vec::new();
+    let n = problem.drones.len();
+    let finite_nonneg = |x: f64| x.is_finite() && x >= 0.0;
+    if problem.slots_m.len() != n {
+        v.push(Violation::new(
+            "E3001",
+            "slots_m",
+            format!("{} slots for {n} drones", problem.slots_m.len()),
+            "give exactly one formation slot per drone",
+        ));
+    }
+    if problem.initial_slot.len() != n {
+        v.push(Violation::new(
+            "E3002",
+            "initial_slot",
+            format!("{} entries for {n} drones", problem.initial_slot.len()),
+            "give one initial slot per drone",
+        ));
+    } else {
+        let mut seen = vec![false; n];
+        let ok = problem
+            .initial_slot
+            .iter()
+            .all(|&q| q < n && !std::mem::replace(&mut seen[q], true));
+        if !ok {
+            v.push(Violation::new(
+                "E3003",
+                "initial_slot",
+                format!("{:?} is not a permutation of 0..{n}", problem.initial_slot),
+                "assign every drone a distinct slot",
+            ));
+        }
+    }
+    for (i, p) in problem.slots_m.iter().enumerate() {
+        if !(p.x.is_finite() && p.y.is_finite()) {
+            v.push(Violation::new(
+                "E3004",
+                format!("slots_m[{i}]"),
+                format!("({}, {}) is not finite", p.x, p.y),
+                "give finite slot coordinates in metres",
+            ));
+        }
+    }
+    for (l, leg) in problem.legs.iter().enumerate() {
+        if !finite_nonneg(leg.duration_min) {
+            v.push(Violation::new(
+                "E3005",
+                format!("legs[{l}].duration_min"),
+                format!("{} is not a finite duration >= 0", leg.duration_min),
+                "give leg durations in minutes, >= 0",
+            ));
+        }
+        let shape_ok = leg.rate_mah_per_min.len() == n
+            && leg.rate_mah_per_min.iter().all(|row| row.len() == n);
+        if !shape_ok {
+            v.push(Violation::new(
+                "E3006",
+                format!("legs[{l}].rate_mah_per_min"),
+                format!("not a {n} x {n} matrix [drone][slot]"),
+                "give one rate per drone and slot",
+            ));
+        } else if let Some((d, q)) = (0..n)
+            .flat_map(|d| (0..n).map(move |q| (d, q)))
+            .find(|&(d, q)| !finite_nonneg(leg.rate_mah_per_min[d][q]))
+        {
+            v.push(Violation::new(
+                "E3007",
+                format!("legs[{l}].rate_mah_per_min[{d}][{q}]"),
+                format!("{} is not a finite rate >= 0", leg.rate_mah_per_min[d][q]),
+                "give consumption rates in mAh/min, >= 0",
+            ));
+        }
+    }
+    for (d, dr) in problem.drones.iter().enumerate() {
+        if !(dr.capacity_mah.is_finite() && dr.capacity_mah > 0.0) {
+            v.push(Violation::new(
+                "E3008",
+                format!("drones[{d}].capacity_mah"),
+                format!("{} is not a finite capacity > 0", dr.capacity_mah),
+                "give the battery capacity in mAh",
+            ));
+        } else if !(finite_nonneg(dr.battery_mah) && dr.battery_mah <= dr.capacity_mah) {
+            v.push(Violation::new(
+                "E3009",
+                format!("drones[{d}].battery_mah"),
+                format!(
+                    "{} is not within [0, capacity {}]",
+                    dr.battery_mah, dr.capacity_mah
+                ),
+                "give a battery between 0 and the capacity",
+            ));
+        }
+    }
+    if !(problem.rho_mah_per_min.is_finite() && problem.rho_mah_per_min > 0.0) {
+        v.push(Violation::new(
+            "E3010",
+            "rho_mah_per_min",
+            format!("{} is not a finite rate > 0", problem.rho_mah_per_min),
+            "give the sharing rate in mAh/min (5.88 in the paper)",
+        ));
+    }
+    if !(problem.lambda_mah.is_finite() && problem.lambda_mah > 0.0) {
+        v.push(Violation::new(
+            "E3011",
+            "lambda_mah",
+            format!("{} is not a finite energy > 0", problem.lambda_mah),
+            "give the FB round energy in mAh (2240 in the paper)",
+        ));
+    }
+    for (field, x) in [
+        ("range_m", problem.range_m),
+        ("gamma_mah", problem.gamma_mah),
+        ("delta_mah", problem.delta_mah),
+    ] {
+        if !finite_nonneg(x) {
+            v.push(Violation::new(
+                "E3012",
+                field,
+                format!("{x} is not a finite number >= 0"),
+                "give a finite value >= 0",
+            ));
+        }
+    }
+    if v.is_empty() {
+        Ok(())
+    } else {
+        Err(Error::Invalid(v))
+    }
+}
+
+/// Slot positions as `[x, y]` pairs in JSON/TOML (nalgebra's serde support is not enabled).
+mod slots_serde {
+    use nalgebra::Vector2;
+    use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+    pub fn serialize<S: Serializer>(v: &[Vector2<f64>], s: S) -> Result<S::Ok, S::Error> {
+        let pairs: Vec<[f64; 2]> = v.iter().map(|p| [p.x, p.y]).collect();
+        pairs.serialize(s)
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<Vector2<f64>>, D::Error> {
+        let pairs = Vec::<[f64; 2]>::deserialize(d)?;
+        Ok(pairs.into_iter().map(|[x, y]| Vector2::new(x, y)).collect())
+    }
+}

@@ -1,0 +1,171 @@
+//! Priority-based sharing (PB, the paper's Algorithm 2).
+//!
+//! Requests: delivery drone `d` requests energy when its battery, under the schedule built so far,
+//! falls below `gamma`: `st` = the first time at or after the end of `d`'s last transfer at which
+//! `b_d(t) < gamma` (the crossing time, or that end itself when already below), and
+//! `re = capacity_d - b_d(st)` (the paper: "the support drone fully charge[s] each selected
+//! drone"). Requests are sorted by `st` ascending, then `re` descending, then drone id. The first
+//! request its support drone (see [`super::responsible_support`]) can serve is served in full: at
+//! `rho` from `max(st, free)` (`free` = the support drone's last transfer end) for `re / rho`
+//! minutes, clipped at `tt`, provided `re` fits the support drone's remaining sharing budget (energy
+//! above `delta` at the segment end) and a re-ordering slot is available. Then the schedule is
+//! re-evaluated and the requests regenerated (re-ordering changes rates), until no request can be
+//! served. With [`PolicyOptions::pb_wait_for_support`] off, a request with `st < free` is skipped
+//! (the paper's literal `er.st >= SD.st`).
+
+use super::reorder::{busy_drones, choose_consumer_slot};
+use super::simulate::{evaluate, Run};
+use super::{
+    responsible_support, sharing_budget_mah, travel_time_min, PolicyOptions, Role, SegmentProblem,
+    Transfer, ENERGY_TOL_MAH, MAX_PLANNING_STEPS, TIME_TOL_MIN,
+};
+
+/// An energy request `er = (drone, st, re)`.
+#[derive(Debug, Clone, Copy)]
+struct Request {
+    drone: usize,
+    st_min: f64,
+    re_mah: f64,
+}
+
+/// PB's schedule.
+pub(super) fn plan(problem: &SegmentProblem, options: &PolicyOptions) -> Vec<Transfer> {
+    let owner = responsible_support(problem);
+    let tt = travel_time_min(problem);
+    let rho = problem.rho_mah_per_min;
+    let budget: Vec<f64> = (0..problem.drones.len())
+        .map(|d| match problem.drones[d].role {
+            Role::Support => sharing_budget_mah(problem, d),
+            Role::Delivery => 0.0,
+        })
+        .collect();
+    let mut run = evaluate(problem, &[]);
+    let mut plan = run.transfers.clone();
+    let mut rejected: Vec<(usize, f64)> = Vec::new();
+    for _ in 0..MAX_PLANNING_STEPS {
+        let mut reqs = requests(problem, &run, &owner, tt);
+        reqs.sort_by(|a, b| {
+            a.st_min
+                .total_cmp(&b.st_min)
+                .then(b.re_mah.total_cmp(&a.re_mah))
+                .then(a.drone.cmp(&b.drone))
+        });
+        let mut chosen: Option<(Request, Transfer)> = None;
+        for er in reqs {
+            if rejected
+                .iter()
+                .any(|&(d, st)| d == er.drone && (st - er.st_min).abs() <= TIME_TOL_MIN)
+            {
+                continue;
+            }
+            let Some(s) = owner[er.drone] else { continue };
+            let free = plan
+                .iter()
+                .filter(|x| x.support == s)
+                .map(|x| x.end_min)
+                .fold(0.0, f64::max);
+            let start = if er.st_min + TIME_TOL_MIN >= free {
+                er.st_min
+            } else if options.pb_wait_for_support {
+                free
+            } else {
+                continue;
+            };
+            if start >= tt - TIME_TOL_MIN {
+                continue;
+            }
+            let available = budget[s] - run.shared_by_support[s];
+            if er.re_mah > available + ENERGY_TOL_MAH {
+                continue;
+            }
+            let end = (start + er.re_mah / rho).min(tt);
+            let busy = busy_drones(problem, &plan, start, end);
+            let Some(slot) = choose_consumer_slot(problem, s, er.drone, &busy) else {
+                continue;
+            };
+            chosen = Some((
+                er,
+                Transfer {
+                    support: s,
+                    consumer: er.drone,
+                    start_min: start,
+                    end_min: end,
+                    energy_mah: rho * (end - start),
+                    consumer_slot: slot,
+                },
+            ));
+            break;
+        }
+        let Some((er, x)) = chosen else { break };
+        let mut trial = plan.clone();
+        trial.push(x);
+        let r = evaluate(problem, &trial);
+        let realised = r.transfers.iter().any(|y| {
+            y.support == x.support
+                && y.consumer == x.consumer
+                && (y.start_min - x.start_min).abs() <= TIME_TOL_MIN
+        });
+        if realised {
+            run = r;
+            plan = run.transfers.clone();
+        } else {
+            rejected.push((er.drone, er.st_min));
+        }
+    }
+    plan
+}
+
+/// Current requests of every delivery drone that has a responsible support drone.
+fn requests(problem: &SegmentProblem, run: &Run, owner: &[Option<usize>], tt: f64) -> Vec<Request> {
+    let gamma = problem.gamma_mah;
+    let mut out = Vec::new();
+    for (d, who) in owner.iter().enumerate() {
+        if who.is_none() {
+            continue;
+        }
+        let t0 = run
+            .transfers
+            .iter()
+            .filter(|x| x.consumer == d)
+            .map(|x| x.end_min)
+            .fold(0.0, f64::max);
+        if t0 >= tt - TIME_TOL_MIN {
+            continue;
+        }
+        let b0 = run.battery_at(d, t0);
+        let mut found: Option<(f64, f64)> = None;
+        if b0 < gamma {
+            found = Some((t0, b0));
+        } else {
+            for w in run.trace.windows(2) {
+                let (t1, b1) = (w[1].0, w[1].1[d]);
+                if t1 <= t0 {
+                    continue;
+                }
+                let (ta, ba) = if w[0].0 < t0 {
+                    (t0, b0)
+                } else {
+                    (w[0].0, w[0].1[d])
+                };
+                if ba >= gamma && b1 < gamma {
+                    let st = ta + (ba - gamma) / (ba - b1) * (t1 - ta);
+                    found = Some((st, gamma));
+                    break;
+                }
+            }
+        }
+        let Some((st, b_st)) = found else { continue };
+        if st >= tt - TIME_TOL_MIN {
+            continue;
+        }
+        let re = problem.drones[d].capacity_mah - b_st;
+        if re > ENERGY_TOL_MAH {
+            out.push(Request {
+                drone: d,
+                st_min: st,
+                re_mah: re,
+            });
+        }
+    }
+    out
+}
