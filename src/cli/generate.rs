@@ -36,6 +36,7 @@ pub struct NetworkArgs {
 }
 
 /// Arguments of `generate requests`.
+#[derive(Debug, clap::Args)]
 pub struct RequestsArgs {
     /// Network JSON file the requests run on.
     #[arg(long)]
@@ -43,10 +44,17 @@ pub struct RequestsArgs {
     /// Number of requests.
     #[arg(long, default_value_t = DEFAULT_REQUESTS, value_parser = parse_count, allow_hyphen_values = true)]
     pub count: usize,
+    /// Seed of the random generator; the same seed writes the same file.
     #[arg(long, value_parser = parse_requests_seed, allow_hyphen_values = true)]
+    pub seed: u64,
     /// Largest package mass in kg (the drone's max payload).
     #[arg(long, default_value_t = DEFAULT_MAX_PACKAGE_KG, value_parser = parse_max_package, allow_hyphen_values = true)]
     pub max_package_kg: f64,
+    /// Output JSON file.
+    #[arg(short = 'o', long = "output")]
+    pub output: PathBuf,
+}
+
 fn parse_nodes(s: &str) -> std::result::Result<usize, String> {
     match s.trim().parse::<usize>() {
         Ok(n) if (MIN_NODES..=MAX_NODES).contains(&n) => Ok(n),
@@ -54,14 +62,25 @@ fn parse_nodes(s: &str) -> std::result::Result<usize, String> {
             "[E1901] --nodes: '{s}' is not a whole number from {MIN_NODES} to {MAX_NODES}; give one"
         )),
     }
+}
+
 fn parse_spacing(s: &str) -> std::result::Result<f64, String> {
     match s.trim().parse::<f64>() {
         Ok(v) if v.is_finite() && (1.0..=100_000.0).contains(&v) => Ok(v),
+        _ => Err(format!(
             "[E1902] --spacing-m: '{s}' is not a number from 1 to 100000; give a spacing in metres"
+        )),
+    }
+}
+
 fn parse_network_seed(s: &str) -> std::result::Result<u64, String> {
     parse_seed(s, "E1903")
+}
+
 fn parse_requests_seed(s: &str) -> std::result::Result<u64, String> {
     parse_seed(s, "E3904")
+}
+
 fn parse_seed(s: &str, code: &str) -> std::result::Result<u64, String> {
     s.trim().parse::<u64>().map_err(|_| {
         format!(
@@ -69,12 +88,26 @@ fn parse_seed(s: &str, code: &str) -> std::result::Result<u64, String> {
             u64::MAX
         )
     })
+}
+
 fn parse_count(s: &str) -> std::result::Result<usize, String> {
+    match s.trim().parse::<usize>() {
         Ok(n) if (1..=MAX_REQUESTS).contains(&n) => Ok(n),
+        _ => Err(format!(
             "[E3901] --count: '{s}' is not a whole number from 1 to {MAX_REQUESTS}; give one"
+        )),
+    }
+}
+
 fn parse_max_package(s: &str) -> std::result::Result<f64, String> {
+    match s.trim().parse::<f64>() {
         Ok(v) if v.is_finite() && (0.001..=1000.0).contains(&v) => Ok(v),
+        _ => Err(format!(
             "[E3902] --max-package-kg: '{s}' is not a mass from 0.001 to 1000 kg; give one (paper: 1.4)"
+        )),
+    }
+}
+
 /// Runs the subcommand: writes the file and reports what it wrote on stderr.
 ///
 /// # Errors
@@ -109,6 +142,7 @@ pub fn run(cmd: GenerateCommand) -> Result<i32> {
                         .collect(),
                 ),
                 other => other,
+            })?;
             let set = generate_requests(
                 &graph,
                 &RequestParams {
@@ -118,15 +152,13 @@ pub fn run(cmd: GenerateCommand) -> Result<i32> {
                 },
             )?;
             write_json(&a.output, &set)?;
+            eprintln!(
                 "wrote {} requests (seed {}) to {}",
                 set.requests.len(),
+                a.seed,
+                a.output.display()
+            );
+        }
+    }
     Ok(0)
-/// Runs the subcommand.
-pub fn run(_cmd: GenerateCommand) -> Result<i32> {
-    Err(Error::invalid(
-        "E0000",
-        "generate",
-        "not available yet",
-        "wait",
-    ))
 }

@@ -133,9 +133,12 @@ pub fn run(args: InspectArgs) -> Result<i32> {
             );
             let support_drones = args.support.unwrap_or(support_decision.count);
             let swarm = precompose::build_swarm(
+                &inst.profile,
                 formation,
+                &r.packages_kg,
                 support_drones,
                 args.positioning,
+            );
             let still = Wind {
                 speed_mps: 0.0,
                 from_deg: 0.0,
@@ -143,7 +146,9 @@ pub fn run(args: InspectArgs) -> Result<i32> {
             let heading = average_wind.from_deg;
             Some(SwarmReport {
                 request_id: r.id.clone(),
+                route_distance_m,
                 support_decision,
+                support_drones,
                 still_air_rates_mah_per_min: energy::consumption_rates_mah_per_min(
                     &inst.profile,
                     &swarm,
@@ -151,10 +156,15 @@ pub fn run(args: InspectArgs) -> Result<i32> {
                     &still,
                 ),
                 head_wind_rates_mah_per_min: energy::consumption_rates_mah_per_min(
+                    &inst.profile,
+                    &swarm,
+                    heading,
                     &average_wind,
+                ),
                 swarm,
             })
         }
+    };
     let report = InspectReport { network, request };
     if args.json {
         super::print_json(&report);
@@ -174,12 +184,14 @@ fn print_human(report: &InspectReport) {
         n.pads,
         n.pad_nodes
     );
+    println!(
         "wind: mean {:.2} m/s, max {:.2} m/s; averaged wind {:.2} m/s from {:.0} deg; formation {:?}",
         n.mean_wind_speed_mps,
         n.max_wind_speed_mps,
         n.average_wind.speed_mps,
         n.average_wind.from_deg,
         n.formation
+    );
     if let Some(r) = &report.request {
         println!(
             "request {}: route {:.0} m, {} support drone(s) (table: {})",
@@ -200,11 +212,7 @@ fn print_human(report: &InspectReport) {
                 p.y,
                 r.still_air_rates_mah_per_min[d.id],
                 r.head_wind_rates_mah_per_min[d.id]
-pub fn run(_args: InspectArgs) -> Result<i32> {
-    Err(Error::invalid(
-        "E0000",
-        "inspect",
-        "not available yet",
-        "wait",
-    ))
+            );
+        }
+    }
 }

@@ -37,8 +37,10 @@ pub struct NodeTimeArgs {
     #[arg(long, value_enum, default_value_t = MilpBackend::all()[0])]
     pub backend: MilpBackend,
     /// Time limit in seconds; a stopped solve reports its incumbent as `feasible`.
+    #[arg(long)]
     pub time_limit: Option<f64>,
     /// Print the result as JSON on stdout.
+    #[arg(long)]
     pub json: bool,
 }
 
@@ -53,6 +55,8 @@ pub struct NodeTimeFile {
     pub pads: usize,
     /// Charge time of each drone, minutes.
     pub charge_times_min: Vec<f64>,
+}
+
 /// Parses `60,50,40` into minutes; every unreadable entry is reported (`E4007`).
 fn parse_times(text: &str) -> Result<Vec<f64>> {
     let mut times = Vec::new();
@@ -70,10 +74,14 @@ fn parse_times(text: &str) -> Result<Vec<f64>> {
                 "give comma-separated charge times in minutes, e.g. --times 60,50,40",
             )),
         }
+    }
     if violations.is_empty() {
         Ok(times)
     } else {
         Err(Error::Invalid(violations))
+    }
+}
+
 /// Runs the subcommand; returns the exit code.
 pub fn run(args: NodeTimeArgs) -> Result<i32> {
     let (pads, times) = match &args.file {
@@ -88,6 +96,7 @@ pub fn run(args: NodeTimeArgs) -> Result<i32> {
                 ));
             }
             (f.pads, f.charge_times_min)
+        }
         None => {
             let pads = args.pads.unwrap_or(0);
             match parse_times(args.times.as_deref().unwrap_or("")) {
@@ -100,23 +109,33 @@ pub fn run(args: NodeTimeArgs) -> Result<i32> {
                     return Err(Error::Invalid(violations));
                 }
                 Err(e) => return Err(e),
+            }
+        }
     };
     let limits = Limits {
         time_limit_s: args.time_limit,
         node_limit: None,
+    };
     let solution = node_time::solve(args.method, args.backend, pads, &times, &limits)?;
     if args.json {
         crate::cli::print_json(&solution);
+    } else {
         print_human(&solution, &times, args.backend);
+    }
     Ok(0)
+}
+
 fn print_human(s: &NodeTimeSolution, times: &[f64], backend: MilpBackend) {
     let status = match s.status {
         SolveStatus::Optimal => "optimal",
         SolveStatus::Feasible => "feasible, not proven optimal",
         SolveStatus::Infeasible => "infeasible",
+    };
     let method = if s.method == NodeTimeMethod::Milp {
         format!("milp on {}", backend.name())
+    } else {
         s.method.name().to_string()
+    };
     println!("node time: {} min ({status}; method {method})", s.makespan_min);
     println!("lower bound: {} min", s.lower_bound_min);
     for (i, pad) in s.assignment.iter().enumerate() {
@@ -126,14 +145,6 @@ fn print_human(s: &NodeTimeSolution, times: &[f64], backend: MilpBackend) {
             .map(|&j| format!("{j} ({} min)", times[j]))
             .collect();
         println!("pad {i}: load {load} min: drones {}", drones.join(", "));
+    }
     println!("solve time: {:.3} ms", s.solve_ms);
-pub struct NodeTimeArgs {}
-/// Runs the subcommand.
-pub fn run(_args: NodeTimeArgs) -> Result<i32> {
-    Err(Error::invalid(
-        "E0000",
-        "node_time",
-        "not available yet",
-        "wait",
-    ))
 }

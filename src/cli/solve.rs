@@ -77,6 +77,7 @@ pub fn run(args: SolveArgs) -> Result<i32> {
                 "no request given",
                 "pass --request-id ID (with --request-file F), or --from A --to B --packages 1.2,0.8",
             ))
+        }
     };
     inputs::validate_requests(&instance, std::slice::from_ref(&request))?;
     let context = Context::new(&instance.network, &instance.graph, &instance.profile);
@@ -85,6 +86,7 @@ pub fn run(args: SolveArgs) -> Result<i32> {
         positioning: args.positioning,
         route: args.route,
         support: args.support,
+    };
     let report = context.plan(&request, &options)?;
     if args.json {
         super::print_json(&report);
@@ -92,6 +94,8 @@ pub fn run(args: SolveArgs) -> Result<i32> {
         print_human(&report);
     }
     Ok(if report.plan.success { 0 } else { 1 })
+}
+
 fn print_human(report: &crate::compose::RequestReport) {
     let plan = &report.plan;
     println!(
@@ -119,22 +123,21 @@ fn print_human(report: &crate::compose::RequestReport) {
                 "  recharge at {} on {} pad(s): nt {:.2} min ({:?}), pads {:?}",
                 stop.node, stop.pads, stop.nt_min, stop.status, stop.assignment
             );
+        }
+    }
     if plan.success {
+        println!(
             "delivered: dt {:.2} min = tt {:.2} + nt {:.2}; {} stop(s); {:.2} ms",
             plan.dt_min,
             plan.tt_min,
             plan.nt_min,
             plan.stops().len(),
             report.execution_ms
+        );
+    } else {
+        println!(
             "failed: {}",
             plan.failure.as_deref().unwrap_or("unknown reason")
-pub struct SolveArgs {}
-/// Runs the subcommand.
-pub fn run(_args: SolveArgs) -> Result<i32> {
-    Err(Error::invalid(
-        "E0000",
-        "solve",
-        "not available yet",
-        "wait",
-    ))
+        );
+    }
 }
