@@ -23,14 +23,15 @@
 
 pub mod check;
 pub mod cli;
-pub mod energy;
+pub mod compose;
 pub mod eaas;
+pub mod energy;
 pub mod error;
-pub mod node_time;
 pub mod formation;
-pub mod precompose;
 pub mod generate;
 pub mod network;
+pub mod node_time;
+pub mod precompose;
 pub mod problem;
 pub mod solver;
 

@@ -27,7 +27,12 @@ pub struct BatchArgs {
     #[arg(long, value_enum, value_delimiter = ',', default_value = "pb")]
     pub sharing: Vec<SharingPolicy>,
     /// Support positionings, comma-separated.
-    #[arg(long, value_enum, value_delimiter = ',', default_value = "location-aware")]
+    #[arg(
+        long,
+        value_enum,
+        value_delimiter = ',',
+        default_value = "location-aware"
+    )]
     pub positioning: Vec<Positioning>,
     /// Route methods, comma-separated.
     #[arg(long, value_enum, value_delimiter = ',', default_value = "sequential")]

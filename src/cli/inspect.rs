@@ -94,12 +94,7 @@ pub fn run(args: InspectArgs) -> Result<i32> {
         segments: net.segments.len(),
         pad_nodes: net.nodes.iter().filter(|n| n.pads > 0).count(),
         pads: net.nodes.iter().map(|n| n.pads as u64).sum(),
-        total_length_m: (0..inst.graph.node_count())
-            .flat_map(|u| inst.graph.neighbors(u).into_iter().map(move |v| (u, v)))
-            .filter(|(u, v)| u < v)
-            .filter_map(|(u, v)| inst.graph.path_from_nodes(&[u, v]))
-            .map(|p| p.distance_m)
-            .sum(),
+        total_length_m: inst.graph.segments().iter().map(|s| s.distance_m).sum(),
         mean_wind_speed_mps: speeds.iter().sum::<f64>() / speeds.len().max(1) as f64,
         max_wind_speed_mps: speeds.iter().cloned().fold(0.0, f64::max),
         average_wind,
@@ -109,14 +104,18 @@ pub fn run(args: InspectArgs) -> Result<i32> {
         None => None,
         Some(id) => {
             let set = inputs::load_requests(args.request_file.as_deref())?;
-            let r = set.requests.into_iter().find(|r| &r.id == id).ok_or_else(|| {
-                Error::invalid(
-                    "E3010",
-                    "--request-id",
-                    format!("no request with id `{id}` in the request file"),
-                    "give an id present in the file's `requests[].id`",
-                )
-            })?;
+            let r = set
+                .requests
+                .into_iter()
+                .find(|r| &r.id == id)
+                .ok_or_else(|| {
+                    Error::invalid(
+                        "E3010",
+                        "--request-id",
+                        format!("no request with id `{id}` in the request file"),
+                        "give an id present in the file's `requests[].id`",
+                    )
+                })?;
             inputs::validate_requests(&inst, std::slice::from_ref(&r))?;
             let s = inst.graph.index_of(&r.source).expect("validated");
             let t = inst.graph.index_of(&r.destination).expect("validated");

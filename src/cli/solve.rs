@@ -70,14 +70,12 @@ pub fn run(args: SolveArgs) -> Result<i32> {
             destination: to.clone(),
             packages_kg: inputs::parse_list(packages, "--packages")?,
         },
-        _ => {
-            return Err(Error::invalid(
-                "E3011",
-                "--request-id | --from/--to/--packages",
-                "no request given",
-                "pass --request-id ID (with --request-file F), or --from A --to B --packages 1.2,0.8",
-            ))
-        }
+        _ => return Err(Error::invalid(
+            "E3011",
+            "--request-id | --from/--to/--packages",
+            "no request given",
+            "pass --request-id ID (with --request-file F), or --from A --to B --packages 1.2,0.8",
+        )),
     };
     inputs::validate_requests(&instance, std::slice::from_ref(&request))?;
     let context = Context::new(&instance.network, &instance.graph, &instance.profile);

@@ -18,7 +18,7 @@ impl Planner<'_> {
         let full = self.full_battery_mah();
         let mut costs = Vec::new();
         for u in 0..graph.node_count() {
-            for v in graph.neighbors(u) {
+            for (v, _) in graph.neighbors(u) {
                 let Some(path) = graph.path_from_nodes(&[u, v]) else {
                     continue;
                 };
@@ -53,8 +53,9 @@ impl Planner<'_> {
             let found = petgraph::algo::astar(&digraph, s, |x| x == t, |e| *e.weight(), |_| 0.0);
             return Ok(found.map(|(_, nodes)| nodes.into_iter().map(|x| x.index()).collect()));
         }
-        let (_, prev) = petgraph::algo::floyd_warshall_path(&digraph, |e| *e.weight())
-            .expect("edge costs are non-negative, so there is no negative cycle");
+        let (_, prev) =
+            petgraph::algo::floyd_warshall::floyd_warshall_path(&digraph, |e| *e.weight())
+                .expect("edge costs are non-negative, so there is no negative cycle");
         // prev[s][t] is the node before t on the shortest s-t path.
         let mut route = vec![destination];
         let mut at = destination;

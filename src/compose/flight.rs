@@ -194,7 +194,12 @@ impl<'a> Planner<'a> {
             0.0
         };
         let mut bound = f64::INFINITY;
-        for (d, (&b, &r)) in self.swarm.drones.iter().zip(battery_mah.iter().zip(min_rate)) {
+        for (d, (&b, &r)) in self
+            .swarm
+            .drones
+            .iter()
+            .zip(battery_mah.iter().zip(min_rate))
+        {
             let inflow = if d.role == Role::Delivery { rho } else { 0.0 };
             let net = r - inflow;
             if net > 0.0 {
@@ -209,7 +214,7 @@ impl<'a> Planner<'a> {
         let n = self.swarm.drones.len();
         let mut min_rate = vec![f64::INFINITY; n];
         for u in 0..self.graph.node_count() {
-            for v in self.graph.neighbors(u) {
+            for (v, _) in self.graph.neighbors(u) {
                 let path = match self.graph.path_from_nodes(&[u, v]) {
                     Some(p) => p,
                     None => continue,

@@ -95,7 +95,9 @@ pub fn brute(pads: usize, charge_times_min: &[f64], limits: &Limits) -> Result<N
         let makespan: f64 = charge_times_min.iter().sum();
         return Ok(finish(makespan, vec![(0..n).collect()], true, start));
     }
-    let count = (m as u128).checked_pow(n as u32).filter(|&c| c <= BRUTE_MAX_ASSIGNMENTS);
+    let count = (m as u128)
+        .checked_pow(n as u32)
+        .filter(|&c| c <= BRUTE_MAX_ASSIGNMENTS);
     if count.is_none() {
         return Err(Error::invalid(
             "E4005",

@@ -78,10 +78,7 @@ where
         if chosen.len() != 1 {
             return Err(Error::Backend {
                 backend: backend_name.to_string(),
-                message: format!(
-                    "returned job {j} on {} pads, not exactly one",
-                    chosen.len()
-                ),
+                message: format!("returned job {j} on {} pads, not exactly one", chosen.len()),
             });
         }
         pad_of[j] = chosen[0];
