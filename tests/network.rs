@@ -321,4 +321,44 @@ proptest! {
             }
         }
     }
+
+    #[test]
+    fn shortest_path_equals_the_best_of_all_simple_paths(nodes in 4usize..9, seed in any::<u64>()) {
+        let n = generate_network(&NetworkParams { nodes, seed, spacing_m: 250.0 }).unwrap();
+        let g = SkywayGraph::new(&n).unwrap();
+        // Brute force: depth-first enumeration of every simple path, lengths from the coordinates.
+        let pos: Vec<(f64, f64)> = n.nodes.iter().map(|x| (x.x_m, x.y_m)).collect();
+        let idx = |id: &str| n.nodes.iter().position(|x| x.id == id).unwrap();
+        let mut adj = vec![Vec::new(); nodes];
+        for s in &n.segments {
+            let (a, b) = (idx(&s.from), idx(&s.to));
+            let l = ((pos[a].0 - pos[b].0).powi(2) + (pos[a].1 - pos[b].1).powi(2)).sqrt();
+            adj[a].push((b, l));
+            adj[b].push((a, l));
+        }
+        fn best(adj: &[Vec<(usize, f64)>], u: usize, t: usize, seen: &mut Vec<bool>, len: f64) -> f64 {
+            if u == t {
+                return len;
+            }
+            let mut out = f64::INFINITY;
+            for &(v, l) in &adj[u] {
+                if !seen[v] {
+                    seen[v] = true;
+                    out = out.min(best(adj, v, t, seen, len + l));
+                    seen[v] = false;
+                }
+            }
+            out
+        }
+        for a in 0..nodes {
+            for b in 0..nodes {
+                let mut seen = vec![false; nodes];
+                seen[a] = true;
+                let want = best(&adj, a, b, &mut seen, 0.0);
+                let p = g.shortest_path(a, b).unwrap();
+                prop_assert!((p.distance_m - want).abs() < 1e-6, "{} -> {}: {} vs {}", a, b, p.distance_m, want);
+                prop_assert_eq!(p.legs.len() + 1, p.nodes.len());
+            }
+        }
+    }
 }

@@ -193,3 +193,33 @@ fn malformed_json_and_unknown_fields_are_coded_errors() {
         pairs(&[("E1002", "nodes")])
     );
 }
+
+#[test]
+fn file_readers_name_the_file_in_every_field() {
+    let bad = tiny("invalid-network.json");
+    match swarmplan::network::read_network(&bad) {
+        Err(Error::Invalid(v)) => {
+            assert_eq!(v.len(), 11);
+            assert!(v
+                .iter()
+                .all(|x| x.field.starts_with(&format!("{}: ", bad.display()))));
+            assert!(v[0].field.ends_with("nodes[2].id"));
+        }
+        other => panic!("expected 11 violations, got {other:?}"),
+    }
+    let (network, g) = swarmplan::network::read_network(&tiny("line4.json")).unwrap();
+    assert_eq!(network.nodes.len(), 4);
+    let ok = swarmplan::problem::validate::read_request_set(&tiny("line4-requests.json"), &g, 1.4)
+        .unwrap();
+    assert_eq!(ok.requests.len(), 2);
+    let reqs = tiny("line4-invalid-requests.json");
+    match swarmplan::problem::validate::read_request_set(&reqs, &g, 1.4) {
+        Err(e) => {
+            assert_eq!(e.exit_code(), 2);
+            let text = e.to_string();
+            assert!(text.contains("8 problem(s)"), "{text}");
+            assert!(text.contains("requests[2].packages_kg[2]"), "{text}");
+        }
+        Ok(_) => panic!("invalid requests accepted"),
+    }
+}

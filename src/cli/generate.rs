@@ -1,12 +1,11 @@
 //! `swarmplan generate network|requests`: write a seeded synthetic network or request set.
 
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::generate::network::{DEFAULT_NODES, DEFAULT_SPACING_M, MAX_NODES, MIN_NODES};
 use crate::generate::requests::{DEFAULT_MAX_PACKAGE_KG, DEFAULT_REQUESTS, MAX_REQUESTS};
 use crate::generate::{generate_network, generate_requests, NetworkParams, RequestParams};
-use crate::network::SkywayGraph;
-use crate::problem::io::{read_json, write_json};
-use crate::problem::Network;
+use crate::network::read_network;
+use crate::problem::io::write_json;
 use std::path::PathBuf;
 
 /// What to generate.
@@ -111,8 +110,8 @@ fn parse_max_package(s: &str) -> std::result::Result<f64, String> {
 /// Runs the subcommand: writes the file and reports what it wrote on stderr.
 ///
 /// # Errors
-/// [`Error::Invalid`] for parameters out of range or an invalid network file (exit code 2);
-/// [`Error::Io`] when a file cannot be read or written.
+/// [`crate::Error::Invalid`] for parameters out of range or an invalid network file (exit code 2);
+/// [`crate::Error::Io`] when a file cannot be read or written.
 pub fn run(cmd: GenerateCommand) -> Result<i32> {
     match cmd {
         GenerateCommand::Network(a) => {
@@ -131,18 +130,7 @@ pub fn run(cmd: GenerateCommand) -> Result<i32> {
             );
         }
         GenerateCommand::Requests(a) => {
-            let network: Network = read_json(&a.network)?;
-            let graph = SkywayGraph::new(&network).map_err(|e| match e {
-                Error::Invalid(v) => Error::Invalid(
-                    v.into_iter()
-                        .map(|mut x| {
-                            x.field = format!("{}: {}", a.network.display(), x.field);
-                            x
-                        })
-                        .collect(),
-                ),
-                other => other,
-            })?;
+            let (_, graph) = read_network(&a.network)?;
             let set = generate_requests(
                 &graph,
                 &RequestParams {

@@ -109,7 +109,7 @@ pub fn check_network_params(p: &NetworkParams) -> Vec<crate::Violation> {
 /// [`Error::Invalid`] with E1901/E1902 for parameters out of range.
 ///
 /// # Complexity
-/// O(N (N + E)) for the connectivity checks during thinning; about 0.1 s for 195 nodes.
+/// O(N (N + E)) for the connectivity checks during thinning; milliseconds for 195 nodes.
 pub fn generate_network(params: &NetworkParams) -> Result<Network> {
     let violations = check_network_params(params);
     if !violations.is_empty() {

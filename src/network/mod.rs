@@ -53,6 +53,38 @@ pub struct SkywayGraph {
     component: Vec<usize>,
 }
 
+/// Reads a network JSON file, validates it and builds its graph.
+///
+/// # Arguments
+/// * `path` - the network file.
+///
+/// # Returns
+/// The network as read and its graph.
+///
+/// # Errors
+/// [`Error::Io`] if the file cannot be read; [`Error::Invalid`] with E0001 for malformed JSON or
+/// with every E1xxx violation, each field prefixed by the file name (`net.json: segments[3].to`).
+pub fn read_network(path: &std::path::Path) -> Result<(Network, SkywayGraph)> {
+    let network: Network = crate::problem::io::read_json(path)?;
+    let graph = SkywayGraph::new(&network).map_err(|e| prefix_fields(e, path))?;
+    Ok((network, graph))
+}
+
+/// Prefixes every violation's field of an [`Error::Invalid`] with a file name.
+pub(crate) fn prefix_fields(e: Error, path: &std::path::Path) -> Error {
+    match e {
+        Error::Invalid(v) => Error::Invalid(
+            v.into_iter()
+                .map(|mut x| {
+                    x.field = format!("{}: {}", path.display(), x.field);
+                    x
+                })
+                .collect(),
+        ),
+        other => other,
+    }
+}
+
 impl SkywayGraph {
     /// Builds the graph of a network after checking every network rule.
     ///

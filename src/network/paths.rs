@@ -151,6 +151,25 @@ impl SkywayGraph {
     ///
     /// # Complexity
     /// O((V + E) log V).
+    ///
+    /// # Example
+    /// ```
+    /// use swarmplan::network::SkywayGraph;
+    /// use swarmplan::problem::{io::parse_json, Network};
+    /// // A (0,0) - B (300,400) - C (300,0): A-B 500 m, B-C 400 m, no A-C segment.
+    /// let network: Network = parse_json(r#"{ "schema_version": 1,
+    ///   "nodes": [ { "id": "A", "x_m": 0, "y_m": 0, "pads": 1 },
+    ///              { "id": "B", "x_m": 300, "y_m": 400, "pads": 0 },
+    ///              { "id": "C", "x_m": 300, "y_m": 0, "pads": 2 } ],
+    ///   "segments": [ { "from": "A", "to": "B", "wind_speed_mps": 3, "wind_from_deg": 0 },
+    ///                 { "from": "C", "to": "B", "wind_speed_mps": 3, "wind_from_deg": 0 } ] }"#,
+    ///   "example").unwrap();
+    /// let g = SkywayGraph::new(&network).unwrap();
+    /// let p = g.shortest_path(0, 2).unwrap();
+    /// assert_eq!(p.nodes, vec![0, 1, 2]);
+    /// assert_eq!(p.distance_m, 900.0);
+    /// assert_eq!(p.legs[1].heading_deg, 180.0); // B to C flies due south
+    /// ```
     pub fn shortest_path(&self, from: usize, to: usize) -> Option<Path> {
         let n = self.node_count();
         if from >= n || to >= n || !self.is_connected(from, to) {

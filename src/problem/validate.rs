@@ -365,3 +365,33 @@ pub fn validate_request_set(
     }
     out
 }
+
+/// Reads a request-set JSON file and checks it against a network.
+///
+/// # Arguments
+/// * `path` - the request file.
+/// * `graph` - the network the requests run on.
+/// * `max_payload_kg` - the delivery drone's maximum payload.
+///
+/// # Returns
+/// The request set.
+///
+/// # Errors
+/// [`crate::Error::Io`] if the file cannot be read; [`crate::Error::Invalid`] with E0001 for
+/// malformed JSON or with every E3xxx violation, each field prefixed by the file name.
+pub fn read_request_set(
+    path: &std::path::Path,
+    graph: &SkywayGraph,
+    max_payload_kg: f64,
+) -> crate::error::Result<RequestSet> {
+    let set: RequestSet = super::io::read_json(path)?;
+    let violations = validate_request_set(&set, graph, max_payload_kg);
+    if violations.is_empty() {
+        Ok(set)
+    } else {
+        Err(crate::network::prefix_fields(
+            crate::Error::Invalid(violations),
+            path,
+        ))
+    }
+}
