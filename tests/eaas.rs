@@ -589,3 +589,20 @@ fn problem_round_trips_through_json_with_slots_as_pairs() {
     let policy: SharingPolicy = serde_json::from_str("\"fb\"").unwrap();
     assert_eq!(policy, SharingPolicy::Fb);
 }
+
+#[test]
+fn pb_compares_the_energy_it_can_deliver_in_the_segment_with_the_budget() {
+    // As `two_drones` with the support drone at 250 mAh: budget 250 - 5 * 10 - 100 = 100 mAh.
+    // d0's request re = 150 exceeds it, but only 4 * (10 - 3) = 28 mAh fit before tt: served.
+    let mut p = two_drones();
+    p.drones[1].battery_mah = 250.0;
+    let pb = simulate(&p, SharingPolicy::Pb).unwrap();
+    assert_eq!(pb.transfers.len(), 1);
+    assert_close(pb.shared_mah, 28.0, "shared");
+    assert_close(pb.final_battery_mah[1], 250.0 - 50.0 - 28.0, "support");
+    // With a 20 mAh budget (support at 170) even the 28 mAh do not fit: no transfer, d0 fails.
+    p.drones[1].battery_mah = 170.0;
+    let pb = simulate(&p, SharingPolicy::Pb).unwrap();
+    assert!(pb.transfers.is_empty());
+    assert!(!pb.feasible);
+}
