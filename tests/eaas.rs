@@ -512,6 +512,45 @@ proptest! {
     }
 
     #[test]
+    fn without_sharing_each_battery_ends_at_its_start_minus_its_consumption(seed in any::<u64>()) {
+        let p = random_problem(seed);
+        let o = simulate(&p, SharingPolicy::None).unwrap();
+        for d in 0..p.drones.len() {
+            let q = p.initial_slot[d];
+            let used: f64 = p.legs.iter().map(|l| l.rate_mah_per_min[d][q] * l.duration_min).sum();
+            let expect = p.drones[d].battery_mah - used;
+            prop_assert!(close(o.final_battery_mah[d], expect), "{} vs {expect}", o.final_battery_mah[d]);
+        }
+        // Rates are >= 0, so the lowest battery is the final one.
+        let all_reach = (0..p.drones.len()).all(|d| {
+            let q = p.initial_slot[d];
+            let used: f64 = p.legs.iter().map(|l| l.rate_mah_per_min[d][q] * l.duration_min).sum();
+            p.drones[d].battery_mah - used >= -1e-6
+        });
+        prop_assert_eq!(o.feasible, all_reach);
+    }
+
+    #[test]
+    fn pb_serves_a_drone_only_once_its_battery_is_at_or_below_gamma(seed in any::<u64>()) {
+        let p = random_problem(seed);
+        let o = simulate(&p, SharingPolicy::Pb).unwrap();
+        let trace = battery_trace(&p, &o.transfers).unwrap();
+        for x in &o.transfers {
+            let b = trace.iter().rev().find(|(t, _)| *t <= x.start_min + 1e-9).unwrap().1[x.consumer];
+            prop_assert!(b <= p.gamma_mah + 1e-6, "consumer {} at {b} > gamma {}", x.consumer, p.gamma_mah);
+        }
+    }
+
+    #[test]
+    fn fb_never_gives_more_than_lambda_in_one_round(seed in any::<u64>()) {
+        let p = random_problem(seed);
+        let o = simulate(&p, SharingPolicy::Fb).unwrap();
+        for x in &o.transfers {
+            prop_assert!(x.energy_mah <= p.lambda_mah * (1.0 + 1e-9));
+        }
+    }
+
+    #[test]
     fn sharing_never_lowers_the_lowest_delivery_battery_of_a_single_drone_swarm(seed in any::<u64>()) {
         // With one delivery drone there is no swap partner, so sharing can only add energy.
         let mut p = random_problem(seed);
