@@ -645,3 +645,49 @@ fn pb_compares_the_energy_it_can_deliver_in_the_segment_with_the_budget() {
     assert!(pb.transfers.is_empty());
     assert!(!pb.feasible);
 }
+
+#[test]
+fn two_support_drones_serve_their_nearest_delivery_drones_at_the_same_time() {
+    // Slots at x = 0, 1, 2, 3 m: d0 (delivery) in slot 0, support d2 in slot 1, support d3 in
+    // slot 2, d1 (delivery) in slot 3. Nearest support: d0 -> d2 (1 m vs 2 m), d1 -> d3.
+    // Deliveries: cap 400, 50 mAh, 10 mAh/min; supports 1000 mAh, 5 mAh/min; rho = 6, tt = 10,
+    // gamma = 100. Both request at st = 0 (re = 350, 58.3 min, clipped): [0, 10] each, 60 mAh.
+    // Each delivery drone ends at 50 - 100 + 60 = 10; without sharing both empty at t = 5.
+    let (slots_m, _) = line(&[0.0, 1.0, 2.0, 3.0]);
+    let p = SegmentProblem {
+        legs: vec![uniform_leg(10.0, &[10.0, 10.0, 5.0, 5.0])],
+        drones: vec![
+            drone(Role::Delivery, 400.0, 50.0),
+            drone(Role::Delivery, 400.0, 50.0),
+            drone(Role::Support, 1000.0, 1000.0),
+            drone(Role::Support, 1000.0, 1000.0),
+        ],
+        slots_m,
+        initial_slot: vec![0, 3, 1, 2],
+        rho_mah_per_min: 6.0,
+        range_m: 1.2,
+        gamma_mah: 100.0,
+        lambda_mah: 50.0,
+        delta_mah: 100.0,
+    };
+    assert_eq!(
+        swarmplan::eaas::responsible_support(&p),
+        vec![Some(2), Some(3), None, None]
+    );
+    let pb = simulate(&p, SharingPolicy::Pb).unwrap();
+    assert!(pb.feasible);
+    let pairs: Vec<(usize, usize)> = pb
+        .transfers
+        .iter()
+        .map(|x| (x.support, x.consumer))
+        .collect();
+    assert_eq!(pairs, vec![(2, 0), (3, 1)]);
+    for x in &pb.transfers {
+        assert_close(x.start_min, 0.0, "start");
+        assert_close(x.energy_mah, 60.0, "energy");
+    }
+    assert_close(pb.final_battery_mah[0], 10.0, "d0");
+    assert_close(pb.final_battery_mah[1], 10.0, "d1");
+    passes(&p, &pb);
+    assert!(!simulate(&p, SharingPolicy::None).unwrap().feasible);
+}
