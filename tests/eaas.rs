@@ -512,6 +512,45 @@ proptest! {
     }
 
     #[test]
+    fn without_sharing_each_battery_ends_at_its_start_minus_its_consumption(seed in any::<u64>()) {
+        let p = random_problem(seed);
+        let o = simulate(&p, SharingPolicy::None).unwrap();
+        for d in 0..p.drones.len() {
+            let q = p.initial_slot[d];
+            let used: f64 = p.legs.iter().map(|l| l.rate_mah_per_min[d][q] * l.duration_min).sum();
+            let expect = p.drones[d].battery_mah - used;
+            prop_assert!(close(o.final_battery_mah[d], expect), "{} vs {expect}", o.final_battery_mah[d]);
+        }
+        // Rates are >= 0, so the lowest battery is the final one.
+        let all_reach = (0..p.drones.len()).all(|d| {
+            let q = p.initial_slot[d];
+            let used: f64 = p.legs.iter().map(|l| l.rate_mah_per_min[d][q] * l.duration_min).sum();
+            p.drones[d].battery_mah - used >= -1e-6
+        });
+        prop_assert_eq!(o.feasible, all_reach);
+    }
+
+    #[test]
+    fn pb_serves_a_drone_only_once_its_battery_is_at_or_below_gamma(seed in any::<u64>()) {
+        let p = random_problem(seed);
+        let o = simulate(&p, SharingPolicy::Pb).unwrap();
+        let trace = battery_trace(&p, &o.transfers).unwrap();
+        for x in &o.transfers {
+            let b = trace.iter().rev().find(|(t, _)| *t <= x.start_min + 1e-9).unwrap().1[x.consumer];
+            prop_assert!(b <= p.gamma_mah + 1e-6, "consumer {} at {b} > gamma {}", x.consumer, p.gamma_mah);
+        }
+    }
+
+    #[test]
+    fn fb_never_gives_more_than_lambda_in_one_round(seed in any::<u64>()) {
+        let p = random_problem(seed);
+        let o = simulate(&p, SharingPolicy::Fb).unwrap();
+        for x in &o.transfers {
+            prop_assert!(x.energy_mah <= p.lambda_mah * (1.0 + 1e-9));
+        }
+    }
+
+    #[test]
     fn sharing_never_lowers_the_lowest_delivery_battery_of_a_single_drone_swarm(seed in any::<u64>()) {
         // With one delivery drone there is no swap partner, so sharing can only add energy.
         let mut p = random_problem(seed);
@@ -588,4 +627,67 @@ fn problem_round_trips_through_json_with_slots_as_pairs() {
     assert_eq!(back, p);
     let policy: SharingPolicy = serde_json::from_str("\"fb\"").unwrap();
     assert_eq!(policy, SharingPolicy::Fb);
+}
+
+#[test]
+fn pb_compares_the_energy_it_can_deliver_in_the_segment_with_the_budget() {
+    // As `two_drones` with the support drone at 250 mAh: budget 250 - 5 * 10 - 100 = 100 mAh.
+    // d0's request re = 150 exceeds it, but only 4 * (10 - 3) = 28 mAh fit before tt: served.
+    let mut p = two_drones();
+    p.drones[1].battery_mah = 250.0;
+    let pb = simulate(&p, SharingPolicy::Pb).unwrap();
+    assert_eq!(pb.transfers.len(), 1);
+    assert_close(pb.shared_mah, 28.0, "shared");
+    assert_close(pb.final_battery_mah[1], 250.0 - 50.0 - 28.0, "support");
+    // With a 20 mAh budget (support at 170) even the 28 mAh do not fit: no transfer, d0 fails.
+    p.drones[1].battery_mah = 170.0;
+    let pb = simulate(&p, SharingPolicy::Pb).unwrap();
+    assert!(pb.transfers.is_empty());
+    assert!(!pb.feasible);
+}
+
+#[test]
+fn two_support_drones_serve_their_nearest_delivery_drones_at_the_same_time() {
+    // Slots at x = 0, 1, 2, 3 m: d0 (delivery) in slot 0, support d2 in slot 1, support d3 in
+    // slot 2, d1 (delivery) in slot 3. Nearest support: d0 -> d2 (1 m vs 2 m), d1 -> d3.
+    // Deliveries: cap 400, 50 mAh, 10 mAh/min; supports 1000 mAh, 5 mAh/min; rho = 6, tt = 10,
+    // gamma = 100. Both request at st = 0 (re = 350, 58.3 min, clipped): [0, 10] each, 60 mAh.
+    // Each delivery drone ends at 50 - 100 + 60 = 10; without sharing both empty at t = 5.
+    let (slots_m, _) = line(&[0.0, 1.0, 2.0, 3.0]);
+    let p = SegmentProblem {
+        legs: vec![uniform_leg(10.0, &[10.0, 10.0, 5.0, 5.0])],
+        drones: vec![
+            drone(Role::Delivery, 400.0, 50.0),
+            drone(Role::Delivery, 400.0, 50.0),
+            drone(Role::Support, 1000.0, 1000.0),
+            drone(Role::Support, 1000.0, 1000.0),
+        ],
+        slots_m,
+        initial_slot: vec![0, 3, 1, 2],
+        rho_mah_per_min: 6.0,
+        range_m: 1.2,
+        gamma_mah: 100.0,
+        lambda_mah: 50.0,
+        delta_mah: 100.0,
+    };
+    assert_eq!(
+        swarmplan::eaas::responsible_support(&p),
+        vec![Some(2), Some(3), None, None]
+    );
+    let pb = simulate(&p, SharingPolicy::Pb).unwrap();
+    assert!(pb.feasible);
+    let pairs: Vec<(usize, usize)> = pb
+        .transfers
+        .iter()
+        .map(|x| (x.support, x.consumer))
+        .collect();
+    assert_eq!(pairs, vec![(2, 0), (3, 1)]);
+    for x in &pb.transfers {
+        assert_close(x.start_min, 0.0, "start");
+        assert_close(x.energy_mah, 60.0, "energy");
+    }
+    assert_close(pb.final_battery_mah[0], 10.0, "d0");
+    assert_close(pb.final_battery_mah[1], 10.0, "d1");
+    passes(&p, &pb);
+    assert!(!simulate(&p, SharingPolicy::None).unwrap().feasible);
 }

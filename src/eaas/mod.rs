@@ -228,6 +228,13 @@ pub fn simulate(problem: &SegmentProblem, policy: SharingPolicy) -> Result<Segme
 
 /// [`simulate`] with explicit [`PolicyOptions`] (the paper's literal readings).
 ///
+/// # Arguments
+/// * `problem`, `policy` - as [`simulate`].
+/// * `options` - which reading of Algorithms 2 and 3 to follow where the paper is ambiguous.
+///
+/// # Returns
+/// As [`simulate`].
+///
 /// # Errors
 /// As [`simulate`].
 ///

@@ -7,8 +7,9 @@
 //! drone"). Requests are sorted by `st` ascending, then `re` descending, then drone id. The first
 //! request its support drone (see [`super::responsible_support`]) can serve is served in full: at
 //! `rho` from `max(st, free)` (`free` = the support drone's last transfer end) for `re / rho`
-//! minutes, clipped at `tt`, provided `re` fits the support drone's remaining sharing budget (energy
-//! above `delta` at the segment end) and a re-ordering slot is available. Then the schedule is
+//! minutes, clipped at `tt`, provided the energy it will move (`re`, or less when clipped) fits the
+//! support drone's remaining sharing budget (energy above `delta` at the segment end) and a
+//! re-ordering slot is available. Then the schedule is
 //! re-evaluated and the requests regenerated (re-ordering changes rates), until no request can be
 //! served. With [`PolicyOptions::pb_wait_for_support`] off, a request with `st < free` is skipped
 //! (the paper's literal `er.st >= SD.st`).
@@ -74,11 +75,12 @@ pub(super) fn plan(problem: &SegmentProblem, options: &PolicyOptions) -> Vec<Tra
             if start >= tt - TIME_TOL_MIN {
                 continue;
             }
+            let end = (start + er.re_mah / rho).min(tt);
+            let deliverable = rho * (end - start);
             let available = budget[s] - run.shared_by_support[s];
-            if er.re_mah > available + ENERGY_TOL_MAH {
+            if deliverable > available + ENERGY_TOL_MAH {
                 continue;
             }
-            let end = (start + er.re_mah / rho).min(tt);
             let busy = busy_drones(problem, &plan, start, end);
             let Some(slot) = choose_consumer_slot(problem, s, er.drone, &busy) else {
                 continue;
