@@ -397,7 +397,7 @@ fn malformed_problems_are_invalid_input() {
         panic!("expected Invalid")
     };
     let codes: Vec<&str> = v.iter().map(|x| x.code).collect();
-    assert_eq!(codes, vec!["E3003", "E3006", "E3010"]);
+    assert_eq!(codes, vec!["E4003", "E4006", "E4010"]);
 }
 
 #[test]

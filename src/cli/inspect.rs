@@ -110,7 +110,7 @@ pub fn run(args: InspectArgs) -> Result<i32> {
                 .find(|r| &r.id == id)
                 .ok_or_else(|| {
                     Error::invalid(
-                        "E3010",
+                        "E3401",
                         "--request-id",
                         format!("no request with id `{id}` in the request file"),
                         "give an id present in the file's `requests[].id`",

@@ -57,7 +57,7 @@ pub fn run(args: SolveArgs) -> Result<i32> {
                 .find(|r| &r.id == id)
                 .ok_or_else(|| {
                     Error::invalid(
-                        "E3010",
+                        "E3401",
                         "--request-id",
                         format!("no request with id `{id}` in the request file"),
                         "give an id present in the file's `requests[].id`",
@@ -71,7 +71,7 @@ pub fn run(args: SolveArgs) -> Result<i32> {
             packages_kg: inputs::parse_list(packages, "--packages")?,
         },
         _ => return Err(Error::invalid(
-            "E3011",
+            "E3402",
             "--request-id | --from/--to/--packages",
             "no request given",
             "pass --request-id ID (with --request-file F), or --from A --to B --packages 1.2,0.8",

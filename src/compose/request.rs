@@ -78,7 +78,7 @@ impl<'a> Context<'a> {
         let index = |id: &str, field: &str| {
             self.graph.index_of(id).ok_or_else(|| {
                 Error::invalid(
-                    "E3001",
+                    "E3201",
                     format!("request {}.{field}", request.id),
                     format!("unknown node id `{id}`"),
                     "use a node id of the network",

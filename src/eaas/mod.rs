@@ -195,7 +195,7 @@ pub struct SegmentOutcome {
 /// ([`SegmentOutcome::feasible`], [`SegmentOutcome::failure`]).
 ///
 /// # Errors
-/// [`Error::Invalid`] (codes `E3001`-`E3012`, every violation at once) for a malformed problem:
+/// [`Error::Invalid`] (codes `E4001`-`E4012`, every violation at once) for a malformed problem:
 /// mismatched sizes, non-finite or negative numbers, a non-permutation `initial_slot`.
 ///
 /// # Complexity
@@ -268,7 +268,7 @@ pub fn simulate_with(
 ///
 /// # Errors
 /// [`Error::Invalid`] for a malformed problem, or a transfer naming a drone or slot that does not
-/// exist (`E3013`).
+/// exist (`E4013`).
 ///
 /// # Complexity
 /// `O(P * D)` plus sorting the transfers.
@@ -284,7 +284,7 @@ pub fn battery_trace(
         .filter(|(_, x)| x.support >= n || x.consumer >= n || x.consumer_slot >= n)
         .map(|(i, x)| {
             Violation::new(
-                "E3013",
+                "E4013",
                 format!("transfers[{i}]"),
                 format!(
                     "support {}, consumer {} or slot {} out of range (0..{n})",
@@ -350,14 +350,14 @@ pub fn sharing_budget_mah(problem: &SegmentProblem, s: usize) -> f64 {
 /// Checks a problem's shape and numbers; every violation at once.
 ///
 /// # Errors
-/// [`Error::Invalid`] with codes `E3001`-`E3012`.
+/// [`Error::Invalid`] with codes `E4001`-`E4012`.
 pub fn validate(problem: &SegmentProblem) -> Result<()> {
     let mut v = Vec::new();
     let n = problem.drones.len();
     let finite_nonneg = |x: f64| x.is_finite() && x >= 0.0;
     if problem.slots_m.len() != n {
         v.push(Violation::new(
-            "E3001",
+            "E4001",
             "slots_m",
             format!("{} slots for {n} drones", problem.slots_m.len()),
             "give exactly one formation slot per drone",
@@ -365,7 +365,7 @@ pub fn validate(problem: &SegmentProblem) -> Result<()> {
     }
     if problem.initial_slot.len() != n {
         v.push(Violation::new(
-            "E3002",
+            "E4002",
             "initial_slot",
             format!("{} entries for {n} drones", problem.initial_slot.len()),
             "give one initial slot per drone",
@@ -378,7 +378,7 @@ pub fn validate(problem: &SegmentProblem) -> Result<()> {
             .all(|&q| q < n && !std::mem::replace(&mut seen[q], true));
         if !ok {
             v.push(Violation::new(
-                "E3003",
+                "E4003",
                 "initial_slot",
                 format!("{:?} is not a permutation of 0..{n}", problem.initial_slot),
                 "assign every drone a distinct slot",
@@ -388,7 +388,7 @@ pub fn validate(problem: &SegmentProblem) -> Result<()> {
     for (i, p) in problem.slots_m.iter().enumerate() {
         if !(p.x.is_finite() && p.y.is_finite()) {
             v.push(Violation::new(
-                "E3004",
+                "E4004",
                 format!("slots_m[{i}]"),
                 format!("({}, {}) is not finite", p.x, p.y),
                 "give finite slot coordinates in metres",
@@ -398,7 +398,7 @@ pub fn validate(problem: &SegmentProblem) -> Result<()> {
     for (l, leg) in problem.legs.iter().enumerate() {
         if !finite_nonneg(leg.duration_min) {
             v.push(Violation::new(
-                "E3005",
+                "E4005",
                 format!("legs[{l}].duration_min"),
                 format!("{} is not a finite duration >= 0", leg.duration_min),
                 "give leg durations in minutes, >= 0",
@@ -408,7 +408,7 @@ pub fn validate(problem: &SegmentProblem) -> Result<()> {
             && leg.rate_mah_per_min.iter().all(|row| row.len() == n);
         if !shape_ok {
             v.push(Violation::new(
-                "E3006",
+                "E4006",
                 format!("legs[{l}].rate_mah_per_min"),
                 format!("not a {n} x {n} matrix [drone][slot]"),
                 "give one rate per drone and slot",
@@ -418,7 +418,7 @@ pub fn validate(problem: &SegmentProblem) -> Result<()> {
             .find(|&(d, q)| !finite_nonneg(leg.rate_mah_per_min[d][q]))
         {
             v.push(Violation::new(
-                "E3007",
+                "E4007",
                 format!("legs[{l}].rate_mah_per_min[{d}][{q}]"),
                 format!("{} is not a finite rate >= 0", leg.rate_mah_per_min[d][q]),
                 "give consumption rates in mAh/min, >= 0",
@@ -428,14 +428,14 @@ pub fn validate(problem: &SegmentProblem) -> Result<()> {
     for (d, dr) in problem.drones.iter().enumerate() {
         if !(dr.capacity_mah.is_finite() && dr.capacity_mah > 0.0) {
             v.push(Violation::new(
-                "E3008",
+                "E4008",
                 format!("drones[{d}].capacity_mah"),
                 format!("{} is not a finite capacity > 0", dr.capacity_mah),
                 "give the battery capacity in mAh",
             ));
         } else if !(finite_nonneg(dr.battery_mah) && dr.battery_mah <= dr.capacity_mah) {
             v.push(Violation::new(
-                "E3009",
+                "E4009",
                 format!("drones[{d}].battery_mah"),
                 format!(
                     "{} is not within [0, capacity {}]",
@@ -447,7 +447,7 @@ pub fn validate(problem: &SegmentProblem) -> Result<()> {
     }
     if !(problem.rho_mah_per_min.is_finite() && problem.rho_mah_per_min > 0.0) {
         v.push(Violation::new(
-            "E3010",
+            "E4010",
             "rho_mah_per_min",
             format!("{} is not a finite rate > 0", problem.rho_mah_per_min),
             "give the sharing rate in mAh/min (5.88 in the paper)",
@@ -455,7 +455,7 @@ pub fn validate(problem: &SegmentProblem) -> Result<()> {
     }
     if !(problem.lambda_mah.is_finite() && problem.lambda_mah > 0.0) {
         v.push(Violation::new(
-            "E3011",
+            "E4011",
             "lambda_mah",
             format!("{} is not a finite energy > 0", problem.lambda_mah),
             "give the FB round energy in mAh (2240 in the paper)",
@@ -468,7 +468,7 @@ pub fn validate(problem: &SegmentProblem) -> Result<()> {
     ] {
         if !finite_nonneg(x) {
             v.push(Violation::new(
-                "E3012",
+                "E4012",
                 field,
                 format!("{x} is not a finite number >= 0"),
                 "give a finite value >= 0",
