@@ -58,17 +58,21 @@ impl Planner<'_> {
             // Lines 12-16: the best recharging node reachable without stopping.
             let min_rates = min_rates.get_or_insert_with(|| self.min_rates_mah_per_min());
             let endurance_min = self.endurance_bound_min(&battery, min_rates);
-            let from_current_m = graph.distances_from_m(current);
+            // Shortest paths v -> current, flown reversed: one Dijkstra for all candidates.
+            let towards_current = graph.shortest_paths_to(current);
             let mut best = None;
             let mut best_cost = f64::INFINITY;
             for v in 0..graph.node_count() {
                 if stopped[v] || graph.pads(v) == 0 || v == destination {
                     continue;
                 }
-                if !(from_current_m[v] / speed <= endurance_min) {
+                if !(towards_current.distance_m[v] / speed <= endurance_min) {
                     continue;
                 }
-                let Some(path) = graph.shortest_path(current, v) else {
+                let Some(path) = towards_current.path_from(v).and_then(|p| {
+                    let reversed: Vec<usize> = p.nodes.into_iter().rev().collect();
+                    graph.path_from_nodes(&reversed)
+                }) else {
                     continue;
                 };
                 let outcome = self.fly(&path, &battery, self.sharing())?;

@@ -9,7 +9,7 @@
 
 pub mod paths;
 
-pub use paths::{Leg, Path};
+pub use paths::{Leg, Path, ShortestPathsTo};
 
 use crate::error::{Error, Result};
 use crate::problem::validate::{euclidean_m, validate_network};

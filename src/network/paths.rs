@@ -171,12 +171,45 @@ impl SkywayGraph {
     /// assert_eq!(p.legs[1].heading_deg, 180.0); // B to C flies due south
     /// ```
     pub fn shortest_path(&self, from: usize, to: usize) -> Option<Path> {
-        let n = self.node_count();
-        if from >= n || to >= n || !self.is_connected(from, to) {
+        if to >= self.node_count() {
             return None;
         }
-        // The graph is undirected, so distances to `to` equal distances from `to`.
-        let d = self.distances_from_m(to);
+        self.shortest_paths_to(to).path_from(from)
+    }
+
+    /// Shortest paths from every node to `to`, sharing one Dijkstra run: [`ShortestPathsTo::path_from`]
+    /// gives the same path as [`SkywayGraph::shortest_path`] with the same tie-breaking.
+    ///
+    /// # Complexity
+    /// O((V + E) log V) once, then O(path length x degree) per path.
+    pub fn shortest_paths_to(&self, to: usize) -> ShortestPathsTo<'_> {
+        ShortestPathsTo {
+            graph: self,
+            to,
+            // The graph is undirected, so distances to `to` equal distances from `to`.
+            distance_m: self.distances_from_m(to),
+        }
+    }
+}
+
+/// Shortest paths towards one node; see [`SkywayGraph::shortest_paths_to`].
+pub struct ShortestPathsTo<'a> {
+    graph: &'a SkywayGraph,
+    to: usize,
+    /// Shortest distance from every node to the target, m (`f64::INFINITY` when unreachable).
+    pub distance_m: Vec<f64>,
+}
+
+impl ShortestPathsTo<'_> {
+    /// The shortest path from `from` to the target, `None` if unreachable or out of range.
+    pub fn path_from(&self, from: usize) -> Option<Path> {
+        let g = self.graph;
+        let n = g.node_count();
+        let to = self.to;
+        if from >= n || !self.distance_m[from].is_finite() {
+            return None;
+        }
+        let d = &self.distance_m;
         let eps = 1e-9 * d[from].max(1.0);
         let mut nodes = vec![from];
         let mut u = from;
@@ -186,11 +219,11 @@ impl SkywayGraph {
             }
             let mut next: Option<usize> = None;
             let mut fallback: Option<(f64, usize)> = None;
-            for (v, e) in self.neighbors(u) {
+            for (v, e) in g.neighbors(u) {
                 if d[v] >= d[u] {
                     continue;
                 }
-                let via = d[v] + self.segments[e].distance_m;
+                let via = d[v] + g.segments[e].distance_m;
                 if via <= d[u] + eps {
                     next = Some(v);
                     break; // neighbours come sorted by index
@@ -202,6 +235,6 @@ impl SkywayGraph {
             u = next.or(fallback.map(|(_, v)| v))?;
             nodes.push(u);
         }
-        self.path_from_nodes(&nodes)
+        g.path_from_nodes(&nodes)
     }
 }
