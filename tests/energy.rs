@@ -105,13 +105,26 @@ fn two_drone_column_in_head_wind_matches_hand_computation() {
     let swarm = Swarm {
         formation: FormationKind::Column,
         drones: vec![
-            Drone { id: 0, role: Role::Delivery, payload_kg: 0.0, capacity_mah: 4480.0 },
-            Drone { id: 1, role: Role::Delivery, payload_kg: 1.4, capacity_mah: 4480.0 },
+            Drone {
+                id: 0,
+                role: Role::Delivery,
+                payload_kg: 0.0,
+                capacity_mah: 4480.0,
+            },
+            Drone {
+                id: 1,
+                role: Role::Delivery,
+                payload_kg: 1.4,
+                capacity_mah: 4480.0,
+            },
         ],
         slots_m: slots_m(FormationKind::Column, 2, 1.0),
         initial_slot: vec![0, 1],
     };
-    let head = Wind { speed_mps: 5.0, from_deg: 0.0 };
+    let head = Wind {
+        speed_mps: 5.0,
+        from_deg: 0.0,
+    };
     let rates = consumption_rates_mah_per_min(&p, &swarm, 0.0, &head);
     assert!((rates[0] - 255.087).abs() < 1e-3, "{rates:?}");
     assert!((rates[1] - 715.955).abs() < 1e-3, "{rates:?}");
@@ -126,9 +139,16 @@ fn vee_is_the_least_energy_formation_in_a_head_wind() {
     let p = paper();
     for n in 4..=6 {
         for speed in [0.0, 2.0, 5.0, 8.0, 13.7] {
-            let head = Wind { speed_mps: speed, from_deg: 0.0 };
+            let head = Wind {
+                speed_mps: speed,
+                from_deg: 0.0,
+            };
             let (best, all) = least(&p, n, &head);
-            assert_eq!(best, FormationKind::Vee, "n = {n}, head wind {speed} m/s: {all:?}");
+            assert_eq!(
+                best,
+                FormationKind::Vee,
+                "n = {n}, head wind {speed} m/s: {all:?}"
+            );
         }
     }
 }
@@ -139,7 +159,10 @@ fn diamond_is_the_least_energy_formation_in_a_side_wind() {
     for n in 4..=6 {
         for speed in [6.0, 8.0, 10.0, 12.0, 13.7] {
             for from_deg in [90.0, 270.0] {
-                let side = Wind { speed_mps: speed, from_deg };
+                let side = Wind {
+                    speed_mps: speed,
+                    from_deg,
+                };
                 let (best, all) = least(&p, n, &side);
                 assert_eq!(
                     best,
@@ -156,7 +179,15 @@ fn the_vee_leader_pays_most_in_a_head_wind() {
     let p = paper();
     for n in 2..=9 {
         let slots = slots_m(FormationKind::Vee, n, 1.0);
-        let f = slot_factors(&p, &slots, 0.0, &Wind { speed_mps: 6.0, from_deg: 0.0 });
+        let f = slot_factors(
+            &p,
+            &slots,
+            0.0,
+            &Wind {
+                speed_mps: 6.0,
+                from_deg: 0.0,
+            },
+        );
         for (s, fs) in f.iter().enumerate().skip(1) {
             assert!(f[0] > *fs, "n = {n}: leader {} vs slot {s} {fs}", f[0]);
         }
@@ -168,7 +199,16 @@ fn head_wind_costs_more_and_tail_wind_less_than_still_air() {
     // Hand values: tail wind 5 m/s: W = 0.9 + 0.1 * (3.3333 / 8.3333)^3 = 0.9064;
     // side wind 10 m/s: W = 0.9 + 0.1 * (sqrt(8.3333^2 + 10^2) / 8.3333)^3 = 1.28114.
     let p = paper();
-    let w = |speed: f64, from: f64| wind_factor(&p, 0.0, &Wind { speed_mps: speed, from_deg: from });
+    let w = |speed: f64, from: f64| {
+        wind_factor(
+            &p,
+            0.0,
+            &Wind {
+                speed_mps: speed,
+                from_deg: from,
+            },
+        )
+    };
     assert!((w(0.0, 0.0) - 1.0).abs() < 1e-12);
     assert!((w(5.0, 0.0) - 1.3096).abs() < 1e-9);
     assert!((w(5.0, 180.0) - 0.9064).abs() < 1e-9);
@@ -260,29 +300,64 @@ proptest! {
 fn five_drone_slots_match_the_drawn_formations() {
     // a = 1 / sqrt(2) = 0.70711 m for diagonal neighbours 1 m apart.
     let a = std::f64::consts::FRAC_1_SQRT_2;
-    let pts = |k| slots_m(k, 5, 1.0).iter().map(|v| (v.x, v.y)).collect::<Vec<_>>();
+    let pts = |k| {
+        slots_m(k, 5, 1.0)
+            .iter()
+            .map(|v| (v.x, v.y))
+            .collect::<Vec<_>>()
+    };
     let close = |got: Vec<(f64, f64)>, want: Vec<(f64, f64)>| {
         assert_eq!(got.len(), want.len());
         for (g, w) in got.iter().zip(&want) {
-            assert!((g.0 - w.0).abs() < 1e-12 && (g.1 - w.1).abs() < 1e-12, "{got:?} vs {want:?}");
+            assert!(
+                (g.0 - w.0).abs() < 1e-12 && (g.1 - w.1).abs() < 1e-12,
+                "{got:?} vs {want:?}"
+            );
         }
     };
-    close(pts(FormationKind::Column), vec![(0.0, 0.0), (-1.0, 0.0), (-2.0, 0.0), (-3.0, 0.0), (-4.0, 0.0)]);
-    close(pts(FormationKind::Front), vec![(0.0, -2.0), (0.0, -1.0), (0.0, 0.0), (0.0, 1.0), (0.0, 2.0)]);
+    close(
+        pts(FormationKind::Column),
+        vec![
+            (0.0, 0.0),
+            (-1.0, 0.0),
+            (-2.0, 0.0),
+            (-3.0, 0.0),
+            (-4.0, 0.0),
+        ],
+    );
+    close(
+        pts(FormationKind::Front),
+        vec![(0.0, -2.0), (0.0, -1.0), (0.0, 0.0), (0.0, 1.0), (0.0, 2.0)],
+    );
     close(
         pts(FormationKind::Vee),
-        vec![(0.0, 0.0), (-a, -a), (-a, a), (-2.0 * a, -2.0 * a), (-2.0 * a, 2.0 * a)],
+        vec![
+            (0.0, 0.0),
+            (-a, -a),
+            (-a, a),
+            (-2.0 * a, -2.0 * a),
+            (-2.0 * a, 2.0 * a),
+        ],
     );
     // Diamond, 5 drones: the 3 x 3 diamond lattice's centre and its four lattice neighbours, i.e. a
     // front pair, the centre 1 m behind them diagonally, and a rear pair.
     close(pts(FormationKind::Diamond), diamond5(a));
     // Diamond, 4 drones: lead, two wings, tail.
-    let four: Vec<(f64, f64)> = slots_m(FormationKind::Diamond, 4, 1.0).iter().map(|v| (v.x, v.y)).collect();
+    let four: Vec<(f64, f64)> = slots_m(FormationKind::Diamond, 4, 1.0)
+        .iter()
+        .map(|v| (v.x, v.y))
+        .collect();
     close(four, vec![(0.0, 0.0), (-a, -a), (-a, a), (-2.0 * a, 0.0)]);
 }
 
 /// The 5-drone diamond: the 3 x 3 lattice's centre and its four neighbours, i.e. corners at
 /// (-a, +-a), (-3a, +-a) around the centre (-2a, 0), shifted so the front pair is at x = 0.
 fn diamond5(a: f64) -> Vec<(f64, f64)> {
-    vec![(0.0, -a), (0.0, a), (-a, 0.0), (-2.0 * a, -a), (-2.0 * a, a)]
+    vec![
+        (0.0, -a),
+        (0.0, a),
+        (-a, 0.0),
+        (-2.0 * a, -a),
+        (-2.0 * a, a),
+    ]
 }

@@ -12,20 +12,38 @@ use swarmplan::problem::profile::{validate_profile, FailureModel, RedundancyLeve
 use swarmplan::problem::{Network, Node, Profile, Segment};
 
 fn paper() -> Profile {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("instances/profiles/paper.toml");
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("instances/profiles/paper.toml");
     read_toml(&path).expect("paper profile parses")
 }
 
 fn node(id: &str, x_m: f64, y_m: f64) -> Node {
-    Node { id: id.into(), x_m, y_m, pads: 1, pad_charge_rate_mah_per_min: None }
+    Node {
+        id: id.into(),
+        x_m,
+        y_m,
+        pads: 1,
+        pad_charge_rate_mah_per_min: None,
+    }
 }
 
 fn seg(from: &str, to: &str, wind_speed_mps: f64, wind_from_deg: f64) -> Segment {
-    Segment { from: from.into(), to: to.into(), distance_m: None, wind_speed_mps, wind_from_deg }
+    Segment {
+        from: from.into(),
+        to: to.into(),
+        distance_m: None,
+        wind_speed_mps,
+        wind_from_deg,
+    }
 }
 
 fn network(nodes: Vec<Node>, segments: Vec<Segment>) -> Network {
-    Network { schema_version: 1, name: None, nodes, segments }
+    Network {
+        schema_version: 1,
+        name: None,
+        nodes,
+        segments,
+    }
 }
 
 #[test]
@@ -35,8 +53,17 @@ fn averaged_wind_is_the_mean_speed_and_the_most_frequent_direction_bin() {
     // Bin 0 (north) has 3 of 4: the averaged wind blows from 0 degrees.
     let p = paper();
     let net = network(
-        vec![node("a", 0.0, 0.0), node("b", 100.0, 0.0), node("c", 0.0, 100.0)],
-        vec![seg("a", "b", 2.0, 10.0), seg("b", "c", 4.0, 350.0), seg("c", "a", 6.0, 100.0), seg("a", "c", 8.0, 5.0)],
+        vec![
+            node("a", 0.0, 0.0),
+            node("b", 100.0, 0.0),
+            node("c", 0.0, 100.0),
+        ],
+        vec![
+            seg("a", "b", 2.0, 10.0),
+            seg("b", "c", 4.0, 350.0),
+            seg("c", "a", 6.0, 100.0),
+            seg("a", "c", 8.0, 5.0),
+        ],
     );
     let w = averaged_wind(&net, &p);
     assert!((w.speed_mps - 5.0).abs() < 1e-12);
@@ -62,12 +89,22 @@ fn a_north_south_network_with_a_north_wind_selects_vee() {
     // 8.33 m/s cruise speed, so the air still meets the swarm head on: the paper's front-wind case.
     let p = paper();
     let net = network(
-        vec![node("a", 0.0, 0.0), node("b", 0.0, 1000.0), node("c", 0.0, 2500.0)],
+        vec![
+            node("a", 0.0, 0.0),
+            node("b", 0.0, 1000.0),
+            node("c", 0.0, 2500.0),
+        ],
         vec![seg("a", "b", 5.0, 0.0), seg("b", "c", 5.0, 0.0)],
     );
     let (kind, wind) = select_formation(&net, &p);
     assert_eq!(kind, FormationKind::Vee);
-    assert_eq!(wind, Wind { speed_mps: 5.0, from_deg: 0.0 });
+    assert_eq!(
+        wind,
+        Wind {
+            speed_mps: 5.0,
+            from_deg: 0.0
+        }
+    );
 }
 
 #[test]
@@ -75,7 +112,11 @@ fn an_east_west_network_with_a_north_wind_selects_diamond() {
     // Flown east or west, a 10 m/s north wind is a side wind: the paper's side-wind case.
     let p = paper();
     let net = network(
-        vec![node("a", 0.0, 0.0), node("b", 1000.0, 0.0), node("c", 2500.0, 0.0)],
+        vec![
+            node("a", 0.0, 0.0),
+            node("b", 1000.0, 0.0),
+            node("c", 2500.0, 0.0),
+        ],
         vec![seg("a", "b", 10.0, 0.0), seg("b", "c", 10.0, 0.0)],
     );
     assert_eq!(select_formation(&net, &p).0, FormationKind::Diamond);
@@ -88,7 +129,10 @@ fn support_count_follows_eq_2_as_written_and_as_a_weighted_sum() {
     // Wind 6.9 m/s: p4 = 6.9 / 13.8 = 0.5.
     // Product, unit weights: P = 100 * 0.3 * 0.5 * 0.25 * 0.5 = 1.875 -> row 0 (0-19) -> N+1 -> 1.
     let mut p = paper();
-    let wind = Wind { speed_mps: 6.9, from_deg: 0.0 };
+    let wind = Wind {
+        speed_mps: 6.9,
+        from_deg: 0.0,
+    };
     let d = support_count(&p, &[1.0, 2.0], 5750.0, &wind);
     for (got, want) in d.terms.iter().zip([0.3, 0.5, 0.25, 0.5]) {
         assert!((got - want).abs() < 1e-12, "{:?}", d.terms);
@@ -104,7 +148,10 @@ fn support_count_follows_eq_2_as_written_and_as_a_weighted_sum() {
     // Terms at their caps, capacity weight 0: P = 100 * (1 + 1 + 1) / 3 = 100 -> row 4 (80-100) -> 2N;
     // with 3 packages that is 3 support drones.
     p.failure.weights.capacity = 0.0;
-    let storm = Wind { speed_mps: 13.7999, from_deg: 0.0 };
+    let storm = Wind {
+        speed_mps: 13.7999,
+        from_deg: 0.0,
+    };
     let d = support_count(&p, &[9.0, 9.0, 9.0], 1e6, &storm);
     assert!(d.probability_pct > 99.99);
     assert_eq!((d.row, d.level, d.count), (4, RedundancyLevel::TwoN, 3));
@@ -114,7 +161,13 @@ fn support_count_follows_eq_2_as_written_and_as_a_weighted_sum() {
 fn a_support_override_gives_that_many_support_drones_with_extra_batteries() {
     // 3 extra batteries of 0.365 kg = 1.095 kg payload, capacity 4 x 4480 = 17 920 mAh.
     let p = paper();
-    let s = build_swarm(&p, FormationKind::Vee, &[0.5, 1.2], 3, Positioning::LocationAware);
+    let s = build_swarm(
+        &p,
+        FormationKind::Vee,
+        &[0.5, 1.2],
+        3,
+        Positioning::LocationAware,
+    );
     assert_eq!(s.drones.len(), 5);
     assert_eq!((s.delivery_count(), s.support_count()), (2, 3));
     for d in &s.drones[2..] {
@@ -214,14 +267,26 @@ fn too_many_extra_batteries_for_the_max_payload_is_a_violation() {
     p.support.extra_batteries = 4;
     let v = validate_profile(&p);
     assert_eq!(v.len(), 1, "{v:?}");
-    assert_eq!((v[0].code, v[0].field.as_str()), ("E2007", "support.extra_batteries"));
+    assert_eq!(
+        (v[0].code, v[0].field.as_str()),
+        ("E2007", "support.extra_batteries")
+    );
 }
 
 #[test]
 fn redundancy_levels_parse_from_the_paper_notation_and_bad_ones_are_coded_errors() {
-    assert_eq!(RedundancyLevel::try_from("N+2".to_string()), Ok(RedundancyLevel::NPlus(2)));
-    assert_eq!(RedundancyLevel::try_from("2N".to_string()), Ok(RedundancyLevel::TwoN));
-    assert_eq!(RedundancyLevel::try_from("2(N+1)".to_string()), Ok(RedundancyLevel::TwoNPlusOne));
+    assert_eq!(
+        RedundancyLevel::try_from("N+2".to_string()),
+        Ok(RedundancyLevel::NPlus(2))
+    );
+    assert_eq!(
+        RedundancyLevel::try_from("2N".to_string()),
+        Ok(RedundancyLevel::TwoN)
+    );
+    assert_eq!(
+        RedundancyLevel::try_from("2(N+1)".to_string()),
+        Ok(RedundancyLevel::TwoNPlusOne)
+    );
     assert_eq!(RedundancyLevel::TwoNPlusOne.support_drones(3), 5);
     let text = std::fs::read_to_string(
         std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("instances/profiles/paper.toml"),

@@ -80,8 +80,16 @@ pub fn slot_factors(
 
 /// Consumption rate of one drone with `payload_kg` in a slot of factor `slot_factor`, under a wind
 /// factor `wind_factor`, mAh/min.
-pub fn rate_mah_per_min(profile: &Profile, payload_kg: f64, wind_factor: f64, slot_factor: f64) -> f64 {
-    profile.base_rate_mah_per_min() * payload_factor(profile, payload_kg) * wind_factor * slot_factor
+pub fn rate_mah_per_min(
+    profile: &Profile,
+    payload_kg: f64,
+    wind_factor: f64,
+    slot_factor: f64,
+) -> f64 {
+    profile.base_rate_mah_per_min()
+        * payload_factor(profile, payload_kg)
+        * wind_factor
+        * slot_factor
 }
 
 /// Consumption rate of every drone in every slot: `rate[drone][slot]`, mAh/min.
@@ -110,7 +118,8 @@ pub fn rate_matrix_mah_per_min(
         .drones
         .iter()
         .map(|d| {
-            let per_drone = profile.base_rate_mah_per_min() * payload_factor(profile, d.payload_kg) * wf;
+            let per_drone =
+                profile.base_rate_mah_per_min() * payload_factor(profile, d.payload_kg) * wf;
             sf.iter().map(|f| per_drone * f).collect()
         })
         .collect()

@@ -43,9 +43,17 @@ pub fn averaged_wind(network: &Network, profile: &Profile) -> Wind {
 }
 
 /// Total position factor `sum_j F_j` of `kind` with `n` drones on a leg towards `heading_deg`.
-fn total_factor(profile: &Profile, kind: FormationKind, n: usize, heading_deg: f64, wind: &Wind) -> f64 {
+fn total_factor(
+    profile: &Profile,
+    kind: FormationKind,
+    n: usize,
+    heading_deg: f64,
+    wind: &Wind,
+) -> f64 {
     let slots = slots_m(kind, n, profile.formation.spacing_m);
-    slot_factors(profile, &slots, heading_deg, wind).iter().sum()
+    slot_factors(profile, &slots, heading_deg, wind)
+        .iter()
+        .sum()
 }
 
 /// The formation of least total consumption for `n` equal drones on a leg towards `heading_deg`
@@ -105,7 +113,7 @@ pub fn select_formation(network: &Network, profile: &Profile) -> (FormationKind,
         };
         let (dx, dy) = (b.0 - a.0, b.1 - a.1);
         let len = (dx * dx + dy * dy).sqrt();
-        if !(len > 0.0) {
+        if len.is_nan() || len <= 0.0 {
             continue;
         }
         let weight = s.distance_m.unwrap_or(len);
@@ -114,7 +122,10 @@ pub fn select_formation(network: &Network, profile: &Profile) -> (FormationKind,
         legs.push((heading + 180.0, weight));
     }
     if legs.is_empty() {
-        return (select_formation_for_heading(profile, &wind, wind.from_deg, n), wind);
+        return (
+            select_formation_for_heading(profile, &wind, wind.from_deg, n),
+            wind,
+        );
     }
     let mut best = (FormationKind::Column, f64::INFINITY);
     for kind in FormationKind::ALL {

@@ -57,12 +57,18 @@ pub struct Swarm {
 impl Swarm {
     /// Number of delivery drones.
     pub fn delivery_count(&self) -> usize {
-        self.drones.iter().filter(|d| d.role == Role::Delivery).count()
+        self.drones
+            .iter()
+            .filter(|d| d.role == Role::Delivery)
+            .count()
     }
 
     /// Number of support drones.
     pub fn support_count(&self) -> usize {
-        self.drones.iter().filter(|d| d.role == Role::Support).count()
+        self.drones
+            .iter()
+            .filter(|d| d.role == Role::Support)
+            .count()
     }
 }
 

@@ -60,7 +60,15 @@ pub fn build_swarm(
     support: usize,
     positioning: Positioning,
 ) -> Swarm {
-    build_swarm_in_wind(profile, formation, packages_kg, support, positioning, 0.0, &Wind::CALM)
+    build_swarm_in_wind(
+        profile,
+        formation,
+        packages_kg,
+        support,
+        positioning,
+        0.0,
+        &Wind::CALM,
+    )
 }
 
 /// As [`build_swarm`], with the slots ranked for a leg towards `heading_deg` under `wind`.

@@ -41,13 +41,23 @@ pub fn failure_terms(
     route_distance_m: f64,
     avg_wind: &Wind,
 ) -> [f64; 4] {
-    let clamp = |x: f64| if x.is_finite() { x.clamp(0.0, 1.0) } else { 1.0 };
+    let clamp = |x: f64| {
+        if x.is_finite() {
+            x.clamp(0.0, 1.0)
+        } else {
+            1.0
+        }
+    };
     let f = &profile.failure;
     let n = packages_kg.len();
     let p1 = if n == 0 {
         0.0
     } else {
-        packages_kg.iter().map(|p| p / f.payload_norm_kg).sum::<f64>() / n as f64
+        packages_kg
+            .iter()
+            .map(|p| p / f.payload_norm_kg)
+            .sum::<f64>()
+            / n as f64
     };
     let p2 = route_distance_m / f.distance_norm_m;
     let p3 = 1.0 / (1.0 + profile.support.extra_batteries as f64);
@@ -79,7 +89,14 @@ pub fn support_count(
     let w = &profile.failure.weights;
     let weights = [w.payload, w.distance, w.capacity, w.wind];
     let raw = match profile.failure.model {
-        FailureModel::Product => 100.0 * weights.iter().zip(&terms).map(|(w, p)| w * p).product::<f64>(),
+        FailureModel::Product => {
+            100.0
+                * weights
+                    .iter()
+                    .zip(&terms)
+                    .map(|(w, p)| w * p)
+                    .product::<f64>()
+        }
         FailureModel::WeightedSum => {
             let total: f64 = weights.iter().sum();
             if total > 0.0 {
@@ -89,13 +106,20 @@ pub fn support_count(
             }
         }
     };
-    let probability_pct = if raw.is_finite() { raw.clamp(0.0, 100.0) } else { 100.0 };
+    let probability_pct = if raw.is_finite() {
+        raw.clamp(0.0, 100.0)
+    } else {
+        100.0
+    };
     let rows = &profile.redundancy.rows;
     let row = rows
         .iter()
         .rposition(|r| r.from_pct <= probability_pct)
         .unwrap_or(0);
-    let level = rows.get(row).map(|r| r.level).unwrap_or(RedundancyLevel::NPlus(1));
+    let level = rows
+        .get(row)
+        .map(|r| r.level)
+        .unwrap_or(RedundancyLevel::NPlus(1));
     SupportDecision {
         model: profile.failure.model,
         terms,

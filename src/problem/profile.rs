@@ -377,7 +377,10 @@ pub fn validate_profile(p: &Profile) -> Vec<Violation> {
                 p.schema_version,
                 super::SCHEMA_VERSION
             ),
-            format!("set schema_version = {} and compare with instances/profiles/paper.toml", super::SCHEMA_VERSION),
+            format!(
+                "set schema_version = {} and compare with instances/profiles/paper.toml",
+                super::SCHEMA_VERSION
+            ),
         ));
     }
     // Strictly positive quantities: zero or negative makes the models meaningless.
@@ -391,7 +394,10 @@ pub fn validate_profile(p: &Profile) -> Vec<Violation> {
         ("sharing.rate_mah_per_min", p.sharing.rate_mah_per_min),
         ("sharing.range_m", p.sharing.range_m),
         ("sharing.lambda_mah", p.sharing.lambda_mah),
-        ("pads.charge_rate_mah_per_min", p.pads.charge_rate_mah_per_min),
+        (
+            "pads.charge_rate_mah_per_min",
+            p.pads.charge_rate_mah_per_min,
+        ),
         ("energy.endurance_min", p.energy.endurance_min),
         ("energy.wind_limit_mps", p.energy.wind_limit_mps),
         ("formation.spacing_m", p.formation.spacing_m),
@@ -416,7 +422,10 @@ pub fn validate_profile(p: &Profile) -> Vec<Violation> {
         ("formation.wake_decay_m", p.formation.wake_decay_m),
         ("formation.abreast_width_m", p.formation.abreast_width_m),
         ("formation.abreast_band_m", p.formation.abreast_band_m),
-        ("formation.min_position_factor", p.formation.min_position_factor),
+        (
+            "formation.min_position_factor",
+            p.formation.min_position_factor,
+        ),
         ("failure.distance_norm_m", p.failure.distance_norm_m),
     ];
     for (field, v) in positive_more {
@@ -538,7 +547,10 @@ pub fn validate_profile(p: &Profile) -> Vec<Violation> {
                 out.push(Violation::new(
                     "E2012",
                     format!("redundancy.rows[{i}].from_pct"),
-                    format!("must be in [0, 100] and above the previous row's, got {}", r.from_pct),
+                    format!(
+                        "must be in [0, 100] and above the previous row's, got {}",
+                        r.from_pct
+                    ),
                     "list rows in strictly increasing from_pct within 0..100",
                 ));
             }
