@@ -19,6 +19,7 @@ use serde::{Deserialize, Serialize};
 
 /// Wind: speed and the direction it blows FROM, degrees clockwise from north (meteorological).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Wind {
     /// Wind speed, m/s.
     pub speed_mps: f64,
