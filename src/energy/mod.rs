@@ -19,6 +19,7 @@ use serde::{Deserialize, Serialize};
 
 /// Wind: speed and the direction it blows FROM, degrees clockwise from north (meteorological).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Wind {
     /// Wind speed, m/s.
     pub speed_mps: f64,
@@ -125,7 +126,9 @@ pub fn rate_matrix_mah_per_min(
         .collect()
 }
 
-/// Consumption rate of every drone (by id) in its initial slot, mAh/min.
+/// Consumption rate of every drone (by id) in its initial slot, mAh/min. A swarm whose
+/// `initial_slot` does not name a slot for a drone (not one built by
+/// [`crate::precompose::build_swarm`]) gets NaN for that drone.
 ///
 /// # Complexity
 /// O(n^2), as [`rate_matrix_mah_per_min`].

@@ -61,7 +61,7 @@ pub fn position_factors(
     p: &FormationParams,
 ) -> Vec<f64> {
     let norm = flow_body.norm();
-    if !(norm > 1e-9) {
+    if norm.is_nan() || norm <= 1e-9 {
         return vec![1.0; slots_m.len()];
     }
     let u = flow_body / norm;

@@ -113,7 +113,7 @@ pub fn select_formation(network: &Network, profile: &Profile) -> (FormationKind,
         };
         let (dx, dy) = (b.0 - a.0, b.1 - a.1);
         let len = (dx * dx + dy * dy).sqrt();
-        if !(len > 0.0) {
+        if len.is_nan() || len <= 0.0 {
             continue;
         }
         let weight = s.distance_m.unwrap_or(len);

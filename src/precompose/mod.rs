@@ -27,6 +27,7 @@ pub enum Role {
 
 /// One drone of a swarm.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Drone {
     /// Id: delivery drones `0..n` in the request's package order, support drones `n..n+m`. Equals the
     /// drone's index in [`Swarm::drones`].

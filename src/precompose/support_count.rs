@@ -74,8 +74,8 @@ pub fn failure_terms(
 /// * `avg_wind` - the averaged wind of the network.
 ///
 /// # Returns
-/// The terms, the probability, the table row and the count. An empty or malformed table (rejected
-/// by [`crate::problem::profile::validate_profile`]) gives `N+1`.
+/// The terms, the probability, the table row and the count. A malformed table (rejected by
+/// [`crate::problem::profile::validate_profile`]) falls back to its first row, an empty one to `N+1`.
 ///
 /// # Complexity
 /// O(N + rows).

@@ -522,6 +522,20 @@ pub fn validate_profile(p: &Profile) -> Vec<Violation> {
             "lower the reserve or add extra batteries",
         ));
     }
+    if p.sharing.gamma_mah.is_finite()
+        && p.drone.battery_mah.is_finite()
+        && p.sharing.gamma_mah >= p.drone.battery_mah
+    {
+        out.push(Violation::new(
+            "E2009",
+            "sharing.gamma_mah",
+            format!(
+                "request threshold {} mAh is not below the battery capacity {} mAh",
+                p.sharing.gamma_mah, p.drone.battery_mah
+            ),
+            "set gamma below drone.battery_mah (the paper profile uses 20% of it)",
+        ));
+    }
     // Redundancy table.
     let rows = &p.redundancy.rows;
     if rows.is_empty() {
