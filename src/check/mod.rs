@@ -1,8 +1,10 @@
 //! Independent checkers: re-verify a plan from the raw problem, without the planners' code paths
 //! (only the input and output types are shared).
 //!
-//! Codes `C3xxx` concern segment schedules ([`segment`]).
+//! Codes `C3xxx` concern segment schedules ([`segment`]), codes `P5xxx` whole plans ([`plan`]).
 
+pub mod plan;
 pub mod segment;
 
+pub use plan::check_plan;
 pub use segment::check_segment;

@@ -1,0 +1,244 @@
+//! The independent plan checker (`check::check_plan`): every method's plans pass it, and corrupted
+//! plans are rejected with the expected code.
+
+use std::path::Path;
+use swarmplan::check::check_plan;
+use swarmplan::compose::{Context, PlanOptions, RequestReport, RouteMethod};
+use swarmplan::eaas::SharingPolicy;
+use swarmplan::network::SkywayGraph;
+use swarmplan::precompose::Positioning;
+use swarmplan::problem::io::{read_json, read_toml};
+use swarmplan::problem::{Network, Profile, Request, RequestSet};
+
+fn paper_195() -> (Network, SkywayGraph, Profile, Vec<Request>) {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let network: Network = read_json(&root.join("instances/paper-195/network.json")).unwrap();
+    let graph = SkywayGraph::new(&network).unwrap();
+    let profile: Profile = read_toml(&root.join("instances/profiles/paper.toml")).unwrap();
+    let set: RequestSet = read_json(&root.join("instances/paper-195/requests.json")).unwrap();
+    (network, graph, profile, set.requests)
+}
+
+fn codes(v: &[swarmplan::Violation]) -> Vec<&'static str> {
+    v.iter().map(|x| x.code).collect()
+}
+
+const SHARING: [SharingPolicy; 3] = [SharingPolicy::None, SharingPolicy::Pb, SharingPolicy::Fb];
+const POSITIONING: [Positioning; 2] = [Positioning::LocationAware, Positioning::EnergyAware];
+
+/// Requests of paper-195 planned by every method combination: each plan re-verified from the raw
+/// instance. Requests are taken at a stride so that short, long and heavy ones all appear. Also
+/// counts stops and transfers so the test cannot pass vacuously on direct flights only.
+/// 150 requests x 24 combinations in a release build; a debug build (plain `cargo test`) takes a
+/// 40-request sample of the same stride to stay quick.
+#[test]
+fn every_method_plan_passes_the_checker() {
+    let (network, graph, profile, requests) = paper_195();
+    let context = Context::new(&network, &graph, &profile);
+    let count = if cfg!(debug_assertions) { 40 } else { 150 };
+    let chosen: Vec<&Request> = requests.iter().step_by(66).take(count).collect();
+    assert_eq!(chosen.len(), count);
+    let mut failures = Vec::new();
+    let (mut plans, mut stops, mut transfers, mut failed) = (0usize, 0usize, 0usize, 0usize);
+    for route in RouteMethod::ALL {
+        for sharing in SHARING {
+            for positioning in POSITIONING {
+                let options = PlanOptions {
+                    sharing,
+                    positioning,
+                    route,
+                    support: None,
+                };
+                for r in &chosen {
+                    let report = context.plan(r, &options).unwrap();
+                    let v = check_plan(&network, &profile, r, &report.swarm, sharing, &report.plan);
+                    plans += 1;
+                    stops += report.plan.stops().len();
+                    transfers += report
+                        .plan
+                        .hops
+                        .iter()
+                        .map(|h| h.transfers.len())
+                        .sum::<usize>();
+                    failed += usize::from(!report.plan.success);
+                    if !v.is_empty() {
+                        failures.push(format!("{} {options:?}: {:?}", r.id, v));
+                    }
+                }
+            }
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "{} of {plans} plans fail the checker:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+    assert_eq!(plans, count * 24);
+    // Non-vacuous: the sample exercises recharging stops and in-flight transfers.
+    assert!(stops > 0, "no plan stops");
+    assert!(transfers > 0, "no plan shares");
+    eprintln!("{plans} plans: {stops} stops, {transfers} transfers, {failed} failed requests");
+}
+
+/// A request of paper-195 whose sequential PB plan has at least one stop and one transfer.
+fn plan_with_stop_and_transfer() -> (Network, Profile, Request, RequestReport) {
+    let (network, graph, profile, requests) = paper_195();
+    let context = Context::new(&network, &graph, &profile);
+    let options = PlanOptions {
+        sharing: SharingPolicy::Pb,
+        positioning: Positioning::LocationAware,
+        route: RouteMethod::Sequential,
+        support: None,
+    };
+    for r in &requests {
+        let report = context.plan(r, &options).unwrap();
+        let p = &report.plan;
+        if p.success
+            && p.hops.len() >= 2
+            && p.hops.iter().any(|h| !h.transfers.is_empty())
+            && p.hops
+                .iter()
+                .any(|h| h.stop.as_ref().is_some_and(|s| s.nt_min > 0.0))
+        {
+            return (network, profile, r.clone(), report);
+        }
+    }
+    panic!("paper-195 has no request with a stop and a transfer");
+}
+
+#[test]
+fn corrupted_plans_are_rejected_with_their_code() {
+    let (network, profile, request, report) = plan_with_stop_and_transfer();
+    let swarm = &report.swarm;
+    let good = report.plan.clone();
+    let check = |p: &swarmplan::compose::Plan| {
+        codes(&check_plan(
+            &network,
+            &profile,
+            &request,
+            swarm,
+            SharingPolicy::Pb,
+            p,
+        ))
+    };
+    assert!(check(&good).is_empty(), "the original plan passes");
+    let stop_hop = good.hops.iter().position(|h| h.stop.is_some()).unwrap();
+    let shared_hop = good
+        .hops
+        .iter()
+        .position(|h| !h.transfers.is_empty())
+        .unwrap();
+
+    // Wrong nt: one minute more than the makespan, totals kept consistent.
+    let mut p = good.clone();
+    p.hops[stop_hop].stop.as_mut().unwrap().nt_min += 1.0;
+    p.nt_min += 1.0;
+    p.dt_min += 1.0;
+    assert_eq!(check(&p), vec!["P5026"], "wrong nt");
+
+    // nt consistent with an assignment that puts every drone on one pad of a multi-pad node is
+    // still a valid (if poor) schedule; but an nt below the lower bound is not.
+    let mut p = good.clone();
+    {
+        let stop = p.hops[stop_hop].stop.as_mut().unwrap();
+        stop.nt_min = 0.0;
+    }
+    let c = check(&p);
+    assert!(c.contains(&"P5026") && c.contains(&"P5027"), "nt 0: {c:?}");
+
+    // A drone charged twice: not a partition.
+    let mut p = good.clone();
+    {
+        let stop = p.hops[stop_hop].stop.as_mut().unwrap();
+        let d = stop.assignment[0][0];
+        stop.assignment[0].push(d);
+    }
+    assert!(check(&p).contains(&"P5025"), "drone charged twice");
+
+    // Broken chain: the second hop starts somewhere else.
+    let mut p = good.clone();
+    let other = network
+        .nodes
+        .iter()
+        .find(|n| n.id != p.hops[1].from)
+        .unwrap()
+        .id
+        .clone();
+    p.hops[1].from = other;
+    assert!(check(&p).contains(&"P5004"), "broken chain");
+
+    // Truncated plan claiming success: the last hop ends at a stop, not the destination.
+    let mut p = good.clone();
+    p.hops.truncate(stop_hop + 1);
+    let c = check(&p);
+    assert!(c.contains(&"P5005"), "truncated: {c:?}");
+
+    // A non-existent segment: replace the path by a direct jump between its ends (the request's
+    // hop has more than one segment or the ends are not adjacent).
+    let mut p = good.clone();
+    let h = &mut p.hops[0];
+    let far = network
+        .nodes
+        .iter()
+        .find(|n| {
+            n.id != h.path[0]
+                && !network.segments.iter().any(|s| {
+                    (s.from == h.path[0] && s.to == n.id) || (s.to == h.path[0] && s.from == n.id)
+                })
+        })
+        .unwrap()
+        .id
+        .clone();
+    h.path.insert(1, far);
+    assert!(check(&p).contains(&"P5011"), "non-existent segment");
+
+    // tt mismatch: 10% faster than distance / speed.
+    let mut p = good.clone();
+    let dtt = 0.1 * p.hops[0].tt_min;
+    p.hops[0].tt_min -= dtt;
+    p.tt_min -= dtt;
+    p.dt_min -= dtt;
+    assert_eq!(check(&p), vec!["P5013"], "tt mismatch");
+
+    // dt that is not tt + nt.
+    let mut p = good.clone();
+    p.dt_min += 5.0;
+    assert_eq!(check(&p), vec!["P5031"], "dt mismatch");
+
+    // Arrival batteries higher than the flight allows: the re-integration disagrees.
+    let mut p = good.clone();
+    p.hops[0].arrival_battery_mah[0] += 100.0;
+    assert!(check(&p).contains(&"P5015"), "arrival battery");
+
+    // A transfer doubled in length: energy no longer rho x duration and batteries disagree.
+    let mut p = good.clone();
+    p.hops[shared_hop].transfers[0].end_min += 1.0;
+    assert!(check(&p).contains(&"P5015"), "transfer");
+
+    // Transfers while the plan claims no sharing.
+    let c = codes(&check_plan(
+        &network,
+        &profile,
+        &request,
+        swarm,
+        SharingPolicy::None,
+        &good,
+    ));
+    assert_eq!(c, vec!["P5016"], "sharing none");
+
+    // A hop departing with a battery that is not full.
+    let mut p = good.clone();
+    p.hops[1].departure_battery_mah[0] -= 1.0;
+    assert!(check(&p).contains(&"P5014"), "not full at departure");
+
+    // Wrong charge time.
+    let mut p = good.clone();
+    p.hops[stop_hop].stop.as_mut().unwrap().charge_times_min[0] += 0.5;
+    assert!(check(&p).contains(&"P5022"), "charge time");
+
+    // A failed plan without a reason.
+    let mut p = good.clone();
+    p.success = false;
+    assert!(check(&p).contains(&"P5002"), "failure reason");
+}
