@@ -1,0 +1,338 @@
+//! Route composition on tiny instances with hand-computed answers (issue 3, item 7).
+//!
+//! Every case uses the `flat` profile (instances/tiny/flat.toml) on windless networks, so the energy
+//! is hand-computable (src/energy/mod.rs: rate = r0 * P(p) * W * F):
+//! * r0 = battery_mah / endurance_min = 1000 / 10 = 100 mAh/min;
+//! * P(p) = ((m0 + p) / m0)^1.5 with m0 = empty + battery = 0.56 + 0.44 = 1 kg:
+//!   p = 0 -> 1 (100 mAh/min), p = 0.21 -> 1.21^1.5 = 1.1^3 = 1.331 (133.1 mAh/min),
+//!   p = 0.44 -> 1.44^1.5 = 1.2^3 = 1.728 (172.8 mAh/min);
+//! * a support drone carries 1 extra battery of 0.44 kg: 172.8 mAh/min, capacity 2000 mAh;
+//! * W = 0.9 + 0.1 * (|v_air| / v)^3 = 1 without wind; F = 1 - (sum of gains) = 1, every gain 0;
+//! * speed 30 km/h = 500 m/min, so tt = distance_m / 500;
+//! * sharing rho = 120 mAh/min, gamma = 500, lambda = 1200 (an FB round lasts 10 min), delta = 50;
+//! * pad rate 100 mAh/min: ct = (capacity - arrival) / 100.
+//!
+//! Every plan is also re-verified by the independent checker.
+
+use std::path::Path;
+use swarmplan::check::check_plan;
+use swarmplan::compose::{Context, PlanOptions, RequestReport, RouteMethod};
+use swarmplan::eaas::SharingPolicy;
+use swarmplan::network::SkywayGraph;
+use swarmplan::precompose::Positioning;
+use swarmplan::problem::io::{read_json, read_toml};
+use swarmplan::problem::{Network, Profile, Request};
+
+const TOL: f64 = 1e-6;
+
+fn assert_close(got: f64, expected: f64, what: &str) {
+    assert!(
+        (got - expected).abs() <= TOL * (1.0 + expected.abs()),
+        "{what}: got {got}, expected {expected}"
+    );
+}
+
+struct Tiny {
+    network: Network,
+    graph: SkywayGraph,
+    profile: Profile,
+}
+
+fn tiny(file: &str) -> Tiny {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("instances/tiny");
+    let network: Network = read_json(&dir.join(file)).unwrap();
+    let graph = SkywayGraph::new(&network).unwrap();
+    let profile: Profile = read_toml(&dir.join("flat.toml")).unwrap();
+    assert!(swarmplan::problem::profile::validate_profile(&profile).is_empty());
+    Tiny {
+        network,
+        graph,
+        profile,
+    }
+}
+
+impl Tiny {
+    /// Plans `from -> to` with `packages_kg` and `support` support drones, and checks the plan.
+    fn plan(
+        &self,
+        from: &str,
+        to: &str,
+        packages_kg: &[f64],
+        support: usize,
+        sharing: SharingPolicy,
+        route: RouteMethod,
+    ) -> RequestReport {
+        let request = Request {
+            id: format!("{from}-{to}"),
+            source: from.into(),
+            destination: to.into(),
+            packages_kg: packages_kg.to_vec(),
+        };
+        let options = PlanOptions {
+            sharing,
+            positioning: Positioning::LocationAware,
+            route,
+            support: Some(support),
+        };
+        let report = Context::new(&self.network, &self.graph, &self.profile)
+            .plan(&request, &options)
+            .unwrap();
+        let v = check_plan(
+            &self.network,
+            &self.profile,
+            &request,
+            &report.swarm,
+            sharing,
+            &report.plan,
+        );
+        assert!(v.is_empty(), "{from}->{to} {options:?}: checker says {v:?}");
+        report
+    }
+}
+
+fn path_of(report: &RequestReport) -> Vec<String> {
+    let mut nodes = vec![report.plan.source.clone()];
+    for h in &report.plan.hops {
+        nodes.extend(h.path[1..].iter().cloned());
+    }
+    nodes
+}
+
+#[test]
+fn direct_reach_flies_straight_without_a_stop() {
+    // flat-line A -> B = 2000 m: tt = 2000 / 500 = 4 min. One drone, no package: 100 mAh/min,
+    // 4 * 100 = 400 mAh used, arrives with 600 mAh. dt = tt = 4 min, no stop, nothing shared.
+    let t = tiny("flat-line.json");
+    for route in RouteMethod::ALL {
+        let r = t.plan("A", "B", &[0.0], 0, SharingPolicy::Pb, route);
+        let p = &r.plan;
+        assert!(p.success, "{route:?}");
+        assert_eq!(p.hops.len(), 1);
+        assert!(p.hops[0].stop.is_none());
+        assert_eq!(p.hops[0].path, ["A", "B"]);
+        assert_close(p.dt_min, 4.0, "dt");
+        assert_close(p.nt_min, 0.0, "nt");
+        assert_close(p.hops[0].arrival_battery_mah[0], 600.0, "arrival");
+        assert_eq!(p.shared_mah, 0.0);
+    }
+}
+
+#[test]
+fn reach_only_thanks_to_sharing_fails_without_and_succeeds_with_pb() {
+    // flat-line A -> D = 4000 m (A, B, C, D): tt = 8 min. One delivery drone with 0.21 kg
+    // (133.1 mAh/min) needs 8 * 133.1 = 1064.8 > 1000 mAh: 64.8 mAh short, and no recharging
+    // node is reachable other than the source A, so without sharing the request fails.
+    let t = tiny("flat-line.json");
+    let none = t.plan(
+        "A",
+        "D",
+        &[0.21],
+        1,
+        SharingPolicy::None,
+        RouteMethod::Sequential,
+    );
+    assert!(!none.plan.success);
+    assert!(
+        none.plan.failure.as_deref().unwrap().contains("dead end"),
+        "{:?}",
+        none.plan.failure
+    );
+    assert!(none.plan.hops.is_empty());
+
+    // PB. Support drone: 8 * 172.8 = 1382.4 mAh of its own, spare B = 2000 - 1382.4 - 50 =
+    // 567.6 mAh. The delivery drone falls below gamma = 500 at st = 500 / 133.1 = 3.75657 min,
+    // requests 1000 - 500 = 500 mAh = 500 / 120 = 4.16667 min, served in [3.75657, 7.92324)
+    // (500 <= 567.6); it ends at 500 - (133.1 - 120) * 4.16667 = 445.42 < gamma, so a new request
+    // starts at once and is clipped at tt = 8 (120 * 0.07676 = 9.21 mAh <= 67.6 left). Sharing runs
+    // without a gap from st to tt: 120 * (8 - 500 / 133.1) = 960 - 450.78888 = 509.21112 mAh.
+    // Arrival: 1000 - 1064.8 + 509.21112 = 444.41112; support 2000 - 1382.4 - 509.21112 =
+    // 108.38888 (>= delta). dt = 8 min, no stop.
+    let shared = 120.0 * (8.0 - 500.0 / 133.1);
+    assert_close(shared, 509.211119, "hand arithmetic");
+    let pb = t.plan(
+        "A",
+        "D",
+        &[0.21],
+        1,
+        SharingPolicy::Pb,
+        RouteMethod::Sequential,
+    );
+    let p = &pb.plan;
+    assert!(p.success, "{:?}", p.failure);
+    assert_eq!(p.hops.len(), 1);
+    assert_eq!(p.hops[0].path, ["A", "B", "C", "D"]);
+    assert_close(p.dt_min, 8.0, "dt");
+    assert_close(p.shared_mah, shared, "shared");
+    assert_close(
+        p.hops[0].transfers[0].start_min,
+        500.0 / 133.1,
+        "first transfer start",
+    );
+    assert_close(
+        p.hops[0].arrival_battery_mah[0],
+        1000.0 - 1064.8 + shared,
+        "delivery",
+    );
+    assert_close(
+        p.hops[0].arrival_battery_mah[1],
+        2000.0 - 1382.4 - shared,
+        "support",
+    );
+}
+
+#[test]
+fn a_stop_with_fewer_pads_than_drones_takes_the_optimal_makespan() {
+    // flat-stop A - M - B, 3000 m each (6 min), M has 2 pads. Three delivery drones 0, 0, 0.21 kg:
+    // 100, 100, 133.1 mAh/min. Direct A -> B is 12 min: 1200 > 1000 mAh, impossible. At M they
+    // arrive with 1000 - 600 = 400, 400, 1000 - 798.6 = 201.4 mAh: ct = 6, 6, 7.986 min.
+    // Two pads: {6, 6} | {7.986} gives 12; {6, 7.986} | {6} gives 13.986: nt = 12 (above the
+    // bound max(7.986, 19.986 / 2) = 9.993). From M (full) to B: 6 min. dt = 6 + 12 + 6 = 24.
+    let t = tiny("flat-stop.json");
+    for route in RouteMethod::ALL {
+        let r = t.plan("A", "B", &[0.0, 0.0, 0.21], 0, SharingPolicy::None, route);
+        let p = &r.plan;
+        assert!(p.success, "{route:?}: {:?}", p.failure);
+        assert_eq!(p.stops(), ["M"], "{route:?}");
+        let stop = p.hops[0].stop.as_ref().unwrap();
+        assert_eq!(stop.pads, 2);
+        for (ct, want) in stop.charge_times_min.iter().zip([6.0, 6.0, 7.986]) {
+            assert_close(*ct, want, "ct");
+        }
+        assert_close(stop.nt_min, 12.0, "nt");
+        let mut pads: Vec<Vec<usize>> = stop
+            .assignment
+            .iter()
+            .map(|p| {
+                let mut p = p.clone();
+                p.sort();
+                p
+            })
+            .collect();
+        pads.sort();
+        assert_eq!(pads, vec![vec![0, 1], vec![2]]);
+        assert_close(p.tt_min, 12.0, "tt");
+        assert_close(p.dt_min, 24.0, "dt");
+    }
+}
+
+#[test]
+fn a_dead_end_fails_with_a_reason_and_never_loops() {
+    // flat-deadend A - M1 (2000 m) - M2 (4000 m) - B (11000 m); M1 and M2 have one pad. One drone,
+    // no package, 100 mAh/min: 10 min = 5000 m without stopping.
+    // From A: B is 22 min away. Candidates: M1 tt 4 + nt 4 (ct = 400 / 100) = 8; M2 8 + 8 = 16:
+    // stop at M1. From M1: B 18 min away; only M2 (8) left: stop at M2. From M2: B is 14 min
+    // away, M1 was stopped at already: dead end at M2. Without the stopped-at rule M1 and M2 would
+    // alternate forever. Flown: 4 + 4 + 4 + 4 = 16 min.
+    let t = tiny("flat-deadend.json");
+    for route in [RouteMethod::Sequential, RouteMethod::Astar] {
+        let r = t.plan("A", "B", &[0.0], 0, SharingPolicy::None, route);
+        let p = &r.plan;
+        assert!(!p.success);
+        assert_eq!(p.stops(), ["M1", "M2"], "{route:?}");
+        let why = p.failure.as_deref().unwrap();
+        assert!(why.contains("dead end at M2"), "{why}");
+        assert_close(p.dt_min, 16.0, "dt flown");
+    }
+    // The fixed route A, M1, M2, B: from A the farthest reachable pad node is M2 (8 min), stop
+    // there (nt 8); B is 14 min from M2: fails, naming B.
+    for route in [RouteMethod::Dijkstra, RouteMethod::FloydWarshall] {
+        let r = t.plan("A", "B", &[0.0], 0, SharingPolicy::None, route);
+        let p = &r.plan;
+        assert!(!p.success);
+        assert_eq!(p.stops(), ["M2"], "{route:?}");
+        let why = p.failure.as_deref().unwrap();
+        assert!(why.contains("cannot reach B"), "{why}");
+        assert_close(p.dt_min, 16.0, "dt flown");
+    }
+}
+
+#[test]
+fn pb_serves_the_needy_drone_where_fb_spreads_by_id_and_fails() {
+    // flat-line A -> C = 3250 m, tt = 6.5 min. Drone 0 carries 0.21 kg (133.1 mAh/min, uses
+    // 865.15), drone 1 0.44 kg (172.8, uses 1123.2: 123.2 short, empty at 1000 / 172.8 =
+    // 5.787 min), drone 2 the support (172.8, uses 1123.2; spare 2000 - 1123.2 - 50 = 826.8).
+    // Paper: PB serves by need, FB by turn. FB: drone 0 first, a round of 1200 mAh lasts 10 min >
+    // tt, so it gets [0, 6.5) = 780 mAh and drone 1 nothing: drone 1 runs dry, no recharging node
+    // is reachable: the request fails. PB: drone 1 falls below gamma first (500 / 172.8 = 2.8935
+    // min, drone 0 at 500 / 133.1 = 3.7566), served [2.8935, 6.5): 120 * (6.5 - 2.8935) = 432.778
+    // mAh; drone 0's request would start when the support drone is free, at tt: none. Arrivals:
+    // drone 0: 1000 - 865.15 = 134.85; drone 1: 1000 - 1123.2 + 432.778 = 309.578; support
+    // 2000 - 1123.2 - 432.778 = 444.022.
+    let t = tiny("flat-line.json");
+    let fb = t.plan(
+        "A",
+        "C",
+        &[0.21, 0.44],
+        1,
+        SharingPolicy::Fb,
+        RouteMethod::Sequential,
+    );
+    assert!(!fb.plan.success);
+    assert!(fb.plan.failure.as_deref().unwrap().contains("dead end"));
+
+    let pb = t.plan(
+        "A",
+        "C",
+        &[0.21, 0.44],
+        1,
+        SharingPolicy::Pb,
+        RouteMethod::Sequential,
+    );
+    let p = &pb.plan;
+    assert!(p.success, "{:?}", p.failure);
+    assert_close(p.dt_min, 6.5, "dt");
+    let h = &p.hops[0];
+    assert_eq!(h.transfers.len(), 1);
+    assert_eq!((h.transfers[0].support, h.transfers[0].consumer), (2, 1));
+    let given = 120.0 * (6.5 - 500.0 / 172.8);
+    assert_close(given, 432.777778, "hand arithmetic");
+    assert_close(h.transfers[0].energy_mah, given, "PB transfer");
+    assert_close(h.arrival_battery_mah[0], 134.85, "drone 0");
+    assert_close(h.arrival_battery_mah[1], 1000.0 - 1123.2 + given, "drone 1");
+    assert_close(h.arrival_battery_mah[2], 2000.0 - 1123.2 - given, "support");
+}
+
+#[test]
+fn each_route_method_takes_its_own_route() {
+    // flat-routes: S - W 1000 m (west); S - P1 - P2 - T, 1900 m each (the shortest S -> T, 5700 m);
+    // S - R - T, 3000 m each. W, P1, P2, R have one pad; S and T none. One drone, no package:
+    // 100 mAh/min, 10 min = 5000 m without stopping, and a stop after a flight of tt minutes from
+    // full costs nt = ct = 100 tt / 100 = tt.
+    // Direct S -> T (11.4 min) is impossible for every method.
+    let t = tiny("flat-routes.json");
+    let plan = |route| t.plan("S", "T", &[0.0], 0, SharingPolicy::None, route);
+
+    // Sequential: candidates from S by tt + nt: W 2 + 2 = 4, P1 3.8 + 3.8 = 7.6, R 12, P2 15.2:
+    // stop at W. From W (S, W stopped): P1 via S 2900 m: 5.8 + 5.8 = 11.6, R 8 + 8 = 16,
+    // P2 9.6 + 9.6 = 19.2: stop at P1. From P1, T is 3800 m = 7.6 min: fly.
+    // dt = 4 + 11.6 + 7.6 = 23.2.
+    let seq = plan(RouteMethod::Sequential);
+    assert!(seq.plan.success);
+    assert_eq!(seq.plan.stops(), ["W", "P1"]);
+    assert_eq!(path_of(&seq), ["S", "W", "S", "P1", "P2", "T"]);
+    assert_close(seq.plan.dt_min, 23.2, "sequential dt");
+
+    // A*: add h(v) = dist(v, T) / 500: W 4 + 13.4 = 17.4, P1 7.6 + 7.6 = 15.2, R 12 + 6 = 18,
+    // P2 15.2 + 3.8 = 19: stop at P1, then fly to T (7.6). dt = 3.8 + 3.8 + 7.6 = 15.2.
+    let astar = plan(RouteMethod::Astar);
+    assert!(astar.plan.success);
+    assert_eq!(astar.plan.stops(), ["P1"]);
+    assert_eq!(path_of(&astar), ["S", "P1", "P2", "T"]);
+    assert_close(astar.plan.dt_min, 15.2, "astar dt");
+
+    // Dijkstra on c(u, v) = tt(u, v) + nt(v), nt(v) = tt(u, v) at a pad node (one edge from full),
+    // 0 at T: S-P1-P2-T costs 7.6 + 7.6 + 3.8 = 19, S-R-T 12 + 6 = 18: route S, R, T. Flown: T is
+    // 12 min away, R 6: stop at R (nt 6), then 6 to T. dt = 18.
+    let dijkstra = plan(RouteMethod::Dijkstra);
+    assert!(dijkstra.plan.success);
+    assert_eq!(dijkstra.plan.stops(), ["R"]);
+    assert_eq!(path_of(&dijkstra), ["S", "R", "T"]);
+    assert_close(dijkstra.plan.dt_min, 18.0, "dijkstra dt");
+
+    // Floyd–Warshall minimises the same edge cost c(u, v) as Dijkstra, so its route costs the
+    // same; here the cheapest route is unique, so it is the same route with the same dt.
+    let fw = plan(RouteMethod::FloydWarshall);
+    assert!(fw.plan.success);
+    assert_eq!(path_of(&fw), ["S", "R", "T"]);
+    assert_close(fw.plan.dt_min, 18.0, "floyd-warshall dt");
+}
