@@ -4,8 +4,9 @@
 //! is hand-computable (src/energy/mod.rs: rate = r0 * P(p) * W * F):
 //! * r0 = battery_mah / endurance_min = 1000 / 10 = 100 mAh/min;
 //! * P(p) = ((m0 + p) / m0)^1.5 with m0 = empty + battery = 0.56 + 0.44 = 1 kg:
-//!   p = 0 -> 1 (100 mAh/min), p = 0.21 -> 1.21^1.5 = 1.1^3 = 1.331 (133.1 mAh/min),
-//!   p = 0.44 -> 1.44^1.5 = 1.2^3 = 1.728 (172.8 mAh/min);
+//!   p = 0.21 -> 1.21^1.5 = 1.1^3 = 1.331 (133.1 mAh/min, 1000 mAh last 7.513 min = 3756.6 m),
+//!   p = 0.44 -> 1.44^1.5 = 1.2^3 = 1.728 (172.8 mAh/min, 5.787 min = 2893.5 m)
+//!   (requests need packages above 0 kg, rule E3302, so these are the light and the heavy one);
 //! * a support drone carries 1 extra battery of 0.44 kg: 172.8 mAh/min, capacity 2000 mAh;
 //! * W = 0.9 + 0.1 * (|v_air| / v)^3 = 1 without wind; F = 1 - (sum of gains) = 1, every gain 0;
 //! * speed 30 km/h = 500 m/min, so tt = distance_m / 500;
@@ -68,6 +69,13 @@ impl Tiny {
             destination: to.into(),
             packages_kg: packages_kg.to_vec(),
         };
+        let invalid = swarmplan::problem::validate::validate_request(
+            &request,
+            0,
+            &self.graph,
+            self.profile.drone.max_payload_kg,
+        );
+        assert!(invalid.is_empty(), "the test request is valid: {invalid:?}");
         let options = PlanOptions {
             sharing,
             positioning: Positioning::LocationAware,
@@ -100,11 +108,11 @@ fn path_of(report: &RequestReport) -> Vec<String> {
 
 #[test]
 fn direct_reach_flies_straight_without_a_stop() {
-    // flat-line A -> B = 2000 m: tt = 2000 / 500 = 4 min. One drone, no package: 100 mAh/min,
-    // 4 * 100 = 400 mAh used, arrives with 600 mAh. dt = tt = 4 min, no stop, nothing shared.
+    // flat-line A -> B = 2000 m: tt = 2000 / 500 = 4 min. One drone with 0.21 kg: 133.1 mAh/min,
+    // 4 * 133.1 = 532.4 mAh used, arrives with 467.6 mAh. dt = tt = 4 min, no stop, no sharing.
     let t = tiny("flat-line.json");
     for route in RouteMethod::ALL {
-        let r = t.plan("A", "B", &[0.0], 0, SharingPolicy::Pb, route);
+        let r = t.plan("A", "B", &[0.21], 0, SharingPolicy::Pb, route);
         let p = &r.plan;
         assert!(p.success, "{route:?}");
         assert_eq!(p.hops.len(), 1);
@@ -112,7 +120,7 @@ fn direct_reach_flies_straight_without_a_stop() {
         assert_eq!(p.hops[0].path, ["A", "B"]);
         assert_close(p.dt_min, 4.0, "dt");
         assert_close(p.nt_min, 0.0, "nt");
-        assert_close(p.hops[0].arrival_battery_mah[0], 600.0, "arrival");
+        assert_close(p.hops[0].arrival_battery_mah[0], 467.6, "arrival");
         assert_eq!(p.shared_mah, 0.0);
     }
 }
@@ -182,23 +190,24 @@ fn reach_only_thanks_to_sharing_fails_without_and_succeeds_with_pb() {
 
 #[test]
 fn a_stop_with_fewer_pads_than_drones_takes_the_optimal_makespan() {
-    // flat-stop A - M - B, 3000 m each (6 min), M has 2 pads. Three delivery drones 0, 0, 0.21 kg:
-    // 100, 100, 133.1 mAh/min. Direct A -> B is 12 min: 1200 > 1000 mAh, impossible. At M they
-    // arrive with 1000 - 600 = 400, 400, 1000 - 798.6 = 201.4 mAh: ct = 6, 6, 7.986 min.
-    // Two pads: {6, 6} | {7.986} gives 12; {6, 7.986} | {6} gives 13.986: nt = 12 (above the
-    // bound max(7.986, 19.986 / 2) = 9.993). From M (full) to B: 6 min. dt = 6 + 12 + 6 = 24.
+    // flat-stop A - M - B, 2500 m each (5 min), M has 2 pads. Three delivery drones 0.21, 0.21,
+    // 0.44 kg: 133.1, 133.1, 172.8 mAh/min. Direct A -> B is 10 min: 1331 > 1000 mAh, impossible.
+    // At M they arrive with 1000 - 665.5 = 334.5, 334.5, 1000 - 864 = 136 mAh: ct = 6.655, 6.655,
+    // 8.64 min. Two pads: {6.655, 6.655} | {8.64} gives 13.31; {6.655, 8.64} | {6.655} gives
+    // 15.295: nt = 13.31 (above the bound max(8.64, 21.95 / 2) = 10.975, so it is the exact
+    // makespan, not the bound). From M (full) to B: 5 min. dt = 5 + 13.31 + 5 = 23.31.
     let t = tiny("flat-stop.json");
     for route in RouteMethod::ALL {
-        let r = t.plan("A", "B", &[0.0, 0.0, 0.21], 0, SharingPolicy::None, route);
+        let r = t.plan("A", "B", &[0.21, 0.21, 0.44], 0, SharingPolicy::None, route);
         let p = &r.plan;
         assert!(p.success, "{route:?}: {:?}", p.failure);
         assert_eq!(p.stops(), ["M"], "{route:?}");
         let stop = p.hops[0].stop.as_ref().unwrap();
         assert_eq!(stop.pads, 2);
-        for (ct, want) in stop.charge_times_min.iter().zip([6.0, 6.0, 7.986]) {
+        for (ct, want) in stop.charge_times_min.iter().zip([6.655, 6.655, 8.64]) {
             assert_close(*ct, want, "ct");
         }
-        assert_close(stop.nt_min, 12.0, "nt");
+        assert_close(stop.nt_min, 13.31, "nt");
         let mut pads: Vec<Vec<usize>> = stop
             .assignment
             .iter()
@@ -210,39 +219,40 @@ fn a_stop_with_fewer_pads_than_drones_takes_the_optimal_makespan() {
             .collect();
         pads.sort();
         assert_eq!(pads, vec![vec![0, 1], vec![2]]);
-        assert_close(p.tt_min, 12.0, "tt");
-        assert_close(p.dt_min, 24.0, "dt");
+        assert_close(p.tt_min, 10.0, "tt");
+        assert_close(p.dt_min, 23.31, "dt");
     }
 }
 
 #[test]
 fn a_dead_end_fails_with_a_reason_and_never_loops() {
-    // flat-deadend A - M1 (2000 m) - M2 (4000 m) - B (11000 m); M1 and M2 have one pad. One drone,
-    // no package, 100 mAh/min: 10 min = 5000 m without stopping.
-    // From A: B is 22 min away. Candidates: M1 tt 4 + nt 4 (ct = 400 / 100) = 8; M2 8 + 8 = 16:
-    // stop at M1. From M1: B 18 min away; only M2 (8) left: stop at M2. From M2: B is 14 min
-    // away, M1 was stopped at already: dead end at M2. Without the stopped-at rule M1 and M2 would
-    // alternate forever. Flown: 4 + 4 + 4 + 4 = 16 min.
+    // flat-deadend A - M1 (2000 m) - M2 (4000 m) - B (11000 m); M1 and M2 have one pad. One drone
+    // with 0.21 kg, 133.1 mAh/min: at most 7.513 min = 3756.6 m without stopping.
+    // From A: B is 22 min away, M2 8 min (1064.8 mAh: too far). Only candidate M1: tt 4, arrival
+    // 1000 - 532.4 = 467.6, nt = ct = 532.4 / 100 = 5.324: stop at M1. From M1: B 18 min away;
+    // M2 (4 + 5.324): stop at M2. From M2: B is 14 min away, M1 was stopped at already: dead end
+    // at M2. Without the stopped-at rule M1 and M2 would alternate forever.
+    // Flown: 2 * (4 + 5.324) = 18.648 min.
     let t = tiny("flat-deadend.json");
     for route in [RouteMethod::Sequential, RouteMethod::Astar] {
-        let r = t.plan("A", "B", &[0.0], 0, SharingPolicy::None, route);
+        let r = t.plan("A", "B", &[0.21], 0, SharingPolicy::None, route);
         let p = &r.plan;
         assert!(!p.success);
         assert_eq!(p.stops(), ["M1", "M2"], "{route:?}");
         let why = p.failure.as_deref().unwrap();
         assert!(why.contains("dead end at M2"), "{why}");
-        assert_close(p.dt_min, 16.0, "dt flown");
+        assert_close(p.dt_min, 18.648, "dt flown");
     }
-    // The fixed route A, M1, M2, B: from A the farthest reachable pad node is M2 (8 min), stop
-    // there (nt 8); B is 14 min from M2: fails, naming B.
+    // The fixed route A, M1, M2, B (the only one): the farthest reachable pad node from A is M1,
+    // from M1 it is M2; B is 14 min from M2: fails, naming B, after the same 18.648 min.
     for route in [RouteMethod::Dijkstra, RouteMethod::FloydWarshall] {
-        let r = t.plan("A", "B", &[0.0], 0, SharingPolicy::None, route);
+        let r = t.plan("A", "B", &[0.21], 0, SharingPolicy::None, route);
         let p = &r.plan;
         assert!(!p.success);
-        assert_eq!(p.stops(), ["M2"], "{route:?}");
+        assert_eq!(p.stops(), ["M1", "M2"], "{route:?}");
         let why = p.failure.as_deref().unwrap();
         assert!(why.contains("cannot reach B"), "{why}");
-        assert_close(p.dt_min, 16.0, "dt flown");
+        assert_close(p.dt_min, 18.648, "dt flown");
     }
 }
 
@@ -295,44 +305,46 @@ fn pb_serves_the_needy_drone_where_fb_spreads_by_id_and_fails() {
 #[test]
 fn each_route_method_takes_its_own_route() {
     // flat-routes: S - W 1000 m (west); S - P1 - P2 - T, 1900 m each (the shortest S -> T, 5700 m);
-    // S - R - T, 3000 m each. W, P1, P2, R have one pad; S and T none. One drone, no package:
-    // 100 mAh/min, 10 min = 5000 m without stopping, and a stop after a flight of tt minutes from
-    // full costs nt = ct = 100 tt / 100 = tt.
-    // Direct S -> T (11.4 min) is impossible for every method.
+    // S - R - T, 3000 m each. W, P1, P2, R have one pad; S and T none. One drone with 0.21 kg:
+    // 133.1 mAh/min, at most 7.513 min without stopping. A hop of tt min from full then a stop
+    // costs tt + nt = tt + 133.1 tt / 100 = 2.331 tt. Direct S -> T (11.4 min) is impossible, and
+    // so is any hop of 7.6 min (P1 -> T, S -> P2: 1011.56 mAh) or more.
     let t = tiny("flat-routes.json");
-    let plan = |route| t.plan("S", "T", &[0.0], 0, SharingPolicy::None, route);
+    let plan = |route| t.plan("S", "T", &[0.21], 0, SharingPolicy::None, route);
 
-    // Sequential: candidates from S by tt + nt: W 2 + 2 = 4, P1 3.8 + 3.8 = 7.6, R 12, P2 15.2:
-    // stop at W. From W (S, W stopped): P1 via S 2900 m: 5.8 + 5.8 = 11.6, R 8 + 8 = 16,
-    // P2 9.6 + 9.6 = 19.2: stop at P1. From P1, T is 3800 m = 7.6 min: fly.
-    // dt = 4 + 11.6 + 7.6 = 23.2.
+    // Sequential, candidates by tt + nt: from S, W 2 * 2.331 = 4.662, P1 3.8 * 2.331 = 8.8578,
+    // R 6 * 2.331 = 13.986 (P2 too far): stop at W. From W: P1 via S 2900 m, 5.8 * 2.331 =
+    // 13.5198 (R and P2 too far): stop at P1. From P1: T too far, P2 8.8578: stop at P2, then T
+    // (3.8). dt = 4.662 + 13.5198 + 8.8578 + 3.8 = 30.8396.
     let seq = plan(RouteMethod::Sequential);
     assert!(seq.plan.success);
-    assert_eq!(seq.plan.stops(), ["W", "P1"]);
+    assert_eq!(seq.plan.stops(), ["W", "P1", "P2"]);
     assert_eq!(path_of(&seq), ["S", "W", "S", "P1", "P2", "T"]);
-    assert_close(seq.plan.dt_min, 23.2, "sequential dt");
+    assert_close(seq.plan.dt_min, 30.8396, "sequential dt");
 
-    // A*: add h(v) = dist(v, T) / 500: W 4 + 13.4 = 17.4, P1 7.6 + 7.6 = 15.2, R 12 + 6 = 18,
-    // P2 15.2 + 3.8 = 19: stop at P1, then fly to T (7.6). dt = 3.8 + 3.8 + 7.6 = 15.2.
+    // A*: plus h(v) = dist(v, T) / 500: W 4.662 + 13.4 = 18.062, P1 8.8578 + 7.6 = 16.4578,
+    // R 13.986 + 6 = 19.986: stop at P1; from P1, P2 8.8578 + 3.8: stop at P2; then T.
+    // dt = 2 * 8.8578 + 3.8 = 21.5156.
     let astar = plan(RouteMethod::Astar);
     assert!(astar.plan.success);
-    assert_eq!(astar.plan.stops(), ["P1"]);
+    assert_eq!(astar.plan.stops(), ["P1", "P2"]);
     assert_eq!(path_of(&astar), ["S", "P1", "P2", "T"]);
-    assert_close(astar.plan.dt_min, 15.2, "astar dt");
+    assert_close(astar.plan.dt_min, 21.5156, "astar dt");
 
-    // Dijkstra on c(u, v) = tt(u, v) + nt(v), nt(v) = tt(u, v) at a pad node (one edge from full),
-    // 0 at T: S-P1-P2-T costs 7.6 + 7.6 + 3.8 = 19, S-R-T 12 + 6 = 18: route S, R, T. Flown: T is
-    // 12 min away, R 6: stop at R (nt 6), then 6 to T. dt = 18.
+    // Dijkstra on c(u, v) = tt(u, v) + nt(v), nt(v) = 1.331 tt(u, v) at a pad node (one edge
+    // from full), 0 at T: S-P1-P2-T costs 8.8578 + 8.8578 + 3.8 = 21.5156, S-R-T 13.986 + 6 =
+    // 19.986: route S, R, T. Flown: T is 12 min away, R 6: stop at R (nt 7.986), then 6 to T.
+    // dt = 19.986.
     let dijkstra = plan(RouteMethod::Dijkstra);
     assert!(dijkstra.plan.success);
     assert_eq!(dijkstra.plan.stops(), ["R"]);
     assert_eq!(path_of(&dijkstra), ["S", "R", "T"]);
-    assert_close(dijkstra.plan.dt_min, 18.0, "dijkstra dt");
+    assert_close(dijkstra.plan.dt_min, 19.986, "dijkstra dt");
 
     // Floyd–Warshall minimises the same edge cost c(u, v) as Dijkstra, so its route costs the
     // same; here the cheapest route is unique, so it is the same route with the same dt.
     let fw = plan(RouteMethod::FloydWarshall);
     assert!(fw.plan.success);
     assert_eq!(path_of(&fw), ["S", "R", "T"]);
-    assert_close(fw.plan.dt_min, 18.0, "floyd-warshall dt");
+    assert_close(fw.plan.dt_min, 19.986, "floyd-warshall dt");
 }
