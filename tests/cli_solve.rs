@@ -1,0 +1,288 @@
+//! `swarmplan solve`, `batch` and `inspect` from the command line: hand-computed delivery times on
+//! the tiny `flat` instances (arithmetic in tests/compose.rs and instances/tiny/README.md), exit
+//! codes 0 / 1 / 2, coded messages for bad input, and batch results independent of the thread
+//! count.
+
+use serde_json::Value;
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn swarmplan(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_swarmplan"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+fn tiny(name: &str) -> String {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("instances/tiny")
+        .join(name)
+        .to_str()
+        .unwrap()
+        .to_string()
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli_solve");
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+fn json(out: &Output) -> Value {
+    serde_json::from_slice(&out.stdout).unwrap_or_else(|e| panic!("{e}: {out:?}"))
+}
+
+fn close(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 1e-6 * (1.0 + b.abs())
+}
+
+/// `solve` on a flat instance with the given extra arguments.
+fn solve(network: &str, extra: &[&str]) -> Output {
+    let (net, profile) = (tiny(network), tiny("flat.toml"));
+    let mut args = vec!["solve", "--network", &net, "--profile", &profile];
+    args.extend_from_slice(extra);
+    swarmplan(&args)
+}
+
+#[test]
+fn solve_json_gives_the_hand_computed_delivery_time() {
+    // flat-stop: A - M - B, 2500 m each, M with 2 pads; drones 0.21, 0.21, 0.44 kg arrive at M
+    // with 334.5, 334.5, 136 mAh: ct 6.655, 6.655, 8.64 min, nt = 6.655 + 6.655 = 13.31 on two
+    // pads; dt = 5 + 13.31 + 5 = 23.31 min, whatever the route method.
+    for route in ["sequential", "astar", "dijkstra", "floyd-warshall"] {
+        let out = solve(
+            "flat-stop.json",
+            &[
+                "--from",
+                "A",
+                "--to",
+                "B",
+                "--packages",
+                "0.21,0.21,0.44",
+                "--support",
+                "0",
+                "--sharing",
+                "none",
+                "--route",
+                route,
+                "--json",
+            ],
+        );
+        assert_eq!(out.status.code(), Some(0), "{route}: {out:?}");
+        let r = json(&out);
+        let plan = &r["plan"];
+        assert_eq!(plan["success"], true);
+        assert!(close(plan["dt_min"].as_f64().unwrap(), 23.31), "{route}");
+        assert!(close(plan["nt_min"].as_f64().unwrap(), 13.31), "{route}");
+        assert_eq!(plan["hops"][0]["stop"]["node"], "M");
+        assert_eq!(plan["hops"][0]["stop"]["pads"], 2);
+        assert_eq!(r["options"]["route"], route);
+    }
+}
+
+#[test]
+fn solve_json_reports_the_hand_computed_sharing() {
+    // flat-line A -> D, 4000 m (8 min), one 0.21 kg drone (64.8 mAh short) and one support drone:
+    // PB shares 120 * (8 - 500 / 133.1) = 509.21112 mAh and delivers in 8 min; without sharing
+    // the request fails (exit 1).
+    let args = |sharing| {
+        solve(
+            "flat-line.json",
+            &[
+                "--from",
+                "A",
+                "--to",
+                "D",
+                "--packages",
+                "0.21",
+                "--support",
+                "1",
+                "--sharing",
+                sharing,
+                "--json",
+            ],
+        )
+    };
+    let pb = args("pb");
+    assert_eq!(pb.status.code(), Some(0), "{pb:?}");
+    let plan = &json(&pb)["plan"];
+    assert!(close(plan["dt_min"].as_f64().unwrap(), 8.0));
+    assert!(close(plan["shared_mah"].as_f64().unwrap(), 509.211119));
+    assert!(!plan["hops"][0]["transfers"].as_array().unwrap().is_empty());
+    let none = args("none");
+    assert_eq!(none.status.code(), Some(1), "{none:?}");
+    assert_eq!(json(&none)["plan"]["success"], false);
+}
+
+#[test]
+fn a_failed_delivery_exits_1_with_its_reason() {
+    // flat-deadend: the swarm stops at M1 then M2 and cannot reach B (tests/compose.rs).
+    let out = solve(
+        "flat-deadend.json",
+        &[
+            "--from",
+            "A",
+            "--to",
+            "B",
+            "--packages",
+            "0.21",
+            "--support",
+            "0",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(1), "{out:?}");
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("dead end at M2"), "{text}");
+}
+
+#[test]
+fn bad_input_exits_2_with_the_coded_message() {
+    let expect_2 = |out: &Output, code: &str| {
+        assert_eq!(out.status.code(), Some(2), "{out:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(&format!("[{code}]")), "want {code}: {err}");
+        assert!(out.stdout.is_empty(), "nothing on stdout: {out:?}");
+    };
+    // Unknown node id.
+    let out = solve(
+        "flat-line.json",
+        &["--from", "A", "--to", "Z", "--packages", "0.5"],
+    );
+    expect_2(&out, "E3201");
+    // Package over the 1.4 kg max payload of the profile.
+    let out = solve(
+        "flat-line.json",
+        &["--from", "A", "--to", "B", "--packages", "0.5,2.0"],
+    );
+    expect_2(&out, "E3303");
+    // Malformed network JSON.
+    let bad = tmp("malformed.json");
+    std::fs::write(&bad, "{ \"schema_version\": 1, \"nodes\": [").unwrap();
+    let profile = tiny("flat.toml");
+    let out = swarmplan(&[
+        "solve",
+        "--network",
+        bad.to_str().unwrap(),
+        "--profile",
+        &profile,
+        "--from",
+        "A",
+        "--to",
+        "B",
+        "--packages",
+        "0.5",
+    ]);
+    expect_2(&out, "E0001");
+    // A network breaking its rules (duplicate node id among others).
+    let out = solve(
+        "invalid-network.json",
+        &["--from", "A", "--to", "B", "--packages", "0.5"],
+    );
+    expect_2(&out, "E1102");
+}
+
+#[test]
+fn batch_gives_the_same_numbers_with_one_or_two_threads() {
+    let run = |threads: &str| {
+        let per_request = tmp(&format!("per-request-{threads}.json"));
+        let out = swarmplan(&[
+            "batch",
+            "--limit",
+            "20",
+            "--threads",
+            threads,
+            "--sharing",
+            "pb,fb",
+            "--route",
+            "sequential,dijkstra",
+            "--per-request",
+            per_request.to_str().unwrap(),
+            "--json",
+        ]);
+        assert_eq!(out.status.code(), Some(0), "{out:?}");
+        let mut summaries = json(&out);
+        for s in summaries.as_array_mut().unwrap() {
+            // Wall-clock time is the one figure that is not reproducible.
+            s.as_object_mut().unwrap().remove("wall_ms");
+        }
+        (summaries, std::fs::read(&per_request).unwrap())
+    };
+    let (s1, p1) = run("1");
+    let (s2, p2) = run("2");
+    assert_eq!(s1.as_array().unwrap().len(), 4);
+    for s in s1.as_array().unwrap() {
+        assert_eq!(s["requests"], 20);
+    }
+    assert_eq!(s1, s2);
+    assert_eq!(p1, p2, "per-request outcomes identical byte for byte");
+}
+
+#[test]
+fn inspect_json_reports_formation_support_count_and_positions() {
+    // flat profile, flat-line request pb-fb (packages 0.21, 0.44, A -> C).
+    // Formation: every position factor is 1, so every formation ties and the first of
+    // FormationKind::ALL, the column, is chosen; its slots are 1 m apart behind the leader:
+    // (0, 0), (-1, 0), (-2, 0).
+    // Support count: no wind, so Eq. 2's product has a zero wind term: 0 % -> Table 2 row 0-19 ->
+    // N+1 -> 1 support drone.
+    // Positions with equal slots (ties by slot index): location-aware puts the heaviest delivery
+    // drone (1, 0.44 kg) in slot 0, drone 0 in slot 1, the support drone last (slot 2);
+    // energy-aware puts the support drone first (slot 0), then drone 1 (slot 1), drone 0 (slot 2).
+    let (net, profile, requests) = (
+        tiny("flat-line.json"),
+        tiny("flat.toml"),
+        tiny("flat-requests.json"),
+    );
+    let inspect = |positioning: &str| {
+        let out = swarmplan(&[
+            "inspect",
+            "--network",
+            &net,
+            "--profile",
+            &profile,
+            "--request-file",
+            &requests,
+            "--request-id",
+            "pb-fb",
+            "--positioning",
+            positioning,
+            "--json",
+        ]);
+        assert_eq!(out.status.code(), Some(0), "{out:?}");
+        json(&out)
+    };
+    let r = inspect("location-aware");
+    assert_eq!(r["network"]["formation"], "column");
+    assert_eq!(r["network"]["pad_nodes"], 1);
+    let req = &r["request"];
+    assert!(close(req["route_distance_m"].as_f64().unwrap(), 3250.0));
+    assert_eq!(req["support_decision"]["probability_pct"], 0.0);
+    assert_eq!(req["support_decision"]["level"], "n+1");
+    assert_eq!(req["support_drones"], 1);
+    assert_eq!(req["swarm"]["formation"], "column");
+    let slots: Vec<(f64, f64)> = req["swarm"]["slots_m"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| (p[0].as_f64().unwrap(), p[1].as_f64().unwrap()))
+        .collect();
+    assert_eq!(slots, [(0.0, 0.0), (-1.0, 0.0), (-2.0, 0.0)]);
+    assert_eq!(req["swarm"]["initial_slot"], serde_json::json!([1, 0, 2]));
+    assert_eq!(req["swarm"]["drones"][2]["role"], "support");
+    // Rates 133.1, 172.8 and (support, 0.44 kg of battery) 172.8 mAh/min.
+    let rates: Vec<f64> = req["still_air_rates_mah_per_min"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    for (got, want) in rates.iter().zip([133.1, 172.8, 172.8]) {
+        assert!(close(*got, want), "{rates:?}");
+    }
+    let e = inspect("energy-aware");
+    assert_eq!(
+        e["request"]["swarm"]["initial_slot"],
+        serde_json::json!([2, 1, 0])
+    );
+}
