@@ -123,8 +123,8 @@ pub fn run(args: BatchArgs) -> Result<i32> {
         if !args.json {
             eprintln!(
                 "sharing {:<4} positioning {:<14} route {:<14} delivered {}/{} mean dt {:.2} min, {:.0} ms",
-                format!("{:?}", options.sharing).to_lowercase(),
-                format!("{:?}", options.positioning),
+                label(&options.sharing),
+                label(&options.positioning),
                 options.route.name(),
                 summary.succeeded,
                 summary.requests,
@@ -155,11 +155,8 @@ pub fn run(args: BatchArgs) -> Result<i32> {
         for s in &summaries {
             println!(
                 "{},{},{},{},{},{:.3},{:.3},{:.3},{:.0}",
-                format!("{:?}", s.options.sharing).to_lowercase(),
-                serde_json::to_value(s.options.positioning)
-                    .ok()
-                    .and_then(|v| v.as_str().map(String::from))
-                    .unwrap_or_default(),
+                label(&s.options.sharing),
+                label(&s.options.positioning),
                 s.options.route.name(),
                 s.succeeded,
                 s.requests,
@@ -171,6 +168,14 @@ pub fn run(args: BatchArgs) -> Result<i32> {
         }
     }
     Ok(0)
+}
+
+/// The serde name of a unit enum value (`pb`, `location-aware`, ...).
+fn label<T: Serialize>(value: &T) -> String {
+    match serde_json::to_value(value) {
+        Ok(serde_json::Value::String(s)) => s,
+        _ => String::new(),
+    }
 }
 
 fn combinations(args: &BatchArgs) -> Vec<PlanOptions> {

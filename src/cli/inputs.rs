@@ -64,6 +64,24 @@ pub fn load_requests(path: Option<&Path>) -> Result<RequestSet> {
     }
 }
 
+/// Finds request `id` in a request file (or the embedded paper-195 requests) and validates it.
+pub fn find_request(instance: &Instance, path: Option<&Path>, id: &str) -> Result<Request> {
+    let request = load_requests(path)?
+        .requests
+        .into_iter()
+        .find(|r| r.id == id)
+        .ok_or_else(|| {
+            Error::invalid(
+                "E3401",
+                "--request-id",
+                format!("no request with id `{id}` in the request file"),
+                "give an id present in the file's `requests[].id`",
+            )
+        })?;
+    validate_requests(instance, std::slice::from_ref(&request))?;
+    Ok(request)
+}
+
 /// Validates requests against the instance, reporting every violation at once.
 pub fn validate_requests(instance: &Instance, requests: &[Request]) -> Result<()> {
     let mut violations = Vec::new();

@@ -1,10 +1,11 @@
 //! `swarmplan inspect`: describe a network and, for a request, the swarm it would fly.
 
 use super::inputs::{self, InstanceArgs};
+use crate::compose::Context;
 use crate::energy::{self, Wind};
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::formation::FormationKind;
-use crate::precompose::{self, Positioning, SupportDecision, Swarm};
+use crate::precompose::{Positioning, SupportDecision, Swarm};
 use serde::Serialize;
 use std::path::PathBuf;
 
@@ -87,7 +88,8 @@ pub struct InspectReport {
 pub fn run(args: InspectArgs) -> Result<i32> {
     let inst = args.instance.load()?;
     let net = &inst.network;
-    let (formation, average_wind) = precompose::select_formation(net, &inst.profile);
+    let context = Context::new(net, &inst.graph, &inst.profile);
+    let (formation, average_wind) = (context.formation, context.average_wind);
     let speeds: Vec<f64> = net.segments.iter().map(|s| s.wind_speed_mps).collect();
     let network = NetworkReport {
         nodes: net.nodes.len(),
@@ -103,40 +105,13 @@ pub fn run(args: InspectArgs) -> Result<i32> {
     let request = match &args.request_id {
         None => None,
         Some(id) => {
-            let set = inputs::load_requests(args.request_file.as_deref())?;
-            let r = set
-                .requests
-                .into_iter()
-                .find(|r| &r.id == id)
-                .ok_or_else(|| {
-                    Error::invalid(
-                        "E3401",
-                        "--request-id",
-                        format!("no request with id `{id}` in the request file"),
-                        "give an id present in the file's `requests[].id`",
-                    )
-                })?;
-            inputs::validate_requests(&inst, std::slice::from_ref(&r))?;
-            let s = inst.graph.index_of(&r.source).expect("validated");
-            let t = inst.graph.index_of(&r.destination).expect("validated");
-            let route_distance_m = inst
-                .graph
-                .shortest_path(s, t)
-                .map(|p| p.distance_m)
-                .unwrap_or(f64::INFINITY);
-            let support_decision = precompose::support_count(
-                &inst.profile,
-                &r.packages_kg,
-                route_distance_m,
-                &average_wind,
-            );
-            let support_drones = args.support.unwrap_or(support_decision.count);
-            let swarm = precompose::build_swarm(
-                &inst.profile,
-                formation,
-                &r.packages_kg,
-                support_drones,
-                args.positioning,
+            let r = inputs::find_request(&inst, args.request_file.as_deref(), id)?;
+            let choice = context.swarm_for(&r, args.positioning, args.support)?;
+            let (route_distance_m, support_decision, support_drones, swarm) = (
+                choice.route_distance_m,
+                choice.support_decision,
+                choice.support_drones,
+                choice.swarm,
             );
             let still = Wind {
                 speed_mps: 0.0,

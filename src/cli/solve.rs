@@ -51,18 +51,7 @@ pub fn run(args: SolveArgs) -> Result<i32> {
     let instance = args.instance.load()?;
     let request = match (&args.request_id, &args.from, &args.to, &args.packages) {
         (Some(id), None, None, None) => {
-            let set = inputs::load_requests(args.request_file.as_deref())?;
-            set.requests
-                .into_iter()
-                .find(|r| &r.id == id)
-                .ok_or_else(|| {
-                    Error::invalid(
-                        "E3401",
-                        "--request-id",
-                        format!("no request with id `{id}` in the request file"),
-                        "give an id present in the file's `requests[].id`",
-                    )
-                })?
+            inputs::find_request(&instance, args.request_file.as_deref(), id)?
         }
         (None, Some(from), Some(to), Some(packages)) => Request {
             id: "cli".to_string(),

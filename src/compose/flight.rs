@@ -12,6 +12,9 @@ use crate::problem::Profile;
 use std::cell::RefCell;
 use std::collections::HashMap;
 
+/// Rate matrices `[drone][slot]` per directed edge `(from, to)`.
+type RateCache = RefCell<HashMap<(usize, usize), Vec<Vec<f64>>>>;
+
 /// Everything fixed while one request is planned: network, profile, swarm and sharing policy.
 pub struct Planner<'a> {
     graph: &'a SkywayGraph,
@@ -19,7 +22,7 @@ pub struct Planner<'a> {
     swarm: &'a Swarm,
     sharing: SharingPolicy,
     /// Consumption-rate matrices `[drone][slot]` per directed edge `(from, to)`, computed once.
-    rates: RefCell<HashMap<(usize, usize), Vec<Vec<f64>>>>,
+    rates: RateCache,
 }
 
 impl<'a> Planner<'a> {

@@ -15,7 +15,7 @@ mod sequential;
 
 pub use flight::Planner;
 pub use plan::{Hop, Plan, Stop};
-pub use request::{Context, PlanOptions, RequestReport};
+pub use request::{Context, PlanOptions, RequestReport, SwarmChoice};
 
 use serde::Serialize;
 

@@ -56,6 +56,23 @@ pub struct RequestReport {
     pub execution_ms: f64,
 }
 
+/// The swarm pre-composition gives a request.
+#[derive(Debug, Clone)]
+pub struct SwarmChoice {
+    /// Source node index.
+    pub source: usize,
+    /// Destination node index.
+    pub destination: usize,
+    /// Shortest-path distance from source to destination, m (`d(alpha, beta)` of Eq. 2).
+    pub route_distance_m: f64,
+    /// What the redundancy table decided.
+    pub support_decision: SupportDecision,
+    /// Support drones flown (the decision or the override).
+    pub support_drones: usize,
+    /// The swarm with its initial positions.
+    pub swarm: Swarm,
+}
+
 impl<'a> Context<'a> {
     /// Selects the formation from the network's averaged wind.
     pub fn new(network: &Network, graph: &'a SkywayGraph, profile: &'a Profile) -> Context<'a> {
@@ -68,13 +85,17 @@ impl<'a> Context<'a> {
         }
     }
 
-    /// Plans one validated request.
+    /// Pre-composition of one request: support drones from the redundancy table (or `support`),
+    /// then the initial positions.
     ///
     /// # Errors
-    /// [`Error::Invalid`] when the request names an unknown node (validate requests first to get
-    /// every violation at once).
-    pub fn plan(&self, request: &Request, options: &PlanOptions) -> Result<RequestReport> {
-        let start = Instant::now();
+    /// [`Error::Invalid`] when the request names an unknown node.
+    pub fn swarm_for(
+        &self,
+        request: &Request,
+        positioning: Positioning,
+        support: Option<usize>,
+    ) -> Result<SwarmChoice> {
         let index = |id: &str, field: &str| {
             self.graph.index_of(id).ok_or_else(|| {
                 Error::invalid(
@@ -98,24 +119,42 @@ impl<'a> Context<'a> {
             route_distance_m,
             &self.average_wind,
         );
-        let support_drones = options.support.unwrap_or(support_decision.count);
+        let support_drones = support.unwrap_or(support_decision.count);
         let swarm = precompose::build_swarm(
             self.profile,
             self.formation,
             &request.packages_kg,
             support_drones,
-            options.positioning,
+            positioning,
         );
-        let planner = Planner::new(self.graph, self.profile, &swarm, options.sharing);
-        let plan = planner.compose(source, destination, options.route)?;
+        Ok(SwarmChoice {
+            source,
+            destination,
+            route_distance_m,
+            support_decision,
+            support_drones,
+            swarm,
+        })
+    }
+
+    /// Plans one validated request.
+    ///
+    /// # Errors
+    /// [`Error::Invalid`] when the request names an unknown node (validate requests first to get
+    /// every violation at once).
+    pub fn plan(&self, request: &Request, options: &PlanOptions) -> Result<RequestReport> {
+        let start = Instant::now();
+        let choice = self.swarm_for(request, options.positioning, options.support)?;
+        let planner = Planner::new(self.graph, self.profile, &choice.swarm, options.sharing);
+        let plan = planner.compose(choice.source, choice.destination, options.route)?;
         let execution_ms = start.elapsed().as_secs_f64() * 1e3;
         Ok(RequestReport {
             request_id: request.id.clone(),
             options: *options,
             formation: self.formation,
-            support_decision,
-            support_drones,
-            swarm,
+            support_decision: choice.support_decision,
+            support_drones: choice.support_drones,
+            swarm: choice.swarm,
             plan,
             execution_ms,
         })

@@ -66,7 +66,10 @@ impl Planner<'_> {
                 if stopped[v] || graph.pads(v) == 0 || v == destination {
                     continue;
                 }
-                if !(towards_current.distance_m[v] / speed <= endurance_min) {
+                // A NaN or infinite distance (unreachable) is skipped too.
+                if towards_current.distance_m[v] / speed > endurance_min
+                    || !towards_current.distance_m[v].is_finite()
+                {
                     continue;
                 }
                 let Some(path) = towards_current.path_from(v).and_then(|p| {
