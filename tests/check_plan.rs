@@ -135,10 +135,12 @@ fn corrupted_plans_are_rejected_with_their_code() {
     p.hops[stop_hop].stop.as_mut().unwrap().nt_min += 1.0;
     p.nt_min += 1.0;
     p.dt_min += 1.0;
-    assert_eq!(check(&p), vec!["P5026"], "wrong nt");
+    // The makespan no longer matches, and (a small swarm) nt is above the optimum.
+    let c = check(&p);
+    assert_eq!(c[0], "P5026", "wrong nt: {c:?}");
+    assert!(c.iter().all(|x| ["P5026", "P5028"].contains(x)), "{c:?}");
 
-    // nt consistent with an assignment that puts every drone on one pad of a multi-pad node is
-    // still a valid (if poor) schedule; but an nt below the lower bound is not.
+    // nt = 0: neither the makespan nor above the lower bound max(max ct, sum ct / pads).
     let mut p = good.clone();
     {
         let stop = p.hops[stop_hop].stop.as_mut().unwrap();
@@ -241,4 +243,55 @@ fn corrupted_plans_are_rejected_with_their_code() {
     let mut p = good.clone();
     p.success = false;
     assert!(check(&p).contains(&"P5002"), "failure reason");
+}
+
+#[test]
+fn a_valid_but_poor_pad_assignment_is_rejected_as_not_optimal() {
+    // flat-stop (instances/tiny/README.md): drones 0.21, 0.21, 0.44 kg arrive at M with ct 6.655,
+    // 6.655, 8.64 min on 2 pads. {0, 2} | {1} is a partition with makespan 6.655 + 8.64 =
+    // 15.295 >= the bound max(8.64, 21.95 / 2) = 10.975, so only the optimality check (optimum
+    // 13.31 = {0, 1} | {2}) rejects it.
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("instances/tiny");
+    let network: Network = read_json(&dir.join("flat-stop.json")).unwrap();
+    let graph = SkywayGraph::new(&network).unwrap();
+    let profile: Profile = read_toml(&dir.join("flat.toml")).unwrap();
+    let request = Request {
+        id: "stop".into(),
+        source: "A".into(),
+        destination: "B".into(),
+        packages_kg: vec![0.21, 0.21, 0.44],
+    };
+    let options = PlanOptions {
+        sharing: SharingPolicy::None,
+        positioning: Positioning::LocationAware,
+        route: RouteMethod::Sequential,
+        support: Some(0),
+    };
+    let report = Context::new(&network, &graph, &profile)
+        .plan(&request, &options)
+        .unwrap();
+    let check = |p: &swarmplan::compose::Plan| {
+        codes(&check_plan(
+            &network,
+            &profile,
+            &request,
+            &report.swarm,
+            SharingPolicy::None,
+            p,
+        ))
+    };
+    assert!(check(&report.plan).is_empty());
+    let mut p = report.plan.clone();
+    let stop = p.hops[0].stop.as_mut().unwrap();
+    let extra = 15.295 - stop.nt_min;
+    assert!(
+        (extra - (15.295 - 13.31)).abs() < 1e-9,
+        "nt was {}",
+        stop.nt_min
+    );
+    stop.assignment = vec![vec![0, 2], vec![1]];
+    stop.nt_min = 15.295;
+    p.nt_min += extra;
+    p.dt_min += extra;
+    assert_eq!(check(&p), vec!["P5028"]);
 }

@@ -16,7 +16,8 @@
 //!   (P5015 wraps each `C3xxx` of [`check_segment`]; P5016 for transfers without a sharing policy);
 //! * every stop is at a node with pads: `ct_d = (C_d - b_d) / q_v`, the assignment is a partition
 //!   of every drone over at most `k_v` pads whose makespan equals `nt`, and
-//!   `nt >= max(max ct, sum ct / k_v)` (P5020-P5027);
+//!   `nt >= max(max ct, sum ct / k_v)` (P5020-P5027); with at most [`OPTIMALITY_CHECK_DRONES`]
+//!   drones, `nt` is also compared with the optimal makespan found by exhaustive search (P5028);
 //! * totals: `tt = sum tt`, `nt = sum nt`, `dt = tt + nt`, shared energy = sum of the transfers
 //!   (P5030-P5032).
 
@@ -28,6 +29,10 @@ use crate::error::Violation;
 use crate::precompose::{Role, Swarm};
 use crate::problem::{Network, Profile, Request};
 use std::collections::HashMap;
+
+/// Largest swarm whose node time is re-proved optimal by exhaustive search (at most
+/// `k^n / k!` assignments, about 10^4 for 10 drones on 4 pads with the symmetry cut).
+pub const OPTIMALITY_CHECK_DRONES: usize = 10;
 
 fn close(a: f64, b: f64) -> bool {
     (a - b).abs() <= 1e-6 * (1.0 + a.abs().max(b.abs()))
@@ -517,6 +522,19 @@ fn check_stop(
             ),
         ));
     }
+    if n <= OPTIMALITY_CHECK_DRONES {
+        let best = optimal_makespan_min(&ct, raw.pads as usize);
+        if stop.nt_min > best + 1e-6 * (1.0 + best) {
+            out.push(v(
+                "P5028",
+                format!("{f}.nt_min"),
+                format!(
+                    "nt {} min, but an assignment with makespan {best} min exists",
+                    stop.nt_min
+                ),
+            ));
+        }
+    }
     let max_ct = ct.iter().copied().fold(0.0, f64::max);
     let bound = max_ct.max(ct.iter().sum::<f64>() / raw.pads as f64);
     if stop.nt_min < bound - 1e-6 * (1.0 + bound) {
@@ -528,5 +546,38 @@ fn check_stop(
                 stop.nt_min
             ),
         ));
+    }
+}
+
+/// Optimal makespan of `ct` on `pads` identical pads by exhaustive search: each drone in turn goes
+/// on a pad already used or on the first empty one (pads are interchangeable), cut when the
+/// partial makespan reaches the best found.
+fn optimal_makespan_min(ct: &[f64], pads: usize) -> f64 {
+    fn go(i: usize, ct: &[f64], load: &mut Vec<f64>, pads: usize, best: &mut f64) {
+        let makespan = load.iter().copied().fold(0.0, f64::max);
+        if makespan >= *best {
+            return;
+        }
+        if i == ct.len() {
+            *best = makespan;
+            return;
+        }
+        for p in 0..load.len() {
+            load[p] += ct[i];
+            go(i + 1, ct, load, pads, best);
+            load[p] -= ct[i];
+        }
+        if load.len() < pads {
+            load.push(ct[i]);
+            go(i + 1, ct, load, pads, best);
+            load.pop();
+        }
+    }
+    let mut best = f64::INFINITY;
+    go(0, ct, &mut Vec::with_capacity(pads), pads, &mut best);
+    if best.is_finite() {
+        best
+    } else {
+        0.0
     }
 }
