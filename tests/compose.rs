@@ -122,6 +122,8 @@ fn direct_reach_flies_straight_without_a_stop() {
         assert_close(p.nt_min, 0.0, "nt");
         assert_close(p.hops[0].arrival_battery_mah[0], 467.6, "arrival");
         assert_eq!(p.shared_mah, 0.0);
+        // +0.0, not -0.0 (which reports printed as "-0.0" before the fix in src/eaas/simulate.rs).
+        assert!(p.hops[0].shared_mah.is_sign_positive() && p.hops[0].shared_mah == 0.0);
     }
 }
 

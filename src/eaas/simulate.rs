@@ -39,7 +39,8 @@ impl Run {
         SegmentOutcome {
             feasible: self.failure.is_none(),
             failure: self.failure,
-            shared_mah: self.transfers.iter().map(|t| t.energy_mah).sum(),
+            // fold from +0.0: `f64::sum` of no transfers is -0.0, printed as `-0.0` in reports.
+            shared_mah: self.transfers.iter().fold(0.0, |a, t| a + t.energy_mah),
             transfers: self.transfers,
             final_battery_mah,
             min_battery_mah: self.min_battery,
