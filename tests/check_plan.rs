@@ -239,6 +239,12 @@ fn corrupted_plans_are_rejected_with_their_code() {
     p.hops[stop_hop].stop.as_mut().unwrap().charge_times_min[0] += 0.5;
     assert!(check(&p).contains(&"P5022"), "charge time");
 
+    // Arrival batteries missing a drone: reported, not a panic.
+    let mut p = good.clone();
+    p.hops[stop_hop].arrival_battery_mah.pop();
+    let c = check(&p);
+    assert!(c.contains(&"P5014") && c.contains(&"P5022"), "{c:?}");
+
     // A failed plan without a reason.
     let mut p = good.clone();
     p.success = false;

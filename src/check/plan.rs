@@ -447,6 +447,17 @@ fn check_stop(
         return;
     }
     let n = swarm.drones.len();
+    if hop.arrival_battery_mah.len() != n {
+        out.push(v(
+            "P5022",
+            format!("{f}.charge_times_min"),
+            format!(
+                "{} arrival batteries for {n} drones: charge times undefined",
+                hop.arrival_battery_mah.len()
+            ),
+        ));
+        return;
+    }
     let rate = raw
         .pad_charge_rate_mah_per_min
         .unwrap_or(profile.pads.charge_rate_mah_per_min);
