@@ -32,7 +32,8 @@ use nalgebra::Vector2;
 pub fn slots_m(kind: FormationKind, n: usize, spacing_m: f64) -> Vec<Vector2<f64>> {
     let s = spacing_m;
     let a = spacing_m / std::f64::consts::SQRT_2;
-    match kind {
+    // Adding +0.0 turns a negative zero into +0.0, so the front slot reads (0, 0) in reports.
+    let slots: Vec<Vector2<f64>> = match kind {
         FormationKind::Column => (0..n).map(|k| Vector2::new(-(k as f64) * s, 0.0)).collect(),
         FormationKind::Front => {
             let mid = (n as f64 - 1.0) / 2.0;
@@ -54,7 +55,11 @@ pub fn slots_m(kind: FormationKind, n: usize, spacing_m: f64) -> Vec<Vector2<f64
             })
             .collect(),
         FormationKind::Diamond => diamond(n, a),
-    }
+    };
+    slots
+        .into_iter()
+        .map(|p| Vector2::new(p.x + 0.0, p.y + 0.0))
+        .collect()
 }
 
 fn diamond(n: usize, a: f64) -> Vec<Vector2<f64>> {
