@@ -141,9 +141,6 @@ impl Search<'_> {
             }
             if placed {
                 self.nodes += 1;
-                if self.nodes % CLOCK_EVERY_NODES == 0 && self.limit_hit(start, limits) {
-                    return false;
-                }
                 if j + 1 == n {
                     // Leaf: every load is within cap < UB, a strictly better incumbent.
                     self.ub = self.loads.iter().copied().fold(0.0, f64::max);
@@ -153,7 +150,13 @@ impl Search<'_> {
                     }
                     self.cap = self.cap_for(self.ub);
                     self.loads[self.pad_of[j]] = self.prev[j];
+                    if self.limit_hit(start, limits) {
+                        return false;
+                    }
                     continue;
+                }
+                if self.limit_hit(start, limits) {
+                    return false;
                 }
                 j += 1;
                 self.expand(j);
@@ -175,7 +178,7 @@ impl Search<'_> {
             }
         }
         if let Some(t) = limits.time_limit_s {
-            if start.elapsed().as_secs_f64() >= t {
+            if self.nodes % CLOCK_EVERY_NODES == 0 && start.elapsed().as_secs_f64() >= t {
                 return true;
             }
         }
