@@ -41,15 +41,19 @@ fn main() {
     let args: Vec<String> = std::env::args().collect();
     let seed: u64 = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(1);
     let quick = args.iter().any(|a| a == "quick");
-    let reps = if quick { 20 } else { 200 };
+    let reps = if quick { 20 } else { 100 };
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let no_limits = Limits::default();
     let limited = Limits {
         time_limit_s: Some(10.0),
         node_limit: None,
     };
+    let one_second = Limits {
+        time_limit_s: Some(1.0),
+        node_limit: None,
+    };
 
-    println!("# exact branch and bound, {reps} instances per row (seed {seed})");
+    println!("# exact branch and bound, {reps} instances per row (seed {seed}), time limit 1 s");
     println!("times        n   k  median_ms    max_ms  proven  lpt_optimal");
     for (label, integral) in [("int[1,100]", true), ("real[1,100)", false)] {
         for &n in &[10usize, 20, 30] {
@@ -59,7 +63,7 @@ fn main() {
                 let mut lpt_opt = 0;
                 for _ in 0..reps {
                     let t = instance(&mut rng, n, 1, 100, integral);
-                    let s = exact(k, &t, &limited).expect("valid instance");
+                    let s = exact(k, &t, &one_second).expect("valid instance");
                     let l = lpt(k, &t).expect("valid instance");
                     ms.push(s.solve_ms);
                     proven += usize::from(s.status == SolveStatus::Optimal);
