@@ -102,7 +102,7 @@ fn main() {
         );
     }
 
-    let reps_milp = if quick { 3 } else { 10 };
+    let reps_milp = if quick { 3 } else { 5 };
     println!("\n# MILP vs exact, int[1,100], {reps_milp} instances per row, time limit 10 s");
     println!("backend     n   k  milp_median_ms  milp_max_ms  milp_optimal  exact_median_ms  agree");
     for backend in MilpBackend::all() {

@@ -84,31 +84,18 @@ impl Search<'_> {
         self.ncand[j] = 0;
         self.next[j] = 0;
         self.forced[j] = false;
-        // Useful slack bound: pad i can still take at most t_i drones, t_i the largest count
-        // whose t_i shortest remaining drones fit in its slack, and at most the t_i longest
-        // remaining drones' work.
-        let n = self.p.len();
+        // Useful slack bound.
         let mut useful = 0.0;
         for &l in &self.loads {
             let s = cap - l;
-            if s < p_min {
-                continue;
+            if s >= p_min {
+                useful += s;
             }
-            // Shortest t drones weigh rem[n - t]; find the largest t <= n - j within s.
-            let (mut lo, mut hi) = (1, n - j);
-            while lo < hi {
-                let mid = (lo + hi + 1) / 2;
-                if self.rem[n - mid] <= s {
-                    lo = mid;
-                } else {
-                    hi = mid - 1;
-                }
-            }
-            useful += s.min(self.rem[j] - self.rem[j + lo]);
         }
         if useful < self.rem[j] {
             return;
         }
+        let n = self.p.len();
         // Two shortest jobs after j: a pad whose slack is below their sum takes at most one more.
         let two_shortest = if n >= j + 3 {
             self.p[n - 1] + self.p[n - 2]
