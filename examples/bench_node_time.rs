@@ -104,7 +104,9 @@ fn main() {
 
     let reps_milp = if quick { 3 } else { 5 };
     println!("\n# MILP vs exact, int[1,100], {reps_milp} instances per row, time limit 10 s");
-    println!("backend     n   k  milp_median_ms  milp_max_ms  milp_optimal  exact_median_ms  agree");
+    println!(
+        "backend     n   k  milp_median_ms  milp_max_ms  milp_optimal  exact_median_ms  agree"
+    );
     for backend in MilpBackend::all() {
         for &(n, k) in &[(10usize, 3usize), (20, 5), (30, 10), (100, 10)] {
             let mut rng_b = ChaCha8Rng::seed_from_u64(seed ^ (n as u64 * 31 + k as u64));
@@ -141,7 +143,15 @@ fn main() {
     let reps_brute = if quick { 3 } else { 10 };
     println!("\n# exact vs the paper's brute force, int[1,100], {reps_brute} instances per row");
     println!("  n   k  brute_median_ms  exact_median_ms  speed-up  agree");
-    for &(n, k) in &[(8usize, 2usize), (8, 3), (10, 3), (12, 3), (10, 4), (12, 4), (10, 5)] {
+    for &(n, k) in &[
+        (8usize, 2usize),
+        (8, 3),
+        (10, 3),
+        (12, 3),
+        (10, 4),
+        (12, 4),
+        (10, 5),
+    ] {
         let mut bms = Vec::new();
         let mut ems = Vec::new();
         let mut agree = 0;

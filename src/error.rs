@@ -36,7 +36,11 @@ impl Violation {
 
 impl fmt::Display for Violation {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "[{}] {}: {}; {}", self.code, self.field, self.cause, self.action)
+        write!(
+            f,
+            "[{}] {}: {}; {}",
+            self.code, self.field, self.cause, self.action
+        )
     }
 }
 

@@ -20,7 +20,13 @@ fn paper_example_prints_200_70_and_60_minutes_as_json() {
     for (pads, expected) in [("1", 200.0), ("3", 70.0), ("5", 60.0)] {
         for method in ["exact", "milp", "brute"] {
             let (code, stdout, stderr) = swarmplan(&[
-                "node-time", "--pads", pads, "--times", "60,50,40,30,20", "--method", method,
+                "node-time",
+                "--pads",
+                pads,
+                "--times",
+                "60,50,40,30,20",
+                "--method",
+                method,
                 "--json",
             ]);
             assert_eq!(code, 0, "stderr: {stderr}");
@@ -46,7 +52,11 @@ fn file_input_and_human_output_give_the_same_node_time() {
     let dir = std::env::temp_dir().join(format!("swarmplan-nt-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("stop.json");
-    std::fs::write(&path, r#"{"pads": 3, "charge_times_min": [60, 50, 40, 30, 20]}"#).unwrap();
+    std::fs::write(
+        &path,
+        r#"{"pads": 3, "charge_times_min": [60, 50, 40, 30, 20]}"#,
+    )
+    .unwrap();
     let (code, stdout, _) = swarmplan(&["node-time", "--file", path.to_str().unwrap()]);
     assert_eq!(code, 0);
     assert!(stdout.contains("node time: 70 min (optimal"), "{stdout}");
@@ -61,11 +71,17 @@ fn bad_input_exits_2_with_a_coded_message() {
     let malformed = malformed.to_str().unwrap().to_string();
     let cases: Vec<(Vec<&str>, Vec<&str>)> = vec![
         (vec!["--pads", "0", "--times", "60,50"], vec!["E4001"]),
-        (vec!["--pads", "2", "--times", "60,-5,nan"], vec!["E4003", "E4004"]),
+        (
+            vec!["--pads", "2", "--times", "60,-5,nan"],
+            vec!["E4003", "E4004"],
+        ),
         (vec!["--pads", "2", "--times", ""], vec!["E4002"]),
         (vec!["--pads", "2", "--times", "60,abc"], vec!["E4007"]),
         (vec!["--file", &malformed], vec!["E0001"]),
-        (vec!["--pads", "2", "--times", "1,2,3", "--time-limit", "-1"], vec!["E4006"]),
+        (
+            vec!["--pads", "2", "--times", "1,2,3", "--time-limit", "-1"],
+            vec!["E4006"],
+        ),
     ];
     for (args, expected_codes) in cases {
         let mut all = vec!["node-time"];

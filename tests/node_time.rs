@@ -66,7 +66,11 @@ fn paper_example_gives_200_70_and_60_minutes() {
     // (and 70 is optimal: the 60 job alone leaves 140 min for two pads, so one pad gets >= 70);
     // 5 pads: max = 60.
     for (pads, expected) in [(1, 200.0), (3, 70.0), (5, 60.0), (7, 60.0)] {
-        for method in [NodeTimeMethod::Exact, NodeTimeMethod::Brute, NodeTimeMethod::Milp] {
+        for method in [
+            NodeTimeMethod::Exact,
+            NodeTimeMethod::Brute,
+            NodeTimeMethod::Milp,
+        ] {
             for backend in MilpBackend::all() {
                 let s = solve(method, backend, pads, &PAPER_TIMES, &Limits::default()).unwrap();
                 check(pads, &PAPER_TIMES, &s);
@@ -117,7 +121,11 @@ fn exact_node_time_never_exceeds_lpt_and_lpt_meets_grahams_bound() {
         let l = lpt(k, &times).unwrap();
         check(k, &times, &l);
         let graham = 4.0 / 3.0 - 1.0 / (3.0 * k as f64);
-        assert!(e <= l.makespan_min * (1.0 + 1e-9), "exact {e} > lpt {}", l.makespan_min);
+        assert!(
+            e <= l.makespan_min * (1.0 + 1e-9),
+            "exact {e} > lpt {}",
+            l.makespan_min
+        );
         assert!(
             l.makespan_min <= graham * opt * (1.0 + 1e-9),
             "lpt {} above Graham's bound {graham} x {opt} for {times:?} on {k}",
@@ -205,9 +213,11 @@ struct KnownOptimum {
 
 #[test]
 fn known_optima_table_is_reproduced_by_exact_and_milp() {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/instances/node_time/known_optima.json");
-    let table: KnownOptima =
-        serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/instances/node_time/known_optima.json"
+    );
+    let table: KnownOptima = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
     assert!(table.instances.len() >= 5);
     let limits = Limits {
         time_limit_s: Some(60.0),
@@ -240,7 +250,11 @@ fn known_optima_table_is_reproduced_by_exact_and_milp() {
             }
         }
     }
-    assert!(failures.is_empty(), "failing instances:\n{}", failures.join("\n"));
+    assert!(
+        failures.is_empty(),
+        "failing instances:\n{}",
+        failures.join("\n")
+    );
 }
 
 #[test]
@@ -301,14 +315,20 @@ fn validation_reports_every_violation_at_once() {
         time_limit_s: Some(-1.0),
         node_limit: None,
     };
-    assert_eq!(codes(exact(2, &[1.0, 2.0, 3.0], &bad_limit).unwrap_err()), vec!["E4006"]);
+    assert_eq!(
+        codes(exact(2, &[1.0, 2.0, 3.0], &bad_limit).unwrap_err()),
+        vec!["E4006"]
+    );
 }
 
 #[test]
 fn brute_force_refuses_beyond_its_size_limit() {
     // 3^20 = 3,486,784,401 assignments > 10^8.
     let times: Vec<f64> = (1..=20).map(f64::from).collect();
-    assert_eq!(codes(brute(3, &times, &Limits::default()).unwrap_err()), vec!["E4005"]);
+    assert_eq!(
+        codes(brute(3, &times, &Limits::default()).unwrap_err()),
+        vec!["E4005"]
+    );
     // Exact handles it: sum 210 over 3 pads gives the bound 70, met by the partition
     // {20,19,18,13} = 70, {17,16,15,14,8} = 70, {1..=12 without 8} = 78 - 8 = 70.
     let e = exact(3, &times, &Limits::default()).unwrap();

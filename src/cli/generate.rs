@@ -11,5 +11,10 @@ pub enum GenerateCommand {
 
 /// Runs the subcommand.
 pub fn run(_cmd: GenerateCommand) -> Result<i32> {
-    Err(Error::invalid("E0000", "generate", "not available yet", "wait"))
+    Err(Error::invalid(
+        "E0000",
+        "generate",
+        "not available yet",
+        "wait",
+    ))
 }

@@ -8,5 +8,10 @@ pub struct InspectArgs {}
 
 /// Runs the subcommand.
 pub fn run(_args: InspectArgs) -> Result<i32> {
-    Err(Error::invalid("E0000", "inspect", "not available yet", "wait"))
+    Err(Error::invalid(
+        "E0000",
+        "inspect",
+        "not available yet",
+        "wait",
+    ))
 }

@@ -136,7 +136,10 @@ fn print_human(s: &NodeTimeSolution, times: &[f64], backend: MilpBackend) {
     } else {
         s.method.name().to_string()
     };
-    println!("node time: {} min ({status}; method {method})", s.makespan_min);
+    println!(
+        "node time: {} min ({status}; method {method})",
+        s.makespan_min
+    );
     println!("lower bound: {} min", s.lower_bound_min);
     for (i, pad) in s.assignment.iter().enumerate() {
         let load: f64 = pad.iter().map(|&j| times[j]).sum();

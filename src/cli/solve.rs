@@ -8,5 +8,10 @@ pub struct SolveArgs {}
 
 /// Runs the subcommand.
 pub fn run(_args: SolveArgs) -> Result<i32> {
-    Err(Error::invalid("E0000", "solve", "not available yet", "wait"))
+    Err(Error::invalid(
+        "E0000",
+        "solve",
+        "not available yet",
+        "wait",
+    ))
 }

@@ -37,7 +37,7 @@ impl Enumeration<'_> {
                 self.best = makespan;
                 self.best_pad_of.copy_from_slice(&self.pad_of);
             }
-            if self.leaves % 65_536 == 0 {
+            if self.leaves.is_multiple_of(65_536) {
                 if let Some(t) = self.time_limit_s {
                     if self.start.elapsed().as_secs_f64() >= t {
                         self.stopped = true;
@@ -95,7 +95,9 @@ pub fn brute(pads: usize, charge_times_min: &[f64], limits: &Limits) -> Result<N
         let makespan: f64 = charge_times_min.iter().sum();
         return Ok(finish(makespan, vec![(0..n).collect()], true, start));
     }
-    let count = (m as u128).checked_pow(n as u32).filter(|&c| c <= BRUTE_MAX_ASSIGNMENTS);
+    let count = (m as u128)
+        .checked_pow(n as u32)
+        .filter(|&c| c <= BRUTE_MAX_ASSIGNMENTS);
     if count.is_none() {
         return Err(Error::invalid(
             "E4005",

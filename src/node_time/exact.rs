@@ -212,7 +212,7 @@ impl Search<'_> {
             }
         }
         if let Some(t) = limits.time_limit_s {
-            if self.nodes % CLOCK_EVERY_NODES == 0 && start.elapsed().as_secs_f64() >= t {
+            if self.nodes.is_multiple_of(CLOCK_EVERY_NODES) && start.elapsed().as_secs_f64() >= t {
                 return true;
             }
         }

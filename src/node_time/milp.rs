@@ -63,7 +63,12 @@ where
         model.add_constraint(constraint!(once == 1.0));
     }
     for i in 0..m {
-        let load: Expression = (i..n).map(|j| sorted_desc[j] * x[j][i]).sum();
+        let load: Expression = x
+            .iter()
+            .zip(sorted_desc)
+            .skip(i)
+            .map(|(xj, &p)| p * xj[i])
+            .sum();
         model.add_constraint(constraint!(load <= c));
     }
     let solution = model.solve().map_err(|e| Error::Backend {
@@ -83,10 +88,7 @@ where
         if chosen.len() != 1 {
             return Err(Error::Backend {
                 backend: backend_name.to_string(),
-                message: format!(
-                    "returned job {j} on {} pads, not exactly one",
-                    chosen.len()
-                ),
+                message: format!("returned job {j} on {} pads, not exactly one", chosen.len()),
             });
         }
         pad_of[j] = chosen[0];

@@ -19,7 +19,11 @@ pub fn parse_json<T: DeserializeOwned>(text: &str, origin: &str) -> Result<T> {
         Error::invalid(
             "E0001",
             origin,
-            format!("malformed JSON at line {} column {}: {e}", e.line(), e.column()),
+            format!(
+                "malformed JSON at line {} column {}: {e}",
+                e.line(),
+                e.column()
+            ),
             "fix the JSON syntax or the field named; see README.md for the schema",
         )
     })
