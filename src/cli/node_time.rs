@@ -37,7 +37,7 @@ pub struct NodeTimeArgs {
     #[arg(long, value_enum, default_value_t = MilpBackend::all()[0])]
     pub backend: MilpBackend,
     /// Time limit in seconds; a stopped solve reports its incumbent as `feasible`.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub time_limit: Option<f64>,
     /// Print the result as JSON on stdout.
     #[arg(long)]

@@ -37,7 +37,7 @@ impl Enumeration<'_> {
                 self.best = makespan;
                 self.best_pad_of.copy_from_slice(&self.pad_of);
             }
-            if self.leaves % 65_536 == 0 {
+            if self.leaves.is_multiple_of(65_536) {
                 if let Some(t) = self.time_limit_s {
                     if self.start.elapsed().as_secs_f64() >= t {
                         self.stopped = true;
@@ -66,7 +66,8 @@ impl Enumeration<'_> {
 /// * `limits` - a time limit stops the enumeration with its best assignment so far (`Feasible`).
 ///
 /// # Returns
-/// The best assignment found; `Optimal` when the enumeration completed.
+/// The best assignment found; `Optimal` when the enumeration completed, otherwise `Feasible`
+/// with the root lower bound `max(p_max, sum/k, p_k + p_{k+1}, ...)`.
 ///
 /// # Errors
 /// Those of [`validate`]; `E4005` when `min(k, n)^n` exceeds [`BRUTE_MAX_ASSIGNMENTS`];
@@ -123,7 +124,13 @@ pub fn brute(pads: usize, charge_times_min: &[f64], limits: &Limits) -> Result<N
     let assignment = super::lists_from_pad_of(&e.best_pad_of, m);
     // The makespan is recomputed from the raw times so it matches every other method's sums.
     let makespan = super::makespan_of(charge_times_min, &assignment);
-    Ok(finish(makespan, assignment, !e.stopped, start))
+    let mut solution = finish(makespan, assignment, !e.stopped, start);
+    if e.stopped {
+        let (_, sorted) = super::sort_desc(charge_times_min);
+        let lb = super::lower_bound_sorted(m, &sorted, super::all_integral(charge_times_min));
+        solution.lower_bound_min = lb.min(makespan);
+    }
+    Ok(solution)
 }
 
 fn finish(
@@ -135,6 +142,7 @@ fn finish(
     NodeTimeSolution {
         method: NodeTimeMethod::Brute,
         makespan_min: makespan,
+        // An incomplete enumeration gets the root bound from the caller.
         lower_bound_min: if complete { makespan } else { 0.0 },
         status: if complete {
             SolveStatus::Optimal

@@ -51,6 +51,8 @@ struct Search<'a> {
     /// Candidate pads of job `j`: `cands[j*m .. j*m + ncand[j]]`, increasing load.
     cands: Vec<usize>,
     ncand: Vec<usize>,
+    /// Whether job `j`'s pad was fixed by dominance (one candidate, no branching).
+    forced: Vec<bool>,
     /// Next candidate of job `j` to try.
     next: Vec<usize>,
     nodes: u64,
@@ -81,6 +83,7 @@ impl Search<'_> {
         let cap = self.cap;
         self.ncand[j] = 0;
         self.next[j] = 0;
+        self.forced[j] = false;
         // Useful slack bound.
         let mut useful = 0.0;
         for &l in &self.loads {
@@ -92,12 +95,34 @@ impl Search<'_> {
         if useful < self.rem[j] {
             return;
         }
+        let n = self.p.len();
+        // Two shortest jobs after j: a pad whose slack is below their sum takes at most one more.
+        let two_shortest = if n >= j + 3 {
+            self.p[n - 1] + self.p[n - 2]
+        } else {
+            f64::INFINITY
+        };
+        // Identical consecutive jobs: job j goes to a pad at least as loaded as the one job j-1
+        // went to (before it), unless job j-1 was placed by dominance.
+        let floor = if j > 0 && pj == self.p[j - 1] && !self.forced[j - 1] {
+            self.prev[j - 1]
+        } else {
+            f64::NEG_INFINITY
+        };
         let base = j * m;
         let mut count = 0;
         for i in 0..m {
             let l = self.loads[i];
-            if l + pj > cap {
+            if l + pj > cap || l < floor {
                 continue;
+            }
+            // Dominance: pad i fits job j and can take at most one later job (<= p_j): put j
+            // there and branch no further.
+            if cap - l < two_shortest {
+                self.cands[base] = i;
+                self.ncand[j] = 1;
+                self.forced[j] = true;
+                return;
             }
             // Symmetry: pads with equal load lead to the same subtrees.
             if self.cands[base..base + count]
@@ -141,9 +166,6 @@ impl Search<'_> {
             }
             if placed {
                 self.nodes += 1;
-                if self.nodes % CLOCK_EVERY_NODES == 0 && self.limit_hit(start, limits) {
-                    return false;
-                }
                 if j + 1 == n {
                     // Leaf: every load is within cap < UB, a strictly better incumbent.
                     self.ub = self.loads.iter().copied().fold(0.0, f64::max);
@@ -153,11 +175,26 @@ impl Search<'_> {
                     }
                     self.cap = self.cap_for(self.ub);
                     self.loads[self.pad_of[j]] = self.prev[j];
+                    if self.limit_hit(start, limits) {
+                        return false;
+                    }
                     continue;
+                }
+                if self.limit_hit(start, limits) {
+                    return false;
                 }
                 j += 1;
                 self.expand(j);
                 continue;
+            }
+            // A dominance decision holds only while the forced pad still fits job j: once a
+            // better incumbent lowered the capacity below that, branch over the other pads.
+            if self.forced[j] {
+                let i = self.cands[j * self.m];
+                if self.loads[i] + self.p[j] > self.cap {
+                    self.expand(j);
+                    continue;
+                }
             }
             // Job j exhausted: backtrack.
             if j == 0 {
@@ -175,7 +212,7 @@ impl Search<'_> {
             }
         }
         if let Some(t) = limits.time_limit_s {
-            if start.elapsed().as_secs_f64() >= t {
+            if self.nodes.is_multiple_of(CLOCK_EVERY_NODES) && start.elapsed().as_secs_f64() >= t {
                 return true;
             }
         }
@@ -257,6 +294,7 @@ pub fn exact(pads: usize, charge_times_min: &[f64], limits: &Limits) -> Result<N
             prev: vec![0.0; positive],
             cands: vec![0; positive * m],
             ncand: vec![0; positive],
+            forced: vec![false; positive],
             next: vec![0; positive],
             nodes: 0,
         };

@@ -27,7 +27,8 @@ use std::time::Instant;
 
 /// Solves the assignment MILP for times sorted in decreasing order on any good_lp solver.
 ///
-/// Returns the pad of each sorted job and whether the backend proved optimality.
+/// Returns the pad of each sorted job and whether the backend proved optimality (a stop at the
+/// relative MIP gap asked for, at most [`super::REL_TOL`], counts as proven).
 ///
 /// # Errors
 /// [`Error::Backend`] when the backend fails or stops without any feasible assignment.
@@ -62,14 +63,23 @@ where
         model.add_constraint(constraint!(once == 1.0));
     }
     for i in 0..m {
-        let load: Expression = (i..n).map(|j| sorted_desc[j] * x[j][i]).sum();
+        let load: Expression = x
+            .iter()
+            .zip(sorted_desc)
+            .skip(i)
+            .map(|(xj, &p)| p * xj[i])
+            .sum();
         model.add_constraint(constraint!(load <= c));
     }
     let solution = model.solve().map_err(|e| Error::Backend {
         backend: backend_name.to_string(),
         message: format!("{e}; if a time limit was set, raise it"),
     })?;
-    let optimal = matches!(solution.status(), SolutionStatus::Optimal);
+    // A gap stop is a proof within the gap asked for, at most REL_TOL (HiGHS); a time stop is not.
+    let optimal = matches!(
+        solution.status(),
+        SolutionStatus::Optimal | SolutionStatus::GapLimit
+    );
     let mut pad_of = vec![0; n];
     for (j, xj) in x.iter().enumerate() {
         let chosen: Vec<usize> = (0..xj.len())
@@ -133,7 +143,13 @@ pub fn milp(
         }
         #[cfg(feature = "highs")]
         MilpBackend::Highs => solve_with(
-            |p| good_lp::solvers::highs::highs(p).set_threads(1),
+            |p| {
+                // HiGHS stops at a 1e-4 relative gap by default; ask for the gap of REL_TOL.
+                good_lp::solvers::highs::highs(p)
+                    .set_threads(1)
+                    .set_option("mip_rel_gap", super::REL_TOL)
+                    .set_option("mip_abs_gap", 0.0)
+            },
             "highs",
             m,
             &sorted,

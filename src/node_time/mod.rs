@@ -10,13 +10,13 @@
 //! ```
 //!
 //! Four methods, each in its own file:
-//! - [`exact`] ([`exact.rs`](exact)): combinatorial branch and bound, LPT as first upper bound,
+//! - [`exact()`] (`exact.rs`): combinatorial branch and bound, LPT as first upper bound,
 //!   proven optimal unless a limit stops it;
-//! - [`milp`] ([`milp.rs`](milp)): the assignment MILP with symmetry breaking on every enabled
+//! - [`milp()`] (`milp.rs`): the assignment MILP with symmetry breaking on every enabled
 //!   [`MilpBackend`];
-//! - [`lpt`] ([`lpt.rs`](lpt)): Graham's longest-processing-time list schedule, a
+//! - [`lpt()`] (`lpt.rs`): Graham's longest-processing-time list schedule, a
 //!   `4/3 - 1/(3k)` approximation;
-//! - [`brute`] ([`brute.rs`](brute)): the paper's brute force over every assignment, refused
+//! - [`brute()`] (`brute.rs`): the paper's brute force over every assignment, refused
 //!   above [`brute::BRUTE_MAX_ASSIGNMENTS`] assignments.
 //!
 //! Floating-point tolerance: charge times are `f64` minutes. Two makespans are equal when they

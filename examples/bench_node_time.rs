@@ -1,0 +1,173 @@
+//! Benchmark of the node-time methods (P||Cmax) on seeded uniform random charge times.
+//!
+//! ```text
+//! cargo run --release --example bench_node_time -- [SEED] [quick]
+//! ```
+//!
+//! Reports: the exact branch and bound's median and worst time up to 30 drones / 10 pads; 100-job /
+//! 10-pad instances proven optimal; the MILP on every enabled backend on smaller instances with a
+//! time limit; and the speed-up of exact over the paper's brute force where brute force finishes.
+//! Integer times follow the classic P||Cmax classes (uniform whole minutes in [1,100], [20,100],
+//! [50,100]); continuous times are uniform reals in [1,100).
+
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use swarmplan::node_time::{brute, exact, lpt, milp, Limits};
+use swarmplan::solver::{MilpBackend, SolveStatus};
+
+fn instance(rng: &mut ChaCha8Rng, n: usize, lo: u32, hi: u32, integral: bool) -> Vec<f64> {
+    (0..n)
+        .map(|_| {
+            if integral {
+                f64::from(rng.random_range(lo..=hi))
+            } else {
+                rng.random_range(f64::from(lo)..f64::from(hi))
+            }
+        })
+        .collect()
+}
+
+fn median(v: &mut [f64]) -> f64 {
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    if n % 2 == 1 {
+        v[n / 2]
+    } else {
+        0.5 * (v[n / 2 - 1] + v[n / 2])
+    }
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let seed: u64 = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(1);
+    let quick = args.iter().any(|a| a == "quick");
+    let reps = if quick { 20 } else { 100 };
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let no_limits = Limits::default();
+    let limited = Limits {
+        time_limit_s: Some(10.0),
+        node_limit: None,
+    };
+    let one_second = Limits {
+        time_limit_s: Some(1.0),
+        node_limit: None,
+    };
+
+    println!("# exact branch and bound, {reps} instances per row (seed {seed}), time limit 1 s");
+    println!("times        n   k  median_ms    max_ms  proven  lpt_optimal");
+    for (label, integral) in [("int[1,100]", true), ("real[1,100)", false)] {
+        for &n in &[10usize, 20, 30] {
+            for &k in &[2usize, 3, 5, 10] {
+                let mut ms = Vec::with_capacity(reps);
+                let mut proven = 0;
+                let mut lpt_opt = 0;
+                for _ in 0..reps {
+                    let t = instance(&mut rng, n, 1, 100, integral);
+                    let s = exact(k, &t, &one_second).expect("valid instance");
+                    let l = lpt(k, &t).expect("valid instance");
+                    ms.push(s.solve_ms);
+                    proven += usize::from(s.status == SolveStatus::Optimal);
+                    lpt_opt += usize::from(l.makespan_min <= s.makespan_min * (1.0 + 1e-9));
+                }
+                let max = ms.iter().copied().fold(0.0, f64::max);
+                println!(
+                    "{label:<11} {n:>3} {k:>3} {:>10.4} {max:>9.3} {proven:>4}/{reps} {lpt_opt:>6}/{reps}",
+                    median(&mut ms)
+                );
+            }
+        }
+    }
+
+    let reps100 = if quick { 5 } else { 20 };
+    println!("\n# exact on 100 jobs / 10 pads, {reps100} instances per class, time limit 10 s");
+    println!("times         median_ms    max_ms  proven");
+    for (label, lo, hi, integral) in [
+        ("int[1,100]", 1, 100, true),
+        ("int[20,100]", 20, 100, true),
+        ("int[50,100]", 50, 100, true),
+        ("real[1,100)", 1, 100, false),
+    ] {
+        let mut ms = Vec::new();
+        let mut proven = 0;
+        for _ in 0..reps100 {
+            let t = instance(&mut rng, 100, lo, hi, integral);
+            let s = exact(10, &t, &limited).expect("valid instance");
+            ms.push(s.solve_ms);
+            proven += usize::from(s.status == SolveStatus::Optimal);
+        }
+        let max = ms.iter().copied().fold(0.0, f64::max);
+        println!(
+            "{label:<12} {:>10.3} {max:>9.3} {proven:>4}/{reps100}",
+            median(&mut ms)
+        );
+    }
+
+    let reps_milp = if quick { 3 } else { 5 };
+    println!("\n# MILP vs exact, int[1,100], {reps_milp} instances per row, time limit 10 s");
+    println!(
+        "backend     n   k  milp_median_ms  milp_max_ms  milp_optimal  exact_median_ms  agree"
+    );
+    for backend in MilpBackend::all() {
+        for &(n, k) in &[(10usize, 3usize), (20, 5), (30, 10), (100, 10)] {
+            let mut rng_b = ChaCha8Rng::seed_from_u64(seed ^ (n as u64 * 31 + k as u64));
+            let mut ms = Vec::new();
+            let mut ems = Vec::new();
+            let mut optimal = 0;
+            let mut agree = 0;
+            for _ in 0..reps_milp {
+                let t = instance(&mut rng_b, n, 1, 100, true);
+                let e = exact(k, &t, &limited).expect("valid instance");
+                ems.push(e.solve_ms);
+                match milp(k, &t, backend, &limited) {
+                    Ok(s) => {
+                        ms.push(s.solve_ms);
+                        optimal += usize::from(s.status == SolveStatus::Optimal);
+                        agree += usize::from((s.makespan_min - e.makespan_min).abs() < 1e-6);
+                    }
+                    Err(err) => {
+                        ms.push(10_000.0);
+                        eprintln!("milp {} n={n} k={k}: {err}", backend.name());
+                    }
+                }
+            }
+            let max = ms.iter().copied().fold(0.0, f64::max);
+            println!(
+                "{:<8} {n:>4} {k:>3} {:>15.2} {max:>12.2} {optimal:>9}/{reps_milp} {:>16.4} {agree:>4}/{reps_milp}",
+                backend.name(),
+                median(&mut ms),
+                median(&mut ems)
+            );
+        }
+    }
+
+    let reps_brute = if quick { 3 } else { 10 };
+    println!("\n# exact vs the paper's brute force, int[1,100], {reps_brute} instances per row");
+    println!("  n   k  brute_median_ms  exact_median_ms  speed-up  agree");
+    for &(n, k) in &[
+        (8usize, 2usize),
+        (8, 3),
+        (10, 3),
+        (12, 3),
+        (10, 4),
+        (12, 4),
+        (10, 5),
+    ] {
+        let mut bms = Vec::new();
+        let mut ems = Vec::new();
+        let mut agree = 0;
+        for _ in 0..reps_brute {
+            let t = instance(&mut rng, n, 1, 100, true);
+            let b = brute(k, &t, &no_limits).expect("within the brute-force limit");
+            let e = exact(k, &t, &no_limits).expect("valid instance");
+            bms.push(b.solve_ms);
+            ems.push(e.solve_ms);
+            agree += usize::from(b.makespan_min == e.makespan_min);
+        }
+        let bm = median(&mut bms);
+        let em = median(&mut ems);
+        println!(
+            "{n:>3} {k:>3} {bm:>16.3} {em:>16.4} {:>9.0}x {agree:>3}/{reps_brute}",
+            bm / em.max(1e-6)
+        );
+    }
+}

@@ -1,0 +1,99 @@
+//! `swarmplan node-time` end to end: the paper's example and bad input (exit code 2).
+
+use std::process::Command;
+
+fn swarmplan(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_swarmplan"))
+        .args(args)
+        .output()
+        .expect("the binary runs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn paper_example_prints_200_70_and_60_minutes_as_json() {
+    // Paper, section 5: 1 pad 200, 3 pads 70, 5 pads 60.
+    for (pads, expected) in [("1", 200.0), ("3", 70.0), ("5", 60.0)] {
+        for method in ["exact", "milp", "brute"] {
+            let (code, stdout, stderr) = swarmplan(&[
+                "node-time",
+                "--pads",
+                pads,
+                "--times",
+                "60,50,40,30,20",
+                "--method",
+                method,
+                "--json",
+            ]);
+            assert_eq!(code, 0, "stderr: {stderr}");
+            let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+            assert_eq!(v["method"], method);
+            assert_eq!(v["status"], "optimal");
+            assert!((v["makespan_min"].as_f64().unwrap() - expected).abs() < 1e-9);
+            assert!((v["lower_bound_min"].as_f64().unwrap() - expected).abs() < 1e-9);
+            let pads_used = v["assignment"].as_array().unwrap();
+            let mut drones: Vec<u64> = pads_used
+                .iter()
+                .flat_map(|p| p.as_array().unwrap().iter().map(|d| d.as_u64().unwrap()))
+                .collect();
+            drones.sort();
+            assert_eq!(drones, vec![0, 1, 2, 3, 4]);
+            assert!(v["solve_ms"].as_f64().unwrap() >= 0.0);
+        }
+    }
+}
+
+#[test]
+fn file_input_and_human_output_give_the_same_node_time() {
+    let dir = std::env::temp_dir().join(format!("swarmplan-nt-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("stop.json");
+    std::fs::write(
+        &path,
+        r#"{"pads": 3, "charge_times_min": [60, 50, 40, 30, 20]}"#,
+    )
+    .unwrap();
+    let (code, stdout, _) = swarmplan(&["node-time", "--file", path.to_str().unwrap()]);
+    assert_eq!(code, 0);
+    assert!(stdout.contains("node time: 70 min (optimal"), "{stdout}");
+}
+
+#[test]
+fn bad_input_exits_2_with_a_coded_message() {
+    let dir = std::env::temp_dir().join(format!("swarmplan-nt-bad-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let malformed = dir.join("bad.json");
+    std::fs::write(&malformed, r#"{"pads": 3, "charge_times_min": [60, 50"#).unwrap();
+    let malformed = malformed.to_str().unwrap().to_string();
+    let cases: Vec<(Vec<&str>, Vec<&str>)> = vec![
+        (vec!["--pads", "0", "--times", "60,50"], vec!["E4001"]),
+        (
+            vec!["--pads", "2", "--times", "60,-5,nan"],
+            vec!["E4003", "E4004"],
+        ),
+        (vec!["--pads", "2", "--times", ""], vec!["E4002"]),
+        (vec!["--pads", "2", "--times", "60,abc"], vec!["E4007"]),
+        (vec!["--file", &malformed], vec!["E0001"]),
+        (
+            vec!["--pads", "2", "--times", "1,2,3", "--time-limit", "-1"],
+            vec!["E4006"],
+        ),
+    ];
+    for (args, expected_codes) in cases {
+        let mut all = vec!["node-time"];
+        all.extend(&args);
+        let (code, stdout, stderr) = swarmplan(&all);
+        assert_eq!(code, 2, "{args:?}: stderr {stderr}");
+        assert!(stdout.is_empty(), "{args:?}: nothing on stdout");
+        for c in expected_codes {
+            assert!(stderr.contains(c), "{args:?}: {c} missing from {stderr}");
+        }
+    }
+    // Neither --times nor --file: a usage error, also exit 2.
+    let (code, _, _) = swarmplan(&["node-time", "--pads", "2"]);
+    assert_eq!(code, 2);
+}
