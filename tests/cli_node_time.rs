@@ -70,17 +70,17 @@ fn bad_input_exits_2_with_a_coded_message() {
     std::fs::write(&malformed, r#"{"pads": 3, "charge_times_min": [60, 50"#).unwrap();
     let malformed = malformed.to_str().unwrap().to_string();
     let cases: Vec<(Vec<&str>, Vec<&str>)> = vec![
-        (vec!["--pads", "0", "--times", "60,50"], vec!["E4001"]),
+        (vec!["--pads", "0", "--times", "60,50"], vec!["E5001"]),
         (
             vec!["--pads", "2", "--times", "60,-5,nan"],
-            vec!["E4003", "E4004"],
+            vec!["E5003", "E5004"],
         ),
-        (vec!["--pads", "2", "--times", ""], vec!["E4002"]),
-        (vec!["--pads", "2", "--times", "60,abc"], vec!["E4007"]),
+        (vec!["--pads", "2", "--times", ""], vec!["E5002"]),
+        (vec!["--pads", "2", "--times", "60,abc"], vec!["E5007"]),
         (vec!["--file", &malformed], vec!["E0001"]),
         (
             vec!["--pads", "2", "--times", "1,2,3", "--time-limit", "-1"],
-            vec!["E4006"],
+            vec!["E5006"],
         ),
     ];
     for (args, expected_codes) in cases {

@@ -295,10 +295,10 @@ fn codes(e: Error) -> Vec<&'static str> {
 
 #[test]
 fn validation_reports_every_violation_at_once() {
-    assert_eq!(codes(validate(0, &[]).unwrap_err()), vec!["E4001", "E4002"]);
+    assert_eq!(codes(validate(0, &[]).unwrap_err()), vec!["E5001", "E5002"]);
     assert_eq!(
         codes(validate(2, &[5.0, -1.0, f64::NAN, f64::INFINITY]).unwrap_err()),
-        vec!["E4003", "E4004", "E4004"]
+        vec!["E5003", "E5004", "E5004"]
     );
     assert!(validate(1, &[0.0]).is_ok());
     for method in [
@@ -309,7 +309,7 @@ fn validation_reports_every_violation_at_once() {
     ] {
         let e = solve(method, MilpBackend::all()[0], 0, &[1.0], &Limits::default()).unwrap_err();
         assert_eq!(e.exit_code(), 2);
-        assert_eq!(codes(e), vec!["E4001"]);
+        assert_eq!(codes(e), vec!["E5001"]);
     }
     let bad_limit = Limits {
         time_limit_s: Some(-1.0),
@@ -317,7 +317,7 @@ fn validation_reports_every_violation_at_once() {
     };
     assert_eq!(
         codes(exact(2, &[1.0, 2.0, 3.0], &bad_limit).unwrap_err()),
-        vec!["E4006"]
+        vec!["E5006"]
     );
 }
 
@@ -327,7 +327,7 @@ fn brute_force_refuses_beyond_its_size_limit() {
     let times: Vec<f64> = (1..=20).map(f64::from).collect();
     assert_eq!(
         codes(brute(3, &times, &Limits::default()).unwrap_err()),
-        vec!["E4005"]
+        vec!["E5005"]
     );
     // Exact handles it: sum 210 over 3 pads gives the bound 70, met by the partition
     // {20,19,18,13} = 70, {17,16,15,14,8} = 70, {1..=12 without 8} = 78 - 8 = 70.

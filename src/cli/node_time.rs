@@ -57,7 +57,7 @@ pub struct NodeTimeFile {
     pub charge_times_min: Vec<f64>,
 }
 
-/// Parses `60,50,40` into minutes; every unreadable entry is reported (`E4007`).
+/// Parses `60,50,40` into minutes; every unreadable entry is reported (`E5007`).
 fn parse_times(text: &str) -> Result<Vec<f64>> {
     let mut times = Vec::new();
     let mut violations = Vec::new();
@@ -68,7 +68,7 @@ fn parse_times(text: &str) -> Result<Vec<f64>> {
         match part.trim().parse::<f64>() {
             Ok(t) => times.push(t),
             Err(_) => violations.push(Violation::new(
-                "E4007",
+                "E5007",
                 format!("--times[{j}]"),
                 format!("`{}` is not a number", part.trim()),
                 "give comma-separated charge times in minutes, e.g. --times 60,50,40",
@@ -89,7 +89,7 @@ pub fn run(args: NodeTimeArgs) -> Result<i32> {
             let f: NodeTimeFile = read_json(path)?;
             if let Some(v) = f.schema_version.filter(|&v| v != 1) {
                 return Err(Error::invalid(
-                    "E4008",
+                    "E5008",
                     "schema_version",
                     format!("schema version {v} is not known"),
                     "use schema_version 1 or leave it out",

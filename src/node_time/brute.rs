@@ -70,8 +70,8 @@ impl Enumeration<'_> {
 /// with the root lower bound `max(p_max, sum/k, p_k + p_{k+1}, ...)`.
 ///
 /// # Errors
-/// Those of [`validate`]; `E4005` when `min(k, n)^n` exceeds [`BRUTE_MAX_ASSIGNMENTS`];
-/// `E4006` for a bad time limit.
+/// Those of [`validate`]; `E5005` when `min(k, n)^n` exceeds [`BRUTE_MAX_ASSIGNMENTS`];
+/// `E5006` for a bad time limit.
 ///
 /// # Complexity
 /// `O(k^n * k)` time, `O(n + k)` memory.
@@ -101,7 +101,7 @@ pub fn brute(pads: usize, charge_times_min: &[f64], limits: &Limits) -> Result<N
         .filter(|&c| c <= BRUTE_MAX_ASSIGNMENTS);
     if count.is_none() {
         return Err(Error::invalid(
-            "E4005",
+            "E5005",
             "charge_times_min",
             format!(
                 "brute force would enumerate {m}^{n} assignments, more than its limit of {BRUTE_MAX_ASSIGNMENTS}"

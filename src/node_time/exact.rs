@@ -234,7 +234,7 @@ impl Search<'_> {
 /// time is the longest charge time, one drone per pad.
 ///
 /// # Errors
-/// Those of [`validate`]; `E4006` for a negative or non-finite time limit.
+/// Those of [`validate`]; `E5006` for a negative or non-finite time limit.
 ///
 /// # Complexity
 /// Worst case exponential (P||Cmax is strongly NP-hard), `O(n k)` memory; typical swarms

@@ -108,7 +108,7 @@ where
 /// combinatorial root bound as `lower_bound_min`. The makespan is recomputed from the raw times.
 ///
 /// # Errors
-/// Those of [`validate`]; `E4006` for a bad time limit; [`Error::Backend`] when the backend fails.
+/// Those of [`validate`]; `E5006` for a bad time limit; [`Error::Backend`] when the backend fails.
 ///
 /// # Complexity
 /// `n * min(k, n)` binaries; exponential worst case.

@@ -119,8 +119,8 @@ pub struct NodeTimeSolution {
 /// * `charge_times_min` - charge time `p_j` of every drone, minutes.
 ///
 /// # Errors
-/// [`Error::Invalid`] listing `E4001` (no pads), `E4002` (empty list), `E4003` (negative time),
-/// `E4004` (NaN or infinite time).
+/// [`Error::Invalid`] listing `E5001` (no pads), `E5002` (empty list), `E5003` (negative time),
+/// `E5004` (NaN or infinite time).
 ///
 /// # Complexity
 /// `O(n)`.
@@ -128,7 +128,7 @@ pub fn validate(pads: usize, charge_times_min: &[f64]) -> Result<()> {
     let mut violations = Vec::new();
     if pads == 0 {
         violations.push(Violation::new(
-            "E4001",
+            "E5001",
             "pads",
             "the node has 0 pads, so no drone can charge",
             "give at least 1 pad",
@@ -136,7 +136,7 @@ pub fn validate(pads: usize, charge_times_min: &[f64]) -> Result<()> {
     }
     if charge_times_min.is_empty() {
         violations.push(Violation::new(
-            "E4002",
+            "E5002",
             "charge_times_min",
             "the list of charge times is empty",
             "give one charge time (minutes) per drone that lands at the node",
@@ -145,14 +145,14 @@ pub fn validate(pads: usize, charge_times_min: &[f64]) -> Result<()> {
     for (j, &p) in charge_times_min.iter().enumerate() {
         if !p.is_finite() {
             violations.push(Violation::new(
-                "E4004",
+                "E5004",
                 format!("charge_times_min[{j}]"),
                 format!("charge time {p} is not a finite number"),
                 "give a finite charge time in minutes",
             ));
         } else if p < 0.0 {
             violations.push(Violation::new(
-                "E4003",
+                "E5003",
                 format!("charge_times_min[{j}]"),
                 format!("charge time {p} min is negative"),
                 "give a charge time of 0 minutes or more",
@@ -166,11 +166,11 @@ pub fn validate(pads: usize, charge_times_min: &[f64]) -> Result<()> {
     }
 }
 
-/// Checks the limits: a time limit must be a finite number of seconds, 0 or more (`E4006`).
+/// Checks the limits: a time limit must be a finite number of seconds, 0 or more (`E5006`).
 pub(crate) fn validate_limits(limits: &Limits) -> Result<()> {
     match limits.time_limit_s {
         Some(t) if !(t.is_finite() && t >= 0.0) => Err(Error::invalid(
-            "E4006",
+            "E5006",
             "time_limit_s",
             format!("time limit {t} s is not a finite number of seconds >= 0"),
             "give a time limit such as 10, or none",
@@ -191,7 +191,7 @@ pub(crate) fn validate_limits(limits: &Limits) -> Result<()> {
 /// The [`NodeTimeSolution`] of that method.
 ///
 /// # Errors
-/// Those of [`validate`]; `E4005` when brute force is asked beyond its size limit;
+/// Those of [`validate`]; `E5005` when brute force is asked beyond its size limit;
 /// [`Error::Backend`] when a MILP backend fails.
 ///
 /// # Complexity
