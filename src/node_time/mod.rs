@@ -87,7 +87,7 @@ impl NodeTimeMethod {
 pub struct Limits {
     /// Wall-clock limit in seconds; `None` for no limit.
     pub time_limit_s: Option<f64>,
-    /// Limit on branch-and-bound nodes (placements of one drone on one pad) of [`exact`];
+    /// Limit on branch-and-bound nodes (placements of one drone on one pad) of [`exact()`];
     /// `None` for no limit. Other methods ignore it.
     pub node_limit: Option<u64>,
 }

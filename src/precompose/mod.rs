@@ -1,6 +1,6 @@
 //! Pre-composition (paper 5.1): choose the formation from the averaged wind
 //! ([`formation_select`]), the number of support drones from Eq. 2 and the redundancy table
-//! ([`support_count`]), and the initial slot of every drone ([`positioning`]). See
+//! ([`support_count()`]), and the initial slot of every drone ([`positioning`]). See
 //! models/precompose.md.
 
 pub mod formation_select;
