@@ -2,7 +2,9 @@
 //! report success counts (with their denominator), delivery and node times, and run time.
 
 use super::inputs::{self, InstanceArgs};
-use crate::compose::{Context, PlanOptions, RequestReport, RouteMethod};
+use crate::compose::{
+    lpt_node_time_gaps, Context, LptGapSummary, PlanOptions, RequestReport, RouteMethod,
+};
 use crate::eaas::SharingPolicy;
 use crate::error::{Error, Result};
 use crate::precompose::Positioning;
@@ -71,6 +73,8 @@ pub struct Summary {
     pub mean_stops: f64,
     /// Energy shared in flight over all delivered requests, mAh.
     pub shared_mah: f64,
+    /// LPT against the exact node time at every stop of the delivered requests.
+    pub lpt_node_time: LptGapSummary,
     /// Wall-clock time for the whole set, ms.
     pub wall_ms: f64,
 }
@@ -119,7 +123,7 @@ pub fn run(args: BatchArgs) -> Result<i32> {
         let start = Instant::now();
         let reports = plan_all(&context, &requests, &options, args.threads)?;
         let wall_ms = start.elapsed().as_secs_f64() * 1e3;
-        let summary = summarise(options, &reports, wall_ms);
+        let summary = summarise(options, &reports, wall_ms)?;
         if !args.json {
             eprintln!(
                 "sharing {:<4} positioning {:<14} route {:<14} delivered {}/{} mean dt {:.2} min, {:.0} ms",
@@ -151,10 +155,10 @@ pub fn run(args: BatchArgs) -> Result<i32> {
     if args.json {
         super::print_json(&summaries);
     } else {
-        println!("sharing,positioning,route,delivered,requests,mean_dt_min,mean_nt_min,mean_stops,wall_ms");
+        println!("sharing,positioning,route,delivered,requests,mean_dt_min,mean_nt_min,mean_stops,stops,lpt_optimal,lpt_mean_gap,lpt_max_gap,wall_ms");
         for s in &summaries {
             println!(
-                "{},{},{},{},{},{:.3},{:.3},{:.3},{:.0}",
+                "{},{},{},{},{},{:.3},{:.3},{:.3},{},{},{:.6},{:.6},{:.0}",
                 label(&s.options.sharing),
                 label(&s.options.positioning),
                 s.options.route.name(),
@@ -163,6 +167,10 @@ pub fn run(args: BatchArgs) -> Result<i32> {
                 s.mean_dt_min,
                 s.mean_nt_min,
                 s.mean_stops,
+                s.lpt_node_time.stops,
+                s.lpt_node_time.lpt_optimal,
+                s.lpt_node_time.mean_gap,
+                s.lpt_node_time.max_gap,
                 s.wall_ms
             );
         }
@@ -244,10 +252,10 @@ fn plan_all(
     Ok(reports)
 }
 
-fn summarise(options: PlanOptions, reports: &[RequestReport], wall_ms: f64) -> Summary {
+fn summarise(options: PlanOptions, reports: &[RequestReport], wall_ms: f64) -> Result<Summary> {
     let delivered: Vec<&RequestReport> = reports.iter().filter(|r| r.plan.success).collect();
     let k = delivered.len().max(1) as f64;
-    Summary {
+    Ok(Summary {
         options,
         succeeded: delivered.len(),
         requests: reports.len(),
@@ -259,6 +267,11 @@ fn summarise(options: PlanOptions, reports: &[RequestReport], wall_ms: f64) -> S
             .sum::<f64>()
             / k,
         shared_mah: delivered.iter().map(|r| r.plan.shared_mah).sum(),
+        lpt_node_time: lpt_node_time_gaps(
+            delivered
+                .iter()
+                .flat_map(|r| r.plan.hops.iter().filter_map(|h| h.stop.as_ref())),
+        )?,
         wall_ms,
-    }
+    })
 }

@@ -9,11 +9,13 @@
 
 mod baselines;
 mod flight;
+mod gaps;
 mod plan;
 mod request;
 mod sequential;
 
 pub use flight::Planner;
+pub use gaps::{lpt_node_time_gaps, LptGapSummary};
 pub use plan::{Hop, Plan, Stop};
 pub use request::{Context, PlanOptions, RequestReport, SwarmChoice};
 
