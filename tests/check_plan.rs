@@ -203,6 +203,11 @@ fn corrupted_plans_are_rejected_with_their_code() {
     p.dt_min -= dtt;
     assert_eq!(check(&p), vec!["P5013"], "tt mismatch");
 
+    // A per-segment breakdown whose travel times do not add up to the hop's.
+    let mut p = good.clone();
+    p.hops[0].segments[0].tt_min += 1.0;
+    assert_eq!(check(&p), vec!["P5033"], "segment tt");
+
     // dt that is not tt + nt.
     let mut p = good.clone();
     p.dt_min += 5.0;

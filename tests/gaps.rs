@@ -21,7 +21,12 @@ fn lpt_gap_is_measured_against_proven_optima_only() {
         // Optimum 6 = {3, 3} | {2, 2, 2}. Gap (7 - 6) / 6 = 1/6.
         stop(2, &[3.0, 3.0, 2.0, 2.0, 2.0], 6.0, SolveStatus::Optimal),
         // The paper's example on 3 pads: LPT 60 | 50 | 40, 30 -> 40 (70), 20 -> 50 (70): 70 = optimum.
-        stop(3, &[60.0, 50.0, 40.0, 30.0, 20.0], 70.0, SolveStatus::Optimal),
+        stop(
+            3,
+            &[60.0, 50.0, 40.0, 30.0, 20.0],
+            70.0,
+            SolveStatus::Optimal,
+        ),
         // An incumbent is not an optimum: it must be counted apart and left out of the gaps.
         stop(2, &[3.0, 3.0, 2.0, 2.0, 2.0], 7.0, SolveStatus::Feasible),
     ];

@@ -4,13 +4,13 @@
 //! energy model (the physics, [`energy::rate_matrix_mah_per_min`]), every hop's sharing schedule
 //! re-integrated by [`check_segment`] and every stop's pad assignment re-added.
 //!
-//! Rules (see `models/compose.md`), codes `P5001`-`P5032`:
+//! Rules (see `models/compose.md`), codes `P5001`-`P5033`:
 //! * the plan answers the request; a failed plan gives a reason (P5001-P5003);
 //! * hops chain from the source, and, when the plan succeeds, end at the destination; a hop that
 //!   ends anywhere but the destination of a successful plan stops there (P5004-P5008);
 //! * every consecutive pair of path nodes is a segment of the network, the hop's length is the sum
 //!   of the segment lengths (the file's `distance_m`, else Euclidean) and `tt = distance / v_g`
-//!   (P5009-P5013);
+//!   (P5009-P5013), and the hop's per-segment list follows the path and adds up to `tt` (P5033);
 //! * every hop departs with every battery full (at the source and after every stop) (P5014);
 //! * every hop's schedule is feasible and valid for the segment problem rebuilt from the raw data
 //!   (P5015 wraps each `C3xxx` of [`check_segment`]; P5016 for transfers without a sharing policy);
@@ -314,6 +314,24 @@ fn check_hop(
             format!(
                 "reported {} min, distance / speed = {distance_m} / {speed_m_per_min} = {tt} min",
                 hop.tt_min
+            ),
+        ));
+    }
+    // The per-segment breakdown follows the path and adds up to the hop.
+    let pairs_match = hop.segments.len() + 1 == hop.path.len()
+        && hop
+            .segments
+            .iter()
+            .zip(hop.path.windows(2))
+            .all(|(s, w)| s.from == w[0] && s.to == w[1]);
+    let segment_tt: f64 = hop.segments.iter().map(|s| s.tt_min).sum();
+    if !pairs_match || !close(segment_tt, tt) {
+        out.push(v(
+            "P5033",
+            format!("{f}.segments"),
+            format!(
+                "the {} segments listed do not follow the path or their tt sum to {segment_tt} min, not {tt} min",
+                hop.segments.len()
             ),
         ));
     }

@@ -1,7 +1,7 @@
 //! Flying one hop: turning a network path into the segment problem of in-flight sharing, and the
 //! node time at a recharging stop.
 
-use super::plan::{Hop, Stop};
+use super::plan::{Hop, SegmentFlown, Stop};
 use crate::eaas::{self, SegmentOutcome, SegmentProblem, SharingPolicy};
 use crate::energy::{self, Wind};
 use crate::error::Result;
@@ -177,6 +177,19 @@ impl<'a> Planner<'a> {
             path: path.nodes.iter().map(ids).collect(),
             distance_m: path.distance_m,
             tt_min: path.distance_m / self.speed_m_per_min(),
+            segments: path
+                .legs
+                .iter()
+                .map(|leg| SegmentFlown {
+                    from: ids(&leg.from),
+                    to: ids(&leg.to),
+                    distance_m: leg.distance_m,
+                    tt_min: leg.distance_m / self.speed_m_per_min(),
+                    heading_deg: leg.heading_deg,
+                    wind_speed_mps: leg.wind_speed_mps,
+                    wind_from_deg: leg.wind_from_deg,
+                })
+                .collect(),
             shared_mah: outcome.shared_mah,
             transfers: outcome.transfers,
             departure_battery_mah: departure_mah.to_vec(),

@@ -16,7 +16,7 @@ mod sequential;
 
 pub use flight::Planner;
 pub use gaps::{lpt_node_time_gaps, LptGapSummary};
-pub use plan::{Hop, Plan, Stop};
+pub use plan::{Hop, Plan, SegmentFlown, Stop};
 pub use request::{Context, PlanOptions, RequestReport, SwarmChoice};
 
 use serde::Serialize;

@@ -41,6 +41,8 @@ pub struct Hop {
     pub distance_m: f64,
     /// Travel time `tt`, min.
     pub tt_min: f64,
+    /// The network segments flown, in order, each with its own travel time and wind.
+    pub segments: Vec<SegmentFlown>,
     /// In-flight energy transfers during the hop.
     pub transfers: Vec<Transfer>,
     /// Energy shared during the hop, mAh.
@@ -52,6 +54,25 @@ pub struct Hop {
     /// The recharging stop at `to`; `None` at the destination.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub stop: Option<Stop>,
+}
+
+/// One network segment flown within a hop.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SegmentFlown {
+    /// Node id flown from.
+    pub from: String,
+    /// Node id flown to.
+    pub to: String,
+    /// Length, m.
+    pub distance_m: f64,
+    /// Travel time, min.
+    pub tt_min: f64,
+    /// Direction flown, degrees clockwise from north.
+    pub heading_deg: f64,
+    /// Wind speed on the segment, m/s.
+    pub wind_speed_mps: f64,
+    /// Direction the wind blows from, degrees clockwise from north.
+    pub wind_from_deg: f64,
 }
 
 /// A recharging stop: every drone charges to full on one of the node's pads.
