@@ -78,6 +78,29 @@ fn main() {
         }
     }
 
+    let reps_small = if quick { 500 } else { 5000 };
+    let mut rng_s = ChaCha8Rng::seed_from_u64(seed ^ 0x5a11);
+    println!(
+        "\n# exact on small real-valued cases (route planner sizes), n in [2,12], k in [2,4], \
+         real[1,100), {reps_small} instances per row"
+    );
+    println!("  k  median_us  p90_us    max_us  proven");
+    for &k in &[2usize, 3, 4] {
+        let mut us = Vec::with_capacity(reps_small);
+        let mut proven = 0;
+        for _ in 0..reps_small {
+            let n = rng_s.random_range(2..=12);
+            let t = instance(&mut rng_s, n, 1, 100, false);
+            let s = exact(k, &t, &no_limits).expect("valid instance");
+            us.push(s.solve_ms * 1000.0);
+            proven += usize::from(s.status == SolveStatus::Optimal);
+        }
+        let max = us.iter().copied().fold(0.0, f64::max);
+        let med = median(&mut us);
+        let p90 = us[us.len() * 9 / 10];
+        println!("{k:>3} {med:>10.2} {p90:>7.2} {max:>9.1} {proven:>5}/{reps_small}");
+    }
+
     let reps100 = if quick { 5 } else { 20 };
     println!("\n# exact on 100 jobs / 10 pads, {reps100} instances per class, time limit 10 s");
     println!("times         median_ms    max_ms  proven");
