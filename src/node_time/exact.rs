@@ -322,6 +322,7 @@ fn phase2(
         return (done, lb, new_ub);
     }
     let mut first = true;
+    let mut try_proof = false;
     let mut memo = HashSet::new();
     let mut memo_cap = f64::INFINITY;
     for _ in 0..10_000 {
@@ -329,13 +330,17 @@ fn phase2(
             return (true, lb, ub);
         }
         // Whole minutes: the smallest makespan not yet excluded. Real minutes: first the bound
-        // itself, then the midpoint.
+        // itself; after a new incumbent, just below it (the proof that ends the search); else the
+        // midpoint of the gap.
         let c = if integral || first {
             lb
+        } else if try_proof {
+            ub * (1.0 - 2.0 * REL_TOL)
         } else {
             0.5 * (lb + ub)
         };
         first = false;
+        try_proof = false;
         let c_run = if integral { c } else { c * (1.0 + CAP_SLACK) };
         if c_run > memo_cap {
             memo.clear();
@@ -349,6 +354,7 @@ fn phase2(
                 if found < ub {
                     ub = found;
                     pad_of.copy_from_slice(&search.pad_of);
+                    try_proof = true;
                 }
                 if integral {
                     // Every smaller whole makespan was excluded.
@@ -526,6 +532,8 @@ mod tests {
                 .collect();
             let b = brute(k, &times, &Limits::default()).unwrap();
             let e = exact_phased(k, &times, &Limits::default(), 0).unwrap();
+            let full = exact(k, &times, &Limits::default()).unwrap();
+            assert!((full.makespan_min - b.makespan_min).abs() <= 1e-9 * b.makespan_min.max(1.0));
             assert_eq!(e.status, SolveStatus::Optimal);
             let recomputed = crate::node_time::makespan_of(&times, &e.assignment);
             assert_eq!(recomputed, e.makespan_min);
