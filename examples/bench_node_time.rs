@@ -5,7 +5,8 @@
 //! ```
 //!
 //! Reports: the exact branch and bound's median and worst time up to 30 drones / 10 pads; 100-job /
-//! 10-pad instances proven optimal; the MILP on every enabled backend on smaller instances with a
+//! 10-pad instances proven optimal; the route planner's small real-valued cases (n <= 12, k <= 4);
+//! the MILP on every enabled backend on smaller instances with a
 //! time limit; and the speed-up of exact over the paper's brute force where brute force finishes.
 //! Integer times follow the classic P||Cmax classes (uniform whole minutes in [1,100], [20,100],
 //! [50,100]); continuous times are uniform reals in [1,100).
