@@ -5,7 +5,8 @@
 //! ```
 //!
 //! Reports: the exact branch and bound's median and worst time up to 30 drones / 10 pads; 100-job /
-//! 10-pad instances proven optimal; the MILP on every enabled backend on smaller instances with a
+//! 10-pad instances proven optimal; the route planner's small real-valued cases (n <= 12, k <= 4);
+//! the MILP on every enabled backend on smaller instances with a
 //! time limit; and the speed-up of exact over the paper's brute force where brute force finishes.
 //! Integer times follow the classic P||Cmax classes (uniform whole minutes in [1,100], [20,100],
 //! [50,100]); continuous times are uniform reals in [1,100).
@@ -76,6 +77,29 @@ fn main() {
                 );
             }
         }
+    }
+
+    let reps_small = if quick { 500 } else { 5000 };
+    let mut rng_s = ChaCha8Rng::seed_from_u64(seed ^ 0x5a11);
+    println!(
+        "\n# exact on small real-valued cases (route planner sizes), n in [2,12], k in [2,4], \
+         real[1,100), {reps_small} instances per row"
+    );
+    println!("  k  median_us  p90_us    max_us  proven");
+    for &k in &[2usize, 3, 4] {
+        let mut us = Vec::with_capacity(reps_small);
+        let mut proven = 0;
+        for _ in 0..reps_small {
+            let n = rng_s.random_range(2..=12);
+            let t = instance(&mut rng_s, n, 1, 100, false);
+            let s = exact(k, &t, &no_limits).expect("valid instance");
+            us.push(s.solve_ms * 1000.0);
+            proven += usize::from(s.status == SolveStatus::Optimal);
+        }
+        let max = us.iter().copied().fold(0.0, f64::max);
+        let med = median(&mut us);
+        let p90 = us[us.len() * 9 / 10];
+        println!("{k:>3} {med:>10.2} {p90:>7.2} {max:>9.1} {proven:>5}/{reps_small}");
     }
 
     let reps100 = if quick { 5 } else { 20 };

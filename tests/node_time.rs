@@ -109,6 +109,28 @@ fn exact_equals_brute_force_on_random_small_cases() {
 }
 
 #[test]
+fn exact_node_time_equals_brute_force_on_real_times() {
+    // Real-valued times (no ties, no whole minutes): the optimum is rarely the root bound, so the
+    // searches run to their proof. Brute force is the independent reference.
+    let mut rng = ChaCha8Rng::seed_from_u64(23);
+    for case in 0..1000 {
+        let n = rng.random_range(2..=10);
+        let k = rng.random_range(2..=4);
+        let times: Vec<f64> = (0..n).map(|_| rng.random_range(0.5..100.0)).collect();
+        let b = brute(k, &times, &Limits::default()).unwrap();
+        let e = exact(k, &times, &Limits::default()).unwrap();
+        check(k, &times, &e);
+        assert_eq!(e.status, SolveStatus::Optimal);
+        assert!(
+            (e.makespan_min - b.makespan_min).abs() <= 1e-9 * b.makespan_min,
+            "case {case}: k={k} times={times:?}: exact {} brute {}",
+            e.makespan_min,
+            b.makespan_min
+        );
+    }
+}
+
+#[test]
 fn exact_node_time_never_exceeds_lpt_and_lpt_meets_grahams_bound() {
     let mut rng = ChaCha8Rng::seed_from_u64(7);
     for _ in 0..400 {

@@ -1,8 +1,9 @@
-//! Exact node time: combinatorial branch and bound for P||Cmax (see `models/node_time.md`).
+//! Exact node time for P||Cmax in two phases (see `models/node_time.md`, "Exact method").
 //!
-//! Jobs (drones) are taken in decreasing charge time `p_1 >= ... >= p_n`; a node of the search
-//! tree fixes the pads of jobs `1..j`. The search only looks for assignments strictly better than
-//! the incumbent `UB`, so every pad load must stay within the capacity
+//! Phase 1, the assignment branch and bound: jobs (drones) are taken in decreasing charge time
+//! `p_1 >= ... >= p_n`; a node of the search tree fixes the pads of jobs `1..j`. The search only
+//! looks for assignments strictly better than the incumbent `UB`, so every pad load must stay
+//! within the capacity
 //!
 //! ```text
 //! cap = UB - 1            when every p_j is a whole number of minutes,
@@ -12,9 +13,15 @@
 //! and a node is pruned when the useful slack `sum_i (cap - L_i)` over pads whose slack can still
 //! take the shortest job is below the remaining work `sum_{l >= j} p_l`. Symmetry: among pads with
 //! equal load (in particular all empty pads) only one is tried. LPT gives the first `UB`; pads are
-//! tried by increasing load, so the first dive follows LPT's rule. The search stops as soon as `UB` meets the root lower bound or
-//! the tree is exhausted: then `UB` is proven optimal.
+//! tried by increasing load, so the first dive follows LPT's rule. It stops as soon as `UB` meets
+//! the root lower bound or the tree is exhausted (then `UB` is proven optimal), or after
+//! `PHASE1_NODES` nodes.
+//!
+//! Phase 2 (`decision.rs`): local search on the incumbent, the Martello–Toth `L2` bound, and the
+//! decision version "do all jobs fit on `k` pads of capacity `C`?" by bin completion, for
+//! `C = LB, LB + 1, ...` (whole minutes) or by bisection between `LB` and `UB` (real minutes).
 
+use super::decision::{l2_lift, local_search, BinCompletion, Budget, Decision, CAP_SLACK};
 use super::lpt::lpt_sorted;
 use super::{
     all_integral, elapsed_ms, le_tol, lists_from_pad_of, lower_bound_sorted, one_per_pad,
@@ -22,10 +29,18 @@ use super::{
 };
 use crate::error::Result;
 use crate::solver::SolveStatus;
+use std::collections::HashSet;
 use std::time::Instant;
 
 /// How often (in nodes) the search reads the clock.
 const CLOCK_EVERY_NODES: u64 = 1024;
+
+/// Nodes of the assignment search before the decision version takes over (phase 1).
+const PHASE1_NODES: u64 = 2000;
+
+/// Largest `n k` for the bin-completion search (its recursion depth is at most `n k`); larger
+/// instances continue with the assignment search.
+const DECISION_MAX_NK: usize = 3000;
 
 /// Depth-first branch and bound over the positive jobs, sorted decreasingly.
 struct Search<'a> {
@@ -220,6 +235,148 @@ impl Search<'_> {
     }
 }
 
+/// Runs the assignment branch and bound from incumbent `ub` (pads in `best`, updated in place)
+/// with the node counter starting at `nodes0`; returns (proof complete, incumbent, nodes).
+#[allow(clippy::too_many_arguments)]
+fn run_assignment_search(
+    m: usize,
+    p: &[f64],
+    integral: bool,
+    lb: f64,
+    ub: f64,
+    best: &mut [usize],
+    start: Instant,
+    limits: &Limits,
+    nodes0: u64,
+) -> (bool, f64, u64) {
+    let n = p.len();
+    let mut rem = vec![0.0; n + 1];
+    for j in (0..n).rev() {
+        rem[j] = rem[j + 1] + p[j];
+    }
+    let mut search = Search {
+        p,
+        rem,
+        m,
+        integral,
+        lb,
+        ub,
+        best: best.to_vec(),
+        cap: 0.0,
+        loads: vec![0.0; m],
+        pad_of: vec![0; n],
+        prev: vec![0.0; n],
+        cands: vec![0; n * m],
+        ncand: vec![0; n],
+        forced: vec![false; n],
+        next: vec![0; n],
+        nodes: nodes0,
+    };
+    search.cap = search.cap_for(ub);
+    let done = search.run(start, limits);
+    best.copy_from_slice(&search.best);
+    (done, search.ub, search.nodes)
+}
+
+/// Largest load of the assignment `pad_of` of the sorted drones `p`.
+fn makespan_sorted(m: usize, p: &[f64], pad_of: &[usize]) -> f64 {
+    let mut loads = vec![0.0_f64; m];
+    for (j, &i) in pad_of.iter().enumerate() {
+        loads[i] += p[j];
+    }
+    loads.iter().copied().fold(0.0, f64::max)
+}
+
+/// Phase 2: local search on the incumbent, the `L2` bound, then the decision version from the
+/// lower bound up (whole minutes) or by bisection (real minutes). Returns (proven, lower bound,
+/// incumbent makespan); `pad_of` holds the incumbent.
+fn phase2(
+    m: usize,
+    p: &[f64],
+    integral: bool,
+    mut lb: f64,
+    mut ub: f64,
+    pad_of: &mut [usize],
+    budget: &mut Budget,
+) -> (bool, f64, f64) {
+    let proven = |ub: f64, lb: f64| if integral { ub <= lb } else { le_tol(ub, lb) };
+    let mut trial = pad_of.to_vec();
+    let improved = local_search(m, p, &mut trial);
+    if improved < ub {
+        ub = improved;
+        pad_of.copy_from_slice(&trial);
+    }
+    if let Some(fail) = l2_lift(p, m, lb, ub, integral) {
+        lb = lb.max(if integral { fail + 1.0 } else { fail });
+    }
+    if proven(ub, lb) {
+        return (true, lb, ub);
+    }
+    if p.len() * m > DECISION_MAX_NK {
+        let (done, new_ub, nodes) = run_assignment_search(
+            m,
+            p,
+            integral,
+            lb,
+            ub,
+            pad_of,
+            budget.start,
+            budget.limits,
+            budget.nodes,
+        );
+        budget.nodes = nodes;
+        return (done, lb, new_ub);
+    }
+    let mut first = true;
+    let mut try_proof = false;
+    let mut memo = HashSet::new();
+    let mut memo_cap = f64::INFINITY;
+    for _ in 0..10_000 {
+        if proven(ub, lb) {
+            return (true, lb, ub);
+        }
+        // Whole minutes: the smallest makespan not yet excluded. Real minutes: first the bound
+        // itself; after a new incumbent, just below it (the proof that ends the search); else the
+        // midpoint of the gap.
+        let c = if integral || first {
+            lb
+        } else if try_proof {
+            ub * (1.0 - 0.5 * REL_TOL)
+        } else {
+            0.5 * (lb + ub)
+        };
+        first = false;
+        try_proof = false;
+        let c_run = if integral { c } else { c * (1.0 + CAP_SLACK) };
+        if c_run > memo_cap {
+            memo.clear();
+        }
+        memo_cap = c_run;
+        let mut search = BinCompletion::new(p, m, c_run, integral, std::mem::take(&mut memo));
+        let decision = search.decide(budget);
+        match decision {
+            Decision::Fits => {
+                let found = makespan_sorted(m, p, &search.pad_of);
+                if found < ub {
+                    ub = found;
+                    pad_of.copy_from_slice(&search.pad_of);
+                    try_proof = true;
+                }
+                if integral {
+                    // Every smaller whole makespan was excluded.
+                    lb = lb.max(ub.min(c));
+                }
+            }
+            Decision::DoesNotFit => {
+                lb = if integral { c + 1.0 } else { lb.max(c) };
+            }
+            Decision::Stopped => return (false, lb, ub),
+        }
+        memo = search.into_memo();
+    }
+    (proven(ub, lb), lb, ub)
+}
+
 /// Exact node time by combinatorial branch and bound.
 ///
 /// # Arguments
@@ -229,16 +386,19 @@ impl Search<'_> {
 ///
 /// # Returns
 /// A [`NodeTimeSolution`] with method `exact`: `Optimal` with `lower_bound_min == makespan_min`
-/// when the proof completed; `Feasible` with the incumbent and the root lower bound
-/// `max(p_max, sum/k, p_k + p_{k+1}, ...)` when a limit stopped it. With `pads >= drones` the node
-/// time is the longest charge time, one drone per pad.
+/// when the proof completed; `Feasible` with the incumbent and the best proven lower bound (the
+/// root bound `max(p_max, sum/k, p_k + p_{k+1}, ...)`, lifted by `L2` and by failed decisions)
+/// when a limit stopped it. With `pads >= drones` the node time is the longest charge time, one
+/// drone per pad.
 ///
 /// # Errors
 /// Those of [`validate`]; `E5006` for a negative or non-finite time limit.
 ///
 /// # Complexity
-/// Worst case exponential (P||Cmax is strongly NP-hard), `O(n k)` memory; typical swarms
-/// (n <= 30, k <= 10) take microseconds to a millisecond, see `examples/bench_node_time.rs`.
+/// Worst case exponential (P||Cmax is strongly NP-hard); `O(n k)` memory plus at most `2^21`
+/// remembered failed states. Whole-minute swarms up to 30 drones / 10 pads take a median below
+/// 0.1 ms, 100 drones / 10 pads under a millisecond; real-valued times with 20-30 drones on 3-10
+/// pads take tens of milliseconds (see `examples/bench_node_time.rs`).
 ///
 /// # Example
 /// ```
@@ -249,6 +409,19 @@ impl Search<'_> {
 /// assert_eq!(s.status, SolveStatus::Optimal);
 /// ```
 pub fn exact(pads: usize, charge_times_min: &[f64], limits: &Limits) -> Result<NodeTimeSolution> {
+    // Two pads: the assignment search alone is faster than bisection on real-valued times.
+    let phase1_nodes = if pads == 2 { u64::MAX } else { PHASE1_NODES };
+    exact_phased(pads, charge_times_min, limits, phase1_nodes)
+}
+
+/// [`exact`] with `phase1_nodes` nodes of the assignment search before the decision version
+/// (0 skips phase 1; the tests use it to check phase 2 alone).
+pub(crate) fn exact_phased(
+    pads: usize,
+    charge_times_min: &[f64],
+    limits: &Limits,
+    phase1_nodes: u64,
+) -> Result<NodeTimeSolution> {
     validate(pads, charge_times_min)?;
     validate_limits(limits)?;
     let start = Instant::now();
@@ -267,40 +440,62 @@ pub fn exact(pads: usize, charge_times_min: &[f64], limits: &Limits) -> Result<N
     let m = pads;
     let (order, sorted) = sort_desc(charge_times_min);
     let integral = all_integral(charge_times_min);
-    let lb = lower_bound_sorted(m, &sorted, integral);
+    let mut lb = lower_bound_sorted(m, &sorted, integral);
     // Zero-time drones (at the end of `sorted`) change no load: they join pad 0 at the end.
     let positive = sorted.iter().take_while(|&&p| p > 0.0).count();
     let mut pad_sorted = vec![0; n];
-    let ub = lpt_sorted(m, &sorted[..positive], &mut pad_sorted[..positive]);
+    let mut ub = lpt_sorted(m, &sorted[..positive], &mut pad_sorted[..positive]);
+    let proven = |ub: f64, lb: f64| if integral { ub <= lb } else { le_tol(ub, lb) };
     let mut finished = true;
-    let proven_at_root = if integral { ub <= lb } else { le_tol(ub, lb) };
-    if !proven_at_root {
+    if !proven(ub, lb) {
         let p = &sorted[..positive];
-        let mut rem = vec![0.0; positive + 1];
-        for j in (0..positive).rev() {
-            rem[j] = rem[j + 1] + p[j];
-        }
-        let mut search = Search {
-            p,
-            rem,
-            m,
-            integral,
-            lb,
-            ub,
-            best: pad_sorted[..positive].to_vec(),
-            cap: 0.0,
-            loads: vec![0.0; m],
-            pad_of: vec![0; positive],
-            prev: vec![0.0; positive],
-            cands: vec![0; positive * m],
-            ncand: vec![0; positive],
-            forced: vec![false; positive],
-            next: vec![0; positive],
+        let mut budget = Budget {
             nodes: 0,
+            start,
+            limits,
         };
-        search.cap = search.cap_for(ub);
-        finished = search.run(start, limits);
-        pad_sorted[..positive].copy_from_slice(&search.best);
+        // Phase 1: the assignment branch and bound, briefly (small swarms end here).
+        let phase1 = Limits {
+            time_limit_s: limits.time_limit_s,
+            node_limit: Some(
+                limits
+                    .node_limit
+                    .map_or(phase1_nodes, |l| l.min(phase1_nodes)),
+            ),
+        };
+        let (done, new_ub, nodes) = if phase1_nodes > 0 {
+            run_assignment_search(
+                m,
+                p,
+                integral,
+                lb,
+                ub,
+                &mut pad_sorted[..positive],
+                start,
+                &phase1,
+                0,
+            )
+        } else {
+            (false, ub, 0)
+        };
+        ub = new_ub;
+        budget.nodes = nodes;
+        finished = done;
+        let out_of_budget = limits.node_limit.is_some_and(|l| nodes >= l)
+            || limits
+                .time_limit_s
+                .is_some_and(|t| start.elapsed().as_secs_f64() >= t);
+        if !finished && !out_of_budget {
+            (finished, lb, _) = phase2(
+                m,
+                p,
+                integral,
+                lb,
+                ub,
+                &mut pad_sorted[..positive],
+                &mut budget,
+            );
+        }
     }
     let mut pad_of = vec![0; n];
     for (pos, &j) in order.iter().enumerate() {
@@ -320,4 +515,46 @@ pub fn exact(pads: usize, charge_times_min: &[f64], limits: &Limits) -> Result<N
         assignment,
         solve_ms: elapsed_ms(start),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::node_time::brute;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    /// Phase 2 alone (local search, `L2`, bin completion) agrees with brute force.
+    #[test]
+    fn decision_version_alone_equals_brute_force() {
+        let mut rng = ChaCha8Rng::seed_from_u64(40);
+        for case in 0..3000 {
+            let n = rng.random_range(1..=10);
+            let k = rng.random_range(1..=4);
+            let kind = rng.random_range(0..3);
+            let times: Vec<f64> = (0..n)
+                .map(|_| match kind {
+                    0 => f64::from(rng.random_range(0..=30u32)),
+                    1 => rng.random_range(0.0..100.0),
+                    _ => f64::from(rng.random_range(1..=3u32)) * 2.5,
+                })
+                .collect();
+            let b = brute(k, &times, &Limits::default()).unwrap();
+            let e = exact_phased(k, &times, &Limits::default(), 0).unwrap();
+            let full = exact(k, &times, &Limits::default()).unwrap();
+            assert!((full.makespan_min - b.makespan_min).abs() <= 1e-9 * b.makespan_min.max(1.0));
+            assert_eq!(e.status, SolveStatus::Optimal);
+            let recomputed = crate::node_time::makespan_of(&times, &e.assignment);
+            assert_eq!(recomputed, e.makespan_min);
+            let mut count = vec![0; n];
+            e.assignment.iter().flatten().for_each(|&j| count[j] += 1);
+            assert!(count.iter().all(|&c| c == 1), "case {case}: {e:?}");
+            assert!(
+                (e.makespan_min - b.makespan_min).abs() <= 1e-9 * b.makespan_min.max(1.0),
+                "case {case}: k={k} times={times:?}: exact {} brute {}",
+                e.makespan_min,
+                b.makespan_min
+            );
+        }
+    }
 }

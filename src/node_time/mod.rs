@@ -40,6 +40,7 @@ use crate::solver::{MilpBackend, SolveStatus};
 use serde::Serialize;
 
 pub mod brute;
+mod decision;
 pub mod exact;
 pub mod lpt;
 pub mod milp;
