@@ -26,7 +26,7 @@ use crate::compose::{Hop, Plan, Stop};
 use crate::eaas::{self, SegmentOutcome, SegmentProblem, SharingPolicy};
 use crate::energy::{self, Wind};
 use crate::error::Violation;
-use crate::precompose::{Role, Swarm};
+use crate::precompose::Swarm;
 use crate::problem::{Network, Profile, Request};
 use std::collections::HashMap;
 
@@ -385,10 +385,7 @@ fn check_hop(
             .iter()
             .zip(&hop.departure_battery_mah)
             .map(|(d, &b)| eaas::DroneState {
-                role: match d.role {
-                    Role::Delivery => eaas::Role::Delivery,
-                    Role::Support => eaas::Role::Support,
-                },
+                role: d.role,
                 capacity_mah: d.capacity_mah,
                 battery_mah: b,
             })

@@ -101,10 +101,7 @@ impl<'a> Planner<'a> {
             .iter()
             .zip(battery_mah)
             .map(|(d, &b)| eaas::DroneState {
-                role: match d.role {
-                    Role::Delivery => eaas::Role::Delivery,
-                    Role::Support => eaas::Role::Support,
-                },
+                role: d.role,
                 capacity_mah: d.capacity_mah,
                 battery_mah: b,
             })

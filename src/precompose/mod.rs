@@ -15,15 +15,8 @@ use crate::formation::FormationKind;
 use nalgebra::Vector2;
 use serde::{Deserialize, Serialize};
 
-/// What a drone does in the swarm.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Role {
-    /// Carries one package; an EaaS consumer.
-    Delivery,
-    /// Carries extra batteries; an EaaS provider.
-    Support,
-}
+/// What a drone does in the swarm: one type shared with the in-flight sharing model.
+pub use crate::eaas::Role;
 
 /// One drone of a swarm.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

@@ -403,16 +403,6 @@ pub fn validate_profile(p: &Profile) -> Vec<Violation> {
         ("formation.spacing_m", p.formation.spacing_m),
         ("failure.payload_norm_kg", p.failure.payload_norm_kg),
     ];
-    for (field, v) in positive {
-        if !(v.is_finite() && v > 0.0) {
-            out.push(Violation::new(
-                "E2002",
-                field,
-                format!("must be a finite number above 0, got {v}"),
-                "set a positive value; see instances/profiles/paper.toml for its source",
-            ));
-        }
-    }
     let positive_more: [(&str, f64); 10] = [
         ("energy.payload_exponent", p.energy.payload_exponent),
         ("formation.shield_width_m", p.formation.shield_width_m),
@@ -428,7 +418,7 @@ pub fn validate_profile(p: &Profile) -> Vec<Violation> {
         ),
         ("failure.distance_norm_m", p.failure.distance_norm_m),
     ];
-    for (field, v) in positive_more {
+    for (field, v) in positive.into_iter().chain(positive_more) {
         if !(v.is_finite() && v > 0.0) {
             out.push(Violation::new(
                 "E2002",
