@@ -180,6 +180,9 @@ fn bad_input_exits_2_with_the_coded_message() {
         &["--from", "A", "--to", "B", "--packages", "0.5"],
     );
     expect_2(&out, "E1102");
+    // A batch with nothing to plan, and one with no worker thread.
+    expect_2(&swarmplan(&["batch", "--limit", "0"]), "E0005");
+    expect_2(&swarmplan(&["batch", "--threads", "0"]), "E0004");
 }
 
 #[test]

@@ -114,6 +114,14 @@ pub fn run(args: BatchArgs) -> Result<i32> {
     if let Some(n) = args.limit {
         requests.truncate(n);
     }
+    if requests.is_empty() {
+        return Err(Error::invalid(
+            "E0005",
+            "--limit / --requests",
+            "no request to plan",
+            "give a request file with requests and a --limit of 1 or more",
+        ));
+    }
     inputs::validate_requests(&instance, &requests)?;
     let context = Context::new(&instance.network, &instance.graph, &instance.profile);
     let combos = combinations(&args);
@@ -252,6 +260,11 @@ fn plan_all(
     Ok(reports)
 }
 
+/// Sum starting from +0.0, so that an empty sum prints as 0, not -0.
+fn total(values: impl Iterator<Item = f64>) -> f64 {
+    values.fold(0.0, |a, b| a + b)
+}
+
 fn summarise(options: PlanOptions, reports: &[RequestReport], wall_ms: f64) -> Result<Summary> {
     let delivered: Vec<&RequestReport> = reports.iter().filter(|r| r.plan.success).collect();
     let k = delivered.len().max(1) as f64;
@@ -259,14 +272,10 @@ fn summarise(options: PlanOptions, reports: &[RequestReport], wall_ms: f64) -> R
         options,
         succeeded: delivered.len(),
         requests: reports.len(),
-        mean_dt_min: delivered.iter().map(|r| r.plan.dt_min).sum::<f64>() / k,
-        mean_nt_min: delivered.iter().map(|r| r.plan.nt_min).sum::<f64>() / k,
-        mean_stops: delivered
-            .iter()
-            .map(|r| r.plan.stops().len() as f64)
-            .sum::<f64>()
-            / k,
-        shared_mah: delivered.iter().map(|r| r.plan.shared_mah).sum(),
+        mean_dt_min: total(delivered.iter().map(|r| r.plan.dt_min)) / k,
+        mean_nt_min: total(delivered.iter().map(|r| r.plan.nt_min)) / k,
+        mean_stops: total(delivered.iter().map(|r| r.plan.stops().len() as f64)) / k,
+        shared_mah: total(delivered.iter().map(|r| r.plan.shared_mah)),
         lpt_node_time: lpt_node_time_gaps(
             delivered
                 .iter()
