@@ -284,16 +284,40 @@ fn generated_requests_have_the_stated_properties() {
 }
 
 #[test]
-fn shipped_paper_195_instance_validates() {
-    let network: Network = read_json(&instance("paper-195/network.json")).unwrap();
-    assert!(validate_network(&network).is_empty());
-    check_generated_network(&network, 195);
-    let g = SkywayGraph::new(&network).unwrap();
-    let set: swarmplan::problem::RequestSet =
-        read_json(&instance("paper-195/requests.json")).unwrap();
-    assert_eq!(set.requests.len(), 10_000);
-    let v = validate_request_set(&set, &g, 1.4);
-    assert!(v.is_empty(), "{:?}", &v[..v.len().min(5)]);
+fn shipped_195_node_instances_validate() {
+    // sparse-195 uses paper-195's requests (see instances/sparse-195/README.md).
+    for name in ["paper-195", "sparse-195"] {
+        let network: Network = read_json(&instance(&format!("{name}/network.json"))).unwrap();
+        assert!(validate_network(&network).is_empty(), "{name}");
+        check_generated_network(&network, 195);
+        let g = SkywayGraph::new(&network).unwrap();
+        let set: swarmplan::problem::RequestSet =
+            read_json(&instance("paper-195/requests.json")).unwrap();
+        assert_eq!(set.requests.len(), 10_000, "{name}");
+        let v = validate_request_set(&set, &g, 1.4);
+        assert!(v.is_empty(), "{name}: {:?}", &v[..v.len().min(5)]);
+    }
+}
+
+#[test]
+fn sparse_195_is_paper_195_stretched_to_1000_m_blocks() {
+    // Both come from seed 195 with spacing 500 m and 1000 m: the generator scales every position
+    // draw with the spacing, so the node ids, pads and segments are the same and every
+    // coordinate is doubled (to the 0.1 m rounding of the files).
+    let a: Network = read_json(&instance("paper-195/network.json")).unwrap();
+    let b: Network = read_json(&instance("sparse-195/network.json")).unwrap();
+    assert_eq!(a.nodes.len(), b.nodes.len());
+    for (x, y) in a.nodes.iter().zip(&b.nodes) {
+        assert_eq!((&x.id, x.pads), (&y.id, y.pads));
+        assert!((2.0 * x.x_m - y.x_m).abs() <= 0.2 && (2.0 * x.y_m - y.y_m).abs() <= 0.2);
+    }
+    let ends = |n: &Network| {
+        n.segments
+            .iter()
+            .map(|s| (s.from.clone(), s.to.clone()))
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(ends(&a), ends(&b));
 }
 
 proptest! {
