@@ -42,6 +42,9 @@ const PHASE1_NODES: u64 = 2000;
 /// instances continue with the assignment search.
 const DECISION_MAX_NK: usize = 3000;
 
+/// Node budget of the real-valued decision trial at the lower bound itself (phase 2).
+const FIRST_TRIAL_NODES: u64 = 4000;
+
 /// Depth-first branch and bound over the positive jobs, sorted decreasingly.
 struct Search<'a> {
     /// `p[j]`, decreasing, all > 0.
@@ -278,6 +281,18 @@ fn run_assignment_search(
     (done, search.ub, search.nodes)
 }
 
+/// Whether the caller's node or time limit is reached.
+fn budget_spent(budget: &Budget) -> bool {
+    budget
+        .limits
+        .node_limit
+        .is_some_and(|max| budget.nodes >= max)
+        || budget
+            .limits
+            .time_limit_s
+            .is_some_and(|t| budget.start.elapsed().as_secs_f64() >= t)
+}
+
 /// Largest load of the assignment `pad_of` of the sorted drones `p`.
 fn makespan_sorted(m: usize, p: &[f64], pad_of: &[usize]) -> f64 {
     let mut loads = vec![0.0_f64; m];
@@ -345,6 +360,7 @@ fn phase2(
         } else {
             0.5 * (lb + ub)
         };
+        let capped = !integral && first;
         first = false;
         try_proof = false;
         let c_run = if integral { c } else { c * (1.0 + CAP_SLACK) };
@@ -353,7 +369,30 @@ fn phase2(
         }
         memo_cap = c_run;
         let mut search = BinCompletion::new(p, m, c_run, integral, std::mem::take(&mut memo));
-        let decision = search.decide(budget);
+        // Real minutes: the trial at the bound itself only pays off when the bound is the node
+        // time (a perfect split, or the longest drone / pair bound); a failure there proves
+        // nothing new, so that trial gets a small node budget and is dropped when it stops.
+        let decision = if capped {
+            let user_cap = budget.limits.node_limit.unwrap_or(u64::MAX);
+            let trial_limits = Limits {
+                time_limit_s: budget.limits.time_limit_s,
+                node_limit: Some(user_cap.min(budget.nodes.saturating_add(FIRST_TRIAL_NODES))),
+            };
+            let mut trial = Budget {
+                nodes: budget.nodes,
+                start: budget.start,
+                limits: &trial_limits,
+            };
+            let d = search.decide(&mut trial);
+            budget.nodes = trial.nodes;
+            if d == Decision::Stopped && !budget_spent(budget) {
+                memo = search.into_memo();
+                continue;
+            }
+            d
+        } else {
+            search.decide(budget)
+        };
         match decision {
             Decision::Fits => {
                 let found = makespan_sorted(m, p, &search.pad_of);
