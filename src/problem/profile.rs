@@ -384,7 +384,7 @@ pub fn validate_profile(p: &Profile) -> Vec<Violation> {
         ));
     }
     // Strictly positive quantities: zero or negative makes the models meaningless.
-    let positive: [(&str, f64); 14] = [
+    let positive: [(&str, f64); 24] = [
         ("drone.battery_mah", p.drone.battery_mah),
         ("drone.voltage_v", p.drone.voltage_v),
         ("drone.speed_kmh", p.drone.speed_kmh),
@@ -402,8 +402,6 @@ pub fn validate_profile(p: &Profile) -> Vec<Violation> {
         ("energy.wind_limit_mps", p.energy.wind_limit_mps),
         ("formation.spacing_m", p.formation.spacing_m),
         ("failure.payload_norm_kg", p.failure.payload_norm_kg),
-    ];
-    let positive_more: [(&str, f64); 10] = [
         ("energy.payload_exponent", p.energy.payload_exponent),
         ("formation.shield_width_m", p.formation.shield_width_m),
         ("formation.shield_decay_m", p.formation.shield_decay_m),
@@ -418,7 +416,7 @@ pub fn validate_profile(p: &Profile) -> Vec<Violation> {
         ),
         ("failure.distance_norm_m", p.failure.distance_norm_m),
     ];
-    for (field, v) in positive.into_iter().chain(positive_more) {
+    for (field, v) in positive {
         if !(v.is_finite() && v > 0.0) {
             out.push(Violation::new(
                 "E2002",
