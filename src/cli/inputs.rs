@@ -100,18 +100,23 @@ pub fn validate_requests(instance: &Instance, requests: &[Request]) -> Result<()
     }
 }
 
-/// Parses a comma-separated list of numbers; `field` names the option in messages.
-pub fn parse_list(text: &str, field: &str) -> Result<Vec<f64>> {
+/// Parses a comma-separated list of numbers, reporting every unreadable entry under `code`;
+/// `field` names the option in messages. Empty text gives an empty list.
+pub fn parse_list(text: &str, field: &str, code: &'static str) -> Result<Vec<f64>> {
     let mut values = Vec::new();
     let mut violations = Vec::new();
+    if text.trim().is_empty() {
+        // An empty list is for the caller's own rule (an empty package or time list).
+        return Ok(values);
+    }
     for (i, part) in text.split(',').enumerate() {
         match part.trim().parse::<f64>() {
             Ok(v) => values.push(v),
             Err(_) => violations.push(crate::Violation::new(
-                "E0003",
+                code,
                 format!("{field}[{i}]"),
                 format!("`{}` is not a number", part.trim()),
-                "give comma-separated numbers, such as 1.2,0.8",
+                format!("give comma-separated numbers after {field}, such as 60,50,40"),
             )),
         }
     }

@@ -6,7 +6,7 @@
 //! ```
 //! where `stop.json` is `{"pads": 3, "charge_times_min": [60, 50, 40, 30, 20]}`.
 
-use crate::error::{Error, Result, Violation};
+use crate::error::{Error, Result};
 use crate::node_time::{self, Limits, NodeTimeMethod, NodeTimeSolution};
 use crate::problem::io::read_json;
 use crate::solver::{MilpBackend, SolveStatus};
@@ -57,31 +57,6 @@ pub struct NodeTimeFile {
     pub charge_times_min: Vec<f64>,
 }
 
-/// Parses `60,50,40` into minutes; every unreadable entry is reported (`E5007`).
-fn parse_times(text: &str) -> Result<Vec<f64>> {
-    let mut times = Vec::new();
-    let mut violations = Vec::new();
-    if text.trim().is_empty() {
-        return Ok(times);
-    }
-    for (j, part) in text.split(',').enumerate() {
-        match part.trim().parse::<f64>() {
-            Ok(t) => times.push(t),
-            Err(_) => violations.push(Violation::new(
-                "E5007",
-                format!("--times[{j}]"),
-                format!("`{}` is not a number", part.trim()),
-                "give comma-separated charge times in minutes, e.g. --times 60,50,40",
-            )),
-        }
-    }
-    if violations.is_empty() {
-        Ok(times)
-    } else {
-        Err(Error::Invalid(violations))
-    }
-}
-
 /// Runs the subcommand; returns the exit code.
 pub fn run(args: NodeTimeArgs) -> Result<i32> {
     let (pads, times) = match &args.file {
@@ -99,7 +74,8 @@ pub fn run(args: NodeTimeArgs) -> Result<i32> {
         }
         None => {
             let pads = args.pads.unwrap_or(0);
-            match parse_times(args.times.as_deref().unwrap_or("")) {
+            match super::inputs::parse_list(args.times.as_deref().unwrap_or(""), "--times", "E5007")
+            {
                 Ok(times) => (pads, times),
                 Err(Error::Invalid(mut violations)) => {
                     // Report the pad count's problems together with the unreadable times.

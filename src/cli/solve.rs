@@ -57,7 +57,7 @@ pub fn run(args: SolveArgs) -> Result<i32> {
             id: "cli".to_string(),
             source: from.clone(),
             destination: to.clone(),
-            packages_kg: inputs::parse_list(packages, "--packages")?,
+            packages_kg: inputs::parse_list(packages, "--packages", "E0003")?,
         },
         _ => return Err(Error::invalid(
             "E3402",
