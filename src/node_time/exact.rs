@@ -23,6 +23,7 @@
 
 use super::decision::{l2_lift, local_search, BinCompletion, Budget, Decision, CAP_SLACK};
 use super::lpt::lpt_sorted;
+use super::partition::{partition, PARTITION_MAX_DRONES};
 use super::{
     all_integral, elapsed_ms, le_tol, lists_from_pad_of, lower_bound_sorted, one_per_pad,
     sort_desc, validate, validate_limits, Limits, NodeTimeMethod, NodeTimeSolution, REL_TOL,
@@ -41,6 +42,9 @@ const PHASE1_NODES: u64 = 2000;
 /// Largest `n k` for the bin-completion search (its recursion depth is at most `n k`); larger
 /// instances continue with the assignment search.
 const DECISION_MAX_NK: usize = 3000;
+
+/// Fewest drones per pad for which real-valued phase 2 is sequential partitioning.
+const PARTITION_MIN_DRONES_PER_PAD: usize = 7;
 
 /// Node budget of the real-valued decision trial at the lower bound itself (phase 2).
 const FIRST_TRIAL_NODES: u64 = 4000;
@@ -416,6 +420,14 @@ fn phase2(
     (proven(ub, lb), lb, ub)
 }
 
+/// Whether phase 2 is sequential partitioning (`partition.rs`) rather than bin completion: for
+/// real-valued times with at least [`PARTITION_MIN_DRONES_PER_PAD`] drones per pad and at most
+/// [`PARTITION_MAX_DRONES`] drones (measured by `examples/bench_node_time.rs`: there it is faster,
+/// and with fewer drones per pad bin completion is).
+fn use_partition(m: usize, n: usize, integral: bool) -> bool {
+    !integral && n <= PARTITION_MAX_DRONES && n >= PARTITION_MIN_DRONES_PER_PAD * m
+}
+
 /// Exact node time by combinatorial branch and bound.
 ///
 /// # Arguments
@@ -448,18 +460,39 @@ fn phase2(
 /// assert_eq!(s.status, SolveStatus::Optimal);
 /// ```
 pub fn exact(pads: usize, charge_times_min: &[f64], limits: &Limits) -> Result<NodeTimeSolution> {
-    // Two pads: the assignment search alone is faster than bisection on real-valued times.
-    let phase1_nodes = if pads == 2 { u64::MAX } else { PHASE1_NODES };
-    exact_phased(pads, charge_times_min, limits, phase1_nodes)
+    // Two pads: the assignment search alone is faster than bisection on real-valued times (but
+    // not than sequential partitioning).
+    let n = charge_times_min.len();
+    let partition = use_partition(pads, n, all_integral(charge_times_min));
+    let phase1_nodes = if pads == 2 && !partition {
+        u64::MAX
+    } else {
+        PHASE1_NODES
+    };
+    exact_phased(pads, charge_times_min, limits, phase1_nodes, Phase2::Auto)
 }
 
-/// [`exact`] with `phase1_nodes` nodes of the assignment search before the decision version
-/// (0 skips phase 1; the tests use it to check phase 2 alone).
+/// Method of phase 2.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Phase2 {
+    /// Sequential partitioning where [`use_partition`] says so, bin completion otherwise.
+    Auto,
+    /// Bin completion (`decision.rs`).
+    #[cfg_attr(not(test), allow(dead_code))]
+    BinCompletion,
+    /// Sequential partitioning (`partition.rs`); at most [`PARTITION_MAX_DRONES`] drones.
+    #[cfg_attr(not(test), allow(dead_code))]
+    Partition,
+}
+
+/// [`exact`] with `phase1_nodes` nodes of the assignment search before phase 2 (0 skips phase
+/// 1; the tests use it to check each phase-2 method alone).
 pub(crate) fn exact_phased(
     pads: usize,
     charge_times_min: &[f64],
     limits: &Limits,
     phase1_nodes: u64,
+    method: Phase2,
 ) -> Result<NodeTimeSolution> {
     validate(pads, charge_times_min)?;
     validate_limits(limits)?;
@@ -524,7 +557,14 @@ pub(crate) fn exact_phased(
             || limits
                 .time_limit_s
                 .is_some_and(|t| start.elapsed().as_secs_f64() >= t);
-        if !finished && !out_of_budget {
+        let partition_next = match method {
+            Phase2::Auto => use_partition(m, positive, integral),
+            Phase2::BinCompletion => false,
+            Phase2::Partition => positive <= PARTITION_MAX_DRONES,
+        };
+        if !finished && !out_of_budget && partition_next {
+            (finished, lb, _) = partition(m, p, lb, ub, &mut pad_sorted[..positive], &mut budget);
+        } else if !finished && !out_of_budget {
             (finished, lb, _) = phase2(
                 m,
                 p,
@@ -579,7 +619,7 @@ mod tests {
                 })
                 .collect();
             let b = brute(k, &times, &Limits::default()).unwrap();
-            let e = exact_phased(k, &times, &Limits::default(), 0).unwrap();
+            let e = exact_phased(k, &times, &Limits::default(), 0, Phase2::BinCompletion).unwrap();
             let full = exact(k, &times, &Limits::default()).unwrap();
             assert!((full.makespan_min - b.makespan_min).abs() <= 1e-9 * b.makespan_min.max(1.0));
             assert_eq!(e.status, SolveStatus::Optimal);
@@ -595,5 +635,94 @@ mod tests {
                 b.makespan_min
             );
         }
+    }
+
+    /// Sequential partitioning alone (phase 1 skipped) agrees with brute force, on real, whole
+    /// and repeated times.
+    #[test]
+    fn sequential_partitioning_alone_equals_brute_force() {
+        let mut rng = ChaCha8Rng::seed_from_u64(41);
+        for case in 0..3000 {
+            let n = rng.random_range(1..=10);
+            let k = rng.random_range(2..=4);
+            let kind = rng.random_range(0..3);
+            let times: Vec<f64> = (0..n)
+                .map(|_| match kind {
+                    0 => f64::from(rng.random_range(1..=30u32)),
+                    1 => rng.random_range(0.5..100.0),
+                    _ => f64::from(rng.random_range(1..=3u32)) * 2.5,
+                })
+                .collect();
+            let b = brute(k, &times, &Limits::default()).unwrap();
+            let e = exact_phased(k, &times, &Limits::default(), 0, Phase2::Partition).unwrap();
+            assert_eq!(e.status, SolveStatus::Optimal);
+            let mut count = vec![0; n];
+            e.assignment.iter().flatten().for_each(|&j| count[j] += 1);
+            assert!(count.iter().all(|&c| c == 1), "case {case}: {e:?}");
+            let recomputed = crate::node_time::makespan_of(&times, &e.assignment);
+            assert_eq!(recomputed, e.makespan_min);
+            assert!(
+                (e.makespan_min - b.makespan_min).abs() <= 1e-9 * b.makespan_min,
+                "case {case}: k={k} times={times:?}: partitioning {} brute {}",
+                e.makespan_min,
+                b.makespan_min
+            );
+        }
+    }
+
+    /// Beyond brute force's reach, the two phase-2 methods (different searches over different
+    /// spaces: sets per pad in increasing load, and bin completion under bisection) prove the
+    /// same node time on real-valued swarms of 14 to 26 drones.
+    #[test]
+    fn sequential_partitioning_equals_bin_completion_on_larger_real_swarms() {
+        let mut rng = ChaCha8Rng::seed_from_u64(42);
+        for case in 0..150 {
+            let n = rng.random_range(14..=26);
+            let k = rng.random_range(2..=5);
+            let times: Vec<f64> = (0..n).map(|_| rng.random_range(1.0..100.0)).collect();
+            let none = Limits::default();
+            let a = exact_phased(k, &times, &none, 0, Phase2::Partition).unwrap();
+            let b = exact_phased(k, &times, &none, 0, Phase2::BinCompletion).unwrap();
+            assert_eq!(a.status, SolveStatus::Optimal);
+            assert_eq!(b.status, SolveStatus::Optimal);
+            assert_eq!(
+                crate::node_time::makespan_of(&times, &a.assignment),
+                a.makespan_min
+            );
+            assert!(
+                (a.makespan_min - b.makespan_min).abs() <= 1e-9 * b.makespan_min,
+                "case {case}: k={k} times={times:?}: partitioning {} bin completion {}",
+                a.makespan_min,
+                b.makespan_min
+            );
+        }
+    }
+
+    /// A node limit stops sequential partitioning with a valid incumbent, labelled feasible, and
+    /// a lower bound no larger than the optimum.
+    #[test]
+    fn sequential_partitioning_under_a_node_limit_is_feasible_with_a_valid_bound() {
+        let mut rng = ChaCha8Rng::seed_from_u64(43);
+        let mut stopped = 0;
+        for _ in 0..30 {
+            let times: Vec<f64> = (0..24).map(|_| rng.random_range(1.0..100.0)).collect();
+            let opt = exact_phased(3, &times, &Limits::default(), 0, Phase2::BinCompletion)
+                .unwrap()
+                .makespan_min;
+            let limits = Limits {
+                time_limit_s: None,
+                node_limit: Some(3),
+            };
+            let s = exact_phased(3, &times, &limits, 0, Phase2::Partition).unwrap();
+            assert!(s.lower_bound_min <= opt * (1.0 + 1e-12));
+            assert!(s.makespan_min >= opt * (1.0 - 1e-9));
+            if s.status == SolveStatus::Feasible {
+                stopped += 1;
+                assert!(s.lower_bound_min <= s.makespan_min);
+            } else {
+                assert!((s.makespan_min - opt).abs() <= 1e-9 * opt);
+            }
+        }
+        assert!(stopped > 0, "three nodes never stopped the search");
     }
 }

@@ -44,6 +44,7 @@ mod decision;
 pub mod exact;
 pub mod lpt;
 pub mod milp;
+mod partition;
 
 pub use brute::brute;
 pub use exact::exact;
