@@ -4,19 +4,21 @@
 //! cargo run --release --example bench_node_time -- [SEED] [quick]
 //! ```
 //!
-//! Reports: the exact branch and bound's median and worst time up to 30 drones / 10 pads; 100-job /
+//! Reports: the exact branch and bound's median and worst time up to 30 drones / 10 pads; the two
+//! searches after its first phase (sequential partitioning, bin completion) side by side; 100-job /
 //! 10-pad instances proven optimal; the route planner's small real-valued cases (n <= 12, k <= 4);
 //! the MILP on every enabled backend on smaller instances with a
 //! time limit; and the speed-up of exact over the paper's brute force where brute force finishes.
-//! Integer times follow the classic P||Cmax classes (uniform whole minutes in [1,100], [20,100],
-//! [50,100]); continuous times are uniform reals in [1,100).
+//! Integer times follow the classic P||Cmax classes (uniform whole minutes in [1,100], [1,1000],
+//! [1,10000], and [20,100], [50,100] for 100 jobs); continuous times are uniform reals in [1,100).
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use swarmplan::node_time::{brute, exact, lpt, milp, Limits};
+use swarmplan::node_time::{brute, exact, exact_with, lpt, milp, ExactSearch, Limits};
 use swarmplan::solver::{MilpBackend, SolveStatus};
 
 fn instance(rng: &mut ChaCha8Rng, n: usize, lo: u32, hi: u32, integral: bool) -> Vec<f64> {
+    // Whole minutes U[lo, hi], or reals U[lo, hi).
     (0..n)
         .map(|_| {
             if integral {
@@ -55,15 +57,20 @@ fn main() {
     };
 
     println!("# exact branch and bound, {reps} instances per row (seed {seed}), time limit 1 s");
-    println!("times        n   k  median_ms    max_ms  proven  lpt_optimal");
-    for (label, integral) in [("int[1,100]", true), ("real[1,100)", false)] {
+    println!("times           n   k  median_ms    max_ms  proven  lpt_optimal");
+    for (label, hi, integral) in [
+        ("int[1,100]", 100, true),
+        ("int[1,1000]", 1000, true),
+        ("int[1,10000]", 10000, true),
+        ("real[1,100)", 100, false),
+    ] {
         for &n in &[10usize, 20, 30] {
             for &k in &[2usize, 3, 5, 10] {
                 let mut ms = Vec::with_capacity(reps);
                 let mut proven = 0;
                 let mut lpt_opt = 0;
                 for _ in 0..reps {
-                    let t = instance(&mut rng, n, 1, 100, integral);
+                    let t = instance(&mut rng, n, 1, hi, integral);
                     let s = exact(k, &t, &one_second).expect("valid instance");
                     let l = lpt(k, &t).expect("valid instance");
                     ms.push(s.solve_ms);
@@ -72,11 +79,59 @@ fn main() {
                 }
                 let max = ms.iter().copied().fold(0.0, f64::max);
                 println!(
-                    "{label:<11} {n:>3} {k:>3} {:>10.4} {max:>9.3} {proven:>4}/{reps} {lpt_opt:>6}/{reps}",
+                    "{label:<13} {n:>3} {k:>3} {:>10.4} {max:>9.3} {proven:>4}/{reps} {lpt_opt:>6}/{reps}",
                     median(&mut ms)
                 );
             }
         }
+    }
+
+    let reps_cmp = if quick { 5 } else { 10 };
+    let two_seconds = Limits {
+        time_limit_s: Some(2.0),
+        node_limit: None,
+    };
+    println!(
+        "\n# the two searches after phase 1 on real[1,100), {reps_cmp} instances per row, \
+         time limit 2 s (exact picks partitioning for n >= 7k, n <= 40)"
+    );
+    println!("  n   k  partition_median_ms  proven  bin_completion_median_ms  proven  agree");
+    let mut rng_c = ChaCha8Rng::seed_from_u64(seed ^ 0xc0);
+    for &(n, k) in &[
+        (20usize, 2usize),
+        (25, 3),
+        (30, 2),
+        (30, 3),
+        (30, 4),
+        (30, 5),
+        (30, 10),
+        (35, 3),
+        (40, 4),
+        (40, 5),
+    ] {
+        let (mut pm, mut bm) = (Vec::new(), Vec::new());
+        let (mut pp, mut bp, mut agree) = (0, 0, 0);
+        for _ in 0..reps_cmp {
+            let t = instance(&mut rng_c, n, 1, 100, false);
+            let a = exact_with(k, &t, &two_seconds, ExactSearch::Partition).expect("valid");
+            let b = exact_with(k, &t, &two_seconds, ExactSearch::BinCompletion).expect("valid");
+            pm.push(a.solve_ms);
+            bm.push(b.solve_ms);
+            let (ao, bo) = (
+                a.status == SolveStatus::Optimal,
+                b.status == SolveStatus::Optimal,
+            );
+            pp += usize::from(ao);
+            bp += usize::from(bo);
+            agree += usize::from(
+                ao && bo && (a.makespan_min - b.makespan_min).abs() <= 1e-9 * b.makespan_min,
+            );
+        }
+        println!(
+            "{n:>3} {k:>3} {:>20.3} {pp:>4}/{reps_cmp} {:>25.3} {bp:>4}/{reps_cmp} {agree:>4}/{reps_cmp}",
+            median(&mut pm),
+            median(&mut bm)
+        );
     }
 
     let reps_small = if quick { 500 } else { 5000 };

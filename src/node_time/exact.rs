@@ -17,9 +17,14 @@
 //! the root lower bound or the tree is exhausted (then `UB` is proven optimal), or after
 //! `PHASE1_NODES` nodes.
 //!
-//! Phase 2 (`decision.rs`): local search on the incumbent, the Martello–Toth `L2` bound, and the
-//! decision version "do all jobs fit on `k` pads of capacity `C`?" by bin completion, for
-//! `C = LB, LB + 1, ...` (whole minutes) or by bisection between `LB` and `UB` (real minutes).
+//! Phase 2, one of two searches:
+//! - real-valued times with at least 7 drones per pad and at most 40 drones: sequential
+//!   partitioning (`partition.rs`), the fullest pad's set in increasing load, each set found by
+//!   meet in the middle;
+//! - otherwise (`decision.rs`): local search on the incumbent, the Martello–Toth `L2` bound, and
+//!   the decision version "do all jobs fit on `k` pads of capacity `C`?" by bin completion, first
+//!   at `C = LB`, then just below each new incumbent and at midpoints of the gap between `LB` and
+//!   `UB` (whole minutes: of the whole makespans not yet excluded).
 
 use super::decision::{l2_lift, local_search, BinCompletion, Budget, Decision, CAP_SLACK};
 use super::lpt::lpt_sorted;
@@ -354,13 +359,18 @@ fn phase2(
         if proven(ub, lb) {
             return (true, lb, ub);
         }
-        // Whole minutes: the smallest makespan not yet excluded. Real minutes: first the bound
-        // itself; after a new incumbent, just below it (the proof that ends the search); else the
-        // midpoint of the gap.
-        let c = if integral || first {
+        // First the bound itself; after a new incumbent, just below it (the proof that ends the
+        // search); else the midpoint of the gap (whole minutes: of the makespans not excluded).
+        let c = if first {
             lb
         } else if try_proof {
-            ub * (1.0 - 0.5 * REL_TOL)
+            if integral {
+                ub - 1.0
+            } else {
+                ub * (1.0 - 0.5 * REL_TOL)
+            }
+        } else if integral {
+            (0.5 * (lb + ub - 1.0)).floor()
         } else {
             0.5 * (lb + ub)
         };
@@ -404,10 +414,6 @@ fn phase2(
                     ub = found;
                     pad_of.copy_from_slice(&search.pad_of);
                     try_proof = true;
-                }
-                if integral {
-                    // Every smaller whole makespan was excluded.
-                    lb = lb.max(ub.min(c));
                 }
             }
             Decision::DoesNotFit => {
@@ -460,29 +466,61 @@ fn use_partition(m: usize, n: usize, integral: bool) -> bool {
 /// assert_eq!(s.status, SolveStatus::Optimal);
 /// ```
 pub fn exact(pads: usize, charge_times_min: &[f64], limits: &Limits) -> Result<NodeTimeSolution> {
-    // Two pads: the assignment search alone is faster than bisection on real-valued times (but
-    // not than sequential partitioning).
-    let n = charge_times_min.len();
-    let partition = use_partition(pads, n, all_integral(charge_times_min));
+    exact_with(pads, charge_times_min, limits, ExactSearch::Auto)
+}
+
+/// Which search [`exact_with`] runs after the first 2,000 nodes of the assignment branch and
+/// bound (see `models/node_time.md`, "Exact method").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum ExactSearch {
+    /// Sequential partitioning for real-valued times with at least 7 drones per pad and at most
+    /// 40 drones, bin completion otherwise (what [`exact()`] does).
+    #[default]
+    Auto,
+    /// Bin completion under bisection of the makespan (`decision.rs`).
+    BinCompletion,
+    /// Sequential partitioning (`partition.rs`); bin completion above 40 drones with positive
+    /// charge time.
+    Partition,
+}
+
+/// [`exact()`] with the search after the first phase chosen by the caller, to compare the two
+/// searches; every choice returns the same proven node time.
+///
+/// # Arguments
+/// As [`exact()`], and `search`, the phase-2 search.
+///
+/// # Returns
+/// As [`exact()`].
+///
+/// # Errors
+/// As [`exact()`].
+///
+/// # Example
+/// ```
+/// use swarmplan::node_time::{exact_with, ExactSearch, Limits};
+/// let times = [60.0, 50.0, 40.0, 30.0, 20.0];
+/// let s = exact_with(3, &times, &Limits::default(), ExactSearch::Partition).unwrap();
+/// assert_eq!(s.makespan_min, 70.0);
+/// ```
+pub fn exact_with(
+    pads: usize,
+    charge_times_min: &[f64],
+    limits: &Limits,
+    search: ExactSearch,
+) -> Result<NodeTimeSolution> {
+    let positive = charge_times_min.iter().filter(|&&p| p > 0.0).count();
+    let partition = match search {
+        ExactSearch::Auto => use_partition(pads, positive, all_integral(charge_times_min)),
+        ExactSearch::BinCompletion => false,
+        ExactSearch::Partition => positive <= PARTITION_MAX_DRONES,
+    };
     let phase1_nodes = if pads == 2 && !partition {
         u64::MAX
     } else {
         PHASE1_NODES
     };
-    exact_phased(pads, charge_times_min, limits, phase1_nodes, Phase2::Auto)
-}
-
-/// Method of phase 2.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Phase2 {
-    /// Sequential partitioning where [`use_partition`] says so, bin completion otherwise.
-    Auto,
-    /// Bin completion (`decision.rs`).
-    #[cfg_attr(not(test), allow(dead_code))]
-    BinCompletion,
-    /// Sequential partitioning (`partition.rs`); at most [`PARTITION_MAX_DRONES`] drones.
-    #[cfg_attr(not(test), allow(dead_code))]
-    Partition,
+    exact_phased(pads, charge_times_min, limits, phase1_nodes, search)
 }
 
 /// [`exact`] with `phase1_nodes` nodes of the assignment search before phase 2 (0 skips phase
@@ -492,7 +530,7 @@ pub(crate) fn exact_phased(
     charge_times_min: &[f64],
     limits: &Limits,
     phase1_nodes: u64,
-    method: Phase2,
+    search: ExactSearch,
 ) -> Result<NodeTimeSolution> {
     validate(pads, charge_times_min)?;
     validate_limits(limits)?;
@@ -557,10 +595,10 @@ pub(crate) fn exact_phased(
             || limits
                 .time_limit_s
                 .is_some_and(|t| start.elapsed().as_secs_f64() >= t);
-        let partition_next = match method {
-            Phase2::Auto => use_partition(m, positive, integral),
-            Phase2::BinCompletion => false,
-            Phase2::Partition => positive <= PARTITION_MAX_DRONES,
+        let partition_next = match search {
+            ExactSearch::Auto => use_partition(m, positive, integral),
+            ExactSearch::BinCompletion => false,
+            ExactSearch::Partition => positive <= PARTITION_MAX_DRONES,
         };
         if !finished && !out_of_budget && partition_next {
             (finished, lb, _) = partition(m, p, lb, ub, &mut pad_sorted[..positive], &mut budget);
@@ -610,16 +648,19 @@ mod tests {
         for case in 0..3000 {
             let n = rng.random_range(1..=10);
             let k = rng.random_range(1..=4);
-            let kind = rng.random_range(0..3);
+            let kind = rng.random_range(0..4);
             let times: Vec<f64> = (0..n)
                 .map(|_| match kind {
+                    // wide whole minutes: optimum many minutes above the bound
+                    3 => f64::from(rng.random_range(1..=10_000u32)),
                     0 => f64::from(rng.random_range(0..=30u32)),
                     1 => rng.random_range(0.0..100.0),
                     _ => f64::from(rng.random_range(1..=3u32)) * 2.5,
                 })
                 .collect();
             let b = brute(k, &times, &Limits::default()).unwrap();
-            let e = exact_phased(k, &times, &Limits::default(), 0, Phase2::BinCompletion).unwrap();
+            let e =
+                exact_phased(k, &times, &Limits::default(), 0, ExactSearch::BinCompletion).unwrap();
             let full = exact(k, &times, &Limits::default()).unwrap();
             assert!((full.makespan_min - b.makespan_min).abs() <= 1e-9 * b.makespan_min.max(1.0));
             assert_eq!(e.status, SolveStatus::Optimal);
@@ -645,16 +686,18 @@ mod tests {
         for case in 0..3000 {
             let n = rng.random_range(1..=10);
             let k = rng.random_range(2..=4);
-            let kind = rng.random_range(0..3);
+            let kind = rng.random_range(0..4);
             let times: Vec<f64> = (0..n)
                 .map(|_| match kind {
+                    // wide whole minutes: optimum many minutes above the bound
+                    3 => f64::from(rng.random_range(1..=10_000u32)),
                     0 => f64::from(rng.random_range(1..=30u32)),
                     1 => rng.random_range(0.5..100.0),
                     _ => f64::from(rng.random_range(1..=3u32)) * 2.5,
                 })
                 .collect();
             let b = brute(k, &times, &Limits::default()).unwrap();
-            let e = exact_phased(k, &times, &Limits::default(), 0, Phase2::Partition).unwrap();
+            let e = exact_phased(k, &times, &Limits::default(), 0, ExactSearch::Partition).unwrap();
             assert_eq!(e.status, SolveStatus::Optimal);
             let mut count = vec![0; n];
             e.assignment.iter().flatten().for_each(|&j| count[j] += 1);
@@ -681,8 +724,8 @@ mod tests {
             let k = rng.random_range(2..=5);
             let times: Vec<f64> = (0..n).map(|_| rng.random_range(1.0..100.0)).collect();
             let none = Limits::default();
-            let a = exact_phased(k, &times, &none, 0, Phase2::Partition).unwrap();
-            let b = exact_phased(k, &times, &none, 0, Phase2::BinCompletion).unwrap();
+            let a = exact_phased(k, &times, &none, 0, ExactSearch::Partition).unwrap();
+            let b = exact_phased(k, &times, &none, 0, ExactSearch::BinCompletion).unwrap();
             assert_eq!(a.status, SolveStatus::Optimal);
             assert_eq!(b.status, SolveStatus::Optimal);
             assert_eq!(
@@ -706,14 +749,14 @@ mod tests {
         let mut stopped = 0;
         for _ in 0..30 {
             let times: Vec<f64> = (0..24).map(|_| rng.random_range(1.0..100.0)).collect();
-            let opt = exact_phased(3, &times, &Limits::default(), 0, Phase2::BinCompletion)
+            let opt = exact_phased(3, &times, &Limits::default(), 0, ExactSearch::BinCompletion)
                 .unwrap()
                 .makespan_min;
             let limits = Limits {
                 time_limit_s: None,
                 node_limit: Some(3),
             };
-            let s = exact_phased(3, &times, &limits, 0, Phase2::Partition).unwrap();
+            let s = exact_phased(3, &times, &limits, 0, ExactSearch::Partition).unwrap();
             assert!(s.lower_bound_min <= opt * (1.0 + 1e-12));
             assert!(s.makespan_min >= opt * (1.0 - 1e-9));
             if s.status == SolveStatus::Feasible {

@@ -11,7 +11,9 @@
 //!
 //! Four methods, each in its own file:
 //! - [`exact()`] (`exact.rs`): combinatorial branch and bound, LPT as first upper bound,
-//!   proven optimal unless a limit stops it;
+//!   then bin completion (`decision.rs`) or, for real-valued times with many drones per pad,
+//!   sequential partitioning (`partition.rs`); proven optimal unless a limit stops it
+//!   ([`exact_with`] picks the second search);
 //! - [`milp()`] (`milp.rs`): the assignment MILP with symmetry breaking on every enabled
 //!   [`MilpBackend`];
 //! - [`lpt()`] (`lpt.rs`): Graham's longest-processing-time list schedule, a
@@ -47,7 +49,7 @@ pub mod milp;
 mod partition;
 
 pub use brute::brute;
-pub use exact::exact;
+pub use exact::{exact, exact_with, ExactSearch};
 pub use lpt::lpt;
 pub use milp::milp;
 
