@@ -644,6 +644,20 @@ mod tests {
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
 
+    /// `n` charge times of one random kind: whole minutes with ties and zeros, reals, wide whole
+    /// minutes (optimum many minutes above the bound), or few distinct values.
+    fn small_times(rng: &mut ChaCha8Rng, n: usize) -> Vec<f64> {
+        let kind = rng.random_range(0..4);
+        (0..n)
+            .map(|_| match kind {
+                0 => f64::from(rng.random_range(0..=30u32)),
+                1 => rng.random_range(0.0..100.0),
+                2 => f64::from(rng.random_range(1..=10_000u32)),
+                _ => f64::from(rng.random_range(1..=3u32)) * 2.5,
+            })
+            .collect()
+    }
+
     /// Phase 2 alone (local search, `L2`, bin completion) agrees with brute force.
     #[test]
     fn decision_version_alone_equals_brute_force() {
@@ -651,16 +665,7 @@ mod tests {
         for case in 0..3000 {
             let n = rng.random_range(1..=10);
             let k = rng.random_range(1..=4);
-            let kind = rng.random_range(0..4);
-            let times: Vec<f64> = (0..n)
-                .map(|_| match kind {
-                    // wide whole minutes: optimum many minutes above the bound
-                    3 => f64::from(rng.random_range(1..=10_000u32)),
-                    0 => f64::from(rng.random_range(0..=30u32)),
-                    1 => rng.random_range(0.0..100.0),
-                    _ => f64::from(rng.random_range(1..=3u32)) * 2.5,
-                })
-                .collect();
+            let times = small_times(&mut rng, n);
             let b = brute(k, &times, &Limits::default()).unwrap();
             let e =
                 exact_phased(k, &times, &Limits::default(), 0, ExactSearch::BinCompletion).unwrap();
@@ -689,16 +694,7 @@ mod tests {
         for case in 0..3000 {
             let n = rng.random_range(1..=10);
             let k = rng.random_range(2..=4);
-            let kind = rng.random_range(0..4);
-            let times: Vec<f64> = (0..n)
-                .map(|_| match kind {
-                    // wide whole minutes: optimum many minutes above the bound
-                    3 => f64::from(rng.random_range(1..=10_000u32)),
-                    0 => f64::from(rng.random_range(1..=30u32)),
-                    1 => rng.random_range(0.5..100.0),
-                    _ => f64::from(rng.random_range(1..=3u32)) * 2.5,
-                })
-                .collect();
+            let times = small_times(&mut rng, n);
             let b = brute(k, &times, &Limits::default()).unwrap();
             let e = exact_phased(k, &times, &Limits::default(), 0, ExactSearch::Partition).unwrap();
             assert_eq!(e.status, SolveStatus::Optimal);
