@@ -523,17 +523,19 @@ pub fn exact_with(
     } else {
         PHASE1_NODES
     };
-    exact_phased(pads, charge_times_min, limits, phase1_nodes, search)
+    exact_phased(pads, charge_times_min, limits, phase1_nodes, partition)
 }
 
 /// [`exact`] with `phase1_nodes` nodes of the assignment search before phase 2 (0 skips phase
-/// 1; the tests use it to check each phase-2 method alone).
+/// 1; the tests use it to check each phase-2 method alone), and phase 2 by sequential
+/// partitioning when `partition` (at most [`PARTITION_MAX_DRONES`] positive drones), by bin
+/// completion otherwise.
 pub(crate) fn exact_phased(
     pads: usize,
     charge_times_min: &[f64],
     limits: &Limits,
     phase1_nodes: u64,
-    search: ExactSearch,
+    partition_next: bool,
 ) -> Result<NodeTimeSolution> {
     validate(pads, charge_times_min)?;
     validate_limits(limits)?;
@@ -598,11 +600,6 @@ pub(crate) fn exact_phased(
             || limits
                 .time_limit_s
                 .is_some_and(|t| start.elapsed().as_secs_f64() >= t);
-        let partition_next = match search {
-            ExactSearch::Auto => use_partition(m, positive, integral),
-            ExactSearch::BinCompletion => false,
-            ExactSearch::Partition => positive <= PARTITION_MAX_DRONES,
-        };
         if !finished && !out_of_budget && partition_next {
             (finished, lb, _) = partition(m, p, lb, ub, &mut pad_sorted[..positive], &mut budget);
         } else if !finished && !out_of_budget {
@@ -667,8 +664,7 @@ mod tests {
             let k = rng.random_range(1..=4);
             let times = small_times(&mut rng, n);
             let b = brute(k, &times, &Limits::default()).unwrap();
-            let e =
-                exact_phased(k, &times, &Limits::default(), 0, ExactSearch::BinCompletion).unwrap();
+            let e = exact_phased(k, &times, &Limits::default(), 0, false).unwrap();
             let full = exact(k, &times, &Limits::default()).unwrap();
             assert!((full.makespan_min - b.makespan_min).abs() <= 1e-9 * b.makespan_min.max(1.0));
             assert_eq!(e.status, SolveStatus::Optimal);
@@ -696,7 +692,7 @@ mod tests {
             let k = rng.random_range(2..=4);
             let times = small_times(&mut rng, n);
             let b = brute(k, &times, &Limits::default()).unwrap();
-            let e = exact_phased(k, &times, &Limits::default(), 0, ExactSearch::Partition).unwrap();
+            let e = exact_phased(k, &times, &Limits::default(), 0, true).unwrap();
             assert_eq!(e.status, SolveStatus::Optimal);
             let mut count = vec![0; n];
             e.assignment.iter().flatten().for_each(|&j| count[j] += 1);
@@ -723,8 +719,8 @@ mod tests {
             let k = rng.random_range(2..=5);
             let times: Vec<f64> = (0..n).map(|_| rng.random_range(1.0..100.0)).collect();
             let none = Limits::default();
-            let a = exact_phased(k, &times, &none, 0, ExactSearch::Partition).unwrap();
-            let b = exact_phased(k, &times, &none, 0, ExactSearch::BinCompletion).unwrap();
+            let a = exact_phased(k, &times, &none, 0, true).unwrap();
+            let b = exact_phased(k, &times, &none, 0, false).unwrap();
             assert_eq!(a.status, SolveStatus::Optimal);
             assert_eq!(b.status, SolveStatus::Optimal);
             assert_eq!(
@@ -748,14 +744,14 @@ mod tests {
         let mut stopped = 0;
         for _ in 0..30 {
             let times: Vec<f64> = (0..24).map(|_| rng.random_range(1.0..100.0)).collect();
-            let opt = exact_phased(3, &times, &Limits::default(), 0, ExactSearch::BinCompletion)
+            let opt = exact_phased(3, &times, &Limits::default(), 0, false)
                 .unwrap()
                 .makespan_min;
             let limits = Limits {
                 time_limit_s: None,
                 node_limit: Some(3),
             };
-            let s = exact_phased(3, &times, &limits, 0, ExactSearch::Partition).unwrap();
+            let s = exact_phased(3, &times, &limits, 0, true).unwrap();
             assert!(s.lower_bound_min <= opt * (1.0 + 1e-12));
             assert!(s.makespan_min >= opt * (1.0 - 1e-9));
             if s.status == SolveStatus::Feasible {
