@@ -655,6 +655,22 @@ mod tests {
             .collect()
     }
 
+    /// Asserts that `e` is proven optimal, charges every drone exactly once, reports the largest
+    /// recomputed pad load, and equals the reference node time `reference_min` (within 1e-9).
+    fn assert_optimal(times: &[f64], e: &NodeTimeSolution, reference_min: f64, context: &str) {
+        assert_eq!(e.status, SolveStatus::Optimal, "{context}");
+        let mut count = vec![0; times.len()];
+        e.assignment.iter().flatten().for_each(|&j| count[j] += 1);
+        assert!(count.iter().all(|&c| c == 1), "{context}: {e:?}");
+        let recomputed = crate::node_time::makespan_of(times, &e.assignment);
+        assert_eq!(recomputed, e.makespan_min, "{context}");
+        assert!(
+            (e.makespan_min - reference_min).abs() <= 1e-9 * reference_min.max(1.0),
+            "{context}: {} against reference {reference_min}",
+            e.makespan_min
+        );
+    }
+
     /// Phase 2 alone (local search, `L2`, bin completion) agrees with brute force.
     #[test]
     fn decision_version_alone_equals_brute_force() {
@@ -666,19 +682,9 @@ mod tests {
             let b = brute(k, &times, &Limits::default()).unwrap();
             let e = exact_phased(k, &times, &Limits::default(), 0, false).unwrap();
             let full = exact(k, &times, &Limits::default()).unwrap();
-            assert!((full.makespan_min - b.makespan_min).abs() <= 1e-9 * b.makespan_min.max(1.0));
-            assert_eq!(e.status, SolveStatus::Optimal);
-            let recomputed = crate::node_time::makespan_of(&times, &e.assignment);
-            assert_eq!(recomputed, e.makespan_min);
-            let mut count = vec![0; n];
-            e.assignment.iter().flatten().for_each(|&j| count[j] += 1);
-            assert!(count.iter().all(|&c| c == 1), "case {case}: {e:?}");
-            assert!(
-                (e.makespan_min - b.makespan_min).abs() <= 1e-9 * b.makespan_min.max(1.0),
-                "case {case}: k={k} times={times:?}: exact {} brute {}",
-                e.makespan_min,
-                b.makespan_min
-            );
+            let context = format!("case {case}: k={k} times={times:?}");
+            assert_optimal(&times, &e, b.makespan_min, &context);
+            assert_optimal(&times, &full, b.makespan_min, &context);
         }
     }
 
@@ -693,17 +699,11 @@ mod tests {
             let times = small_times(&mut rng, n);
             let b = brute(k, &times, &Limits::default()).unwrap();
             let e = exact_phased(k, &times, &Limits::default(), 0, true).unwrap();
-            assert_eq!(e.status, SolveStatus::Optimal);
-            let mut count = vec![0; n];
-            e.assignment.iter().flatten().for_each(|&j| count[j] += 1);
-            assert!(count.iter().all(|&c| c == 1), "case {case}: {e:?}");
-            let recomputed = crate::node_time::makespan_of(&times, &e.assignment);
-            assert_eq!(recomputed, e.makespan_min);
-            assert!(
-                (e.makespan_min - b.makespan_min).abs() <= 1e-9 * b.makespan_min,
-                "case {case}: k={k} times={times:?}: partitioning {} brute {}",
-                e.makespan_min,
-                b.makespan_min
+            assert_optimal(
+                &times,
+                &e,
+                b.makespan_min,
+                &format!("case {case}: k={k} times={times:?}"),
             );
         }
     }
@@ -721,18 +721,9 @@ mod tests {
             let none = Limits::default();
             let a = exact_phased(k, &times, &none, 0, true).unwrap();
             let b = exact_phased(k, &times, &none, 0, false).unwrap();
-            assert_eq!(a.status, SolveStatus::Optimal);
-            assert_eq!(b.status, SolveStatus::Optimal);
-            assert_eq!(
-                crate::node_time::makespan_of(&times, &a.assignment),
-                a.makespan_min
-            );
-            assert!(
-                (a.makespan_min - b.makespan_min).abs() <= 1e-9 * b.makespan_min,
-                "case {case}: k={k} times={times:?}: partitioning {} bin completion {}",
-                a.makespan_min,
-                b.makespan_min
-            );
+            let context = format!("case {case}: k={k} times={times:?}");
+            assert_eq!(b.status, SolveStatus::Optimal, "{context}");
+            assert_optimal(&times, &a, b.makespan_min, &context);
         }
     }
 
