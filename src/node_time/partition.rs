@@ -23,6 +23,7 @@
 
 use super::decision::{Budget, Decision};
 use super::le_tol;
+use std::cell::RefCell;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
@@ -34,58 +35,114 @@ pub(crate) const PARTITION_MAX_DRONES: usize = 40;
 /// `c (1 + SLACK)` proves that no assignment has loads `<= c`.
 const SLACK: f64 = 1e-12;
 
-/// Every subset sum of a set of drones in increasing order, with the subsets as bit masks.
+/// Every subset sum of a set of drones in increasing order, each with its subset as a bit mask.
+/// The buffers are kept between builds, so a search allocates them once.
+#[derive(Default)]
 struct SubsetSums {
-    sums: Vec<f64>,
-    masks: Vec<u64>,
+    /// `(sum, mask)`: `entries[..len]` by increasing sum, then one `+inf` sentinel.
+    entries: Vec<(f64, u64)>,
+    len: usize,
+    next: Vec<(f64, u64)>,
 }
 
+/// Merges run as this many independent pieces side by side (below, one), so the processor
+/// overlaps their dependency chains.
+const MERGE_PIECES: usize = 4;
+
 impl SubsetSums {
-    /// The `2^len` subset sums of the drones `items` (indices into `p`), built by merging the
-    /// sorted list with itself shifted by each drone in turn: `O(2^len)`.
-    fn new(p: &[f64], items: &[usize]) -> Self {
+    /// Lists the `2^len` subset sums of the drones `items` (indices into `p`) by merging the
+    /// sorted list with itself shifted by each drone in turn: `O(2^len)`. The merge runs against
+    /// a `+inf` sentinel (one comparison a step, no test of the list ends) and, on long lists, as
+    /// [`MERGE_PIECES`] pieces whose starts are found by binary search on the merge path.
+    fn build(&mut self, p: &[f64], items: &[usize]) {
         let size = 1usize << items.len();
-        let mut sums = vec![0.0; size];
-        let mut masks = vec![0u64; size];
-        let mut next_sums = vec![0.0; size];
-        let mut next_masks = vec![0u64; size];
+        for buf in [&mut self.entries, &mut self.next] {
+            if buf.len() < size + 1 {
+                buf.resize(size + 1, (0.0, 0));
+            }
+        }
+        self.entries[0] = (0.0, 0);
+        self.entries[1] = (f64::INFINITY, 0);
         let mut len = 1;
         for &j in items {
             let v = p[j];
             let bit = 1u64 << j;
-            let (mut a, mut b) = (0, 0);
-            let (src_s, src_m) = (&sums[..len], &masks[..len]);
-            let (dst_s, dst_m) = (&mut next_sums[..2 * len], &mut next_masks[..2 * len]);
-            for (out_s, out_m) in dst_s.iter_mut().zip(dst_m.iter_mut()) {
-                if b == len || (a < len && src_s[a] <= src_s[b] + v) {
-                    *out_s = src_s[a];
-                    *out_m = src_m[a];
-                    a += 1;
+            let src = &self.entries[..=len];
+            let dst = &mut self.next[..=2 * len];
+            let out = 2 * len;
+            // One merge step: the smaller of `src[a]` and `src[b] + v`, ties to `a`; inf + v is
+            // inf, so a list that ran out is never taken again.
+            let step = |a: &mut usize, b: &mut usize| {
+                let (x, y) = (src[*a], src[*b]);
+                let shifted = y.0 + v;
+                let take_a = x.0 <= shifted;
+                *a += usize::from(take_a);
+                *b += usize::from(!take_a);
+                if take_a {
+                    x
                 } else {
-                    *out_s = src_s[b] + v;
-                    *out_m = src_m[b] | bit;
-                    b += 1;
+                    (shifted, y.1 | bit)
+                }
+            };
+            if out < 8 * MERGE_PIECES {
+                let (mut a, mut b) = (0, 0);
+                for slot in &mut dst[..out] {
+                    *slot = step(&mut a, &mut b);
+                }
+            } else {
+                let piece = out / MERGE_PIECES;
+                let mut a = [0; MERGE_PIECES];
+                let mut b = [0; MERGE_PIECES];
+                for w in 0..MERGE_PIECES {
+                    a[w] = merge_path_split(src, len, v, w * piece);
+                    b[w] = w * piece - a[w];
+                }
+                for t in 0..piece {
+                    for w in 0..MERGE_PIECES {
+                        dst[w * piece + t] = step(&mut a[w], &mut b[w]);
+                    }
                 }
             }
-            len *= 2;
-            std::mem::swap(&mut sums, &mut next_sums);
-            std::mem::swap(&mut masks, &mut next_masks);
+            dst[out] = (f64::INFINITY, 0);
+            len = out;
+            std::mem::swap(&mut self.entries, &mut self.next);
         }
-        SubsetSums { sums, masks }
+        self.len = len;
     }
 
     fn len(&self) -> usize {
-        self.sums.len()
+        self.len
+    }
+
+    /// The `(sum, mask)` entries, by increasing sum.
+    fn entries(&self) -> &[(f64, u64)] {
+        &self.entries[..self.len]
     }
 }
 
-/// The two halves' subset sums of `items`: drones alternate between the halves, so both hold
-/// long and short drones.
-fn halves(p: &[f64], items: &[usize]) -> (SubsetSums, SubsetSums) {
+/// How many of the first `k` outputs of the merge of `src[..len]` with `src[..len] + v` come
+/// from the unshifted list (ties go to it): binary search on the merge path.
+fn merge_path_split(src: &[(f64, u64)], len: usize, v: f64, k: usize) -> usize {
+    let (mut lo, mut hi) = (k.saturating_sub(len), k.min(len));
+    while lo < hi {
+        let i = (lo + hi) / 2;
+        if src[i].0 <= src[k - i - 1].0 + v {
+            lo = i + 1;
+        } else {
+            hi = i;
+        }
+    }
+    lo
+}
+
+/// Lists the two halves' subset sums of `items` into `lists`: drones alternate between the
+/// halves, so both hold long and short drones. The shorter list comes first: it drives the
+/// outer loop of the window walk.
+fn halves(p: &[f64], items: &[usize], lists: &mut (SubsetSums, SubsetSums)) {
     let first: Vec<usize> = items.iter().copied().step_by(2).collect();
     let second: Vec<usize> = items.iter().copied().skip(1).step_by(2).collect();
-    // The shorter list first: it drives the outer loop.
-    (SubsetSums::new(p, &second), SubsetSums::new(p, &first))
+    lists.0.build(p, &second);
+    lists.1.build(p, &first);
 }
 
 /// Calls `visit(sum, mask)` for every pair of a subset of `l1` and one of `l2` whose sum lies in
@@ -100,20 +157,20 @@ fn for_each_in_window(
     hi: f64,
     mut visit: impl FnMut(f64, u64) -> bool,
 ) -> bool {
+    let l2 = l2.entries();
     let (mut lo_ptr, mut hi_ptr) = (l2.len(), l2.len());
-    for i in 0..l1.len() {
-        let a = l1.sums[i];
+    for &(a, a_mask) in l1.entries() {
         if a > hi {
             break;
         }
-        while hi_ptr > 0 && a + l2.sums[hi_ptr - 1] > hi {
+        while hi_ptr > 0 && a + l2[hi_ptr - 1].0 > hi {
             hi_ptr -= 1;
         }
-        while lo_ptr > 0 && a + l2.sums[lo_ptr - 1] >= lo {
+        while lo_ptr > 0 && a + l2[lo_ptr - 1].0 >= lo {
             lo_ptr -= 1;
         }
-        for q in lo_ptr..hi_ptr {
-            if !visit(a + l2.sums[q], l1.masks[i] | l2.masks[q]) {
+        for &(b, b_mask) in &l2[lo_ptr..hi_ptr] {
+            if !visit(a + b, a_mask | b_mask) {
                 return false;
             }
         }
@@ -121,33 +178,37 @@ fn for_each_in_window(
     true
 }
 
-/// Pairs of the two lists with sum `>= lo`, in increasing sum: one heap entry per entry of `l1`,
-/// pointing at its smallest partner not yet given out (Schroeppel–Shamir's order, on two lists).
+/// Pairs of the two lists with sum in `[lo, hi)`, in increasing sum: one heap entry per entry of
+/// `l1`, pointing at its smallest partner not yet given out (Schroeppel–Shamir's order, on two
+/// lists). Entries whose partners all reach `hi` never enter the heap.
 struct Ascending<'a> {
     l1: &'a SubsetSums,
     l2: &'a SubsetSums,
+    hi: f64,
     partner: Vec<usize>,
     /// `(sum as ordered bits, index into l1)`; sums are `>= 0`, whose bits order like the values.
     heap: BinaryHeap<Reverse<(u64, usize)>>,
 }
 
 impl<'a> Ascending<'a> {
-    fn new(l1: &'a SubsetSums, l2: &'a SubsetSums, lo: f64) -> Self {
+    fn new(l1: &'a SubsetSums, l2: &'a SubsetSums, lo: f64, hi: f64) -> Self {
         let mut partner = vec![0; l1.len()];
-        let mut entries = Vec::with_capacity(l1.len());
-        let mut q = l2.len();
-        for (i, (&a, first)) in l1.sums.iter().zip(partner.iter_mut()).enumerate() {
-            while q > 0 && a + l2.sums[q - 1] >= lo {
+        let mut entries = Vec::new();
+        let l2_entries = l2.entries();
+        let mut q = l2_entries.len();
+        for (i, (&(a, _), first)) in l1.entries().iter().zip(partner.iter_mut()).enumerate() {
+            while q > 0 && a + l2_entries[q - 1].0 >= lo {
                 q -= 1;
             }
             *first = q;
-            if q < l2.len() {
-                entries.push(Reverse(((a + l2.sums[q]).to_bits(), i)));
+            if q < l2_entries.len() && a + l2_entries[q].0 < hi {
+                entries.push(Reverse(((a + l2_entries[q].0).to_bits(), i)));
             }
         }
         Ascending {
             l1,
             l2,
+            hi,
             partner,
             heap: BinaryHeap::from(entries),
         }
@@ -157,13 +218,59 @@ impl<'a> Ascending<'a> {
     fn next(&mut self) -> Option<(f64, u64)> {
         let Reverse((bits, i)) = self.heap.pop()?;
         let q = self.partner[i];
-        let mask = self.l1.masks[i] | self.l2.masks[q];
+        let (a, a_mask) = self.l1.entries()[i];
+        let l2 = self.l2.entries();
         self.partner[i] = q + 1;
-        if q + 1 < self.l2.len() {
-            let s = self.l1.sums[i] + self.l2.sums[q + 1];
-            self.heap.push(Reverse((s.to_bits(), i)));
+        if q + 1 < l2.len() {
+            let s = a + l2[q + 1].0;
+            if s < self.hi {
+                self.heap.push(Reverse((s.to_bits(), i)));
+            }
         }
-        Some((f64::from_bits(bits), mask))
+        Some((f64::from_bits(bits), a_mask | l2[q].1))
+    }
+}
+
+/// The pairs of the two lists around `t`: the one with the smallest sum `>= t` and the one
+/// with the largest sum `< t`, as masks. One walk with two pointers, `O(|l1| + |l2|)`.
+fn around(l1: &SubsetSums, l2: &SubsetSums, t: f64) -> (Option<u64>, Option<u64>) {
+    let l2 = l2.entries();
+    let mut q = l2.len();
+    let (mut above, mut below) = ((f64::INFINITY, None), (f64::NEG_INFINITY, None));
+    for &(a, a_mask) in l1.entries() {
+        while q > 0 && a + l2[q - 1].0 >= t {
+            q -= 1;
+        }
+        // l2[q] is a's smallest partner reaching t, l2[q - 1] its largest below.
+        if let Some(&(b, b_mask)) = l2.get(q) {
+            if a + b < above.0 {
+                above = (a + b, Some(a_mask | b_mask));
+            }
+        }
+        if q > 0 && a + l2[q - 1].0 > below.0 {
+            below = (a + l2[q - 1].0, Some(a_mask | l2[q - 1].1));
+        }
+    }
+    (above.1, below.1)
+}
+
+/// Two pads: the fullest pad of an optimal split, as `(load, mask)`. One pad holds the longest
+/// drone `0`; its set `B = {0} + X` is, over all splits, either the lightest with
+/// `s(B) >= total / 2` (then it is the fullest pad) or the heaviest with `s(B) < total / 2`
+/// (then its complement is), so one walk over the subset sums of drones `1..n` decides it.
+fn two_pads(p: &[f64], lists: &mut ListPair) -> Option<(f64, u64)> {
+    let n = p.len();
+    let all = (1u64 << n) - 1;
+    let items: Vec<usize> = (1..n).collect();
+    halves(p, &items, lists);
+    let total: f64 = p.iter().sum();
+    let load = |mask: u64| members(mask).iter().map(|&j| p[j]).sum::<f64>();
+    let (above, below) = around(&lists.0, &lists.1, 0.5 * total - p[0]);
+    let above = above.map(|x| (load(x | 1), x | 1));
+    let below = below.map(|x| all & !(x | 1)).map(|a| (load(a), a));
+    match (above, below) {
+        (Some(x), Some(y)) => Some(if y.0 < x.0 { y } else { x }),
+        (x, y) => x.or(y),
     }
 }
 
@@ -195,6 +302,8 @@ struct Partition<'a> {
     p: &'a [f64],
     /// The drones of each pad filled so far, fullest first.
     pads: Vec<u64>,
+    /// Subset-sum lists of the window queries below the first level (one query at a time).
+    lists: (SubsetSums, SubsetSums),
 }
 
 impl Partition<'_> {
@@ -227,13 +336,19 @@ impl Partition<'_> {
         if bins == 2 {
             // One pad holds the longest drone and a load in [total - cap, cap].
             let longest = items[0];
-            let (l1, l2) = halves(self.p, &items[1..]);
+            halves(self.p, &items[1..], &mut self.lists);
             let p0 = self.p[longest];
             let mut found = None;
-            for_each_in_window(&l1, &l2, total - cap_x - p0, cap_x - p0, |_, mask| {
-                found = Some(mask | (1u64 << longest));
-                false
-            });
+            for_each_in_window(
+                &self.lists.0,
+                &self.lists.1,
+                total - cap_x - p0,
+                cap_x - p0,
+                |_, mask| {
+                    found = Some(mask | (1u64 << longest));
+                    false
+                },
+            );
             return match found {
                 Some(b) => {
                     self.pads.push(b);
@@ -244,14 +359,13 @@ impl Partition<'_> {
             };
         }
         // The fullest of the `bins` pads: load in [total / bins, cap].
-        let (l1, l2) = halves(self.p, &items);
+        halves(self.p, &items, &mut self.lists);
         let mut candidates = Vec::new();
         let lo = total / bins as f64 * (1.0 - SLACK);
-        for_each_in_window(&l1, &l2, lo, cap_x, |s, mask| {
+        for_each_in_window(&self.lists.0, &self.lists.1, lo, cap_x, |s, mask| {
             candidates.push((s, mask));
             true
         });
-        drop((l1, l2));
         for (s, mask) in candidates {
             self.pads.push(mask);
             match self.fits(rest & !mask, bins - 1, s.min(cap), budget) {
@@ -265,6 +379,20 @@ impl Partition<'_> {
     }
 }
 
+/// Two halves' subset-sum lists.
+type ListPair = (SubsetSums, SubsetSums);
+
+/// Largest list (entries) whose buffers a thread keeps for its next solve: `2^16` entries,
+/// 1 MiB a buffer, which covers 32 drones. Fresh buffers of that size cost more in page faults
+/// than the merges that fill them.
+const KEEP_LIST_ENTRIES: usize = 1 << 16;
+
+thread_local! {
+    /// Buffers kept between solves on this thread: the first level's lists and the scratch
+    /// lists of the levels below.
+    static KEPT_LISTS: RefCell<Vec<ListPair>> = const { RefCell::new(Vec::new()) };
+}
+
 /// Exact node time by sequential partitioning for the drones `p` (decreasing, positive, at most
 /// [`PARTITION_MAX_DRONES`]) on `m >= 2` pads, from the lower bound `lb` and the incumbent `ub`
 /// (pads in `pad_of`, replaced when a better assignment is found).
@@ -274,21 +402,79 @@ impl Partition<'_> {
 pub(crate) fn partition(
     m: usize,
     p: &[f64],
-    mut lb: f64,
+    lb: f64,
     ub: f64,
     pad_of: &mut [usize],
     budget: &mut Budget,
 ) -> (bool, f64, f64) {
-    let n = p.len();
-    debug_assert!(n <= PARTITION_MAX_DRONES && m >= 2);
-    let all = if n == 64 { u64::MAX } else { (1u64 << n) - 1 };
-    let items: Vec<usize> = (0..n).collect();
-    let (l1, l2) = halves(p, &items);
-    let mut ascending = Ascending::new(&l1, &l2, lb * (1.0 - SLACK));
+    let take = || KEPT_LISTS.with(|kept| kept.borrow_mut().pop().unwrap_or_default());
+    let mut top = take();
     let mut search = Partition {
         p,
         pads: Vec::with_capacity(m),
+        lists: take(),
     };
+    let result = partition_in(m, lb, ub, pad_of, budget, &mut top, &mut search);
+    KEPT_LISTS.with(|kept| {
+        let mut kept = kept.borrow_mut();
+        for pair in [top, search.lists] {
+            if pair.0.entries.len().max(pair.1.entries.len()) <= KEEP_LIST_ENTRIES + 1 {
+                kept.push(pair);
+            }
+        }
+    });
+    result
+}
+
+/// [`partition`] with the first level's lists in `lists` and the search (drones, scratch lists
+/// of the levels below) in `search`.
+fn partition_in(
+    m: usize,
+    mut lb: f64,
+    ub: f64,
+    pad_of: &mut [usize],
+    budget: &mut Budget,
+    lists: &mut ListPair,
+    search: &mut Partition,
+) -> (bool, f64, f64) {
+    let p = search.p;
+    let n = p.len();
+    debug_assert!(n <= PARTITION_MAX_DRONES && m >= 2);
+    let all = if n == 64 { u64::MAX } else { (1u64 << n) - 1 };
+    // The assignment of the pads found, and its makespan.
+    let take_found = |pads: &[u64], pad_of: &mut [usize]| {
+        let mut loads = vec![0.0_f64; m];
+        for (i, &pad) in pads.iter().enumerate() {
+            for j in members(pad) {
+                loads[i] += p[j];
+            }
+        }
+        let found = loads.iter().copied().fold(0.0, f64::max);
+        if found < ub {
+            for (i, &pad) in pads.iter().enumerate() {
+                for j in members(pad) {
+                    pad_of[j] = i;
+                }
+            }
+            return found;
+        }
+        ub
+    };
+    if m == 2 {
+        // The fullest pad of an optimal split; its complement fits on the other pad (should
+        // rounding refuse it, the general search below decides).
+        if let Some((s, mask)) = two_pads(p, lists) {
+            search.pads.push(mask);
+            if search.fits(all & !mask, 1, s, budget) == Decision::Fits {
+                let found = take_found(&search.pads, pad_of);
+                return (true, found.min(s), found);
+            }
+            search.pads.clear();
+        }
+    }
+    let items: Vec<usize> = (0..n).collect();
+    halves(p, &items, lists);
+    let mut ascending = Ascending::new(&lists.0, &lists.1, lb * (1.0 - SLACK), ub);
     while let Some((s, mask)) = ascending.next() {
         if le_tol(ub, s) {
             // Every assignment whose fullest pad is below s failed: ub is within REL_TOL.
@@ -299,20 +485,8 @@ pub(crate) fn partition(
         search.pads.push(mask);
         match search.fits(all & !mask, m - 1, s, budget) {
             Decision::Fits => {
-                let mut found_pad_of = vec![0; n];
-                let mut loads = vec![0.0_f64; m];
-                for (i, &pad) in search.pads.iter().enumerate() {
-                    for j in members(pad) {
-                        found_pad_of[j] = i;
-                        loads[i] += p[j];
-                    }
-                }
-                let found = loads.iter().copied().fold(0.0, f64::max);
-                if found < ub {
-                    pad_of.copy_from_slice(&found_pad_of);
-                    return (true, lb, found);
-                }
-                return (true, lb, ub);
+                let found = take_found(&search.pads, pad_of);
+                return (true, lb, found);
             }
             Decision::DoesNotFit => {}
             Decision::Stopped => return (false, lb, ub),
