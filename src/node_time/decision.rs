@@ -10,6 +10,7 @@
 
 use super::{Limits, REL_TOL};
 use std::collections::HashSet;
+use std::hash::{BuildHasherDefault, Hasher};
 use std::time::Instant;
 
 /// How often (in nodes) the search reads the clock.
@@ -22,6 +23,33 @@ pub(crate) const CAP_SLACK: f64 = 1e-11;
 
 /// Largest number of failed states remembered by one decision search.
 const MEMO_MAX_STATES: usize = 1 << 21;
+
+/// Multiply-rotate hash of the memo keys (bitsets of placed drones): the keys are exact, the hash
+/// only spreads them, so a cheap one serves better than the default keyed hash.
+#[derive(Default)]
+pub(crate) struct WordHasher(u64);
+
+impl Hasher for WordHasher {
+    fn write(&mut self, bytes: &[u8]) {
+        for chunk in bytes.chunks(8) {
+            let mut word = [0u8; 8];
+            word[..chunk.len()].copy_from_slice(chunk);
+            self.write_u64(u64::from_le_bytes(word));
+        }
+    }
+
+    fn write_u64(&mut self, x: u64) {
+        self.0 = (self.0.rotate_left(5) ^ x).wrapping_mul(0x517c_c1b7_2722_0a95);
+    }
+
+    fn finish(&self) -> u64 {
+        self.0
+    }
+}
+
+/// Failed states of the bin-completion search: the bitset of placed drones, then the number of
+/// full pads.
+pub(crate) type Memo = HashSet<Box<[u64]>, BuildHasherDefault<WordHasher>>;
 
 /// Outcome of a decision search.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -196,7 +224,11 @@ pub(crate) struct BinCompletion<'a> {
     words: Vec<u64>,
     /// Pad of each drone when the search answers `Fits`.
     pub pad_of: Vec<usize>,
-    memo: HashSet<Vec<u64>>,
+    memo: Memo,
+    /// Per pad index `b`: the candidates of `fill_pad(b)` and their suffix sums (kept between
+    /// calls, so the search does not allocate per node).
+    cand_at: Vec<Vec<usize>>,
+    suffix_at: Vec<Vec<f64>>,
 }
 
 impl<'a> BinCompletion<'a> {
@@ -205,13 +237,7 @@ impl<'a> BinCompletion<'a> {
     /// `memo` holds failed states from earlier searches with a capacity `>= cap` (a state that
     /// cannot be completed under a capacity cannot under a smaller one); give an empty set
     /// otherwise. [`BinCompletion::into_memo`] hands it back.
-    pub(crate) fn new(
-        p: &'a [f64],
-        k: usize,
-        cap: f64,
-        integral: bool,
-        memo: HashSet<Vec<u64>>,
-    ) -> Self {
+    pub(crate) fn new(p: &'a [f64], k: usize, cap: f64, integral: bool, memo: Memo) -> Self {
         let n = p.len();
         BinCompletion {
             p,
@@ -226,11 +252,13 @@ impl<'a> BinCompletion<'a> {
             words: vec![0; n / 64 + 2],
             pad_of: vec![0; n],
             memo,
+            cand_at: vec![Vec::new(); k],
+            suffix_at: vec![Vec::new(); k],
         }
     }
 
     /// The failed states found so far (valid for every capacity `<= cap`).
-    pub(crate) fn into_memo(self) -> HashSet<Vec<u64>> {
+    pub(crate) fn into_memo(self) -> Memo {
         self.memo
     }
 
@@ -279,12 +307,15 @@ impl<'a> BinCompletion<'a> {
         }
         let last = self.words.len() - 1;
         self.words[last] = b as u64;
-        if self.memo.contains(&self.words) {
+        if self.memo.contains(&self.words[..]) {
             return Decision::DoesNotFit;
         }
-        let key = self.words.clone();
-        let cand: Vec<usize> = (first + 1..n).filter(|&j| !self.used[j]).collect();
-        let mut suffix = vec![0.0; cand.len() + 1];
+        let mut cand = std::mem::take(&mut self.cand_at[b]);
+        let mut suffix = std::mem::take(&mut self.suffix_at[b]);
+        cand.clear();
+        cand.extend((first + 1..n).filter(|&j| !self.used[j]));
+        suffix.clear();
+        suffix.resize(cand.len() + 1, 0.0);
         for q in (0..cand.len()).rev() {
             suffix[q] = suffix[q + 1] + self.p[cand[q]];
         }
@@ -297,8 +328,12 @@ impl<'a> BinCompletion<'a> {
             self.complete(b, waste, &cand, &suffix, 0, r, f64::INFINITY, budget)
         };
         self.set(first, false);
+        self.cand_at[b] = cand;
+        self.suffix_at[b] = suffix;
         if out == Decision::DoesNotFit && self.memo.len() < MEMO_MAX_STATES {
-            self.memo.insert(key);
+            // The key as on entry: `set` restored the placed drones, `words[last]` is still `b`.
+            self.words[last] = b as u64;
+            self.memo.insert(self.words.clone().into_boxed_slice());
         }
         out
     }

@@ -26,7 +26,7 @@
 //!   at `C = LB`, then just below each new incumbent and at midpoints of the gap between `LB` and
 //!   `UB` (whole minutes: of the whole makespans not yet excluded).
 
-use super::decision::{l2_lift, local_search, BinCompletion, Budget, Decision, CAP_SLACK};
+use super::decision::{l2_lift, local_search, BinCompletion, Budget, Decision, Memo, CAP_SLACK};
 use super::lpt::lpt_sorted;
 use super::partition::{partition, PARTITION_MAX_DRONES};
 use super::{
@@ -35,7 +35,6 @@ use super::{
 };
 use crate::error::Result;
 use crate::solver::SolveStatus;
-use std::collections::HashSet;
 use std::time::Instant;
 
 /// How often (in nodes) the search reads the clock.
@@ -353,7 +352,7 @@ fn phase2(
     }
     let mut first = true;
     let mut try_proof = false;
-    let mut memo = HashSet::new();
+    let mut memo = Memo::default();
     let mut memo_cap = f64::INFINITY;
     for _ in 0..10_000 {
         if proven(ub, lb) {
