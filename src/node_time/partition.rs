@@ -35,77 +35,122 @@ pub(crate) const PARTITION_MAX_DRONES: usize = 40;
 /// `c (1 + SLACK)` proves that no assignment has loads `<= c`.
 const SLACK: f64 = 1e-12;
 
-/// Every subset sum of a set of drones in increasing order, each with its subset as a bit mask.
-/// The buffers are kept between builds, so a search allocates them once.
+/// Every subset sum of a set of drones in increasing order; the subset of any entry is recovered
+/// from one bit per merge step. The buffers are kept between builds, so a search allocates them
+/// once.
 #[derive(Default)]
 struct SubsetSums {
-    /// `(sum, mask)`: `entries[..len]` by increasing sum, then one `+inf` sentinel.
-    entries: Vec<(f64, u64)>,
+    /// `sums[..len]` increasing, then one `+inf` sentinel.
+    sums: Vec<f64>,
     len: usize,
-    next: Vec<(f64, u64)>,
+    next: Vec<f64>,
+    /// The drone merged in at each level (level `l` doubles the list to `2^(l+1)` entries).
+    items: Vec<usize>,
+    /// Per level, bit `o` is set when output `o` came from the shifted list (it holds the level's
+    /// drone); `rank` counts the set bits of the level's earlier words. Level `l` starts at word
+    /// `2^(l+1) / 64` rounded down (levels below 6 share word 0 ... 5, one word each).
+    bits: Vec<u64>,
+    rank: Vec<u32>,
 }
 
 /// Merges run as this many independent pieces side by side (below, one), so the processor
 /// overlaps their dependency chains.
 const MERGE_PIECES: usize = 4;
 
+/// First word of level `l` in `SubsetSums::bits` (`2^(l+1)` outputs): levels `0..6` take one word
+/// each, level `l >= 6` the `2^(l-5)` words after the `2^(l-5) - 2 + 6` words of the levels below.
+fn level_offset(l: usize) -> usize {
+    if l < 6 {
+        l
+    } else {
+        (1usize << (l - 5)) + 4
+    }
+}
+
 impl SubsetSums {
     /// Lists the `2^len` subset sums of the drones `items` (indices into `p`) by merging the
     /// sorted list with itself shifted by each drone in turn: `O(2^len)`. The merge runs against
     /// a `+inf` sentinel (one comparison a step, no test of the list ends) and, on long lists, as
-    /// [`MERGE_PIECES`] pieces whose starts are found by binary search on the merge path.
+    /// [`MERGE_PIECES`] pieces whose starts are found by binary search on the merge path. Each
+    /// step records whether it took the shifted list, one bit, from which [`SubsetSums::mask`]
+    /// walks back.
     fn build(&mut self, p: &[f64], items: &[usize]) {
-        let size = 1usize << items.len();
-        for buf in [&mut self.entries, &mut self.next] {
+        let levels = items.len();
+        let size = 1usize << levels;
+        for buf in [&mut self.sums, &mut self.next] {
             if buf.len() < size + 1 {
-                buf.resize(size + 1, (0.0, 0));
+                buf.resize(size + 1, 0.0);
             }
         }
-        self.entries[0] = (0.0, 0);
-        self.entries[1] = (f64::INFINITY, 0);
+        let words = level_offset(levels);
+        if self.bits.len() < words {
+            self.bits.resize(words, 0);
+            self.rank.resize(words, 0);
+        }
+        self.items.clear();
+        self.items.extend_from_slice(items);
+        self.sums[0] = 0.0;
+        self.sums[1] = f64::INFINITY;
         let mut len = 1;
-        for &j in items {
+        for (l, &j) in items.iter().enumerate() {
             let v = p[j];
-            let bit = 1u64 << j;
-            let src = &self.entries[..=len];
+            let src = &self.sums[..=len];
             let dst = &mut self.next[..=2 * len];
             let out = 2 * len;
+            let off = level_offset(l);
+            let bits = &mut self.bits[off..level_offset(l + 1)];
             // One merge step: the smaller of `src[a]` and `src[b] + v`, ties to `a`; inf + v is
-            // inf, so a list that ran out is never taken again.
+            // inf, so a list that ran out is never taken again. Returns (sum, took b).
             let step = |a: &mut usize, b: &mut usize| {
-                let (x, y) = (src[*a], src[*b]);
-                let shifted = y.0 + v;
-                let take_a = x.0 <= shifted;
+                let (x, y) = (src[*a], src[*b] + v);
+                let take_a = x <= y;
                 *a += usize::from(take_a);
                 *b += usize::from(!take_a);
-                if take_a {
-                    x
-                } else {
-                    (shifted, y.1 | bit)
-                }
+                (if take_a { x } else { y }, u64::from(!take_a))
             };
-            if out < 8 * MERGE_PIECES {
+            if out < 64 * MERGE_PIECES {
                 let (mut a, mut b) = (0, 0);
-                for slot in &mut dst[..out] {
-                    *slot = step(&mut a, &mut b);
+                let mut word = 0u64;
+                for (o, slot) in dst[..out].iter_mut().enumerate() {
+                    let (x, took_b) = step(&mut a, &mut b);
+                    *slot = x;
+                    word |= took_b << (o & 63);
+                    if o & 63 == 63 || o + 1 == out {
+                        bits[o >> 6] = word;
+                        word = 0;
+                    }
                 }
             } else {
+                // Pieces of a multiple of 64 outputs: each fills whole words.
                 let piece = out / MERGE_PIECES;
                 let mut a = [0; MERGE_PIECES];
                 let mut b = [0; MERGE_PIECES];
+                let mut word = [0u64; MERGE_PIECES];
                 for w in 0..MERGE_PIECES {
                     a[w] = merge_path_split(src, len, v, w * piece);
                     b[w] = w * piece - a[w];
                 }
                 for t in 0..piece {
                     for w in 0..MERGE_PIECES {
-                        dst[w * piece + t] = step(&mut a[w], &mut b[w]);
+                        let (x, took_b) = step(&mut a[w], &mut b[w]);
+                        dst[w * piece + t] = x;
+                        word[w] |= took_b << (t & 63);
+                        if t & 63 == 63 {
+                            bits[(w * piece + t) >> 6] = word[w];
+                            word[w] = 0;
+                        }
                     }
                 }
             }
-            dst[out] = (f64::INFINITY, 0);
+            let rank = &mut self.rank[off..level_offset(l + 1)];
+            let mut ones = 0u32;
+            for (r, &w) in rank.iter_mut().zip(bits.iter()) {
+                *r = ones;
+                ones += w.count_ones();
+            }
+            dst[out] = f64::INFINITY;
             len = out;
-            std::mem::swap(&mut self.entries, &mut self.next);
+            std::mem::swap(&mut self.sums, &mut self.next);
         }
         self.len = len;
     }
@@ -114,19 +159,40 @@ impl SubsetSums {
         self.len
     }
 
-    /// The `(sum, mask)` entries, by increasing sum.
-    fn entries(&self) -> &[(f64, u64)] {
-        &self.entries[..self.len]
+    /// The sums, increasing.
+    fn sums(&self) -> &[f64] {
+        &self.sums[..self.len]
+    }
+
+    /// The subset of entry `i` as a bit mask of drones: back through the levels, an output that
+    /// came from the shifted list holds the level's drone and was entry `rank1(o)` of the list
+    /// before, else entry `o - rank1(o)`. `O(levels)`.
+    fn mask(&self, i: usize) -> u64 {
+        let mut o = i;
+        let mut mask = 0u64;
+        for l in (0..self.items.len()).rev() {
+            let off = level_offset(l);
+            let word = self.bits[off + (o >> 6)];
+            let ones = self.rank[off + (o >> 6)] as usize
+                + (word & ((1u64 << (o & 63)) - 1)).count_ones() as usize;
+            if word >> (o & 63) & 1 == 1 {
+                mask |= 1u64 << self.items[l];
+                o = ones;
+            } else {
+                o -= ones;
+            }
+        }
+        mask
     }
 }
 
 /// How many of the first `k` outputs of the merge of `src[..len]` with `src[..len] + v` come
 /// from the unshifted list (ties go to it): binary search on the merge path.
-fn merge_path_split(src: &[(f64, u64)], len: usize, v: f64, k: usize) -> usize {
+fn merge_path_split(src: &[f64], len: usize, v: f64, k: usize) -> usize {
     let (mut lo, mut hi) = (k.saturating_sub(len), k.min(len));
     while lo < hi {
         let i = (lo + hi) / 2;
-        if src[i].0 <= src[k - i - 1].0 + v {
+        if src[i] <= src[k - i - 1] + v {
             lo = i + 1;
         } else {
             hi = i;
@@ -157,20 +223,20 @@ fn for_each_in_window(
     hi: f64,
     mut visit: impl FnMut(f64, u64) -> bool,
 ) -> bool {
-    let l2 = l2.entries();
-    let (mut lo_ptr, mut hi_ptr) = (l2.len(), l2.len());
-    for &(a, a_mask) in l1.entries() {
+    let l2_sums = l2.sums();
+    let (mut lo_ptr, mut hi_ptr) = (l2_sums.len(), l2_sums.len());
+    for (i, &a) in l1.sums().iter().enumerate() {
         if a > hi {
             break;
         }
-        while hi_ptr > 0 && a + l2[hi_ptr - 1].0 > hi {
+        while hi_ptr > 0 && a + l2_sums[hi_ptr - 1] > hi {
             hi_ptr -= 1;
         }
-        while lo_ptr > 0 && a + l2[lo_ptr - 1].0 >= lo {
+        while lo_ptr > 0 && a + l2_sums[lo_ptr - 1] >= lo {
             lo_ptr -= 1;
         }
-        for &(b, b_mask) in &l2[lo_ptr..hi_ptr] {
-            if !visit(a + b, a_mask | b_mask) {
+        for q in lo_ptr..hi_ptr {
+            if !visit(a + l2_sums[q], l1.mask(i) | l2.mask(q)) {
                 return false;
             }
         }
@@ -194,15 +260,15 @@ impl<'a> Ascending<'a> {
     fn new(l1: &'a SubsetSums, l2: &'a SubsetSums, lo: f64, hi: f64) -> Self {
         let mut partner = vec![0; l1.len()];
         let mut entries = Vec::new();
-        let l2_entries = l2.entries();
-        let mut q = l2_entries.len();
-        for (i, (&(a, _), first)) in l1.entries().iter().zip(partner.iter_mut()).enumerate() {
-            while q > 0 && a + l2_entries[q - 1].0 >= lo {
+        let l2_sums = l2.sums();
+        let mut q = l2_sums.len();
+        for (i, (&a, first)) in l1.sums().iter().zip(partner.iter_mut()).enumerate() {
+            while q > 0 && a + l2_sums[q - 1] >= lo {
                 q -= 1;
             }
             *first = q;
-            if q < l2_entries.len() && a + l2_entries[q].0 < hi {
-                entries.push(Reverse(((a + l2_entries[q].0).to_bits(), i)));
+            if q < l2_sums.len() && a + l2_sums[q] < hi {
+                entries.push(Reverse(((a + l2_sums[q]).to_bits(), i)));
             }
         }
         Ascending {
@@ -218,40 +284,38 @@ impl<'a> Ascending<'a> {
     fn next(&mut self) -> Option<(f64, u64)> {
         let Reverse((bits, i)) = self.heap.pop()?;
         let q = self.partner[i];
-        let (a, a_mask) = self.l1.entries()[i];
-        let l2 = self.l2.entries();
+        let l2 = self.l2.sums();
         self.partner[i] = q + 1;
         if q + 1 < l2.len() {
-            let s = a + l2[q + 1].0;
+            let s = self.l1.sums()[i] + l2[q + 1];
             if s < self.hi {
                 self.heap.push(Reverse((s.to_bits(), i)));
             }
         }
-        Some((f64::from_bits(bits), a_mask | l2[q].1))
+        Some((f64::from_bits(bits), self.l1.mask(i) | self.l2.mask(q)))
     }
 }
 
 /// The pairs of the two lists around `t`: the one with the smallest sum `>= t` and the one
 /// with the largest sum `< t`, as masks. One walk with two pointers, `O(|l1| + |l2|)`.
 fn around(l1: &SubsetSums, l2: &SubsetSums, t: f64) -> (Option<u64>, Option<u64>) {
-    let l2 = l2.entries();
-    let mut q = l2.len();
+    let l2_sums = l2.sums();
+    let mut q = l2_sums.len();
     let (mut above, mut below) = ((f64::INFINITY, None), (f64::NEG_INFINITY, None));
-    for &(a, a_mask) in l1.entries() {
-        while q > 0 && a + l2[q - 1].0 >= t {
+    for (i, &a) in l1.sums().iter().enumerate() {
+        while q > 0 && a + l2_sums[q - 1] >= t {
             q -= 1;
         }
         // l2[q] is a's smallest partner reaching t, l2[q - 1] its largest below.
-        if let Some(&(b, b_mask)) = l2.get(q) {
-            if a + b < above.0 {
-                above = (a + b, Some(a_mask | b_mask));
-            }
+        if q < l2_sums.len() && a + l2_sums[q] < above.0 {
+            above = (a + l2_sums[q], Some((i, q)));
         }
-        if q > 0 && a + l2[q - 1].0 > below.0 {
-            below = (a + l2[q - 1].0, Some(a_mask | l2[q - 1].1));
+        if q > 0 && a + l2_sums[q - 1] > below.0 {
+            below = (a + l2_sums[q - 1], Some((i, q - 1)));
         }
     }
-    (above.1, below.1)
+    let mask = |(i, q): (usize, usize)| l1.mask(i) | l2.mask(q);
+    (above.1.map(mask), below.1.map(mask))
 }
 
 /// Two pads: the fullest pad of an optimal split, as `(load, mask)`. One pad holds the longest
@@ -428,7 +492,7 @@ pub(crate) fn partition(
     KEPT_LISTS.with(|kept| {
         let mut kept = kept.borrow_mut();
         for pair in [top, search.lists] {
-            if pair.0.entries.len().max(pair.1.entries.len()) <= KEEP_LIST_ENTRIES + 1 {
+            if pair.0.sums.len().max(pair.1.sums.len()) <= KEEP_LIST_ENTRIES + 1 {
                 kept.push(pair);
             }
         }
@@ -519,7 +583,7 @@ mod tests {
     fn subset_sums_are_every_subset_in_increasing_order() {
         let mut rng = ChaCha8Rng::seed_from_u64(11);
         let mut lists = SubsetSums::default();
-        for len in 1..=13 {
+        for len in 1..=14 {
             for round in 0..4 {
                 let p: Vec<f64> = (0..len + 3)
                     .map(|_| {
@@ -533,7 +597,9 @@ mod tests {
                 // Drones 3.. of p, so masks use bits other than the first ones.
                 let items: Vec<usize> = (3..len + 3).collect();
                 lists.build(&p, &items);
-                let entries = lists.entries();
+                let entries: Vec<(f64, u64)> = (0..lists.len())
+                    .map(|i| (lists.sums()[i], lists.mask(i)))
+                    .collect();
                 assert_eq!(entries.len(), 1 << len);
                 assert!(
                     entries.windows(2).all(|w| w[0].0 <= w[1].0),
@@ -543,7 +609,7 @@ mod tests {
                 seen.sort_unstable();
                 let expected: Vec<u64> = (0u64..1 << len).map(|x| x << 3).collect();
                 assert_eq!(seen, expected, "len {len}: not every subset once");
-                for &(sum, mask) in entries {
+                for &(sum, mask) in &entries {
                     let direct: f64 = (0..p.len())
                         .filter(|&j| mask >> j & 1 == 1)
                         .map(|j| p[j])
