@@ -93,17 +93,20 @@ fn main() {
     };
     println!(
         "\n# the two searches after phase 1 on real[1,100), {reps_cmp} instances per row, \
-         time limit 2 s (exact picks partitioning for n >= 7k, n <= 40)"
+         time limit 2 s (exact picks partitioning for n >= 6k, n <= 40)"
     );
     println!("  n   k  partition_median_ms  proven  bin_completion_median_ms  proven  agree");
     let mut rng_c = ChaCha8Rng::seed_from_u64(seed ^ 0xc0);
     for &(n, k) in &[
         (20usize, 2usize),
+        (18, 3),
+        (20, 4),
         (25, 3),
         (30, 2),
         (30, 3),
         (30, 4),
         (30, 5),
+        (30, 6),
         (30, 10),
         (35, 3),
         (40, 4),

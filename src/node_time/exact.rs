@@ -18,7 +18,7 @@
 //! `PHASE1_NODES` nodes.
 //!
 //! Phase 2, one of two searches:
-//! - real-valued times with at least 7 drones per pad and at most 40 drones: sequential
+//! - real-valued times with at least 6 drones per pad and at most 40 drones: sequential
 //!   partitioning (`partition.rs`), the fullest pad's set in increasing load, each set found by
 //!   meet in the middle;
 //! - otherwise (`decision.rs`): local search on the incumbent, the Martello–Toth `L2` bound, and
@@ -48,7 +48,7 @@ const PHASE1_NODES: u64 = 2000;
 const DECISION_MAX_NK: usize = 3000;
 
 /// Fewest drones per pad for which real-valued phase 2 is sequential partitioning.
-const PARTITION_MIN_DRONES_PER_PAD: usize = 7;
+const PARTITION_MIN_DRONES_PER_PAD: usize = 6;
 
 /// Node budget of the real-valued decision trial at the lower bound itself (phase 2).
 const FIRST_TRIAL_NODES: u64 = 4000;
@@ -475,7 +475,7 @@ pub fn exact(pads: usize, charge_times_min: &[f64], limits: &Limits) -> Result<N
 /// bound (see `models/node_time.md`, "Exact method").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum ExactSearch {
-    /// Sequential partitioning for real-valued times with at least 7 drones per pad and at most
+    /// Sequential partitioning for real-valued times with at least 6 drones per pad and at most
     /// 40 drones, bin completion otherwise (what [`exact()`] does).
     #[default]
     Auto,

@@ -235,8 +235,8 @@ fn for_each_in_window(
         while lo_ptr > 0 && a + l2_sums[lo_ptr - 1] >= lo {
             lo_ptr -= 1;
         }
-        for q in lo_ptr..hi_ptr {
-            if !visit(a + l2_sums[q], l1.mask(i) | l2.mask(q)) {
+        for (q, &b) in l2_sums.iter().enumerate().take(hi_ptr).skip(lo_ptr) {
+            if !visit(a + b, l1.mask(i) | l2.mask(q)) {
                 return false;
             }
         }
