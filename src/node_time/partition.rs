@@ -31,6 +31,10 @@ use std::collections::BinaryHeap;
 /// `2^(n/2)` entries (`2^20` at 40 drones, 16 MiB).
 pub(crate) const PARTITION_MAX_DRONES: usize = 40;
 
+/// Width of the first window of fullest-pad loads, relative to the lower bound (`5e-4` min at a
+/// bound of 500 min; measured on 30 real-valued drones on 3 to 5 pads).
+const FIRST_WINDOW_REL: f64 = 1e-6;
+
 /// Relative allowance on every capacity for the rounding of `f64` sums: a refusal at
 /// `c (1 + SLACK)` proves that no assignment has loads `<= c`.
 const SLACK: f64 = 1e-12;
@@ -548,23 +552,35 @@ fn partition_in(
     }
     let items: Vec<usize> = (0..n).collect();
     halves(p, &items, lists);
-    let mut ascending = Ascending::new(&lists.0, &lists.1, lb * (1.0 - SLACK), ub);
-    while let Some((s, mask)) = ascending.next() {
-        if le_tol(ub, s) {
-            // Every assignment whose fullest pad is below s failed: ub is within REL_TOL.
-            return (true, lb.max(s.min(ub)), ub);
-        }
-        lb = lb.max(s * (1.0 - SLACK));
-        search.pads.clear();
-        search.pads.push(mask);
-        match search.fits(all & !mask, m - 1, s.max(search.within_tol), budget) {
-            Decision::Fits => {
-                let found = take_found(&search.pads, pad_of);
-                return (true, lb, found);
+    // The sets come window by window, `[lo, lo + width)` with the width growing 4-fold, so the
+    // heap holds only the entries with a partner in the window (the optimum is usually in the
+    // first one).
+    let mut lo = lb * (1.0 - SLACK);
+    let mut width = lb * FIRST_WINDOW_REL;
+    while lo < ub {
+        let hi = (lo + width).min(ub);
+        let mut ascending = Ascending::new(&lists.0, &lists.1, lo, hi);
+        while let Some((s, mask)) = ascending.next() {
+            if le_tol(ub, s) {
+                // Every assignment whose fullest pad is below s failed: ub is within REL_TOL.
+                return (true, lb.max(s.min(ub)), ub);
             }
-            Decision::DoesNotFit => {}
-            Decision::Stopped => return (false, lb, ub),
+            lb = lb.max(s * (1.0 - SLACK));
+            search.pads.clear();
+            search.pads.push(mask);
+            match search.fits(all & !mask, m - 1, s.max(search.within_tol), budget) {
+                Decision::Fits => {
+                    let found = take_found(&search.pads, pad_of);
+                    return (true, lb, found);
+                }
+                Decision::DoesNotFit => {}
+                Decision::Stopped => return (false, lb, ub),
+            }
         }
+        // Every set below hi failed.
+        lb = lb.max(hi * (1.0 - SLACK)).min(ub);
+        lo = hi;
+        width *= 4.0;
     }
     // Every set was tried: the incumbent is optimal.
     (true, ub, ub)
