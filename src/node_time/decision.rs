@@ -229,6 +229,8 @@ pub(crate) struct BinCompletion<'a> {
     /// calls, so the search does not allocate per node).
     cand_at: Vec<Vec<usize>>,
     suffix_at: Vec<Vec<f64>>,
+    /// Times of the drones taken by the pad being checked for dominance.
+    taken_buf: Vec<f64>,
 }
 
 impl<'a> BinCompletion<'a> {
@@ -254,6 +256,7 @@ impl<'a> BinCompletion<'a> {
             memo,
             cand_at: vec![Vec::new(); k],
             suffix_at: vec![Vec::new(); k],
+            taken_buf: Vec::new(),
         }
     }
 
@@ -338,6 +341,38 @@ impl<'a> BinCompletion<'a> {
         out
     }
 
+    /// Whether the pad just filled (the first drone and the taken `cand`, room `r` left) is
+    /// dominated (Korf, "An improved algorithm for optimal bin packing", IJCAI 2003): a drone `e`
+    /// left out could replace one taken drone `i` (`p_i < p_e <= p_i + r`) or two, `i` and `j`
+    /// (`p_i + p_j <= p_e <= p_i + p_j + r`). Swapping them with `e`'s pad in any completion keeps
+    /// that pad within `C` and this one too, so whenever a completion exists, one exists through
+    /// an undominated pad. Real-valued times get the margin `tol` against rounding.
+    fn dominated(&mut self, cand: &[usize], r: f64) -> bool {
+        let mut taken = std::mem::take(&mut self.taken_buf);
+        taken.clear();
+        taken.extend(cand.iter().filter(|&&j| self.used[j]).map(|&j| self.p[j]));
+        let tol = self.tol;
+        let mut found = false;
+        'outer: for &j in cand.iter().filter(|&&j| !self.used[j]) {
+            let pe = self.p[j];
+            for (a, &pi) in taken.iter().enumerate() {
+                if pi + tol < pe && pe <= pi + r - tol {
+                    found = true;
+                    break 'outer;
+                }
+                for &pj in &taken[a + 1..] {
+                    let pair = pi + pj;
+                    if pair + tol <= pe && pe <= pair + r - tol {
+                        found = true;
+                        break 'outer;
+                    }
+                }
+            }
+        }
+        self.taken_buf = taken;
+        found
+    }
+
     /// Chooses which of `cand[pos..]` join pad `b`, whose room is `r`; `min_out` is the shortest
     /// fitting drone left out so far (the pad must end up with less room than that).
     #[allow(clippy::too_many_arguments)]
@@ -363,6 +398,9 @@ impl<'a> BinCompletion<'a> {
             return Decision::DoesNotFit;
         }
         if pos == cand.len() {
+            if self.dominated(cand, r) {
+                return Decision::DoesNotFit;
+            }
             return self.fill_pad(b + 1, waste - r, budget);
         }
         let j = cand[pos];
