@@ -65,7 +65,7 @@ fn main() {
         ("real[1,100)", 100, false),
     ] {
         for &n in &[10usize, 20, 30] {
-            for &k in &[2usize, 3, 5, 10] {
+            for k in 2usize..=10 {
                 let mut ms = Vec::with_capacity(reps);
                 let mut proven = 0;
                 let mut lpt_opt = 0;
