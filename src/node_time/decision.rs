@@ -351,24 +351,16 @@ impl<'a> BinCompletion<'a> {
         let mut taken = std::mem::take(&mut self.taken_buf);
         taken.clear();
         taken.extend(cand.iter().filter(|&&j| self.used[j]).map(|&j| self.p[j]));
-        let tol = self.tol;
-        let mut found = false;
-        'outer: for &j in cand.iter().filter(|&&j| !self.used[j]) {
-            let pe = self.p[j];
-            for (a, &pi) in taken.iter().enumerate() {
-                if pi + tol < pe && pe <= pi + r - tol {
-                    found = true;
-                    break 'outer;
-                }
-                for &pj in &taken[a + 1..] {
-                    let pair = pi + pj;
-                    if pair + tol <= pe && pe <= pair + r - tol {
-                        found = true;
-                        break 'outer;
-                    }
-                }
-            }
-        }
+        let (tol, p, used) = (self.tol, self.p, &self.used);
+        let replaces = |pe: f64| {
+            taken.iter().enumerate().any(|(a, &pi)| {
+                (pi + tol < pe && pe <= pi + r - tol)
+                    || taken[a + 1..]
+                        .iter()
+                        .any(|&pj| pi + pj + tol <= pe && pe <= pi + pj + r - tol)
+            })
+        };
+        let found = cand.iter().filter(|&&j| !used[j]).any(|&j| replaces(p[j]));
         self.taken_buf = taken;
         found
     }
