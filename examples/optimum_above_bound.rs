@@ -26,7 +26,10 @@ fn main() {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     println!("# nt - LB (min), {DRONES} drones, {INSTANCES} instances per row (seed {seed})");
     println!("times          k      median       least     largest  at_bound");
-    for (label, hi, integral) in [("int[1,10000]", 10000u32, true), ("real[1,100)", 100, false)] {
+    for (label, hi, integral) in [
+        ("int[1,10000]", 10000u32, true),
+        ("real[1,100)", 100, false),
+    ] {
         for k in [3usize, 5, 7, 9] {
             let mut gaps = Vec::with_capacity(INSTANCES);
             let mut at_bound = 0;
