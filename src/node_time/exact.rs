@@ -18,9 +18,9 @@
 //! `PHASE1_NODES` nodes.
 //!
 //! Phase 2, one of two searches:
-//! - real-valued times with at least 6 drones per pad and at most 40 drones: sequential
-//!   partitioning (`partition.rs`), the fullest pad's set in increasing load, each set found by
-//!   meet in the middle;
+//! - real-valued times with at least 4 drones per pad, at most 7 pads and at most 40 drones:
+//!   sequential partitioning (`partition.rs`), the fullest pad's set in increasing load, each set
+//!   found by meet in the middle or read from the cache of sets near `sum/k`;
 //! - otherwise (`decision.rs`): local search on the incumbent, the Martello–Toth `L2` bound, and
 //!   the decision version "do all jobs fit on `k` pads of capacity `C`?" by bin completion, first
 //!   at `C = LB`, then just below each new incumbent and at midpoints of the gap between `LB` and
@@ -48,7 +48,11 @@ const PHASE1_NODES: u64 = 2000;
 const DECISION_MAX_NK: usize = 3000;
 
 /// Fewest drones per pad for which real-valued phase 2 is sequential partitioning.
-const PARTITION_MIN_DRONES_PER_PAD: usize = 6;
+const PARTITION_MIN_DRONES_PER_PAD: usize = 4;
+
+/// Most pads for which real-valued phase 2 is sequential partitioning (with more, bin
+/// completion's median and worst case are lower; measured at 4 drones per pad).
+const PARTITION_MAX_PADS: usize = 7;
 
 /// Node budget of the real-valued decision trial at the lower bound itself (phase 2).
 const FIRST_TRIAL_NODES: u64 = 4000;
@@ -426,11 +430,15 @@ fn phase2(
 }
 
 /// Whether phase 2 is sequential partitioning (`partition.rs`) rather than bin completion: for
-/// real-valued times with at least [`PARTITION_MIN_DRONES_PER_PAD`] drones per pad and at most
-/// [`PARTITION_MAX_DRONES`] drones (measured by `examples/bench_node_time.rs`: there it is faster,
-/// and with fewer drones per pad bin completion is).
+/// real-valued times with at least [`PARTITION_MIN_DRONES_PER_PAD`] drones per pad, at most
+/// [`PARTITION_MAX_PADS`] pads and at most [`PARTITION_MAX_DRONES`] drones (measured by
+/// `examples/bench_node_time.rs`: there it is faster, and with fewer drones per pad or more pads
+/// bin completion is).
 fn use_partition(m: usize, n: usize, integral: bool) -> bool {
-    !integral && n <= PARTITION_MAX_DRONES && n >= PARTITION_MIN_DRONES_PER_PAD * m
+    !integral
+        && m <= PARTITION_MAX_PADS
+        && n <= PARTITION_MAX_DRONES
+        && n >= PARTITION_MIN_DRONES_PER_PAD * m
 }
 
 /// Exact node time by combinatorial branch and bound.
@@ -476,8 +484,8 @@ pub fn exact(pads: usize, charge_times_min: &[f64], limits: &Limits) -> Result<N
 /// bound (see `models/node_time.md`, "Exact method").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum ExactSearch {
-    /// Sequential partitioning for real-valued times with at least 6 drones per pad and at most
-    /// 40 drones, bin completion otherwise (what [`exact()`] does).
+    /// Sequential partitioning for real-valued times with at least 4 drones per pad, at most 7
+    /// pads and at most 40 drones, bin completion otherwise (what [`exact()`] does).
     #[default]
     Auto,
     /// Bin completion under bisection of the makespan (`decision.rs`).
@@ -710,13 +718,13 @@ mod tests {
 
     /// Beyond brute force's reach, the two phase-2 methods (different searches over different
     /// spaces: sets per pad in increasing load, and bin completion under bisection) prove the
-    /// same node time on real-valued swarms of 14 to 26 drones.
+    /// same node time on real-valued swarms of 14 to 28 drones on 2 to 7 pads.
     #[test]
     fn sequential_partitioning_equals_bin_completion_on_larger_real_swarms() {
         let mut rng = ChaCha8Rng::seed_from_u64(42);
-        for case in 0..150 {
-            let n = rng.random_range(14..=26);
-            let k = rng.random_range(2..=5);
+        for case in 0..200 {
+            let n = rng.random_range(14..=28);
+            let k = rng.random_range(2..=7);
             let times: Vec<f64> = (0..n).map(|_| rng.random_range(1.0..100.0)).collect();
             let none = Limits::default();
             let a = exact_phased(k, &times, &none, 0, true).unwrap();

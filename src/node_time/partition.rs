@@ -21,11 +21,12 @@
 //! argument, and there the assignment search and bin completion explore up to `2^r` sets; the
 //! window queries see only the few sets whose load lies in the window.
 
-use super::decision::{Budget, Decision};
+use super::decision::{Budget, Decision, WordHasher};
 use super::{le_tol, REL_TOL};
 use std::cell::RefCell;
 use std::cmp::Reverse;
-use std::collections::BinaryHeap;
+use std::collections::{BinaryHeap, HashMap};
+use std::hash::BuildHasherDefault;
 
 /// Most drones the method takes: subsets are `u64` masks, and each half list has up to
 /// `2^(n/2)` entries (`2^20` at 40 drones, 16 MiB).
@@ -34,6 +35,17 @@ pub(crate) const PARTITION_MAX_DRONES: usize = 40;
 /// Width of the first window of fullest-pad loads, relative to the lower bound (`5e-4` min at a
 /// bound of 500 min; measured on 30 real-valued drones on 3 to 5 pads).
 const FIRST_WINDOW_REL: f64 = 1e-6;
+
+/// Most sets the cache of one window of fullest-pad loads holds (`Partition::cache`); a window
+/// with more leaves the completions to list-building window queries.
+const CACHE_MAX_SETS: usize = 1 << 16;
+
+/// Most failed cached completions remembered by one search (`Partition::failed`).
+const FAILED_MAX_STATES: usize = 1 << 21;
+
+/// Failed cached completions: key `rest | bins << 58` (at most 40 drones, fewer than 40 pads),
+/// value the largest capacity under which the drones of `rest` did not fit on `bins` pads.
+type Failed = HashMap<u64, f64, BuildHasherDefault<WordHasher>>;
 
 /// Relative allowance on every capacity for the rounding of `f64` sums: a refusal at
 /// `c (1 + SLACK)` proves that no assignment has loads `<= c`.
@@ -375,9 +387,122 @@ struct Partition<'a> {
     /// Loads up to this are within `REL_TOL` of the lower bound: an assignment within it is
     /// proven optimal, so no pad needs to stay below a lighter fuller pad (see `fits`).
     within_tol: f64,
+    /// Every set of drones whose load (as listed) lies in `[cache_lo, cache_hi]`, by increasing
+    /// load: while the fullest pad stays below a bound, every window query of the completion
+    /// falls in that range (see `build_cache`), so it reads the cache instead of building lists.
+    cache_sums: Vec<f64>,
+    cache_masks: Vec<u64>,
+    /// Scratch of `build_cache`.
+    cache_pairs: Vec<(f64, u64)>,
+    cache_lo: f64,
+    cache_hi: f64,
+    /// Failed cached completions (a failure under a capacity is one under any smaller).
+    failed: Failed,
 }
 
 impl Partition<'_> {
+    /// Lists into the cache every set with a load the completions can ask for while the fullest
+    /// pad is lighter than `top` (`total` the load of all drones, `m` pads). Every pad after the
+    /// fullest has capacity at most `cap = max(top, within_tol)`, so with `d` pads filled the
+    /// `m - d` pads left share at least `total - d cap`, and the fullest of them holds at least
+    /// that over `m - d`; the least of these, at `d = m - 2`, is the cache's lower end. A window
+    /// with more than [`CACHE_MAX_SETS`] sets leaves the cache empty.
+    fn build_cache(&mut self, lists: &ListPair, m: usize, total: f64, top: f64) {
+        let cap = top.max(self.within_tol) * (1.0 + 2.0 * SLACK);
+        let lo = (total - (m.saturating_sub(2)) as f64 * cap) / 2.0 * (1.0 - 4.0 * SLACK);
+        let pairs = &mut self.cache_pairs;
+        pairs.clear();
+        let complete = for_each_in_window(&lists.0, &lists.1, lo, cap, |s, mask| {
+            pairs.push((s, mask));
+            pairs.len() < CACHE_MAX_SETS
+        });
+        self.cache_sums.clear();
+        self.cache_masks.clear();
+        if complete {
+            pairs.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+            self.cache_sums.extend(pairs.iter().map(|e| e.0));
+            self.cache_masks.extend(pairs.iter().map(|e| e.1));
+            (self.cache_lo, self.cache_hi) = (lo, cap);
+        } else {
+            (self.cache_lo, self.cache_hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        }
+    }
+
+    /// [`Partition::fits`] for the drones of `rest`, whose load is `total`, read from the cache
+    /// when it covers the window `[total / bins, cap]` of the fullest pad (else by `fits`). Two
+    /// pads need a set in that window: its complement weighs at most `total / 2`.
+    fn fits_cached(
+        &mut self,
+        rest: u64,
+        bins: usize,
+        cap: f64,
+        total: f64,
+        budget: &mut Budget,
+    ) -> Decision {
+        if rest == 0 {
+            return Decision::Fits;
+        }
+        let cap_x = cap * (1.0 + SLACK);
+        if bins == 1 {
+            if total <= cap_x {
+                self.pads.push(rest);
+                return Decision::Fits;
+            }
+            return Decision::DoesNotFit;
+        }
+        let longest = rest.trailing_zeros() as usize;
+        if self.p[longest] > cap_x || total > bins as f64 * cap_x {
+            return Decision::DoesNotFit;
+        }
+        if rest.count_ones() as usize <= bins {
+            self.pads
+                .extend(members(rest).into_iter().map(|j| 1u64 << j));
+            return Decision::Fits;
+        }
+        let lo = total / bins as f64 * (1.0 - SLACK);
+        if lo < self.cache_lo || cap_x > self.cache_hi {
+            return self.fits(rest, bins, cap, budget);
+        }
+        // A cached query is cheap: the clock is read every 1024 of them (`Budget::tick`).
+        if budget.tick() {
+            return Decision::Stopped;
+        }
+        let key = rest | (bins as u64) << 58;
+        if self.failed.get(&key).is_some_and(|&c| c >= cap) {
+            return Decision::DoesNotFit;
+        }
+        let mut idx = self.cache_sums.partition_point(|&x| x < lo);
+        let end = idx + self.cache_sums[idx..].partition_point(|&x| x <= cap_x);
+        let outside = !rest;
+        while let Some(step) = self.cache_masks[idx..end]
+            .iter()
+            .position(|&mask| mask & outside == 0)
+        {
+            idx += step;
+            let (s, mask) = (self.cache_sums[idx], self.cache_masks[idx]);
+            idx += 1;
+            self.pads.push(mask);
+            if bins == 2 {
+                self.pads.push(rest & !mask);
+                return Decision::Fits;
+            }
+            // As in `fits`: the other pads stay at most as full as this one, or within the
+            // tolerance.
+            let next_cap = s.max(self.within_tol).min(cap);
+            match self.fits_cached(rest & !mask, bins - 1, next_cap, total - s, budget) {
+                Decision::DoesNotFit => {
+                    self.pads.pop();
+                }
+                other => return other,
+            }
+        }
+        if self.failed.len() < FAILED_MAX_STATES {
+            let c = self.failed.entry(key).or_insert(cap);
+            *c = c.max(cap);
+        }
+        Decision::DoesNotFit
+    }
+
     /// Decides whether the drones of `rest` fit on `bins` pads with every load `<= cap`; on
     /// `Fits` the pads are appended to `self.pads`.
     fn fits(&mut self, rest: u64, bins: usize, cap: f64, budget: &mut Budget) -> Decision {
@@ -491,6 +616,12 @@ pub(crate) fn partition(
         pads: Vec::with_capacity(m),
         lists: take(),
         within_tol: lb * (1.0 + 0.5 * REL_TOL),
+        cache_sums: Vec::new(),
+        cache_masks: Vec::new(),
+        cache_pairs: Vec::new(),
+        cache_lo: f64::INFINITY,
+        cache_hi: f64::NEG_INFINITY,
+        failed: Default::default(),
     };
     let result = partition_in(m, lb, ub, pad_of, budget, &mut top, &mut search);
     KEPT_LISTS.with(|kept| {
@@ -557,10 +688,29 @@ fn partition_in(
     // first one).
     let mut lo = lb * (1.0 - SLACK);
     let mut width = lb * FIRST_WINDOW_REL;
+    let total: f64 = p.iter().sum();
     while lo < ub {
         let hi = (lo + width).min(ub);
-        let mut ascending = Ascending::new(&lists.0, &lists.1, lo, hi);
-        while let Some((s, mask)) = ascending.next() {
+        if m >= 4 {
+            search.build_cache(lists, m, total, hi);
+        }
+        // The sets of the window in increasing load: from the cache when it holds them, else
+        // from the heap of `Ascending`.
+        let cached = lo >= search.cache_lo && hi <= search.cache_hi;
+        let mut ascending = (!cached).then(|| Ascending::new(&lists.0, &lists.1, lo, hi));
+        let mut idx = search.cache_sums.partition_point(|&x| x < lo);
+        loop {
+            let (s, mask) = match ascending.as_mut() {
+                Some(heap) => match heap.next() {
+                    Some(set) => set,
+                    None => break,
+                },
+                None => match search.cache_sums.get(idx) {
+                    Some(&s) if s < hi => (s, search.cache_masks[idx]),
+                    _ => break,
+                },
+            };
+            idx += 1;
             if le_tol(ub, s) {
                 // Every assignment whose fullest pad is below s failed: ub is within REL_TOL.
                 return (true, lb.max(s.min(ub)), ub);
@@ -568,7 +718,8 @@ fn partition_in(
             lb = lb.max(s * (1.0 - SLACK));
             search.pads.clear();
             search.pads.push(mask);
-            match search.fits(all & !mask, m - 1, s.max(search.within_tol), budget) {
+            let cap = s.max(search.within_tol);
+            match search.fits_cached(all & !mask, m - 1, cap, total - s, budget) {
                 Decision::Fits => {
                     let found = take_found(&search.pads, pad_of);
                     return (true, lb, found);
@@ -665,5 +816,162 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// Whether the drones of `rest` fit on `bins` pads with loads `<= cap`, by trying every pad
+    /// for each drone (empty pads are interchangeable: only the first is tried).
+    fn fits_by_enumeration(p: &[f64], rest: u64, bins: usize, cap: f64) -> bool {
+        fn place(p: &[f64], items: &[usize], loads: &mut Vec<f64>, cap: f64) -> bool {
+            let Some((&j, more)) = items.split_first() else {
+                return true;
+            };
+            for i in 0..loads.len() {
+                if loads[i] + p[j] <= cap && (i == 0 || loads[i - 1] > 0.0 || loads[i] > 0.0) {
+                    loads[i] += p[j];
+                    let ok = place(p, more, loads, cap);
+                    loads[i] -= p[j];
+                    if ok {
+                        return true;
+                    }
+                }
+            }
+            false
+        }
+        place(p, &members(rest), &mut vec![0.0; bins], cap)
+    }
+
+    /// The cached completion decides like enumeration (up to 9 drones left) and like the
+    /// list-building completion (up to 24 drones), on the queries the search makes: the drones
+    /// left after a fullest pad taken from the cache, on 3 to 7 pads. Every `Fits` is checked as
+    /// an assignment: each drone left on exactly one pad, every load within the capacity.
+    #[test]
+    fn cached_completion_decides_like_enumeration_and_list_queries() {
+        let mut rng = ChaCha8Rng::seed_from_u64(13);
+        let mut lists = (SubsetSums::default(), SubsetSums::default());
+        let mut asked = [0usize; 2];
+        for case in 0..400 {
+            let m = rng.random_range(3..=7);
+            let n = rng.random_range(m + 1..=if case % 2 == 0 { 12 } else { 24 });
+            let whole = rng.random_bool(0.3);
+            let mut p: Vec<f64> = (0..n)
+                .map(|_| {
+                    if whole {
+                        f64::from(rng.random_range(1..=20u32))
+                    } else {
+                        rng.random_range(1.0..100.0)
+                    }
+                })
+                .collect();
+            p.sort_by(|a, b| b.total_cmp(a));
+            let total: f64 = p.iter().sum();
+            let lb = (total / m as f64).max(p[0]);
+            let all = (1u64 << n) - 1;
+            let items: Vec<usize> = (0..n).collect();
+            halves(&p, &items, &mut lists);
+            let mut search = Partition {
+                p: &p,
+                pads: Vec::new(),
+                lists: Default::default(),
+                within_tol: lb * (1.0 + 0.5 * REL_TOL),
+                cache_sums: Vec::new(),
+                cache_masks: Vec::new(),
+                cache_pairs: Vec::new(),
+                cache_lo: f64::INFINITY,
+                cache_hi: f64::NEG_INFINITY,
+                failed: Default::default(),
+            };
+            let top = lb + rng.random_range(0.0..0.1) * lb;
+            search.build_cache(&lists, m, total, top);
+            // The search's queries (the drones left after a fullest pad below `top`), then any
+            // drones, pads and capacity (outside the cache's range they go to list queries).
+            let mut queries: Vec<(u64, usize, f64)> = (0..search.cache_sums.len())
+                .map(|i| (search.cache_sums[i], search.cache_masks[i]))
+                .filter(|&(s, _)| s >= lb * (1.0 - SLACK) && s < top)
+                .take(8)
+                .map(|(s, mask)| (all & !mask, m - 1, s.max(search.within_tol)))
+                .collect();
+            for _ in 0..8 {
+                let rest = rng.random_range(1..=all);
+                let bins = rng.random_range(1..=m);
+                let load: f64 = members(rest).iter().map(|&j| p[j]).sum();
+                queries.push((rest, bins, load / bins as f64 * rng.random_range(1.0..1.3)));
+            }
+            for (rest, bins, cap) in queries {
+                let load: f64 = members(rest).iter().map(|&j| p[j]).sum();
+                let mut budget = Budget {
+                    nodes: 0,
+                    start: std::time::Instant::now(),
+                    limits: &crate::node_time::Limits::default(),
+                };
+                search.pads.clear();
+                let cached = search.fits_cached(rest, bins, cap, load, &mut budget);
+                let found = search.pads.clone();
+                search.pads.clear();
+                let listed = search.fits(rest, bins, cap, &mut budget);
+                let context =
+                    format!("case {case}: {bins} pads, cap {cap}, p {p:?}, rest {rest:b}");
+                assert_eq!(cached, listed, "{context}");
+                if rest.count_ones() <= 9 {
+                    let direct = fits_by_enumeration(&p, rest, bins, cap * (1.0 + 1e-12));
+                    assert_eq!(cached == Decision::Fits, direct, "{context}");
+                    asked[0] += 1;
+                }
+                asked[1] += 1;
+                if cached == Decision::Fits {
+                    assert!(found.len() <= bins, "{context}");
+                    assert_eq!(found.iter().fold(0, |u, &pad| u | pad), rest, "{context}");
+                    assert_eq!(
+                        found.iter().map(|pad| pad.count_ones()).sum::<u32>(),
+                        rest.count_ones()
+                    );
+                    for &pad in &found {
+                        let load: f64 = members(pad).iter().map(|&j| p[j]).sum();
+                        assert!(
+                            load <= cap * (1.0 + 1e-9),
+                            "{context}: load {load} cap {cap}"
+                        );
+                    }
+                }
+            }
+        }
+        assert!(
+            asked[0] >= 1000 && asked[1] >= 4000,
+            "too few queries: {asked:?}"
+        );
+
+        // A failure is remembered for its capacity and below, not above.
+        let p = [5.0, 4.0, 3.0, 3.0, 1.0];
+        let mut search = Partition {
+            p: &p,
+            pads: Vec::new(),
+            lists: Default::default(),
+            within_tol: 0.0,
+            cache_sums: Vec::new(),
+            cache_masks: Vec::new(),
+            cache_pairs: Vec::new(),
+            cache_lo: f64::INFINITY,
+            cache_hi: f64::NEG_INFINITY,
+            failed: Default::default(),
+        };
+        halves(&p, &[0, 1, 2, 3, 4], &mut lists);
+        search.build_cache(&lists, 3, 16.0, 9.0);
+        let mut budget = Budget {
+            nodes: 0,
+            start: std::time::Instant::now(),
+            limits: &crate::node_time::Limits::default(),
+        };
+        // {5, 4, 3, 3, 1} on 2 pads: 8 | 8 fits capacity 8; 7.9 does not.
+        assert_eq!(
+            search.fits_cached(0b11111, 2, 7.9, 16.0, &mut budget),
+            Decision::DoesNotFit
+        );
+        assert_eq!(
+            search.fits_cached(0b11111, 2, 8.0, 16.0, &mut budget),
+            Decision::Fits
+        );
+        assert_eq!(
+            search.fits_cached(0b11111, 2, 7.5, 16.0, &mut budget),
+            Decision::DoesNotFit
+        );
     }
 }
