@@ -429,16 +429,44 @@ fn phase2(
     (proven(ub, lb), lb, ub)
 }
 
-/// Whether phase 2 is sequential partitioning (`partition.rs`) rather than bin completion: for
-/// real-valued times with at least [`PARTITION_MIN_DRONES_PER_PAD`] drones per pad, at most
-/// [`PARTITION_MAX_PADS`] pads and at most [`PARTITION_MAX_DRONES`] drones (measured by
-/// `examples/bench_node_time.rs`: there it is faster, and with fewer drones per pad or more pads
-/// bin completion is).
-fn use_partition(m: usize, n: usize, integral: bool) -> bool {
-    !integral
-        && m <= PARTITION_MAX_PADS
+/// Whether phase 2 is sequential partitioning (`partition.rs`) rather than bin completion, for
+/// the positive charge times `p` on `m` pads: at least [`PARTITION_MIN_DRONES_PER_PAD`] drones
+/// per pad, at most [`PARTITION_MAX_PADS`] pads and at most [`PARTITION_MAX_DRONES`] drones, and
+/// for whole minutes only when no assignment is expected to meet the bound (the expected excess
+/// of the optimum over `sum/k` is at least half a minute; below, bin completion usually finds a
+/// perfect assignment at `C = LB` at once). Measured by `examples/bench_node_time.rs`: elsewhere
+/// bin completion is faster.
+fn use_partition(m: usize, p: &[f64], integral: bool) -> bool {
+    let n = p.len();
+    m <= PARTITION_MAX_PADS
         && n <= PARTITION_MAX_DRONES
         && n >= PARTITION_MIN_DRONES_PER_PAD * m
+        && (!integral || expected_excess(p, m, 1.0) >= 0.5)
+}
+
+/// The expected excess of the node time over `sum/k` for `m` pads and drones with charge times
+/// like `p` (random, independent), at resolution `delta` (see `models/node_time.md`, "Where the
+/// slow rows spend their time"). The `m^n / m!` assignments give `choice = log2(m^n / m!)` bits;
+/// each of the `m - 1` free pad loads, spread over about `sqrt(2π) σ`, takes
+/// `log2(sqrt(2π) σ / delta)` bits to land within `delta` of its target; about one assignment
+/// has every load within `d` of `sum/k` when `(m d / delta)^(m-1) / (m-1)! = 2^(constraint -
+/// choice)`. Returns 0 when there are no more drones than pads.
+pub(crate) fn expected_excess(p: &[f64], m: usize, delta: f64) -> f64 {
+    let n = p.len();
+    if n <= m || m < 2 {
+        return 0.0;
+    }
+    let (nf, k) = (n as f64, m as f64);
+    let mean = p.iter().sum::<f64>() / nf;
+    let var = p.iter().map(|&x| (x - mean) * (x - mean)).sum::<f64>() / nf;
+    let per_pad = nf / k;
+    let spread = (per_pad * var + per_pad * (1.0 - 1.0 / k) * mean * mean) * (1.0 - 1.0 / k);
+    let sigma = spread.sqrt();
+    let log2_factorial = |x: usize| (2..=x).map(|i| (i as f64).log2()).sum::<f64>();
+    let choice = nf * k.log2() - log2_factorial(m);
+    let constraint = (k - 1.0) * ((2.0 * std::f64::consts::PI).sqrt() * sigma / delta).log2();
+    let log2_d = (delta / k).log2() + (log2_factorial(m - 1) + constraint - choice) / (k - 1.0);
+    log2_d.exp2()
 }
 
 /// Exact node time by combinatorial branch and bound.
@@ -522,7 +550,14 @@ pub fn exact_with(
 ) -> Result<NodeTimeSolution> {
     let positive = charge_times_min.iter().filter(|&&p| p > 0.0).count();
     let partition = match search {
-        ExactSearch::Auto => use_partition(pads, positive, all_integral(charge_times_min)),
+        ExactSearch::Auto => {
+            let p: Vec<f64> = charge_times_min
+                .iter()
+                .copied()
+                .filter(|&t| t > 0.0)
+                .collect();
+            use_partition(pads, &p, all_integral(charge_times_min))
+        }
         ExactSearch::BinCompletion => false,
         ExactSearch::Partition => positive <= PARTITION_MAX_DRONES,
     };
@@ -733,6 +768,18 @@ mod tests {
             assert_eq!(b.status, SolveStatus::Optimal, "{context}");
             assert_optimal(&times, &a, b.makespan_min, &context);
         }
+    }
+
+    /// The expected excess on a case worked by hand: times 1, 2, 3, 4 on 2 pads at a resolution
+    /// of 1 min. Mean 2.5, variance 1.25, 2 drones per pad: spread (2 * 1.25 + 2 * 0.5 * 6.25) *
+    /// 0.5 = 4.375, sigma = 2.0917; choice = log2(2^4 / 2!) = 3 bits; constraint =
+    /// log2(sqrt(2 pi) * 2.0917) = 2.3904 bits; log2 d = log2(1/2) + (0 + 2.3904 - 3) / 1 =
+    /// -1.6096, d = 0.3277 min. Fewer drones than pads: 0.
+    #[test]
+    fn expected_excess_matches_a_hand_computed_case() {
+        let d = expected_excess(&[1.0, 2.0, 3.0, 4.0], 2, 1.0);
+        assert!((d - 0.3277).abs() < 1e-4, "{d}");
+        assert_eq!(expected_excess(&[5.0, 6.0], 3, 1.0), 0.0);
     }
 
     /// A node limit stops sequential partitioning with a valid incumbent, labelled feasible, and
