@@ -86,16 +86,18 @@ fn main() {
         }
     }
 
-    let reps_cmp = if quick { 5 } else { 10 };
+    let reps_cmp = if quick { 5 } else { 20 };
     let two_seconds = Limits {
         time_limit_s: Some(2.0),
         node_limit: None,
     };
     println!(
         "\n# the two searches after phase 1 on real[1,100), {reps_cmp} instances per row, \
-         time limit 2 s (exact picks partitioning for n >= 6k, n <= 40)"
+         time limit 2 s (exact picks partitioning for n >= 4k, k <= 7, n <= 40)"
     );
-    println!("  n   k  partition_median_ms  proven  bin_completion_median_ms  proven  agree");
+    println!(
+        "  n   k  partition_median_ms  max_ms  proven  bin_completion_median_ms  max_ms  proven  agree"
+    );
     let mut rng_c = ChaCha8Rng::seed_from_u64(seed ^ 0xc0);
     for &(n, k) in &[
         (20usize, 2usize),
@@ -107,6 +109,12 @@ fn main() {
         (30, 4),
         (30, 5),
         (30, 6),
+        (20, 5),
+        (24, 6),
+        (28, 7),
+        (30, 7),
+        (30, 8),
+        (32, 8),
         (30, 10),
         (35, 3),
         (40, 4),
@@ -130,8 +138,12 @@ fn main() {
                 ao && bo && (a.makespan_min - b.makespan_min).abs() <= 1e-9 * b.makespan_min,
             );
         }
+        let (pmax, bmax) = (
+            pm.iter().copied().fold(0.0, f64::max),
+            bm.iter().copied().fold(0.0, f64::max),
+        );
         println!(
-            "{n:>3} {k:>3} {:>20.3} {pp:>4}/{reps_cmp} {:>25.3} {bp:>4}/{reps_cmp} {agree:>4}/{reps_cmp}",
+            "{n:>3} {k:>3} {:>20.3} {pmax:>7.1} {pp:>4}/{reps_cmp} {:>25.3} {bmax:>7.1} {bp:>4}/{reps_cmp} {agree:>4}/{reps_cmp}",
             median(&mut pm),
             median(&mut bm)
         );

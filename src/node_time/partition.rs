@@ -582,6 +582,18 @@ impl Partition<'_> {
     }
 }
 
+/// Expected number of subsets of the drones `p` per minute of load near `load`: the subset sums
+/// are about normal with mean `sum/2` and spread `sqrt(sum p_j^2) / 2`, so there are about
+/// `2^n phi(z) / spread` of them per minute, `z = (sum/2 - load) / spread`. The cache of the sets
+/// a window of fullest-pad loads of width `w` needs spans `k w / 2` (see `build_cache`).
+fn subset_density(p: &[f64], load: f64) -> f64 {
+    let total: f64 = p.iter().sum();
+    let spread = p.iter().map(|x| x * x).sum::<f64>().sqrt() / 2.0;
+    let z = (total / 2.0 - load) / spread;
+    let log = p.len() as f64 * std::f64::consts::LN_2 - 0.5 * z * z;
+    log.exp() / (spread * (2.0 * std::f64::consts::PI).sqrt())
+}
+
 /// Two halves' subset-sum lists.
 type ListPair = (SubsetSums, SubsetSums);
 
@@ -690,6 +702,12 @@ fn partition_in(
     // with a partner in the window.
     let mut lo = lb * (1.0 - SLACK);
     let mut width = lb * FIRST_WINDOW_REL;
+    if m >= 4 {
+        // No wider than a cache of about `CACHE_MAX_SETS / 2` sets is expected to hold.
+        let sets_per_min = subset_density(p, lb);
+        width = width.min(CACHE_MAX_SETS as f64 / 2.0 / (sets_per_min * m as f64 / 2.0));
+        width = width.max(lb * REL_TOL);
+    }
     let total: f64 = p.iter().sum();
     while lo < ub {
         let hi = (lo + width).min(ub);
