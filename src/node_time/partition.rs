@@ -401,7 +401,24 @@ struct Partition<'a> {
     failed: Failed,
 }
 
-impl Partition<'_> {
+impl<'a> Partition<'a> {
+    /// A search over the drones `p` from the lower bound `lb`, with `lists` as its scratch lists
+    /// and an empty cache.
+    fn new(p: &'a [f64], lists: ListPair, lb: f64) -> Self {
+        Partition {
+            p,
+            pads: Vec::new(),
+            lists,
+            within_tol: lb * (1.0 + 0.5 * REL_TOL),
+            cache_sums: Vec::new(),
+            cache_masks: Vec::new(),
+            cache_pairs: Vec::new(),
+            cache_lo: f64::INFINITY,
+            cache_hi: f64::NEG_INFINITY,
+            failed: Failed::default(),
+        }
+    }
+
     /// Lists into the cache every set with a load the completions can ask for while the fullest
     /// pad is lighter than `top` (`total` the load of all drones, `m` pads). Every pad after the
     /// fullest has capacity at most `cap = max(top, within_tol)`, so with `d` pads filled the
@@ -429,6 +446,33 @@ impl Partition<'_> {
         }
     }
 
+    /// What every completion decides at once for the drones of `rest` (load `total`) on `bins`
+    /// pads of capacity `cap_x` (rounding allowance included): no drone left, one pad, a drone or
+    /// the total too long for the pads, or at most one drone per pad. `None` when it takes a
+    /// search; on `Fits` the pads are appended to `self.pads`.
+    fn settled(&mut self, rest: u64, bins: usize, cap_x: f64, total: f64) -> Option<Decision> {
+        if rest == 0 {
+            return Some(Decision::Fits);
+        }
+        if bins == 1 {
+            if total <= cap_x {
+                self.pads.push(rest);
+                return Some(Decision::Fits);
+            }
+            return Some(Decision::DoesNotFit);
+        }
+        let longest = rest.trailing_zeros() as usize;
+        if self.p[longest] > cap_x || total > bins as f64 * cap_x {
+            return Some(Decision::DoesNotFit);
+        }
+        if rest.count_ones() as usize <= bins {
+            self.pads
+                .extend(members(rest).into_iter().map(|j| 1u64 << j));
+            return Some(Decision::Fits);
+        }
+        None
+    }
+
     /// [`Partition::fits`] for the drones of `rest`, whose load is `total`, read from the cache
     /// when it covers the window `[total / bins, cap]` of the fullest pad (else by `fits`). Two
     /// pads need a set in that window: its complement weighs at most `total / 2`.
@@ -440,25 +484,9 @@ impl Partition<'_> {
         total: f64,
         budget: &mut Budget,
     ) -> Decision {
-        if rest == 0 {
-            return Decision::Fits;
-        }
         let cap_x = cap * (1.0 + SLACK);
-        if bins == 1 {
-            if total <= cap_x {
-                self.pads.push(rest);
-                return Decision::Fits;
-            }
-            return Decision::DoesNotFit;
-        }
-        let longest = rest.trailing_zeros() as usize;
-        if self.p[longest] > cap_x || total > bins as f64 * cap_x {
-            return Decision::DoesNotFit;
-        }
-        if rest.count_ones() as usize <= bins {
-            self.pads
-                .extend(members(rest).into_iter().map(|j| 1u64 << j));
-            return Decision::Fits;
+        if let Some(settled) = self.settled(rest, bins, cap_x, total) {
+            return settled;
         }
         let lo = total / bins as f64 * (1.0 - SLACK);
         if lo < self.cache_lo || cap_x > self.cache_hi {
@@ -508,24 +536,10 @@ impl Partition<'_> {
     /// `Fits` the pads are appended to `self.pads`.
     fn fits(&mut self, rest: u64, bins: usize, cap: f64, budget: &mut Budget) -> Decision {
         let items = members(rest);
-        if items.is_empty() {
-            return Decision::Fits;
-        }
         let total: f64 = items.iter().map(|&j| self.p[j]).sum();
         let cap_x = cap * (1.0 + SLACK);
-        if bins == 1 {
-            if total <= cap_x {
-                self.pads.push(rest);
-                return Decision::Fits;
-            }
-            return Decision::DoesNotFit;
-        }
-        if self.p[items[0]] > cap_x || total > bins as f64 * cap_x {
-            return Decision::DoesNotFit;
-        }
-        if items.len() <= bins {
-            self.pads.extend(items.iter().map(|&j| 1u64 << j));
-            return Decision::Fits;
+        if let Some(settled) = self.settled(rest, bins, cap_x, total) {
+            return settled;
         }
         if spent(budget) {
             return Decision::Stopped;
@@ -624,18 +638,7 @@ pub(crate) fn partition(
 ) -> (bool, f64, f64) {
     let take = || KEPT_LISTS.with(|kept| kept.borrow_mut().pop().unwrap_or_default());
     let mut top = take();
-    let mut search = Partition {
-        p,
-        pads: Vec::with_capacity(m),
-        lists: take(),
-        within_tol: lb * (1.0 + 0.5 * REL_TOL),
-        cache_sums: Vec::new(),
-        cache_masks: Vec::new(),
-        cache_pairs: Vec::new(),
-        cache_lo: f64::INFINITY,
-        cache_hi: f64::NEG_INFINITY,
-        failed: Default::default(),
-    };
+    let mut search = Partition::new(p, take(), lb);
     let result = partition_in(m, lb, ub, pad_of, budget, &mut top, &mut search);
     KEPT_LISTS.with(|kept| {
         let mut kept = kept.borrow_mut();
@@ -888,18 +891,7 @@ mod tests {
             let all = (1u64 << n) - 1;
             let items: Vec<usize> = (0..n).collect();
             halves(&p, &items, &mut lists);
-            let mut search = Partition {
-                p: &p,
-                pads: Vec::new(),
-                lists: Default::default(),
-                within_tol: lb * (1.0 + 0.5 * REL_TOL),
-                cache_sums: Vec::new(),
-                cache_masks: Vec::new(),
-                cache_pairs: Vec::new(),
-                cache_lo: f64::INFINITY,
-                cache_hi: f64::NEG_INFINITY,
-                failed: Default::default(),
-            };
+            let mut search = Partition::new(&p, Default::default(), lb);
             let top = lb + rng.random_range(0.0..0.1) * lb;
             search.build_cache(&lists, m, total, top);
             // The search's queries (the drones left after a fullest pad below `top`), then any
@@ -961,18 +953,7 @@ mod tests {
 
         // A failure is remembered for its capacity and below, not above.
         let p = [5.0, 4.0, 3.0, 3.0, 1.0];
-        let mut search = Partition {
-            p: &p,
-            pads: Vec::new(),
-            lists: Default::default(),
-            within_tol: 0.0,
-            cache_sums: Vec::new(),
-            cache_masks: Vec::new(),
-            cache_pairs: Vec::new(),
-            cache_lo: f64::INFINITY,
-            cache_hi: f64::NEG_INFINITY,
-            failed: Default::default(),
-        };
+        let mut search = Partition::new(&p, Default::default(), 0.0);
         halves(&p, &[0, 1, 2, 3, 4], &mut lists);
         search.build_cache(&lists, 3, 16.0, 9.0);
         let mut budget = Budget {
