@@ -18,9 +18,10 @@
 //! `PHASE1_NODES` nodes.
 //!
 //! Phase 2, one of two searches:
-//! - real-valued times with at least 4 drones per pad, at most 7 pads and at most 40 drones:
-//!   sequential partitioning (`partition.rs`), the fullest pad's set in increasing load, each set
-//!   found by meet in the middle or read from the cache of sets near `sum/k`;
+//! - at least 4 drones per pad, at most 7 pads and at most 40 drones, with real-valued times or
+//!   whole minutes whose optimum is expected above `sum/k`: sequential partitioning
+//!   (`partition.rs`), the fullest pad's set in increasing load, each set found by meet in the
+//!   middle or read from the cache of sets near `sum/k`;
 //! - otherwise (`decision.rs`): local search on the incumbent, the Martello–Toth `L2` bound, and
 //!   the decision version "do all jobs fit on `k` pads of capacity `C`?" by bin completion, first
 //!   at `C = LB`, then just below each new incumbent and at midpoints of the gap between `LB` and
@@ -47,11 +48,11 @@ const PHASE1_NODES: u64 = 2000;
 /// instances continue with the assignment search.
 const DECISION_MAX_NK: usize = 3000;
 
-/// Fewest drones per pad for which real-valued phase 2 is sequential partitioning.
+/// Fewest drones per pad for which phase 2 is sequential partitioning.
 const PARTITION_MIN_DRONES_PER_PAD: usize = 4;
 
-/// Most pads for which real-valued phase 2 is sequential partitioning (with more, bin
-/// completion's median and worst case are lower; measured at 4 drones per pad).
+/// Most pads for which phase 2 is sequential partitioning (with more, bin completion's median
+/// and worst case are lower; measured at 4 drones per pad).
 const PARTITION_MAX_PADS: usize = 7;
 
 /// Node budget of the real-valued decision trial at the lower bound itself (phase 2).
@@ -512,8 +513,9 @@ pub fn exact(pads: usize, charge_times_min: &[f64], limits: &Limits) -> Result<N
 /// bound (see `models/node_time.md`, "Exact method").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum ExactSearch {
-    /// Sequential partitioning for real-valued times with at least 4 drones per pad, at most 7
-    /// pads and at most 40 drones, bin completion otherwise (what [`exact()`] does).
+    /// Sequential partitioning with at least 4 drones per pad, at most 7 pads and at most 40
+    /// drones (whole minutes: only when the optimum is expected above `sum/k`), bin completion
+    /// otherwise (what [`exact()`] does).
     #[default]
     Auto,
     /// Bin completion under bisection of the makespan (`decision.rs`).
