@@ -789,26 +789,31 @@ mod tests {
     #[test]
     fn sequential_partitioning_under_a_node_limit_is_feasible_with_a_valid_bound() {
         let mut rng = ChaCha8Rng::seed_from_u64(43);
-        let mut stopped = 0;
-        for _ in 0..30 {
+        let mut stopped = [0, 0];
+        for case in 0..60 {
+            // 3 pads: list queries; 5 pads: cached queries.
+            let k = if case % 2 == 0 { 3 } else { 5 };
             let times: Vec<f64> = (0..24).map(|_| rng.random_range(1.0..100.0)).collect();
-            let opt = exact_phased(3, &times, &Limits::default(), 0, false)
+            let opt = exact_phased(k, &times, &Limits::default(), 0, false)
                 .unwrap()
                 .makespan_min;
             let limits = Limits {
                 time_limit_s: None,
                 node_limit: Some(3),
             };
-            let s = exact_phased(3, &times, &limits, 0, true).unwrap();
+            let s = exact_phased(k, &times, &limits, 0, true).unwrap();
             assert!(s.lower_bound_min <= opt * (1.0 + 1e-12));
             assert!(s.makespan_min >= opt * (1.0 - 1e-9));
             if s.status == SolveStatus::Feasible {
-                stopped += 1;
+                stopped[case % 2] += 1;
                 assert!(s.lower_bound_min <= s.makespan_min);
             } else {
                 assert!((s.makespan_min - opt).abs() <= 1e-9 * opt);
             }
         }
-        assert!(stopped > 0, "three nodes never stopped the search");
+        assert!(
+            stopped.iter().all(|&s| s > 0),
+            "three nodes never stopped the search: {stopped:?}"
+        );
     }
 }
