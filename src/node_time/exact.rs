@@ -24,8 +24,9 @@
 //!   middle or read from the cache of sets near `sum/k`;
 //! - otherwise (`decision.rs`): local search on the incumbent, the Martello–Toth `L2` bound, and
 //!   the decision version "do all jobs fit on `k` pads of capacity `C`?" by bin completion, first
-//!   at `C = LB`, then just below each new incumbent and at midpoints of the gap between `LB` and
-//!   `UB` (whole minutes: of the whole makespans not yet excluded).
+//!   at `C = LB` (or, when the optimum is expected above `sum/k`, a little above it), then just
+//!   below each new incumbent and at midpoints of the gap between `LB` and `UB` (whole minutes:
+//!   of the whole makespans not yet excluded).
 
 use super::decision::{l2_lift, local_search, BinCompletion, Budget, Decision, Memo, CAP_SLACK};
 use super::lpt::lpt_sorted;
@@ -54,6 +55,13 @@ const PARTITION_MIN_DRONES_PER_PAD: usize = 4;
 /// Most pads for which phase 2 is sequential partitioning (with more, bin completion's median
 /// and worst case are lower; measured at 4 drones per pad).
 const PARTITION_MAX_PADS: usize = 7;
+
+/// The first decision of bin completion is at `LB + FIRST_GUESS_EXCESS d` when the bound is
+/// `sum/k` and the optimum is expected above it by `d` (`expected_excess`): just above the
+/// optimum, most often, so the incumbents that follow start close to it. Measured on 30 drones
+/// on 8 and 9 pads (real and `U[1,10000]`): 1.5 to 1.9 times faster than starting at `LB`;
+/// 1.75 and 3.5 were slower than 2.5.
+const FIRST_GUESS_EXCESS: f64 = 2.5;
 
 /// Node budget of the real-valued decision trial at the lower bound itself (phase 2).
 const FIRST_TRIAL_NODES: u64 = 4000;
@@ -357,6 +365,7 @@ fn phase2(
     }
     let mut first = true;
     let mut try_proof = false;
+    let mut guess = first_guess(m, p, integral, lb, ub);
     let mut memo = Memo::default();
     let mut memo_cap = f64::INFINITY;
     for _ in 0..10_000 {
@@ -365,7 +374,10 @@ fn phase2(
         }
         // First the bound itself; after a new incumbent, just below it (the proof that ends the
         // search); else the midpoint of the gap (whole minutes: of the makespans not excluded).
-        let c = if first {
+        let c = if let Some(g) = guess.take() {
+            first = false;
+            g
+        } else if first {
             lb
         } else if try_proof {
             if integral {
@@ -428,6 +440,26 @@ fn phase2(
         memo = search.into_memo();
     }
     (proven(ub, lb), lb, ub)
+}
+
+/// The first capacity bin completion tries when the bound `lb` is `sum/k` itself (not lifted by
+/// a long drone, a pair or `L2`): `lb + FIRST_GUESS_EXCESS d` (whole minutes: rounded down), `d`
+/// the expected excess of the optimum; `None` when that is not strictly between `lb` and `ub`
+/// (then the first trial is at `lb`).
+fn first_guess(m: usize, p: &[f64], integral: bool, lb: f64, ub: f64) -> Option<f64> {
+    let even = p.iter().sum::<f64>() / m as f64;
+    let at_even = if integral {
+        lb <= even.ceil()
+    } else {
+        le_tol(lb, even)
+    };
+    if !at_even {
+        return None;
+    }
+    let delta = if integral { 1.0 } else { REL_TOL * lb };
+    let c = lb + FIRST_GUESS_EXCESS * expected_excess(p, m, delta);
+    let c = if integral { c.floor() } else { c };
+    (c > lb && c < ub).then_some(c)
 }
 
 /// Whether phase 2 is sequential partitioning (`partition.rs`) rather than bin completion, for
@@ -782,6 +814,20 @@ mod tests {
         let d = expected_excess(&[1.0, 2.0, 3.0, 4.0], 2, 1.0);
         assert!((d - 0.3277).abs() < 1e-4, "{d}");
         assert_eq!(expected_excess(&[5.0, 6.0], 3, 1.0), 0.0);
+    }
+
+    /// The first guess on the hand-computed case above, real-valued: the bound is sum/2 = 5, the
+    /// expected excess does not depend on the resolution with 2 pads (0.3277 min), so the first
+    /// capacity is 5 + 2.5 * 0.3277 = 5.819. None when that is not below the incumbent, when the
+    /// bound was lifted above sum/k, or with whole minutes (5.819 rounds down to the bound).
+    #[test]
+    fn first_guess_is_the_bound_plus_two_and_a_half_expected_excesses() {
+        let p = [4.0, 3.0, 2.0, 1.0];
+        let c = first_guess(2, &p, false, 5.0, 6.0).expect("between bound and incumbent");
+        assert!((c - 5.8192).abs() < 1e-3, "{c}");
+        assert_eq!(first_guess(2, &p, false, 5.0, 5.5), None);
+        assert_eq!(first_guess(2, &p, false, 5.5, 6.0), None);
+        assert_eq!(first_guess(2, &p, true, 5.0, 7.0), None);
     }
 
     /// A node limit stops sequential partitioning with a valid incumbent, labelled feasible, and
