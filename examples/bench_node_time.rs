@@ -93,7 +93,7 @@ fn main() {
     };
     println!(
         "\n# the two searches after phase 1 on real[1,100), {reps_cmp} instances per row, \
-         time limit 2 s (exact picks partitioning for n >= 4k, k <= 7, n <= 40)"
+         time limit 2 s (exact picks partitioning for n > 4k, k <= 7, n <= 40)"
     );
     println!(
         "  n   k  partition_median_ms  max_ms  proven  bin_completion_median_ms  max_ms  proven  agree"

@@ -18,10 +18,10 @@
 //! `PHASE1_NODES` nodes.
 //!
 //! Phase 2, one of two searches:
-//! - at least 4 drones per pad, at most 7 pads and at most 40 drones, with real-valued times or
-//!   whole minutes whose optimum is expected above `sum/k`: sequential partitioning
-//!   (`partition.rs`), the fullest pad's set in increasing load, each set found by meet in the
-//!   middle or read from the cache of sets near `sum/k`;
+//! - at most 7 pads and 40 drones, with real-valued times and more than 4 drones per pad, or
+//!   whole minutes, at least 5 per pad and an optimum expected above `sum/k`: sequential
+//!   partitioning (`partition.rs`), the fullest pad's set in increasing load, each set found by
+//!   meet in the middle or read from the cache of sets near `sum/k`;
 //! - otherwise (`decision.rs`): local search on the incumbent, the Martello–Toth `L2` bound, and
 //!   the decision version "do all jobs fit on `k` pads of capacity `C`?" by bin completion, first
 //!   at `C = LB` (or, when the optimum is expected above `sum/k`, a little above it), then just
@@ -49,8 +49,12 @@ const PHASE1_NODES: u64 = 2000;
 /// instances continue with the assignment search.
 const DECISION_MAX_NK: usize = 3000;
 
-/// Fewest drones per pad for which phase 2 is sequential partitioning.
-const PARTITION_MIN_DRONES_PER_PAD: usize = 4;
+/// Real-valued times go to sequential partitioning with more than this many drones per pad.
+const PARTITION_REAL_DRONES_PER_PAD: usize = 4;
+
+/// Whole minutes go to sequential partitioning with at least this many drones per pad (and an
+/// optimum expected above `sum/k`).
+const PARTITION_WHOLE_DRONES_PER_PAD: usize = 5;
 
 /// Most pads for which phase 2 is sequential partitioning (with more, bin completion's median
 /// and worst case are lower; measured at 4 drones per pad).
@@ -463,18 +467,21 @@ fn first_guess(m: usize, p: &[f64], integral: bool, lb: f64, ub: f64) -> Option<
 }
 
 /// Whether phase 2 is sequential partitioning (`partition.rs`) rather than bin completion, for
-/// the positive charge times `p` on `m` pads: at least [`PARTITION_MIN_DRONES_PER_PAD`] drones
-/// per pad, at most [`PARTITION_MAX_PADS`] pads and at most [`PARTITION_MAX_DRONES`] drones, and
-/// for whole minutes only when no assignment is expected to meet the bound (the expected excess
-/// of the optimum over `sum/k` is at least half a minute; below, bin completion usually finds a
-/// perfect assignment at `C = LB` at once). Measured by `examples/bench_node_time.rs`: elsewhere
-/// bin completion is faster.
+/// the positive charge times `p` on `m` pads: at most [`PARTITION_MAX_PADS`] pads and at most
+/// [`PARTITION_MAX_DRONES`] drones, and with real-valued times more than
+/// [`PARTITION_REAL_DRONES_PER_PAD`] drones per pad; with whole minutes at least
+/// [`PARTITION_WHOLE_DRONES_PER_PAD`] per pad and no assignment expected to meet the bound (the
+/// expected excess of the optimum over `sum/k` at least half a minute; below, bin completion
+/// usually finds a perfect assignment at `C = LB` at once). Measured by
+/// `examples/bench_node_time.rs`: elsewhere bin completion is faster.
 fn use_partition(m: usize, p: &[f64], integral: bool) -> bool {
     let n = p.len();
-    m <= PARTITION_MAX_PADS
-        && n <= PARTITION_MAX_DRONES
-        && n >= PARTITION_MIN_DRONES_PER_PAD * m
-        && (!integral || expected_excess(p, m, 1.0) >= 0.5)
+    let many = if integral {
+        n >= PARTITION_WHOLE_DRONES_PER_PAD * m && expected_excess(p, m, 1.0) >= 0.5
+    } else {
+        n > PARTITION_REAL_DRONES_PER_PAD * m
+    };
+    m <= PARTITION_MAX_PADS && n <= PARTITION_MAX_DRONES && many
 }
 
 /// The expected excess of the node time over `sum/k` for `m` pads and drones with charge times
@@ -545,9 +552,9 @@ pub fn exact(pads: usize, charge_times_min: &[f64], limits: &Limits) -> Result<N
 /// bound (see `models/node_time.md`, "Exact method").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum ExactSearch {
-    /// Sequential partitioning with at least 4 drones per pad, at most 7 pads and at most 40
-    /// drones (whole minutes: only when the optimum is expected above `sum/k`), bin completion
-    /// otherwise (what [`exact()`] does).
+    /// Sequential partitioning with at most 7 pads and 40 drones, for real-valued times with more
+    /// than 4 drones per pad and for whole minutes with at least 5 per pad and an optimum
+    /// expected above `sum/k`; bin completion otherwise (what [`exact()`] does).
     #[default]
     Auto,
     /// Bin completion under bisection of the makespan (`decision.rs`).
