@@ -530,10 +530,10 @@ pub(crate) fn expected_excess(p: &[f64], m: usize, delta: f64) -> f64 {
 /// Worst case exponential (P||Cmax is strongly NP-hard); `O(n k)` memory plus at most `2^21`
 /// remembered failed states, or two lists of `2^(n/2)` subset sums (sequential partitioning,
 /// `n <= 40`). Medians on seeded uniform instances (`examples/bench_node_time.rs`, 100 per row)
-/// up to 30 drones and 10 pads: whole minutes in `U[1,100]` and `U[1,1000]` below 0.1 and 1 ms;
-/// in `U[1,10000]` below 0.2 ms except 30 drones on 6 to 10 pads (0.9 to 2.5 ms); real-valued
-/// times below 1 ms on 2 to 6 pads, 1.2 to 4.1 ms for 30 drones on 7 to 10 pads; 100
-/// whole-minute drones on 10 pads below 0.2 ms. 100 real-valued drones on 10 pads are not proven
+/// up to 30 drones and 10 pads: whole minutes in `U[1,100]` and `U[1,1000]` below 0.1 and 0.8 ms;
+/// in `U[1,10000]` below 0.2 ms except 30 drones on 6 to 10 pads (0.8 to 2.3 ms); real-valued
+/// times below 1 ms on 2 to 6 and on 10 pads, 1.6 to 2.0 ms for 30 drones on 7 to 9 pads; 100
+/// whole-minute drones on 10 pads below 0.1 ms. 100 real-valued drones on 10 pads are not proven
 /// within 10 s: a limit returns the incumbent, `Feasible`.
 ///
 /// # Example
