@@ -467,21 +467,25 @@ fn first_guess(m: usize, p: &[f64], integral: bool, lb: f64, ub: f64) -> Option<
 }
 
 /// Whether phase 2 is sequential partitioning (`partition.rs`) rather than bin completion, for
-/// the positive charge times `p` on `m` pads: at most [`PARTITION_MAX_PADS`] pads and at most
-/// [`PARTITION_MAX_DRONES`] drones, and with real-valued times more than
-/// [`PARTITION_REAL_DRONES_PER_PAD`] drones per pad; with whole minutes at least
+/// the charge times `times` (`positive` of them above zero) on `m` pads: at most
+/// [`PARTITION_MAX_PADS`] pads and at most [`PARTITION_MAX_DRONES`] drones, and with real-valued
+/// times more than [`PARTITION_REAL_DRONES_PER_PAD`] drones per pad; with whole minutes at least
 /// [`PARTITION_WHOLE_DRONES_PER_PAD`] per pad and no assignment expected to meet the bound (the
 /// expected excess of the optimum over `sum/k` at least half a minute; below, bin completion
 /// usually finds a perfect assignment at `C = LB` at once). Measured by
 /// `examples/bench_node_time.rs`: elsewhere bin completion is faster.
-fn use_partition(m: usize, p: &[f64], integral: bool) -> bool {
-    let n = p.len();
-    let many = if integral {
-        n >= PARTITION_WHOLE_DRONES_PER_PAD * m && expected_excess(p, m, 1.0) >= 0.5
-    } else {
-        n > PARTITION_REAL_DRONES_PER_PAD * m
-    };
-    m <= PARTITION_MAX_PADS && n <= PARTITION_MAX_DRONES && many
+fn use_partition(m: usize, times: &[f64], positive: usize, integral: bool) -> bool {
+    if m > PARTITION_MAX_PADS || positive > PARTITION_MAX_DRONES {
+        return false;
+    }
+    if !integral {
+        return positive > PARTITION_REAL_DRONES_PER_PAD * m;
+    }
+    if positive < PARTITION_WHOLE_DRONES_PER_PAD * m {
+        return false;
+    }
+    let p: Vec<f64> = times.iter().copied().filter(|&t| t > 0.0).collect();
+    expected_excess(&p, m, 1.0) >= 0.5
 }
 
 /// The expected excess of the node time over `sum/k` for `m` pads and drones with charge times
@@ -591,14 +595,12 @@ pub fn exact_with(
 ) -> Result<NodeTimeSolution> {
     let positive = charge_times_min.iter().filter(|&&p| p > 0.0).count();
     let partition = match search {
-        ExactSearch::Auto => {
-            let p: Vec<f64> = charge_times_min
-                .iter()
-                .copied()
-                .filter(|&t| t > 0.0)
-                .collect();
-            use_partition(pads, &p, all_integral(charge_times_min))
-        }
+        ExactSearch::Auto => use_partition(
+            pads,
+            charge_times_min,
+            positive,
+            all_integral(charge_times_min),
+        ),
         ExactSearch::BinCompletion => false,
         ExactSearch::Partition => positive <= PARTITION_MAX_DRONES,
     };
