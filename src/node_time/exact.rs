@@ -22,13 +22,13 @@
 //!   whole minutes, at least 5 per pad and an optimum expected above `sum/k`: sequential
 //!   partitioning (`partition.rs`), the fullest pad's set in increasing load, each set found by
 //!   meet in the middle or read from the cache of sets near `sum/k`;
-//! - otherwise (`decision.rs`): local search on the incumbent, the Martello–Toth `L2` bound, and
-//!   the decision version "do all jobs fit on `k` pads of capacity `C`?" by bin completion, first
-//!   at `C = LB` (or, when the optimum is expected above `sum/k`, a little above it), then just
-//!   below each new incumbent and at midpoints of the gap between `LB` and `UB` (whole minutes:
-//!   of the whole makespans not yet excluded).
+//! - otherwise (`decision.rs`): local search on the incumbent, the Martello–Toth `L2` and
+//!   two-class count bounds, and the decision version "do all jobs fit on `k` pads of capacity
+//!   `C`?" by bin completion, first at `C = LB` (or, when the optimum is expected above `sum/k`,
+//!   a little above it), then just below each new incumbent and at midpoints of the gap between
+//!   `LB` and `UB` (whole minutes: of the whole makespans not yet excluded).
 
-use super::decision::{l2_lift, local_search, BinCompletion, Budget, Decision, Memo, CAP_SLACK};
+use super::decision::{bound_lift, local_search, BinCompletion, Budget, Decision, Memo, CAP_SLACK};
 use super::lpt::lpt_sorted;
 use super::partition::{partition, PARTITION_MAX_DRONES};
 use super::{
@@ -327,9 +327,9 @@ fn makespan_sorted(m: usize, p: &[f64], pad_of: &[usize]) -> f64 {
     loads.iter().copied().fold(0.0, f64::max)
 }
 
-/// Phase 2: local search on the incumbent, the `L2` bound, then the decision version from the
-/// lower bound up (whole minutes) or by bisection (real minutes). Returns (proven, lower bound,
-/// incumbent makespan); `pad_of` holds the incumbent.
+/// Phase 2: local search on the incumbent, the `L2` and count bounds, then the decision version
+/// from the lower bound up (whole minutes) or by bisection (real minutes). Returns (proven, lower
+/// bound, incumbent makespan); `pad_of` holds the incumbent.
 fn phase2(
     m: usize,
     p: &[f64],
@@ -346,7 +346,7 @@ fn phase2(
         ub = improved;
         pad_of.copy_from_slice(&trial);
     }
-    if let Some(fail) = l2_lift(p, m, lb, ub, integral) {
+    if let Some(fail) = bound_lift(p, m, lb, ub, integral) {
         lb = lb.max(if integral { fail + 1.0 } else { fail });
     }
     if proven(ub, lb) {
@@ -523,7 +523,8 @@ pub(crate) fn expected_excess(p: &[f64], m: usize, delta: f64) -> f64 {
 /// # Returns
 /// A [`NodeTimeSolution`] with method `exact`: `Optimal` with `lower_bound_min == makespan_min`
 /// when the proof completed; `Feasible` with the incumbent and the best proven lower bound (the
-/// root bound `max(p_max, sum/k, p_k + p_{k+1}, ...)`, lifted by `L2` and by failed decisions)
+/// root bound `max(p_max, sum/k, p_k + p_{k+1}, ...)`, lifted by `L2`, the count bound and failed
+/// decisions)
 /// when a limit stopped it. With `pads >= drones` the node time is the longest charge time, one
 /// drone per pad.
 ///
@@ -757,7 +758,7 @@ mod tests {
         );
     }
 
-    /// Phase 2 alone (local search, `L2`, bin completion) agrees with brute force.
+    /// Phase 2 alone (local search, `L2` and count bounds, bin completion) agrees with brute force.
     #[test]
     fn decision_version_alone_equals_brute_force() {
         let mut rng = ChaCha8Rng::seed_from_u64(40);
