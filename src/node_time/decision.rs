@@ -159,78 +159,108 @@ pub(crate) fn l2_bins(p: &[f64], cap: f64) -> usize {
 ///
 /// Complexity `O(d_a d_b n)`, `d_a` and `d_b` the numbers of distinct lengths above `cap/4` and
 /// `cap/8`.
-pub(crate) fn count_bound(p: &[f64], cap: f64) -> f64 {
-    let n = p.len();
-    if n == 0 {
-        return 0.0;
-    }
-    if p[0] > cap {
+#[cfg(test)]
+fn count_bound(p: &[f64], cap: f64) -> f64 {
+    if p.first().is_some_and(|&v| v > cap) {
         return f64::INFINITY;
     }
-    let mut best = 0.0_f64;
-    let mut rows: Vec<(f64, f64)> = Vec::new();
-    // `p[..nb]` big, `p[nb..ne]` medium; both ends at a change of length.
-    for nb in 1..=n {
-        if p[nb - 1] <= cap / 4.0 {
+    let mut rows = Vec::new();
+    threshold_pairs(p, cap)
+        .map(|(nb, ne)| pair_value(p, cap, nb, ne, &mut rows))
+        .fold(0.0, f64::max)
+}
+
+/// The thresholds `(n_B, n_B + n_M)` (end indices of the big and medium items in `p`) over which
+/// [`count_bound`] maximises: big items longer than `cap/4`, medium ones longer than `cap/8`, each
+/// class ending at a change of length.
+fn threshold_pairs(p: &[f64], cap: f64) -> impl Iterator<Item = (usize, usize)> + '_ {
+    let n = p.len();
+    (1..=n)
+        .take_while(move |&nb| p[nb - 1] > cap / 4.0)
+        .filter(move |&nb| nb == n || p[nb] != p[nb - 1])
+        .flat_map(move |nb| {
+            (nb..=n)
+                .take_while(move |&ne| ne == nb || p[ne - 1] > cap / 8.0)
+                .filter(move |&ne| ne == nb || ne == n || p[ne] != p[ne - 1])
+                .map(move |ne| (nb, ne))
+        })
+}
+
+/// The weight of the items `p` (sorted decreasingly, all `<= cap`) under the best weights `x` for
+/// the big items `p[..nb]` and `y` for the medium ones `p[nb..ne]` (see [`count_bound`]). `rows`
+/// is scratch space. Nonincreasing in `cap`: a larger capacity only raises the counts `j_i` and
+/// `i_max`, which tightens the constraints.
+#[cfg(test)]
+fn pair_value(p: &[f64], cap: f64, nb: usize, ne: usize, rows: &mut Vec<(f64, f64)>) -> f64 {
+    pair_value_over(p, cap, nb, ne, rows, 0.0)
+}
+
+/// [`pair_value`] when it exceeds `floor`; otherwise some value `<= floor` (the linear programme
+/// is skipped when its simple bound `n_B / i_max + n_M / j_0` is at most `floor`).
+fn pair_value_over(
+    p: &[f64],
+    cap: f64,
+    nb: usize,
+    ne: usize,
+    rows: &mut Vec<(f64, f64)>,
+    floor: f64,
+) -> f64 {
+    // Rows (i, j_i): the i shortest big items and as many of the shortest medium ones.
+    rows.clear();
+    let mut big_load = 0.0;
+    let mut j = 0;
+    let mut med_load = 0.0;
+    while j < ne - nb && med_load + p[ne - 1 - j] <= cap {
+        med_load += p[ne - 1 - j];
+        j += 1;
+    }
+    let mut i = 0;
+    loop {
+        rows.push((i as f64, j as f64));
+        if i == nb || big_load + p[nb - 1 - i] > cap {
             break;
         }
-        if nb < n && p[nb] == p[nb - 1] {
-            continue;
+        big_load += p[nb - 1 - i];
+        i += 1;
+        while j > 0 && big_load + med_load > cap {
+            j -= 1;
+            med_load -= p[ne - 1 - j];
         }
-        for ne in nb..=n {
-            if ne > nb && p[ne - 1] <= cap / 8.0 {
-                break;
-            }
-            if ne < n && ne > nb && p[ne] == p[ne - 1] {
-                continue;
-            }
-            // Rows (i, j_i): the i shortest big items and as many of the shortest medium ones.
-            rows.clear();
-            let mut big_load = 0.0;
-            let mut j = 0;
-            let mut med_load = 0.0;
-            while j < ne - nb && med_load + p[ne - 1 - j] <= cap {
-                med_load += p[ne - 1 - j];
-                j += 1;
-            }
-            let mut i = 0;
-            loop {
-                rows.push((i as f64, j as f64));
-                if i == nb || big_load + p[nb - 1 - i] > cap {
-                    break;
-                }
-                big_load += p[nb - 1 - i];
-                i += 1;
-                while j > 0 && big_load + med_load > cap {
-                    j -= 1;
-                    med_load -= p[ne - 1 - j];
-                }
-                if j == 0 {
-                    med_load = 0.0;
-                }
-            }
-            let (n_big, n_med) = (nb as f64, (ne - nb) as f64);
-            let feasible = |x: f64, y: f64| {
-                x >= 0.0 && y >= 0.0 && rows.iter().all(|&(i, j)| i * x + j * y <= 1.0 + 1e-12)
-            };
-            let mut consider = |x: f64, y: f64| {
-                if feasible(x, y) {
-                    best = best.max(n_big * x + n_med * y);
-                }
-            };
-            for (a, &(i1, j1)) in rows.iter().enumerate() {
-                if i1 > 0.0 {
-                    consider(1.0 / i1, 0.0);
-                }
-                if j1 > 0.0 {
-                    consider(0.0, 1.0 / j1);
-                }
-                for &(i2, j2) in &rows[a + 1..] {
-                    let det = i1 * j2 - i2 * j1;
-                    if det != 0.0 {
-                        consider((j2 - j1) / det, (i1 - i2) / det);
-                    }
-                }
+        if j == 0 {
+            med_load = 0.0;
+        }
+    }
+    if rows.len() == 1 {
+        // Not even the shortest big item fits.
+        return f64::INFINITY;
+    }
+    let (n_big, n_med) = (nb as f64, (ne - nb) as f64);
+    let (i_max, j_0) = (rows[rows.len() - 1].0, rows[0].1);
+    let most = n_big / i_max + if j_0 > 0.0 { n_med / j_0 } else { 0.0 };
+    if most <= floor {
+        return most;
+    }
+    let rows = &rows[..];
+    let feasible = |x: f64, y: f64| {
+        x >= 0.0 && y >= 0.0 && rows.iter().all(|&(i, j)| i * x + j * y <= 1.0 + 1e-12)
+    };
+    let mut best = 0.0_f64;
+    let mut consider = |x: f64, y: f64| {
+        if feasible(x, y) {
+            best = best.max(n_big * x + n_med * y);
+        }
+    };
+    for (a, &(i1, j1)) in rows.iter().enumerate() {
+        if i1 > 0.0 {
+            consider(1.0 / i1, 0.0);
+        }
+        if j1 > 0.0 {
+            consider(0.0, 1.0 / j1);
+        }
+        for &(i2, j2) in &rows[a + 1..] {
+            let det = i1 * j2 - i2 * j1;
+            if det != 0.0 {
+                consider((j2 - j1) / det, (i1 - i2) / det);
             }
         }
     }
@@ -239,7 +269,8 @@ pub(crate) fn count_bound(p: &[f64], cap: f64) -> f64 {
 
 /// Bins of capacity `cap` needed for the items `p` (sorted decreasingly, all `> 0`) by the
 /// larger of `L2` and the two-class cardinality bound; `usize::MAX` when an item exceeds `cap`.
-pub(crate) fn bins_bound(p: &[f64], cap: f64) -> usize {
+#[cfg(test)]
+fn bins_bound(p: &[f64], cap: f64) -> usize {
     let l2 = l2_bins(p, cap);
     if l2 == usize::MAX {
         return l2;
@@ -526,12 +557,26 @@ impl<'a> BinCompletion<'a> {
     }
 }
 
-/// Largest `c` in `[lo, hi)` found by bisection with [`bins_bound`]`(c) > k`, i.e. proven
-/// `nt > c`; `None` when `bins_bound(lo) <= k`. Any such `c` is a valid bound because feasibility
-/// is monotone in `c`.
+/// Largest `c` in `[lo, hi)` found by bisection with `L2(c) > k` or the two-class count bound
+/// above `k`, i.e. proven `nt > c`; `None` when neither holds at `lo`. Any such `c` is a valid
+/// bound because feasibility is monotone in `c`. The count bound is a maximum over pairs of
+/// thresholds of values nonincreasing in `c`, so only the pairs above `k` at `lo` are evaluated
+/// during the bisection.
 pub(crate) fn bound_lift(p: &[f64], k: usize, lo: f64, hi: f64, integral: bool) -> Option<f64> {
     let widen = |c: f64| if integral { c } else { c * (1.0 + CAP_SLACK) };
-    if bins_bound(p, widen(lo)) <= k {
+    // A little above `k`, so rounding never overstates the count bound.
+    let target = k as f64 + 1e-9;
+    let mut rows = Vec::new();
+    let pairs: Vec<(usize, usize)> = threshold_pairs(p, widen(lo))
+        .filter(|&(nb, ne)| pair_value_over(p, widen(lo), nb, ne, &mut rows, target) > target)
+        .collect();
+    let mut proves = |c: f64| {
+        l2_bins(p, c) > k
+            || pairs
+                .iter()
+                .any(|&(nb, ne)| pair_value_over(p, c, nb, ne, &mut rows, target) > target)
+    };
+    if !proves(widen(lo)) {
         return None;
     }
     let (mut fail, mut ok) = (lo, hi);
@@ -548,7 +593,7 @@ pub(crate) fn bound_lift(p: &[f64], k: usize, lo: f64, hi: f64, integral: bool) 
         } else {
             0.5 * (fail + ok)
         };
-        if bins_bound(p, widen(mid)) > k {
+        if proves(widen(mid)) {
             fail = mid;
         } else {
             ok = mid;
@@ -625,7 +670,7 @@ mod tests {
     /// The bound never exceeds the fewest bins (exact dynamic programme) on 3,000 random cases
     /// of at most 10 items, real and whole lengths, capacities from the longest item to the
     /// total, or lengths 20 to 50 in bins of 100; and it is sometimes stronger than `L2`, so the
-    /// check is not vacuous.
+    /// check is not vacuous. Each pair of thresholds gives a value nonincreasing in the capacity.
     #[test]
     fn count_bound_never_exceeds_the_fewest_bins() {
         let mut rng = ChaCha8Rng::seed_from_u64(50);
@@ -660,6 +705,18 @@ mod tests {
                 "case {case}: cap {cap} p {p:?}: bound {bound} > {exact} bins"
             );
             assert!(bins_bound(&p, cap) <= exact, "case {case}");
+            // Every pair of thresholds is nonincreasing in the capacity, which the lift relies on.
+            let mut rows = Vec::new();
+            for (nb, ne) in threshold_pairs(&p, cap) {
+                let here = pair_value(&p, cap, nb, ne, &mut rows);
+                let wider = pair_value(&p, cap * 1.1, nb, ne, &mut rows);
+                assert!(wider <= here + 1e-12, "case {case}: ({nb}, {ne})");
+                // The shortcut of the lift decides like the full programme.
+                for floor in [1.0, 2.0, 3.0, here - 1e-6, here + 1e-6] {
+                    let over = pair_value_over(&p, cap, nb, ne, &mut rows, floor);
+                    assert_eq!(over > floor, here > floor, "case {case}: floor {floor}");
+                }
+            }
             stronger += usize::from(bins_bound(&p, cap) > l2_bins(&p, cap));
         }
         assert!(stronger >= 30, "stronger than L2 in only {stronger} cases");
