@@ -70,6 +70,15 @@ const FIRST_GUESS_EXCESS: f64 = 2.5;
 /// Node budget of the real-valued decision trial at the lower bound itself (phase 2).
 const FIRST_TRIAL_NODES: u64 = 4000;
 
+/// Sequential partitioning with at most this many drones per pad hands over to bin completion
+/// after [`PARTITION_SWITCH_NODES`] nodes (with more per pad bin completion is far slower).
+const PARTITION_SWITCH_DRONES_PER_PAD: usize = 6;
+
+/// Nodes (completion queries and placements) after which sequential partitioning hands over to
+/// bin completion, keeping its lower bound: about 35 ms at 30 drones on 7 pads, beyond the
+/// slowest of 200 instances (75,000 nodes) where the instance suits partitioning.
+const PARTITION_SWITCH_NODES: u64 = 100_000;
+
 /// Depth-first branch and bound over the positive jobs, sorted decreasingly.
 struct Search<'a> {
     /// `p[j]`, decreasing, all > 0.
@@ -559,7 +568,8 @@ pub fn exact(pads: usize, charge_times_min: &[f64], limits: &Limits) -> Result<N
 pub enum ExactSearch {
     /// Sequential partitioning with at most 7 pads and 40 drones, for real-valued times with more
     /// than 4 drones per pad and for whole minutes with at least 5 per pad and an optimum
-    /// expected above `sum/k`; bin completion otherwise (what [`exact()`] does).
+    /// expected above `sum/k`, handing over to bin completion after 100,000 nodes with at most 6
+    /// drones per pad; bin completion otherwise (what [`exact()`] does).
     #[default]
     Auto,
     /// Bin completion under bisection of the makespan (`decision.rs`).
@@ -595,34 +605,51 @@ pub fn exact_with(
     search: ExactSearch,
 ) -> Result<NodeTimeSolution> {
     let positive = charge_times_min.iter().filter(|&&p| p > 0.0).count();
-    let partition = match search {
-        ExactSearch::Auto => use_partition(
-            pads,
-            charge_times_min,
-            positive,
-            all_integral(charge_times_min),
-        ),
-        ExactSearch::BinCompletion => false,
-        ExactSearch::Partition => positive <= PARTITION_MAX_DRONES,
+    let next = match search {
+        ExactSearch::Auto => {
+            if use_partition(
+                pads,
+                charge_times_min,
+                positive,
+                all_integral(charge_times_min),
+            ) {
+                Next::PartitionThenBinCompletion
+            } else {
+                Next::BinCompletion
+            }
+        }
+        ExactSearch::BinCompletion => Next::BinCompletion,
+        ExactSearch::Partition if positive <= PARTITION_MAX_DRONES => Next::Partition,
+        ExactSearch::Partition => Next::BinCompletion,
     };
-    let phase1_nodes = if pads == 2 && !partition {
+    let phase1_nodes = if pads == 2 && next == Next::BinCompletion {
         u64::MAX
     } else {
         PHASE1_NODES
     };
-    exact_phased(pads, charge_times_min, limits, phase1_nodes, partition)
+    exact_phased(pads, charge_times_min, limits, phase1_nodes, next)
+}
+
+/// The search of phase 2.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Next {
+    /// Bin completion under bisection of the makespan.
+    BinCompletion,
+    /// Sequential partitioning to the end (at most [`PARTITION_MAX_DRONES`] positive drones).
+    Partition,
+    /// Sequential partitioning, handing over to bin completion after [`PARTITION_SWITCH_NODES`]
+    /// nodes with at most [`PARTITION_SWITCH_DRONES_PER_PAD`] drones per pad.
+    PartitionThenBinCompletion,
 }
 
 /// [`exact`] with `phase1_nodes` nodes of the assignment search before phase 2 (0 skips phase
-/// 1; the tests use it to check each phase-2 method alone), and phase 2 by sequential
-/// partitioning when `partition` (at most [`PARTITION_MAX_DRONES`] positive drones), by bin
-/// completion otherwise.
+/// 1; the tests use it to check each phase-2 method alone), and phase 2 by `next`.
 pub(crate) fn exact_phased(
     pads: usize,
     charge_times_min: &[f64],
     limits: &Limits,
     phase1_nodes: u64,
-    partition_next: bool,
+    next: Next,
 ) -> Result<NodeTimeSolution> {
     validate(pads, charge_times_min)?;
     validate_limits(limits)?;
@@ -687,8 +714,30 @@ pub(crate) fn exact_phased(
             || limits
                 .time_limit_s
                 .is_some_and(|t| start.elapsed().as_secs_f64() >= t);
-        if !finished && !out_of_budget && partition_next {
-            (finished, lb, _) = partition(m, p, lb, ub, &mut pad_sorted[..positive], &mut budget);
+        if !finished && !out_of_budget && next != Next::BinCompletion {
+            // With few drones per pad, a search that runs long hands over to bin completion,
+            // which keeps the bound reached (the load of the set tried last).
+            let switch = next == Next::PartitionThenBinCompletion
+                && positive <= PARTITION_SWITCH_DRONES_PER_PAD * m;
+            let part_limits = Limits {
+                time_limit_s: limits.time_limit_s,
+                node_limit: Some(limits.node_limit.unwrap_or(u64::MAX).min(if switch {
+                    budget.nodes.saturating_add(PARTITION_SWITCH_NODES)
+                } else {
+                    u64::MAX
+                })),
+            };
+            let mut part_budget = Budget {
+                nodes: budget.nodes,
+                start,
+                limits: &part_limits,
+            };
+            let pad = &mut pad_sorted[..positive];
+            (finished, lb, _) = partition(m, p, lb, ub, pad, &mut part_budget);
+            budget.nodes = part_budget.nodes;
+            if !finished && switch && !budget_spent(&budget) {
+                (finished, lb, _) = phase2(m, p, integral, lb, ub, pad, &mut budget);
+            }
         } else if !finished && !out_of_budget {
             (finished, lb, _) = phase2(
                 m,
@@ -767,7 +816,7 @@ mod tests {
             let k = rng.random_range(1..=4);
             let times = small_times(&mut rng, n);
             let b = brute(k, &times, &Limits::default()).unwrap();
-            let e = exact_phased(k, &times, &Limits::default(), 0, false).unwrap();
+            let e = exact_phased(k, &times, &Limits::default(), 0, Next::BinCompletion).unwrap();
             let full = exact(k, &times, &Limits::default()).unwrap();
             let context = format!("case {case}: k={k} times={times:?}");
             assert_optimal(&times, &e, b.makespan_min, &context);
@@ -785,7 +834,7 @@ mod tests {
             let k = rng.random_range(2..=4);
             let times = small_times(&mut rng, n);
             let b = brute(k, &times, &Limits::default()).unwrap();
-            let e = exact_phased(k, &times, &Limits::default(), 0, true).unwrap();
+            let e = exact_phased(k, &times, &Limits::default(), 0, Next::Partition).unwrap();
             assert_optimal(
                 &times,
                 &e,
@@ -806,12 +855,77 @@ mod tests {
             let k = rng.random_range(2..=7);
             let times: Vec<f64> = (0..n).map(|_| rng.random_range(1.0..100.0)).collect();
             let none = Limits::default();
-            let a = exact_phased(k, &times, &none, 0, true).unwrap();
-            let b = exact_phased(k, &times, &none, 0, false).unwrap();
+            let a = exact_phased(k, &times, &none, 0, Next::Partition).unwrap();
+            let b = exact_phased(k, &times, &none, 0, Next::BinCompletion).unwrap();
             let context = format!("case {case}: k={k} times={times:?}");
             assert_eq!(b.status, SolveStatus::Optimal, "{context}");
             assert_optimal(&times, &a, b.makespan_min, &context);
         }
+    }
+
+    /// A swarm on which sequential partitioning runs long (about 400,000 nodes; the slowest of
+    /// 300 random swarms of 30 real-valued drones on 7 pads) while bin completion proves it in a
+    /// few thousand: `exact` hands over after `PARTITION_SWITCH_NODES` nodes, keeping the
+    /// partitioning's bound, and proves the same node time as each search run alone.
+    #[test]
+    fn sequential_partitioning_hands_over_to_bin_completion_on_a_long_search() {
+        let times = [
+            71.55152673905367,
+            10.625711027749215,
+            3.2125818575359557,
+            56.59950963230777,
+            1.9484939325430979,
+            99.94159946753571,
+            9.290679299888925,
+            77.12978576064714,
+            22.224502724613643,
+            46.17400954246027,
+            1.8696473449772502,
+            1.4269776127174019,
+            2.792078748723851,
+            96.87864963829848,
+            85.5618540051607,
+            84.65827921909013,
+            36.609315960867,
+            1.3026593795355585,
+            19.657521764192957,
+            55.95635866775829,
+            4.436358382792687,
+            68.18872318093447,
+            15.564145217604263,
+            1.8892750131298897,
+            9.786473244851152,
+            63.204885804916096,
+            41.708772566474266,
+            61.10793131333399,
+            11.0608955870893,
+            24.122779492061763,
+        ];
+        let none = Limits::default();
+        let cut = Limits {
+            time_limit_s: None,
+            node_limit: Some(PHASE1_NODES + PARTITION_SWITCH_NODES),
+        };
+        // Partitioning alone does not finish within the nodes before the handover.
+        let stopped = exact_phased(7, &times, &cut, PHASE1_NODES, Next::Partition).unwrap();
+        assert_eq!(stopped.status, SolveStatus::Feasible);
+        let partition_alone = exact_phased(7, &times, &none, 0, Next::Partition).unwrap();
+        let bin_completion_alone = exact_phased(7, &times, &none, 0, Next::BinCompletion).unwrap();
+        assert_eq!(bin_completion_alone.status, SolveStatus::Optimal);
+        assert_optimal(
+            &times,
+            &partition_alone,
+            bin_completion_alone.makespan_min,
+            "partitioning alone",
+        );
+        let handed_over = exact(7, &times, &none).unwrap();
+        assert_optimal(
+            &times,
+            &handed_over,
+            bin_completion_alone.makespan_min,
+            "exact",
+        );
+        assert!(stopped.lower_bound_min <= handed_over.makespan_min);
     }
 
     /// The expected excess on a case worked by hand: times 1, 2, 3, 4 on 2 pads at a resolution
@@ -850,14 +964,14 @@ mod tests {
             // 3 pads: list queries; 5 pads: cached queries.
             let k = if case % 2 == 0 { 3 } else { 5 };
             let times: Vec<f64> = (0..24).map(|_| rng.random_range(1.0..100.0)).collect();
-            let opt = exact_phased(k, &times, &Limits::default(), 0, false)
+            let opt = exact_phased(k, &times, &Limits::default(), 0, Next::BinCompletion)
                 .unwrap()
                 .makespan_min;
             let limits = Limits {
                 time_limit_s: None,
                 node_limit: Some(3),
             };
-            let s = exact_phased(k, &times, &limits, 0, true).unwrap();
+            let s = exact_phased(k, &times, &limits, 0, Next::Partition).unwrap();
             assert!(s.lower_bound_min <= opt * (1.0 + 1e-12));
             assert!(s.makespan_min >= opt * (1.0 - 1e-9));
             if s.status == SolveStatus::Feasible {
