@@ -29,7 +29,7 @@
 //!   `LB` and `UB` (whole minutes: of the whole makespans not yet excluded).
 
 use super::decision::{bound_lift, local_search, BinCompletion, Budget, Decision, Memo, CAP_SLACK};
-use super::lpt::lpt_sorted;
+use super::lpt::{ldm_sorted, lpt_sorted};
 use super::partition::{partition, PARTITION_MAX_DRONES};
 use super::{
     all_integral, elapsed_ms, le_tol, lists_from_pad_of, lower_bound_sorted, one_per_pad,
@@ -66,6 +66,12 @@ const PARTITION_MAX_PADS: usize = 7;
 /// on 8 and 9 pads (real and `U[1,10000]`): 1.5 to 1.9 times faster than starting at `LB`;
 /// 1.75 and 3.5 were slower than 2.5.
 const FIRST_GUESS_EXCESS: f64 = 2.5;
+
+/// Real-valued times with more than [`PARTITION_MAX_DRONES`] drones and at least this many per
+/// pad: phase 2 starts from the better of the incumbent and largest differencing's assignment
+/// (whole minutes with many drones per pad are proven at the bound at once; there it would only
+/// cost time).
+const LDM_DRONES_PER_PAD: usize = 5;
 
 /// Node budget of the real-valued decision trial at the lower bound itself (phase 2).
 const FIRST_TRIAL_NODES: u64 = 4000;
@@ -710,6 +716,21 @@ pub(crate) fn exact_phased(
         ub = new_ub;
         budget.nodes = nodes;
         finished = done;
+        if !finished
+            && !integral
+            && positive > PARTITION_MAX_DRONES
+            && positive >= LDM_DRONES_PER_PAD * m
+        {
+            // Real-valued times beyond partitioning's reach with many drones per pad, where a
+            // limit may well stop the proof: largest differencing balances better than LPT.
+            let mut alt = vec![0; positive];
+            let found = ldm_sorted(m, p, &mut alt);
+            if found < ub {
+                ub = found;
+                pad_sorted[..positive].copy_from_slice(&alt);
+            }
+        }
+
         let out_of_budget = limits.node_limit.is_some_and(|l| nodes >= l)
             || limits
                 .time_limit_s
@@ -926,6 +947,37 @@ mod tests {
             "exact",
         );
         assert!(stopped.lower_bound_min <= handed_over.makespan_min);
+    }
+
+    /// 100 real-valued drones on 10 pads under a node limit: the proof does not finish, and the
+    /// incumbent returned is a valid assignment no worse than LPT's or largest differencing's
+    /// (its starting points), with a lower bound below it.
+    #[test]
+    fn many_real_drones_under_a_limit_keep_the_better_start() {
+        let mut rng = ChaCha8Rng::seed_from_u64(44);
+        for case in 0..5 {
+            let times: Vec<f64> = (0..100).map(|_| rng.random_range(1.0..100.0)).collect();
+            let limits = Limits {
+                time_limit_s: None,
+                node_limit: Some(20_000),
+            };
+            let s = exact(10, &times, &limits).unwrap();
+            assert_eq!(s.status, SolveStatus::Feasible, "case {case}");
+            let mut count = vec![0; times.len()];
+            s.assignment.iter().flatten().for_each(|&j| count[j] += 1);
+            assert!(count.iter().all(|&c| c == 1), "case {case}");
+            assert_eq!(
+                crate::node_time::makespan_of(&times, &s.assignment),
+                s.makespan_min
+            );
+            let (_, sorted) = crate::node_time::sort_desc(&times);
+            let mut pad_of = vec![0; sorted.len()];
+            let by_ldm = ldm_sorted(10, &sorted, &mut pad_of);
+            let by_lpt = lpt_sorted(10, &sorted, &mut pad_of);
+            assert!(by_ldm < by_lpt, "case {case}: {by_ldm} against {by_lpt}");
+            assert!(s.makespan_min <= by_ldm * (1.0 + 1e-12), "case {case}");
+            assert!(s.lower_bound_min <= s.makespan_min, "case {case}");
+        }
     }
 
     /// The expected excess on a case worked by hand: times 1, 2, 3, 4 on 2 pads at a resolution
