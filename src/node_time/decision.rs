@@ -576,7 +576,7 @@ pub(crate) fn bound_lift(p: &[f64], k: usize, lo: f64, hi: f64, integral: bool) 
                 .iter()
                 .any(|&(nb, ne)| pair_value_over(p, c, nb, ne, &mut rows, target) > target)
     };
-    if !proves(widen(lo)) {
+    if pairs.is_empty() && l2_bins(p, widen(lo)) <= k {
         return None;
     }
     let (mut fail, mut ok) = (lo, hi);
