@@ -74,6 +74,20 @@ pub(crate) struct Budget<'l> {
 }
 
 impl Budget<'_> {
+    /// The caller's limits with at most `extra` nodes beyond those spent so far: the budget of a
+    /// sub-search that may stop early and hand back.
+    pub(crate) fn limits_for(&self, extra: u64) -> Limits {
+        Limits {
+            time_limit_s: self.limits.time_limit_s,
+            node_limit: Some(
+                self.limits
+                    .node_limit
+                    .unwrap_or(u64::MAX)
+                    .min(self.nodes.saturating_add(extra)),
+            ),
+        }
+    }
+
     /// Counts one placement; true when a limit is reached.
     pub(crate) fn tick(&mut self) -> bool {
         self.nodes += 1;

@@ -422,11 +422,7 @@ fn phase2(
         // time (a perfect split, or the longest drone / pair bound); a failure there proves
         // nothing new, so that trial gets a small node budget and is dropped when it stops.
         let decision = if capped {
-            let user_cap = budget.limits.node_limit.unwrap_or(u64::MAX);
-            let trial_limits = Limits {
-                time_limit_s: budget.limits.time_limit_s,
-                node_limit: Some(user_cap.min(budget.nodes.saturating_add(FIRST_TRIAL_NODES))),
-            };
+            let trial_limits = budget.limits_for(FIRST_TRIAL_NODES);
             let mut trial = Budget {
                 nodes: budget.nodes,
                 start: budget.start,
@@ -740,14 +736,11 @@ pub(crate) fn exact_phased(
             // which keeps the bound reached (the load of the set tried last).
             let switch = next == Next::PartitionThenBinCompletion
                 && positive <= PARTITION_SWITCH_DRONES_PER_PAD * m;
-            let part_limits = Limits {
-                time_limit_s: limits.time_limit_s,
-                node_limit: Some(limits.node_limit.unwrap_or(u64::MAX).min(if switch {
-                    budget.nodes.saturating_add(PARTITION_SWITCH_NODES)
-                } else {
-                    u64::MAX
-                })),
-            };
+            let part_limits = budget.limits_for(if switch {
+                PARTITION_SWITCH_NODES
+            } else {
+                u64::MAX
+            });
             let mut part_budget = Budget {
                 nodes: budget.nodes,
                 start,
