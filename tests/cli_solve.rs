@@ -289,3 +289,48 @@ fn inspect_json_reports_formation_support_count_and_positions() {
         serde_json::json!([2, 1, 0])
     );
 }
+
+#[test]
+fn sharing_delivers_every_request_the_swarm_delivers_without_it_on_sparse_195() {
+    // Regression: on sparse-195 (energy-aware, Dijkstra) FB once swapped a delivery drone into a
+    // costlier slot and took it below zero on a hop it flew without sharing (r00026, hop
+    // n061 -> n058: -746 mAh); 12 of the first 300 requests delivered by the swarm with idle
+    // support drones failed under FB and 4 under PB. A route flown without stopping with sharing
+    // is flown at least as far, so every such request must stay delivered.
+    let net = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("instances/sparse-195/network.json");
+    let per = tmp("sparse_per_request.json");
+    let out = swarmplan(&[
+        "batch",
+        "--network",
+        net.to_str().unwrap(),
+        "--limit",
+        "60",
+        "--sharing",
+        "idle-support,pb,fb",
+        "--positioning",
+        "energy-aware",
+        "--route",
+        "dijkstra",
+        "--per-request",
+        per.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{out:?}");
+    let rows: Value = serde_json::from_slice(&std::fs::read(&per).unwrap()).unwrap();
+    let delivered = |sharing: &str, id: &str| {
+        rows.as_array()
+            .unwrap()
+            .iter()
+            .find(|r| r["options"]["sharing"] == sharing && r["request_id"] == id)
+            .unwrap()["success"]
+            .as_bool()
+            .unwrap()
+    };
+    let ids: Vec<String> = (0..60).map(|i| format!("r{i:05}")).collect();
+    let idle: Vec<&String> = ids.iter().filter(|id| delivered("idle-support", id)).collect();
+    assert!(idle.len() > 30, "{} of 60 delivered", idle.len());
+    assert!(idle.iter().any(|id| *id == "r00026"));
+    for policy in ["pb", "fb"] {
+        let lost: Vec<&&String> = idle.iter().filter(|id| !delivered(policy, id)).collect();
+        assert!(lost.is_empty(), "{policy} loses {lost:?}");
+    }
+}

@@ -7,8 +7,8 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use swarmplan::check::check_segment;
 use swarmplan::eaas::{
-    battery_trace, simulate, simulate_with, DroneState, Leg, PolicyOptions, Role, SegmentOutcome,
-    SegmentProblem, SharingPolicy,
+    battery_trace, simulate, simulate_with, DroneState, Leg, PbRequest, PolicyOptions, Readings, Role,
+    SegmentOutcome, SegmentProblem, SharingPolicy,
 };
 
 const TOL: f64 = 1e-6;
@@ -492,15 +492,138 @@ fn random_problem(seed: u64) -> SegmentProblem {
     }
 }
 
+/// d0, d1 delivery (cap 200, 150 mAh), s2 support (500 mAh, 5 mAh/min), slots on a line at
+/// x = 0, 1, 2 (drone d in slot d): d0 is 2 m from the support drone, out of range, and the only
+/// in-range slot is d1's. d1 costs 30 mAh/min in d0's slot and 10 in its own; d0 10 everywhere.
+/// tt = 10 min, rho = 4, gamma = 100, lambda = 40 (a round is the whole hop), delta = 100.
+fn swap_partner_hop() -> SegmentProblem {
+    let (slots_m, initial_slot) = line(&[0.0, 1.0, 2.0]);
+    SegmentProblem {
+        legs: vec![Leg {
+            duration_min: 10.0,
+            rate_mah_per_min: vec![
+                vec![10.0, 10.0, 10.0],
+                vec![30.0, 10.0, 10.0],
+                vec![5.0, 5.0, 5.0],
+            ],
+        }],
+        drones: vec![
+            drone(Role::Delivery, 200.0, 150.0),
+            drone(Role::Delivery, 200.0, 150.0),
+            drone(Role::Support, 500.0, 500.0),
+        ],
+        slots_m,
+        initial_slot,
+        rho_mah_per_min: 4.0,
+        range_m: 1.2,
+        gamma_mah: 100.0,
+        lambda_mah: 40.0,
+        delta_mah: 100.0,
+    }
+}
+
+#[test]
+fn a_transfer_that_would_take_its_swap_partner_below_zero_is_not_made() {
+    // By hand. Without sharing both delivery drones end at 150 - 10 x 10 = 50: the hop is flyable.
+    // Serving d0 swaps d1 into slot 0 (30 mAh/min), where it would end far below zero: FB's
+    // round to d0 over [0, 10) gives 150 - 300 = -150, PB's request from t = 5 (b = gamma)
+    // gives 100 - 30 x 5 = -50. Both are refused and d1, in range in its own slot, is served:
+    // FB a round of lambda = 40 mAh over [0, 10) (d1 ends at 50 + 40 = 90); PB, with the request
+    // sized to end the hop at gamma (re = 100 - 50 = 50), from t = 5 to the hop end: 4 x 5 = 20
+    // mAh (d1 ends at 70).
+    let p = swap_partner_hop();
+    assert!(simulate(&p, SharingPolicy::None).unwrap().feasible);
+    for (policy, energy, start, d1_final) in [
+        (SharingPolicy::Fb, 40.0, 0.0, 90.0),
+        (SharingPolicy::Pb, 20.0, 5.0, 70.0),
+    ] {
+        for o in [PolicyOptions::default(), PolicyOptions::from(&Readings::literal())] {
+            let out = simulate_with(&p, policy, &o).unwrap();
+            // Literal PB fills (re = 200 - 100 = 100 for both): d0 first by id, refused; d1's
+            // request also starts at 5 with the support drone free, clipped at 10: the same.
+            let what = format!("{policy:?} {o:?}");
+            assert!(out.feasible, "{what}: {out:?}");
+            assert_eq!(out.transfers.len(), 1, "{what}");
+            let x = &out.transfers[0];
+            assert_eq!((x.consumer, x.consumer_slot), (1, 1), "{what}");
+            assert_close(x.start_min, start, &what);
+            assert_close(x.energy_mah, energy, &what);
+            assert_close(out.final_battery_mah[0], 50.0, &what);
+            assert_close(out.final_battery_mah[1], d1_final, &what);
+            assert_close(out.final_battery_mah[2], 500.0 - 50.0 - energy, &what);
+            passes(&p, &out);
+        }
+    }
+}
+
+#[test]
+fn pb_requests_sized_to_the_hop_end_serve_the_needier_of_two_simultaneous_requests_first() {
+    // By hand. d0 (10 mAh/min from 150) and d1 (20 mAh/min from 200) both reach gamma = 100 at
+    // t = 5, and would end at 50 and 0. Sized to end the hop at gamma, d0 asks 50 and d1 100:
+    // d1 is served first (re descending), [5, 10) at rho = 20 moves 100 mAh and holds d1 at 100;
+    // d0's request then starts at 10 = tt and is dropped. Filling the battery, both ask
+    // 200 - 100 = 100: the tie goes to d0 by id, which gains 10 mAh/min net to 150, and d1 ends at 0.
+    let (slots_m, _) = line(&[0.0, 2.0, 1.0]);
+    let p = SegmentProblem {
+        legs: vec![uniform_leg(10.0, &[10.0, 20.0, 5.0])],
+        drones: vec![
+            drone(Role::Delivery, 200.0, 150.0),
+            drone(Role::Delivery, 200.0, 200.0),
+            drone(Role::Support, 1000.0, 1000.0),
+        ],
+        slots_m,
+        initial_slot: vec![0, 1, 2],
+        rho_mah_per_min: 20.0,
+        range_m: 1.2,
+        gamma_mah: 100.0,
+        lambda_mah: 40.0,
+        delta_mah: 0.0,
+    };
+    for (size, consumer, finals) in [
+        (PbRequest::ToHopEnd, 1, [50.0, 100.0]),
+        (PbRequest::Fill, 0, [150.0, 0.0]),
+    ] {
+        let o = PolicyOptions { pb_request: size, ..PolicyOptions::default() };
+        let out = simulate_with(&p, SharingPolicy::Pb, &o).unwrap();
+        let what = format!("{size:?}");
+        assert_eq!(out.transfers.len(), 1, "{what}: {out:?}");
+        assert_eq!(out.transfers[0].consumer, consumer, "{what}");
+        assert_close(out.transfers[0].start_min, 5.0, &what);
+        assert_close(out.transfers[0].energy_mah, 100.0, &what);
+        assert_close(out.final_battery_mah[0], finals[0], &what);
+        assert_close(out.final_battery_mah[1], finals[1], &what);
+        assert_close(out.final_battery_mah[2], 1000.0 - 50.0 - 100.0, &what);
+        passes(&p, &out);
+    }
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(300))]
+
+    #[test]
+    fn sharing_never_turns_a_hop_flyable_without_it_into_an_unflyable_one(seed in any::<u64>()) {
+        let p = random_problem(seed);
+        prop_assume!(simulate(&p, SharingPolicy::None).unwrap().feasible);
+        let readings = [
+            PolicyOptions::default(),
+            PolicyOptions::from(&Readings::literal()),
+            PolicyOptions { pb_request: PbRequest::Fill, ..PolicyOptions::default() },
+        ];
+        for policy in [SharingPolicy::IdleSupport, SharingPolicy::Pb, SharingPolicy::Fb] {
+            for o in &readings {
+                let out = simulate_with(&p, policy, o).unwrap();
+                prop_assert!(out.feasible, "{policy:?} {o:?}: {:?}\n{p:?}", out.failure);
+            }
+        }
+    }
+
 
     #[test]
     fn every_policy_schedule_passes_the_checker(seed in any::<u64>()) {
         let p = random_problem(seed);
         let readings = [
             PolicyOptions::default(),
-            PolicyOptions { pb_wait_for_support: false, fb_charge_skipped: true },
+            PolicyOptions::from(&Readings::literal()),
         ];
         for policy in [SharingPolicy::None, SharingPolicy::Pb, SharingPolicy::Fb] {
             for o in &readings {

@@ -4,8 +4,9 @@
 //! energy model (the physics, [`energy::rate_matrix_mah_per_min`]), every hop's sharing schedule
 //! re-integrated by [`check_segment`] and every stop's pad assignment re-added.
 //!
-//! Rules (see `models/compose.md`), codes `P5001`-`P5033`:
-//! * the plan answers the request; a failed plan gives a reason (P5001-P5003);
+//! Rules (see `models/compose.md`), codes `P5001`-`P5034`:
+//! * the plan answers the request; a failed plan gives a reason (P5001-P5003); under the
+//!   paper's baseline `none` the swarm has no support drone (P5034);
 //! * hops chain from the source, and, when the plan succeeds, end at the destination; a hop that
 //!   ends anywhere but the destination of a successful plan stops there (P5004-P5008);
 //! * every consecutive pair of path nodes is a segment of the network, the hop's length is the sum
@@ -26,7 +27,7 @@ use crate::compose::{Hop, Plan, Stop};
 use crate::eaas::{self, SegmentOutcome, SegmentProblem, SharingPolicy};
 use crate::energy::{self, Wind};
 use crate::error::Violation;
-use crate::precompose::Swarm;
+use crate::precompose::{Role, Swarm};
 use crate::problem::{Network, Profile, Request};
 use std::collections::HashMap;
 
@@ -61,7 +62,7 @@ struct RawLeg {
 /// * `profile` - the profile the plan was made with.
 /// * `request` - the request planned.
 /// * `swarm` - the swarm that flew it (drones, slots, initial positions).
-/// * `sharing` - the sharing policy the plan claims; with [`SharingPolicy::None`] no hop may share.
+/// * `sharing` - the sharing policy the plan claims; with a policy that does not share ([`SharingPolicy::shares`]) no hop may share.
 /// * `plan` - the plan to verify.
 ///
 /// # Returns
@@ -95,6 +96,17 @@ pub fn check_plan(
             format!(
                 "plan goes {} -> {}, the request {} -> {}",
                 plan.source, plan.destination, request.source, request.destination
+            ),
+        ));
+    }
+    let supports = swarm.drones.iter().filter(|d| d.role == Role::Support).count();
+    if !sharing.flies_support() && supports > 0 {
+        out.push(v(
+            "P5034",
+            "swarm",
+            format!(
+                "{supports} support drone(s) under sharing policy none, the paper's baseline \
+                 without support drones"
             ),
         ));
     }
@@ -356,12 +368,12 @@ fn check_hop(
     if !sizes_ok {
         return;
     }
-    if sharing == SharingPolicy::None && !hop.transfers.is_empty() {
+    if !sharing.shares() && !hop.transfers.is_empty() {
         out.push(v(
             "P5016",
             format!("{f}.transfers"),
             format!(
-                "{} transfer(s) under sharing policy none",
+                "{} transfer(s) under sharing policy {sharing:?}, which does not share",
                 hop.transfers.len()
             ),
         ));

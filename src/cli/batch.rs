@@ -42,7 +42,8 @@ pub struct BatchArgs {
     /// Every combination of sharing, positioning and route (overrides the three lists).
     #[arg(long)]
     pub all: bool,
-    /// Number of support drones for every request, overriding the redundancy table.
+    /// Number of support drones for every request, overriding the redundancy table (not used by
+    /// `none`, the paper's baseline without support drones).
     #[arg(long, value_name = "N")]
     pub support: Option<usize>,
     /// Worker threads; results are identical for any count.

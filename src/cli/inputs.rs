@@ -19,6 +19,11 @@ pub struct InstanceArgs {
     /// Parameter profile (TOML) [default: the shipped instances/profiles/paper.toml].
     #[arg(long, value_name = "FILE")]
     pub profile: Option<PathBuf>,
+    /// Read the paper word for word where it can be read several ways: the profile's
+    /// `[readings]` become PB skipping requests before its support drone is free and filling
+    /// batteries, FB charging rounds for full drones, Algorithm 1 looking at adjacent nodes only.
+    #[arg(long)]
+    pub literal: bool,
 }
 
 /// A validated network with its graph, and a validated profile.
@@ -38,10 +43,13 @@ impl InstanceArgs {
             Some(p) => io::read_json(p)?,
             None => io::parse_json(EMBEDDED_NETWORK, "embedded paper-195 network")?,
         };
-        let profile: Profile = match &self.profile {
+        let mut profile: Profile = match &self.profile {
             Some(p) => io::read_toml(p)?,
             None => io::parse_toml(EMBEDDED_PROFILE, "embedded paper profile")?,
         };
+        if self.literal {
+            profile.readings = crate::problem::profile::Readings::literal();
+        }
         let mut violations = validate::validate_network(&network);
         violations.extend(crate::problem::profile::validate_profile(&profile));
         if !violations.is_empty() {

@@ -38,7 +38,8 @@ pub struct SolveArgs {
     /// Route composition method.
     #[arg(long, value_enum, default_value = "sequential")]
     pub route: RouteMethod,
-    /// Number of support drones, overriding the redundancy table.
+    /// Number of support drones, overriding the redundancy table (not used by `--sharing none`,
+    /// the paper's baseline without support drones; `idle-support` flies them without sharing).
     #[arg(long, value_name = "N")]
     pub support: Option<usize>,
     /// Print the full report as JSON.

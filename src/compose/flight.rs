@@ -127,7 +127,8 @@ impl<'a> Planner<'a> {
         battery_mah: &[f64],
         policy: SharingPolicy,
     ) -> Result<SegmentOutcome> {
-        eaas::simulate(&self.segment_problem(path, battery_mah), policy)
+        let options = eaas::PolicyOptions::from(&self.profile.readings);
+        eaas::simulate_with(&self.segment_problem(path, battery_mah), policy, &options)
     }
 
     /// The recharging stop at `node` for a swarm arriving with `arrival_mah`: every drone charges to
@@ -201,7 +202,7 @@ impl<'a> Planner<'a> {
     /// some support drone exists). A necessary condition used to skip hopeless candidates.
     pub(crate) fn endurance_bound_min(&self, battery_mah: &[f64], min_rate: &[f64]) -> f64 {
         let has_support = self.swarm.drones.iter().any(|d| d.role == Role::Support);
-        let rho = if has_support && self.sharing != SharingPolicy::None {
+        let rho = if has_support && self.sharing.shares() {
             self.profile.sharing.rate_mah_per_min
         } else {
             0.0

@@ -21,7 +21,8 @@ pub struct PlanOptions {
     pub positioning: Positioning,
     /// Route composition method.
     pub route: RouteMethod,
-    /// Number of support drones; `None` lets the redundancy table decide.
+    /// Number of support drones; `None` lets the redundancy table decide. Ignored by
+    /// [`SharingPolicy::None`], the paper's baseline, which flies no support drone.
     pub support: Option<usize>,
 }
 
@@ -144,7 +145,13 @@ impl<'a> Context<'a> {
     /// every violation at once).
     pub fn plan(&self, request: &Request, options: &PlanOptions) -> Result<RequestReport> {
         let start = Instant::now();
-        let choice = self.swarm_for(request, options.positioning, options.support)?;
+        // The paper's baseline (`none`) is the swarm without support drones.
+        let support = if options.sharing.flies_support() {
+            options.support
+        } else {
+            Some(0)
+        };
+        let choice = self.swarm_for(request, options.positioning, support)?;
         let planner = Planner::new(self.graph, self.profile, &choice.swarm, options.sharing);
         let plan = planner.compose(choice.source, choice.destination, options.route)?;
         let execution_ms = start.elapsed().as_secs_f64() * 1e3;

@@ -48,7 +48,7 @@ impl Planner<'_> {
                 return Ok(plan.finish());
             }
             // Lines 8-10: in-flight sharing makes the direct flight possible.
-            if self.sharing() != SharingPolicy::None {
+            if self.sharing().shares() {
                 let outcome = self.fly(&direct, &battery, self.sharing())?;
                 if outcome.feasible {
                     plan.push(self.hop(&direct, &battery, outcome, None));

@@ -97,6 +97,12 @@ pub(super) fn plan(problem: &SegmentProblem, options: &PolicyOptions) -> Vec<Tra
             let mut trial = plan.clone();
             trial.push(x);
             let r = evaluate(problem, &trial);
+            if r.harms(&run) {
+                // The round (or its swap) would take some drone below zero: not made; the next
+                // drone in turn is tried, as for a drone blocked by re-ordering.
+                blocked = true;
+                continue;
+            }
             let realised = r.transfers.iter().find(|y| {
                 y.support == s && y.consumer == d && (y.start_min - start).abs() <= TIME_TOL_MIN
             });

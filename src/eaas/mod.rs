@@ -16,6 +16,7 @@
 //! independent checker in [`crate::check`] re-verifies it from the raw [`SegmentProblem`].
 
 use crate::error::{Error, Result, Violation};
+pub use crate::problem::profile::{PbRequest, Readings};
 use nalgebra::Vector2;
 use serde::{Deserialize, Serialize};
 
@@ -92,17 +93,32 @@ pub struct DroneState {
 
 /// Which sharing policy runs on a segment.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, clap::ValueEnum)]
-#[serde(rename_all = "lowercase")]
+#[serde(rename_all = "kebab-case")]
 pub enum SharingPolicy {
-    /// No sharing (baseline).
+    /// The paper's baseline: no in-flight sharing and no support drones in the swarm.
     None,
+    /// Ablation: the support drones fly (and are charged at every stop) but never share.
+    IdleSupport,
     /// Priority-based sharing (the paper's Algorithm 2).
     Pb,
     /// Fairness-based sharing (the paper's Algorithm 3).
     Fb,
 }
 
-/// Readings of the paper where it can be taken two ways; [`Default`] gives ours.
+impl SharingPolicy {
+    /// Whether the policy moves energy in flight (PB and FB); `none` and `idle-support` do not.
+    pub fn shares(self) -> bool {
+        matches!(self, SharingPolicy::Pb | SharingPolicy::Fb)
+    }
+
+    /// Whether the swarm flies support drones: every policy but the paper's baseline `none`.
+    pub fn flies_support(self) -> bool {
+        self != SharingPolicy::None
+    }
+}
+
+/// Readings of the paper where it can be taken two ways; [`Default`] gives ours, the same as the
+/// profile's [`Readings`] default (`[readings]` table, models/eaas.md).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PolicyOptions {
@@ -110,6 +126,8 @@ pub struct PolicyOptions {
     /// when the support drone becomes free (`true`, default); `false` skips it, as Algorithm 2's
     /// literal test `er.st >= SD.st` does.
     pub pb_wait_for_support: bool,
+    /// PB: the size `re` of a request.
+    pub pb_request: PbRequest,
     /// FB: a full drone's round still costs the support drone `lambda` of its sharing budget and
     /// one round of time, as Algorithm 3's literal pseudo-code does (`true`); default `false`
     /// skips it at no cost.
@@ -118,9 +136,16 @@ pub struct PolicyOptions {
 
 impl Default for PolicyOptions {
     fn default() -> Self {
+        PolicyOptions::from(&Readings::default())
+    }
+}
+
+impl From<&Readings> for PolicyOptions {
+    fn from(r: &Readings) -> Self {
         PolicyOptions {
-            pb_wait_for_support: true,
-            fb_charge_skipped: false,
+            pb_wait_for_support: r.pb_wait_for_support,
+            pb_request: r.pb_request,
+            fb_charge_skipped: r.fb_charge_skipped,
         }
     }
 }
@@ -247,7 +272,7 @@ pub fn simulate_with(
 ) -> Result<SegmentOutcome> {
     validate(problem)?;
     let plan = match policy {
-        SharingPolicy::None => none::plan(problem),
+        SharingPolicy::None | SharingPolicy::IdleSupport => none::plan(problem),
         SharingPolicy::Pb => pb::plan(problem, options),
         SharingPolicy::Fb => fb::plan(problem, options),
     };

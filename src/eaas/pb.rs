@@ -2,9 +2,10 @@
 //!
 //! Requests: delivery drone `d` requests energy when its battery, under the schedule built so far,
 //! falls below `gamma`: `st` = the first time at or after the end of `d`'s last transfer at which
-//! `b_d(t) < gamma` (the crossing time, or that end itself when already below), and
-//! `re = capacity_d - b_d(st)` (the paper: "the support drone fully charge[s] each selected
-//! drone"). Requests are sorted by `st` ascending, then `re` descending, then drone id. The first
+//! `b_d(t) < gamma` (the crossing time, or that end itself when already below), and `re` is what
+//! the drone needs to end the hop at `gamma`, `min(gamma - b_d(tt), capacity_d - b_d(st))`
+//! ([`PbRequest::ToHopEnd`], default) or a full battery, `capacity_d - b_d(st)`
+//! ([`PbRequest::Fill`]). Requests are sorted by `st` ascending, then `re` descending, then drone id. The first
 //! request its support drone (see [`super::responsible_support`]) can serve is served in full: at
 //! `rho` from `max(st, free)` (`free` = the support drone's last transfer end) for `re / rho`
 //! minutes, clipped at `tt`, provided the energy it will move (`re`, or less when clipped) fits the
@@ -12,12 +13,14 @@
 //! re-ordering slot is available. Then the schedule is
 //! re-evaluated and the requests regenerated (re-ordering changes rates), until no request can be
 //! served. With [`PolicyOptions::pb_wait_for_support`] off, a request with `st < free` is skipped
-//! (the paper's literal `er.st >= SD.st`).
+//! (the paper's literal `er.st >= SD.st`). A transfer whose trial schedule would take some drone
+//! below zero (a swap partner moved into a costlier slot, say) is not made.
 
 use super::reorder::{busy_drones, choose_consumer_slot};
 use super::simulate::{evaluate, Run};
 use super::{
-    responsible_support, sharing_budget_mah, travel_time_min, PolicyOptions, Role, SegmentProblem,
+    responsible_support, sharing_budget_mah, travel_time_min, PbRequest, PolicyOptions, Role,
+    SegmentProblem,
     Transfer, ENERGY_TOL_MAH, MAX_PLANNING_STEPS, TIME_TOL_MIN,
 };
 
@@ -44,7 +47,7 @@ pub(super) fn plan(problem: &SegmentProblem, options: &PolicyOptions) -> Vec<Tra
     let mut plan = run.transfers.clone();
     let mut rejected: Vec<(usize, f64)> = Vec::new();
     for _ in 0..MAX_PLANNING_STEPS {
-        let mut reqs = requests(problem, &run, &owner, tt);
+        let mut reqs = requests(problem, &run, &owner, tt, options.pb_request);
         reqs.sort_by(|a, b| {
             a.st_min
                 .total_cmp(&b.st_min)
@@ -107,7 +110,7 @@ pub(super) fn plan(problem: &SegmentProblem, options: &PolicyOptions) -> Vec<Tra
                 && y.consumer == x.consumer
                 && (y.start_min - x.start_min).abs() <= TIME_TOL_MIN
         });
-        if realised {
+        if realised && !r.harms(&run) {
             run = r;
             plan = run.transfers.clone();
         } else {
@@ -118,7 +121,13 @@ pub(super) fn plan(problem: &SegmentProblem, options: &PolicyOptions) -> Vec<Tra
 }
 
 /// Current requests of every delivery drone that has a responsible support drone.
-fn requests(problem: &SegmentProblem, run: &Run, owner: &[Option<usize>], tt: f64) -> Vec<Request> {
+fn requests(
+    problem: &SegmentProblem,
+    run: &Run,
+    owner: &[Option<usize>],
+    tt: f64,
+    size: PbRequest,
+) -> Vec<Request> {
     let gamma = problem.gamma_mah;
     let mut out = Vec::new();
     for (d, who) in owner.iter().enumerate() {
@@ -160,7 +169,13 @@ fn requests(problem: &SegmentProblem, run: &Run, owner: &[Option<usize>], tt: f6
         if st >= tt - TIME_TOL_MIN {
             continue;
         }
-        let re = problem.drones[d].capacity_mah - b_st;
+        let fill = problem.drones[d].capacity_mah - b_st;
+        let re = match size {
+            PbRequest::Fill => fill,
+            // The drone receives nothing after `st` under the schedule so far and rates are
+            // >= 0, so its battery at `tt` is at most `b_st <= gamma`.
+            PbRequest::ToHopEnd => (gamma - run.final_battery(d)).min(fill),
+        };
         if re > ENERGY_TOL_MAH {
             out.push(Request {
                 drone: d,

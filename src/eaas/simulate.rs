@@ -47,6 +47,22 @@ impl Run {
         }
     }
 
+    /// Whether `self` (a trial schedule) takes some drone below zero that `before` kept above it,
+    /// or deeper below zero than `before` did: its lowest battery falls, and ends below zero. A
+    /// transfer whose trial harms the swarm must not be made (models/eaas.md, "No harmful
+    /// transfer"); so a hop feasible without sharing stays feasible under every policy.
+    pub fn harms(&self, before: &Run) -> bool {
+        self.min_battery
+            .iter()
+            .zip(&before.min_battery)
+            .any(|(&after, &was)| after < -ENERGY_TOL_MAH && after < was - ENERGY_TOL_MAH)
+    }
+
+    /// Battery of drone `d` at `tt`.
+    pub fn final_battery(&self, d: usize) -> f64 {
+        self.trace.last().map_or(0.0, |(_, b)| b[d])
+    }
+
     /// Battery of drone `d` at time `t` (linear between breakpoints).
     pub fn battery_at(&self, d: usize, t: f64) -> f64 {
         let tr = &self.trace;

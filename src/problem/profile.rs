@@ -32,6 +32,79 @@ pub struct Profile {
     /// Failure probability of Eq. 2 (models/precompose.md). Defaults to the `paper` values.
     #[serde(default)]
     pub failure: FailureParams,
+    /// Readings of the paper where it can be taken more than one way; each field defaults to the
+    /// reading argued in models/ ([`Readings::literal`] gives the paper's literal one).
+    #[serde(default)]
+    pub readings: Readings,
+}
+
+/// Readings of the paper's Algorithms 1-3 where the text can be taken more than one way. The
+/// default of each is argued in `models/eaas.md` (PB, FB) and `models/compose.md` (Algorithm 1);
+/// [`Readings::literal`] is the paper taken word for word (`--literal` on `solve` and `batch`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Readings {
+    /// PB: a request whose start `st` is earlier than its support drone's next free time starts
+    /// when the support drone becomes free (`true`, default); `false` skips it, as Algorithm 2's
+    /// literal test `er.st >= SD.st` does.
+    pub pb_wait_for_support: bool,
+    /// PB: how much energy a request asks for (`re`).
+    pub pb_request: PbRequest,
+    /// FB: a full drone's round still costs the support drone `lambda` of its sharing budget and
+    /// one round of time, as Algorithm 3's literal pseudo-code does (`true`); default `false`
+    /// skips it at no cost.
+    pub fb_charge_skipped: bool,
+    /// Algorithm 1: which nodes are candidates for the next stop (lines 12-14).
+    pub candidates: Candidates,
+}
+
+/// Size `re` of a PB energy request raised at time `st` (models/eaas.md, "PB's request size").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, clap::ValueEnum)]
+#[serde(rename_all = "kebab-case")]
+pub enum PbRequest {
+    /// What the drone needs to end the hop at the threshold `gamma` under the schedule so far, at
+    /// most `C - b(st)` (default: requests differ by need, so the paper's `re`-descending key
+    /// and its worked example of simultaneous requests of different sizes apply).
+    ToHopEnd,
+    /// Fill the battery: `re = C - b(st)`, which is `C - gamma` for every request raised at the
+    /// threshold (literal "fully charge"; every request then holds its support drone to the end).
+    Fill,
+}
+
+/// Candidate next stops of Algorithm 1 (models/compose.md, "Algorithm 1's candidates").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, clap::ValueEnum)]
+#[serde(rename_all = "kebab-case")]
+pub enum Candidates {
+    /// Every node with pads not yet stopped at, reached along the shortest path (default).
+    PadNodes,
+    /// The literal "nearest neighbor nodes": the nodes adjacent to the current one in the skyway
+    /// network; the swarm passes a neighbour without pads without charging and flies on.
+    Adjacent,
+}
+
+impl Default for Readings {
+    fn default() -> Self {
+        Readings {
+            pb_wait_for_support: true,
+            pb_request: PbRequest::ToHopEnd,
+            fb_charge_skipped: false,
+            candidates: Candidates::PadNodes,
+        }
+    }
+}
+
+impl Readings {
+    /// The paper word for word: PB skips a request that starts before its support drone is
+    /// free and fills the battery, FB charges a round for a full drone, Algorithm 1 looks at the
+    /// adjacent nodes only.
+    pub fn literal() -> Readings {
+        Readings {
+            pb_wait_for_support: false,
+            pb_request: PbRequest::Fill,
+            fb_charge_skipped: true,
+            candidates: Candidates::Adjacent,
+        }
+    }
 }
 
 /// Drone model (paper Table 3: DJI Phantom 3).
