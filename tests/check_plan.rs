@@ -224,10 +224,22 @@ fn corrupted_plans_are_rejected_with_their_code() {
     assert!(check(&p).contains(&"P5015"), "transfer");
 
     // Transfers while the plan claims support drones that never share.
-    let claim = |sharing| codes(&check_plan(&network, &profile, &request, swarm, sharing, &good));
-    assert_eq!(claim(SharingPolicy::IdleSupport), vec!["P5016"], "idle support");
+    let claim = |sharing| {
+        codes(&check_plan(
+            &network, &profile, &request, swarm, sharing, &good,
+        ))
+    };
+    assert_eq!(
+        claim(SharingPolicy::IdleSupport),
+        vec!["P5016"],
+        "idle support"
+    );
     // The paper's baseline flies no support drone at all.
-    assert_eq!(claim(SharingPolicy::None), vec!["P5034", "P5016"], "sharing none");
+    assert_eq!(
+        claim(SharingPolicy::None),
+        vec!["P5034", "P5016"],
+        "sharing none"
+    );
 
     // A hop departing with a battery that is not full.
     let mut p = good.clone();

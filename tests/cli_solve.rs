@@ -326,11 +326,44 @@ fn sharing_delivers_every_request_the_swarm_delivers_without_it_on_sparse_195() 
             .unwrap()
     };
     let ids: Vec<String> = (0..60).map(|i| format!("r{i:05}")).collect();
-    let idle: Vec<&String> = ids.iter().filter(|id| delivered("idle-support", id)).collect();
+    let idle: Vec<&String> = ids
+        .iter()
+        .filter(|id| delivered("idle-support", id))
+        .collect();
     assert!(idle.len() > 30, "{} of 60 delivered", idle.len());
     assert!(idle.iter().any(|id| *id == "r00026"));
     for policy in ["pb", "fb"] {
         let lost: Vec<&&String> = idle.iter().filter(|id| !delivered(policy, id)).collect();
         assert!(lost.is_empty(), "{policy} loses {lost:?}");
     }
+}
+
+#[test]
+fn literal_switches_algorithm_1_to_adjacent_candidates() {
+    // flat-routes S -> T, one 0.21 kg drone, no sharing (numbers in tests/compose.rs): over pad
+    // nodes Algorithm 1 delivers in 30.8396 min; over adjacent nodes (the literal reading) it stops
+    // at W, whose only neighbour S is visited: a dead end, exit code 1.
+    let base = [
+        "--from",
+        "S",
+        "--to",
+        "T",
+        "--packages",
+        "0.21",
+        "--sharing",
+        "none",
+        "--json",
+    ];
+    let ours = solve("flat-routes.json", &base);
+    assert_eq!(ours.status.code(), Some(0), "{ours:?}");
+    assert!(close(
+        json(&ours)["plan"]["dt_min"].as_f64().unwrap(),
+        30.8396
+    ));
+    let mut literal = base.to_vec();
+    literal.push("--literal");
+    let lit = solve("flat-routes.json", &literal);
+    assert_eq!(lit.status.code(), Some(1), "{lit:?}");
+    let failure = json(&lit)["plan"]["failure"].as_str().unwrap().to_string();
+    assert!(failure.contains("dead end at W"), "{failure}");
 }

@@ -22,6 +22,7 @@ use swarmplan::eaas::SharingPolicy;
 use swarmplan::network::SkywayGraph;
 use swarmplan::precompose::Positioning;
 use swarmplan::problem::io::{read_json, read_toml};
+use swarmplan::problem::profile::Candidates;
 use swarmplan::problem::{Network, Profile, Request};
 
 const TOL: f64 = 1e-6;
@@ -349,4 +350,82 @@ fn each_route_method_takes_its_own_route() {
     assert!(fw.plan.success);
     assert_eq!(path_of(&fw), ["S", "R", "T"]);
     assert_close(fw.plan.dt_min, 19.986, "floyd-warshall dt");
+}
+
+#[test]
+fn algorithm_1_over_adjacent_nodes_passes_nodes_without_pads_and_never_revisits() {
+    // The literal reading of Algorithm 1's candidates ("nearest neighbor nodes"), on flat-routes
+    // (numbers as in the test above: one 0.21 kg drone, a hop of tt min from full then a stop
+    // costs 2.331 tt, at most 3756.6 m without stopping).
+    let mut t = tiny("flat-routes.json");
+    t.profile.readings.candidates = Candidates::Adjacent;
+    let plan = |from, route| t.plan(from, "T", &[0.21], 0, SharingPolicy::None, route);
+
+    // Sequential from S: neighbours W 4.662, P1 8.8578, R 13.986: stop at W. W's only neighbour,
+    // S, is visited, and T (6700 m via S) is out of reach: dead end after 4.662 min.
+    let seq = plan("S", RouteMethod::Sequential);
+    assert!(!seq.plan.success);
+    assert!(seq
+        .plan
+        .failure
+        .as_deref()
+        .unwrap()
+        .contains("dead end at W"));
+    assert_eq!(seq.plan.stops(), ["W"]);
+    assert_close(seq.plan.dt_min, 4.662, "sequential dt");
+
+    // A* adds dist(v, T) / 500: W 18.062, P1 16.4578, R 19.986: stop at P1, then P2 (its only
+    // unvisited neighbour), then T: dt = 2 x 8.8578 + 3.8 = 21.5156, as over pad nodes.
+    let astar = plan("S", RouteMethod::Astar);
+    assert!(astar.plan.success);
+    assert_eq!(path_of(&astar), ["S", "P1", "P2", "T"]);
+    assert_close(astar.plan.dt_min, 21.5156, "astar dt");
+
+    // From W: T is out of reach (6700 m); the only neighbour S has no pads, tt 2, nt 0: passed
+    // without charging. From S the hop W-S-P1 (2900 m, 5.8 min) is flyable, W-S-R (4000 m) is
+    // not: P1 with arrival 1000 - 133.1 x 5.8 = 228.02 mAh, nt = 7.7198. Then P2 (nt 5.0578)
+    // and T. dt = 5.8 + 7.7198 + 3.8 + 5.0578 + 3.8 = 26.1776.
+    let passing = plan("W", RouteMethod::Sequential);
+    assert!(passing.plan.success);
+    assert_eq!(passing.plan.stops(), ["P1", "P2"]);
+    assert_eq!(passing.plan.hops[0].path, ["W", "S", "P1"]);
+    assert_close(passing.plan.dt_min, 26.1776, "dt through S");
+}
+
+#[test]
+fn the_no_sharing_baseline_flies_no_support_drone_and_idle_support_pays_for_charging_them() {
+    // flat-stop as above: without support drones nt = 13.31 and dt = 23.31, even when one support
+    // drone is asked for (`none` is the paper's baseline, the swarm without support drones). With
+    // one idle support drone (172.8 mAh/min, 2000 mAh) it arrives at M with 2000 - 864 = 1136 mAh,
+    // ct = 8.64: jobs 6.655, 6.655, 8.64, 8.64 on 2 pads, nt = 6.655 + 8.64 = 15.295, and
+    // dt = 5 + 15.295 + 5 = 25.295.
+    let t = tiny("flat-stop.json");
+    let none = t.plan(
+        "A",
+        "B",
+        &[0.21, 0.21, 0.44],
+        1,
+        SharingPolicy::None,
+        RouteMethod::Sequential,
+    );
+    assert_eq!(none.support_drones, 0);
+    assert_eq!(none.swarm.drones.len(), 3);
+    assert_close(none.plan.dt_min, 23.31, "none dt");
+    let idle = t.plan(
+        "A",
+        "B",
+        &[0.21, 0.21, 0.44],
+        1,
+        SharingPolicy::IdleSupport,
+        RouteMethod::Sequential,
+    );
+    assert_eq!(idle.support_drones, 1);
+    assert_eq!(idle.swarm.drones.len(), 4);
+    assert_eq!(idle.plan.shared_mah, 0.0);
+    assert_close(
+        idle.plan.hops[0].stop.as_ref().unwrap().nt_min,
+        15.295,
+        "idle nt",
+    );
+    assert_close(idle.plan.dt_min, 25.295, "idle dt");
 }

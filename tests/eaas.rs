@@ -7,8 +7,8 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use swarmplan::check::check_segment;
 use swarmplan::eaas::{
-    battery_trace, simulate, simulate_with, DroneState, Leg, PbRequest, PolicyOptions, Readings, Role,
-    SegmentOutcome, SegmentProblem, SharingPolicy,
+    battery_trace, simulate, simulate_with, DroneState, Leg, PbRequest, PolicyOptions, Readings,
+    Role, SegmentOutcome, SegmentProblem, SharingPolicy,
 };
 
 const TOL: f64 = 1e-6;
@@ -537,7 +537,10 @@ fn a_transfer_that_would_take_its_swap_partner_below_zero_is_not_made() {
         (SharingPolicy::Fb, 40.0, 0.0, 90.0),
         (SharingPolicy::Pb, 20.0, 5.0, 70.0),
     ] {
-        for o in [PolicyOptions::default(), PolicyOptions::from(&Readings::literal())] {
+        for o in [
+            PolicyOptions::default(),
+            PolicyOptions::from(&Readings::literal()),
+        ] {
             let out = simulate_with(&p, policy, &o).unwrap();
             // Literal PB fills (re = 200 - 100 = 100 for both): d0 first by id, refused; d1's
             // request also starts at 5 with the support drone free, clipped at 10: the same.
@@ -583,7 +586,10 @@ fn pb_requests_sized_to_the_hop_end_serve_the_needier_of_two_simultaneous_reques
         (PbRequest::ToHopEnd, 1, [50.0, 100.0]),
         (PbRequest::Fill, 0, [150.0, 0.0]),
     ] {
-        let o = PolicyOptions { pb_request: size, ..PolicyOptions::default() };
+        let o = PolicyOptions {
+            pb_request: size,
+            ..PolicyOptions::default()
+        };
         let out = simulate_with(&p, SharingPolicy::Pb, &o).unwrap();
         let what = format!("{size:?}");
         assert_eq!(out.transfers.len(), 1, "{what}: {out:?}");

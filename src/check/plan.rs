@@ -99,7 +99,11 @@ pub fn check_plan(
             ),
         ));
     }
-    let supports = swarm.drones.iter().filter(|d| d.role == Role::Support).count();
+    let supports = swarm
+        .drones
+        .iter()
+        .filter(|d| d.role == Role::Support)
+        .count();
     if !sharing.flies_support() && supports > 0 {
         out.push(v(
             "P5034",

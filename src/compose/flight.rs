@@ -8,6 +8,7 @@ use crate::error::Result;
 use crate::network::{Path, SkywayGraph};
 use crate::node_time::{self, Limits};
 use crate::precompose::{Role, Swarm};
+use crate::problem::profile::Readings;
 use crate::problem::Profile;
 use std::cell::RefCell;
 use std::collections::HashMap;
@@ -50,6 +51,11 @@ impl<'a> Planner<'a> {
     /// The swarm.
     pub fn swarm(&self) -> &Swarm {
         self.swarm
+    }
+
+    /// The readings of the paper the planner follows (the profile's `[readings]`).
+    pub fn readings(&self) -> &Readings {
+        &self.profile.readings
     }
 
     /// The sharing policy used on every hop.

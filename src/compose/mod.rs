@@ -7,6 +7,7 @@
 //! `dt = sum tt + sum nt`. A request the swarm cannot complete is a failed plan with its reason,
 //! never an error.
 
+mod adjacent;
 mod baselines;
 mod flight;
 mod gaps;
@@ -19,6 +20,7 @@ pub use gaps::{lpt_node_time_gaps, LptGapSummary};
 pub use plan::{Hop, Plan, SegmentFlown, Stop};
 pub use request::{Context, PlanOptions, RequestReport, SwarmChoice};
 
+use crate::problem::profile::Candidates;
 use serde::Serialize;
 
 /// How the route is composed.
@@ -80,7 +82,11 @@ impl Planner<'_> {
         destination: usize,
         method: RouteMethod,
     ) -> crate::error::Result<Plan> {
+        let adjacent = self.readings().candidates == Candidates::Adjacent;
         match method {
+            RouteMethod::Sequential | RouteMethod::Astar if adjacent => {
+                self.compose_adjacent(source, destination, method == RouteMethod::Astar)
+            }
             RouteMethod::Sequential => self.compose_sequential(source, destination, false),
             RouteMethod::Astar => self.compose_sequential(source, destination, true),
             RouteMethod::Dijkstra => self.compose_fixed_route(source, destination, false),

@@ -20,8 +20,7 @@ use super::reorder::{busy_drones, choose_consumer_slot};
 use super::simulate::{evaluate, Run};
 use super::{
     responsible_support, sharing_budget_mah, travel_time_min, PbRequest, PolicyOptions, Role,
-    SegmentProblem,
-    Transfer, ENERGY_TOL_MAH, MAX_PLANNING_STEPS, TIME_TOL_MIN,
+    SegmentProblem, Transfer, ENERGY_TOL_MAH, MAX_PLANNING_STEPS, TIME_TOL_MIN,
 };
 
 /// An energy request `er = (drone, st, re)`.
