@@ -266,6 +266,21 @@ fn per_unit_weights_may_exceed_1_but_not_be_negative_and_normalised_ones_stay_in
             ("E2022", "failure.weights.wind")
         ]
     );
+    // A negative weight beside positive ones is not also "no positive weight" (E2021); all zero is.
+    p.failure.model = FailureModel::WeightedSum;
+    p.failure.weights.capacity = 0.1;
+    let v = validate_profile(&p);
+    let codes: Vec<(&str, &str)> = v.iter().map(|x| (x.code, x.field.as_str())).collect();
+    assert_eq!(codes, [("E2022", "failure.weights.wind")]);
+    p.failure.weights = FailureWeights {
+        payload: 0.0,
+        distance: 0.0,
+        capacity: 0.0,
+        wind: 0.0,
+    };
+    let v = validate_profile(&p);
+    let codes: Vec<(&str, &str)> = v.iter().map(|x| (x.code, x.field.as_str())).collect();
+    assert_eq!(codes, [("E2021", "failure.weights")]);
     // An unknown reading of the terms is a TOML error with its code.
     let text = std::fs::read_to_string(
         std::path::Path::new(env!("CARGO_MANIFEST_DIR"))

@@ -612,8 +612,10 @@ pub fn validate_profile(p: &Profile) -> Vec<Violation> {
             _ => {}
         }
     }
-    let sum = w.payload + w.distance + w.capacity + w.wind;
-    if p.failure.model == FailureModel::WeightedSum && sum.is_finite() && sum <= 0.0 {
+    // One positive weight is needed; a negative one is reported above and does not cancel it.
+    let all_finite = weights.iter().all(|(_, v)| v.is_finite());
+    let any_positive = weights.iter().any(|(_, v)| *v > 0.0);
+    if p.failure.model == FailureModel::WeightedSum && all_finite && !any_positive {
         out.push(Violation::new(
             "E2021",
             "failure.weights",
