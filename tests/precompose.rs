@@ -8,13 +8,19 @@ use swarmplan::precompose::{
     averaged_wind, build_swarm, select_formation, support_count, Positioning, Role,
 };
 use swarmplan::problem::io::{parse_toml, read_toml};
-use swarmplan::problem::profile::{validate_profile, FailureModel, RedundancyLevel};
-use swarmplan::problem::{Network, Node, Profile, Segment};
+use swarmplan::problem::profile::{
+    validate_profile, FailureModel, FailureTerms, FailureWeights, RedundancyLevel,
+};
+use swarmplan::problem::{Network, Node, Profile, RequestSet, Segment};
+
+fn shipped_profile(name: &str) -> Profile {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join(format!("instances/profiles/{name}.toml"));
+    read_toml(&path).expect("shipped profile parses")
+}
 
 fn paper() -> Profile {
-    let path =
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("instances/profiles/paper.toml");
-    read_toml(&path).expect("paper profile parses")
+    shipped_profile("paper")
 }
 
 fn node(id: &str, x_m: f64, y_m: f64) -> Node {
@@ -155,6 +161,222 @@ fn support_count_follows_eq_2_as_written_and_as_a_weighted_sum() {
     let d = support_count(&p, &[9.0, 9.0, 9.0], 1e6, &storm);
     assert!(d.probability_pct > 99.99);
     assert_eq!((d.row, d.level, d.count), (4, RedundancyLevel::TwoN, 3));
+}
+
+/// The paper profile with Eq. 2 as a weighted sum of per-unit terms, weights `[w1, w2, w3, w4]`.
+fn paper_per_unit_sum(weights: [f64; 4]) -> Profile {
+    let mut p = paper();
+    p.failure.terms = FailureTerms::PerUnit;
+    p.failure.model = FailureModel::WeightedSum;
+    let [payload, distance, capacity, wind] = weights;
+    p.failure.weights = FailureWeights {
+        payload,
+        distance,
+        capacity,
+        wind,
+    };
+    p
+}
+
+#[test]
+fn the_papers_worked_example_gives_0_3_for_5_km_at_30_kmh_and_3_percent_per_minute() {
+    // Paper 5.1: "a swarm consumes 3% of its total power to travel for 1 minute at a speed of
+    // 30 km/hr, hence w2 = 0.03. The distance ... is 5km. Therefore P_{i=2} = 0.03 * ((5/30)*60)
+    // = 0.3". The paper profile flies at 30 km/h.
+    let flight_min = (5.0 / 30.0) * 60.0; // 10 min
+    let p2 = 0.03 * flight_min; // 0.3
+    let p = paper_per_unit_sum([0.0, 0.03, 0.0, 0.0]);
+    assert_eq!(p.drone.speed_kmh, 30.0);
+    let d = support_count(&p, &[1.0, 2.0], 5000.0, &Wind::CALM);
+    assert!((d.terms[1] - flight_min).abs() < 1e-12, "{:?}", d.terms);
+    assert!(
+        (d.weighted_terms[1] - p2).abs() < 1e-12,
+        "{:?}",
+        d.weighted_terms
+    );
+    // The distance term alone: P = 100 * 0.3 = 30 % -> row 1 (20-39) -> N+2.
+    assert!((d.probability_pct - 100.0 * p2).abs() < 1e-9);
+    assert_eq!((d.row, d.level, d.count), (1, RedundancyLevel::NPlus(2), 2));
+}
+
+#[test]
+fn per_unit_terms_are_the_factors_in_their_own_units_for_the_product_and_the_sum() {
+    // Packages 1.0 and 2.0 kg: p1 = D_pr = (1/5 + 2/5) / 2 = 0.3. 6 km at 30 km/h (500 m/min):
+    // p2 = 12 min. p3 = C / E_c = 1 / (1 + 3) = 0.25. Wind 6.9 m/s: p4 = 6.9.
+    // Weights 0.5, 0.04, 0.2, 0.01: q = 0.15, 0.48, 0.05, 0.069.
+    // Weighted sum: P = 100 * (0.15 + 0.48 + 0.05 + 0.069) = 74.9 -> row 3 (60-79) -> N+4.
+    // Product: P = 100 * 0.15 * 0.48 * 0.05 * 0.069 = 0.02484 -> row 0 -> N+1.
+    let mut p = paper_per_unit_sum([0.5, 0.04, 0.2, 0.01]);
+    let wind = Wind {
+        speed_mps: 6.9,
+        from_deg: 0.0,
+    };
+    let d = support_count(&p, &[1.0, 2.0], 6000.0, &wind);
+    for (got, want) in d.terms.iter().zip([0.3, 12.0, 0.25, 6.9]) {
+        assert!((got - want).abs() < 1e-12, "{:?}", d.terms);
+    }
+    for (got, want) in d.weighted_terms.iter().zip([0.15, 0.48, 0.05, 0.069]) {
+        assert!((got - want).abs() < 1e-12, "{:?}", d.weighted_terms);
+    }
+    assert!(
+        (d.probability_pct - 74.9).abs() < 1e-9,
+        "{}",
+        d.probability_pct
+    );
+    assert_eq!((d.row, d.level, d.count), (3, RedundancyLevel::NPlus(4), 4));
+    p.failure.model = FailureModel::Product;
+    let d = support_count(&p, &[1.0, 2.0], 6000.0, &wind);
+    assert!(
+        (d.probability_pct - 0.02484).abs() < 1e-12,
+        "{}",
+        d.probability_pct
+    );
+    assert_eq!((d.row, d.count), (0, 1));
+    // Shares above a whole battery: 30 km is 60 min, q2 = 2.4, P is capped at 100 -> 2N.
+    p.failure.model = FailureModel::WeightedSum;
+    let d = support_count(&p, &[1.0, 2.0, 0.5], 30_000.0, &wind);
+    assert_eq!(d.probability_pct, 100.0);
+    assert_eq!((d.row, d.level, d.count), (4, RedundancyLevel::TwoN, 3));
+    // An unreachable destination is certain failure; a zero weight drops even that term.
+    let d = support_count(&p, &[1.0], f64::INFINITY, &wind);
+    assert_eq!((d.probability_pct, d.row), (100.0, 4));
+    p.failure.weights.distance = 0.0;
+    let d = support_count(&p, &[1.0], f64::INFINITY, &wind);
+    assert_eq!(d.weighted_terms[1], 0.0);
+    assert!(d.probability_pct < 100.0);
+}
+
+#[test]
+fn per_unit_weights_may_exceed_1_but_not_be_negative_and_normalised_ones_stay_in_0_1() {
+    let mut p = paper();
+    p.failure.weights.payload = 3.2;
+    let v = validate_profile(&p);
+    let codes: Vec<(&str, &str)> = v.iter().map(|x| (x.code, x.field.as_str())).collect();
+    assert_eq!(codes, [("E2020", "failure.weights.payload")]);
+    p.failure.terms = FailureTerms::PerUnit;
+    assert!(validate_profile(&p).is_empty());
+    p.failure.weights.wind = -0.001;
+    p.failure.weights.capacity = f64::INFINITY;
+    let v = validate_profile(&p);
+    let codes: Vec<(&str, &str)> = v.iter().map(|x| (x.code, x.field.as_str())).collect();
+    assert_eq!(
+        codes,
+        [
+            ("E2022", "failure.weights.capacity"),
+            ("E2022", "failure.weights.wind")
+        ]
+    );
+    // A negative weight beside positive ones is not also "no positive weight" (E2021); all zero is.
+    p.failure.model = FailureModel::WeightedSum;
+    p.failure.weights.capacity = 0.1;
+    let v = validate_profile(&p);
+    let codes: Vec<(&str, &str)> = v.iter().map(|x| (x.code, x.field.as_str())).collect();
+    assert_eq!(codes, [("E2022", "failure.weights.wind")]);
+    p.failure.weights = FailureWeights {
+        payload: 0.0,
+        distance: 0.0,
+        capacity: 0.0,
+        wind: 0.0,
+    };
+    let v = validate_profile(&p);
+    let codes: Vec<(&str, &str)> = v.iter().map(|x| (x.code, x.field.as_str())).collect();
+    assert_eq!(codes, [("E2021", "failure.weights")]);
+    // An unknown reading of the terms is a TOML error with its code.
+    let text = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("instances/profiles/redundancy-levels.toml"),
+    )
+    .unwrap()
+    .replace("terms = \"per-unit\"", "terms = \"per-minute\"");
+    let err = parse_toml::<Profile>(&text, "bad.toml").unwrap_err();
+    assert_eq!(err.exit_code(), 2);
+    assert!(err.to_string().contains("E0002"), "{err}");
+}
+
+/// Shortest distances from `source` over the network's segments (Euclidean lengths), by a plain
+/// O(V^2) Dijkstra written for this test, independent of the crate's graph code.
+fn test_dijkstra_m(net: &Network, source: usize) -> Vec<f64> {
+    let n = net.nodes.len();
+    let at = |id: &str| net.nodes.iter().position(|x| x.id == id).unwrap();
+    let mut adj = vec![Vec::new(); n];
+    for s in &net.segments {
+        let (a, b) = (at(&s.from), at(&s.to));
+        let len = s.distance_m.unwrap_or_else(|| {
+            (net.nodes[a].x_m - net.nodes[b].x_m).hypot(net.nodes[a].y_m - net.nodes[b].y_m)
+        });
+        adj[a].push((b, len));
+        adj[b].push((a, len));
+    }
+    let mut dist = vec![f64::INFINITY; n];
+    let mut done = vec![false; n];
+    dist[source] = 0.0;
+    for _ in 0..n {
+        let u = (0..n)
+            .filter(|&u| !done[u])
+            .min_by(|&a, &b| dist[a].total_cmp(&dist[b]))
+            .unwrap();
+        done[u] = true;
+        for &(v, len) in &adj[u] {
+            dist[v] = dist[v].min(dist[u] + len);
+        }
+    }
+    dist
+}
+
+#[test]
+fn every_row_of_table_2_is_reached_on_the_first_200_paper_195_requests_under_redundancy_levels() {
+    // P recomputed here from the formula of instances/profiles/redundancy-levels.toml
+    // (weighted sum of per-unit terms): P = 100 (0.3152 D_pr + 0.04348 d / 500 m/min
+    // + 0.1099 / 4 + 0.0007599 W), W the mean segment wind speed, d by the Dijkstra above.
+    // The expected counts [11, 55, 83, 37, 14] of 200 come from an independent Python script
+    // (own JSON reading and Dijkstra); the closest P to a row boundary is 0.049 points away.
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let p = shipped_profile("redundancy-levels");
+    assert!(validate_profile(&p).is_empty());
+    let net: Network =
+        swarmplan::problem::io::read_json(&root.join("instances/paper-195/network.json"))
+            .expect("network parses");
+    let set: RequestSet =
+        swarmplan::problem::io::read_json(&root.join("instances/paper-195/requests.json"))
+            .expect("requests parse");
+    let w_mps =
+        net.segments.iter().map(|s| s.wind_speed_mps).sum::<f64>() / net.segments.len() as f64;
+    assert!((w_mps - 5.262).abs() < 5e-4, "{w_mps}");
+    let graph = swarmplan::network::SkywayGraph::new(&net).unwrap();
+    let context = swarmplan::compose::Context::new(&net, &graph, &p);
+    let at = |id: &str| net.nodes.iter().position(|x| x.id == id).unwrap();
+    let mut counts = [0usize; 5];
+    for (i, r) in set.requests.iter().take(200).enumerate() {
+        let d_m = test_dijkstra_m(&net, at(&r.source))[at(&r.destination)];
+        let d_pr = r.packages_kg.iter().map(|x| x / 5.0).sum::<f64>() / r.packages_kg.len() as f64;
+        let share = 0.3152 * d_pr + 0.04348 * d_m / 500.0 + 0.1099 / 4.0 + 0.0007599 * w_mps;
+        let want_pct = (100.0 * share).min(100.0);
+        let want_row = [20.0, 40.0, 60.0, 80.0]
+            .iter()
+            .filter(|&&b| want_pct >= b)
+            .count();
+        if i == 0 {
+            // r00000, n179 -> n049, packages 0.012 and 0.357 kg: the Python script's
+            // d = 5920.22 m (11.8404 min), D_pr = 0.0369, P = 1.1631 + 51.4823 + 2.7475 + 0.3999
+            // = 55.79 % -> row 2 (40-59) -> N+3.
+            assert!((d_m - 5920.22).abs() < 0.01, "{d_m}");
+            assert!((want_pct - 55.79).abs() < 0.01, "{want_pct}");
+            assert_eq!(want_row, 2);
+        }
+        let got = context
+            .swarm_for(r, Positioning::LocationAware, None)
+            .unwrap()
+            .support_decision;
+        assert!(
+            (got.probability_pct - want_pct).abs() < 1e-9,
+            "{}: {} vs {want_pct}",
+            r.id,
+            got.probability_pct
+        );
+        assert_eq!(got.row, want_row, "{}", r.id);
+        counts[want_row] += 1;
+    }
+    assert_eq!(counts, [11, 55, 83, 37, 14]);
 }
 
 #[test]

@@ -354,11 +354,31 @@ impl Default for RedundancyParams {
 pub enum FailureModel {
     /// As written: `P = 100 * prod_i (w_i * p_i)`.
     Product,
-    /// `P = 100 * sum_i (w_i * p_i) / sum_i w_i`.
+    /// `P = 100 * sum_i (w_i * p_i) / sum_i w_i` of normalised terms; `P = 100 * sum_i (w_i * p_i)`
+    /// of per-unit terms (each `w_i * p_i` is already a share of a battery).
     WeightedSum,
 }
 
-/// Weights `w_1..w_4` of Eq. 2.
+/// How the four factors enter Eq. 2 (models/precompose.md, "Two readings of the terms").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum FailureTerms {
+    /// Each factor normalised to [0, 1] (the paper's "we normalize them between 0 and 1"):
+    /// `p1 = D_pr`, `p2 = d / distance_norm_m`, `p3 = C / E_c`, `p4 = W / wind_limit_mps`, each
+    /// clamped to [0, 1]; the weights are fractions in [0, 1].
+    #[default]
+    Normalised,
+    /// Each factor in its own unit (the paper's worked example `w2 = 0.03` per minute, 5 km at
+    /// 30 km/h, `P_2 = 0.3`): `p1 = D_pr` (ratio), `p2 = d / v` (minutes of flight),
+    /// `p3 = C / E_c` (ratio), `p4 = W` (m/s). A weight is the share of a battery the factor
+    /// consumes per unit of it, so `w_i * p_i` is a share of a battery; the weighted sum adds
+    /// the shares without dividing by the weights.
+    PerUnit,
+}
+
+/// Weights `w_1..w_4` of Eq. 2. Under [`FailureTerms::Normalised`] fractions in [0, 1]; under
+/// [`FailureTerms::PerUnit`] shares of a battery per unit of the factor (per unit of `D_pr`, per
+/// minute of flight, per unit of `C / E_c`, per m/s of wind), at least 0.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct FailureWeights {
@@ -378,6 +398,9 @@ pub struct FailureWeights {
 pub struct FailureParams {
     /// Product (as written) or weighted sum.
     pub model: FailureModel,
+    /// Normalised terms (the default) or terms in their own units.
+    #[serde(default)]
+    pub terms: FailureTerms,
     /// Eq. 1's normaliser of the payload ratio, kg (5 kg in the paper; not the max payload).
     pub payload_norm_kg: f64,
     /// Route distance mapped to the distance term 1, m.
@@ -390,6 +413,7 @@ impl Default for FailureParams {
     fn default() -> Self {
         FailureParams {
             model: FailureModel::Product,
+            terms: FailureTerms::Normalised,
             payload_norm_kg: 5.0,
             distance_norm_m: 11_500.0,
             weights: FailureWeights {
@@ -640,17 +664,31 @@ pub fn validate_profile(p: &Profile) -> Vec<Violation> {
         ("failure.weights.wind", w.wind),
     ];
     for (field, v) in weights {
-        if !(v.is_finite() && (0.0..=1.0).contains(&v)) {
-            out.push(Violation::new(
-                "E2020",
-                field,
-                format!("a weight must be in [0, 1], got {v}"),
-                "set the weight between 0 and 1",
-            ));
+        match p.failure.terms {
+            FailureTerms::Normalised if !(v.is_finite() && (0.0..=1.0).contains(&v)) => {
+                out.push(Violation::new(
+                    "E2020",
+                    field,
+                    format!("a weight of normalised terms must be in [0, 1], got {v}"),
+                    "set the weight between 0 and 1, or set failure.terms = \"per-unit\"",
+                ));
+            }
+            FailureTerms::PerUnit if !(v.is_finite() && v >= 0.0) => {
+                out.push(Violation::new(
+                    "E2022",
+                    field,
+                    format!("a per-unit weight must be a finite number at least 0, got {v}"),
+                    "set the share of a battery the factor consumes per unit of it, e.g. \
+                     distance = 0.03 (3% per minute of flight, the paper's example)",
+                ));
+            }
+            _ => {}
         }
     }
-    let sum = w.payload + w.distance + w.capacity + w.wind;
-    if p.failure.model == FailureModel::WeightedSum && sum.is_finite() && sum <= 0.0 {
+    // One positive weight is needed; a negative one is reported above and does not cancel it.
+    let all_finite = weights.iter().all(|(_, v)| v.is_finite());
+    let any_positive = weights.iter().any(|(_, v)| *v > 0.0);
+    if p.failure.model == FailureModel::WeightedSum && all_finite && !any_positive {
         out.push(Violation::new(
             "E2021",
             "failure.weights",
