@@ -59,6 +59,9 @@ pub enum Error {
         #[source]
         source: std::io::Error,
     },
+    /// The results could not be written to stdout.
+    #[error("cannot write the results to stdout: {0}")]
+    Output(#[source] std::io::Error),
     /// An optimization backend failed in a way that is not a solve outcome.
     #[error("solver backend {backend} failed: {message}")]
     Backend {
@@ -92,10 +95,30 @@ impl Error {
     pub fn exit_code(&self) -> i32 {
         match self {
             Error::Invalid(_) | Error::Io { .. } => 2,
-            Error::Backend { .. } => 1,
+            Error::Backend { .. } | Error::Output(_) => 1,
         }
+    }
+
+    /// An [`Error::Output`] from a failed write to stdout.
+    pub fn from_output(e: std::io::Error) -> Self {
+        Error::Output(e)
+    }
+
+    /// Whether this is a write to a closed pipe (the reader stopped early, as `| head` does).
+    pub fn is_broken_pipe(&self) -> bool {
+        matches!(self, Error::Output(e) if e.kind() == std::io::ErrorKind::BrokenPipe)
     }
 }
 
 /// Result alias of the library.
 pub type Result<T> = std::result::Result<T, Error>;
+
+/// A number as a message shows it: plain between `1e-4` and `1e9` in magnitude (and 0), in
+/// scientific notation beyond, so that `1e308` does not print as 309 digits.
+pub fn show(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() || (1e-4..1e9).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}

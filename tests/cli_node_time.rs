@@ -97,3 +97,72 @@ fn bad_input_exits_2_with_a_coded_message() {
     let (code, _, _) = swarmplan(&["node-time", "--pads", "2"]);
     assert_eq!(code, 2);
 }
+
+#[test]
+fn out_of_range_time_limits_and_charge_times_are_coded_errors() {
+    // 1e308 s once panicked converting to a Duration; 1e308 min once printed "inf min (optimal)".
+    for (args, code, field) in [
+        (
+            vec![
+                "--times",
+                "60,50,40",
+                "--method",
+                "milp",
+                "--time-limit",
+                "1e308",
+            ],
+            "E5006",
+            "time_limit_s",
+        ),
+        (
+            vec!["--times", "60,50,40", "--time-limit", "-1"],
+            "E5006",
+            "time_limit_s",
+        ),
+        (vec!["--times", "1e308,5"], "E5004", "charge_times_min[0]"),
+        (vec!["--times", "5,1e10"], "E5004", "charge_times_min[1]"),
+    ] {
+        let mut all = vec!["node-time", "--pads", "3"];
+        all.extend(args);
+        let (exit, _, stderr) = swarmplan(&all);
+        assert_eq!(exit, 2, "{all:?}: {stderr}");
+        assert!(
+            stderr.contains(&format!("[{code}] {field}")),
+            "{all:?}: {stderr}"
+        );
+        assert!(!stderr.contains("panicked"), "{stderr}");
+    }
+}
+
+#[test]
+fn a_closed_stdout_ends_quietly_and_a_full_disk_is_reported() {
+    use std::process::Stdio;
+    // The reader goes away before anything is written: no panic, exit 0, nothing on stderr.
+    let mut child = Command::new(env!("CARGO_BIN_EXE_swarmplan"))
+        .args(["solve", "--request-id", "r00001", "--json"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(out.status.code(), Some(0), "{out:?}");
+    assert!(
+        out.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    if let Ok(full) = std::fs::OpenOptions::new().write(true).open("/dev/full") {
+        let out = Command::new(env!("CARGO_BIN_EXE_swarmplan"))
+            .args(["node-time", "--pads", "3", "--times", "60,50,40,30,20"])
+            .stdout(full)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{stderr}");
+        assert!(
+            stderr.contains("cannot write the results to stdout"),
+            "{stderr}"
+        );
+    }
+}

@@ -367,3 +367,61 @@ fn literal_switches_algorithm_1_to_adjacent_candidates() {
     let failure = json(&lit)["plan"]["failure"].as_str().unwrap().to_string();
     assert!(failure.contains("dead end at W"), "{failure}");
 }
+
+#[test]
+fn request_files_with_a_wrong_schema_or_repeated_ids_are_refused_and_fields_keep_their_index() {
+    let net = tiny("line4.json");
+    let write = |name: &str, text: &str| {
+        let p = tmp(name);
+        std::fs::write(&p, text).unwrap();
+        p.to_str().unwrap().to_string()
+    };
+    let two = |version: u32, second_id: &str, second_packages: &str| {
+        format!(
+            r#"{{"schema_version": {version}, "requests": [
+                {{"id": "r1", "source": "A", "destination": "D", "packages_kg": [0.5]}},
+                {{"id": "{second_id}", "source": "D", "destination": "B", "packages_kg": [{second_packages}]}}]}}"#
+        )
+    };
+    for (file, text, code, field) in [
+        ("v0.json", two(0, "r2", "0.3"), "E3001", "schema_version"),
+        ("v2.json", two(2, "r2", "0.3"), "E3001", "schema_version"),
+        ("dup.json", two(1, "r1", "0.3"), "E3102", "requests[1].id"),
+    ] {
+        let f = write(file, &text);
+        for args in [
+            vec!["batch", "--network", &net, "--requests", &f],
+            vec![
+                "solve",
+                "--network",
+                &net,
+                "--request-file",
+                &f,
+                "--request-id",
+                "r1",
+            ],
+        ] {
+            let out = swarmplan(&args);
+            let err = String::from_utf8_lossy(&out.stderr);
+            assert_eq!(out.status.code(), Some(2), "{file} {args:?}: {err}");
+            assert!(
+                err.contains(&format!("[{code}] {field}")),
+                "{file} {args:?}: {err}"
+            );
+        }
+    }
+    // A bad second request is reported as requests[1], its place in the file.
+    let f = write("bad-second.json", &two(1, "r2", "-0.1"));
+    let out = swarmplan(&[
+        "solve",
+        "--network",
+        &net,
+        "--request-file",
+        &f,
+        "--request-id",
+        "r2",
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("[E3302] requests[1].packages_kg[0]"), "{err}");
+}

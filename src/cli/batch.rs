@@ -162,11 +162,11 @@ pub fn run(args: BatchArgs) -> Result<i32> {
         io::write_json(path, &outcomes)?;
     }
     if args.json {
-        super::print_json(&summaries);
+        super::print_json(&summaries)?;
     } else {
-        println!("sharing,positioning,route,delivered,requests,mean_dt_min,mean_nt_min,mean_stops,stops,lpt_optimal,lpt_mean_gap,lpt_max_gap,wall_ms");
+        outln!("sharing,positioning,route,delivered,requests,mean_dt_min,mean_nt_min,mean_stops,stops,lpt_optimal,lpt_mean_gap,lpt_max_gap,wall_ms");
         for s in &summaries {
-            println!(
+            outln!(
                 "{},{},{},{},{},{:.3},{:.3},{:.3},{},{},{:.6},{:.6},{:.0}",
                 label(&s.options.sharing),
                 label(&s.options.positioning),

@@ -64,30 +64,46 @@ impl InstanceArgs {
     }
 }
 
-/// Reads a request set: the file given, or the embedded paper-195 requests.
+/// Reads a request set (the file given, or the embedded paper-195 requests) and checks its
+/// header and ids (E3001, E3002, E3102); the requests themselves are checked by the caller
+/// against the network.
 pub fn load_requests(path: Option<&Path>) -> Result<RequestSet> {
-    match path {
-        Some(p) => io::read_json(p),
-        None => io::parse_json(EMBEDDED_REQUESTS, "embedded paper-195 requests"),
+    let set: RequestSet = match path {
+        Some(p) => io::read_json(p)?,
+        None => io::parse_json(EMBEDDED_REQUESTS, "embedded paper-195 requests")?,
+    };
+    let violations = validate::validate_request_set_header(&set);
+    if violations.is_empty() {
+        Ok(set)
+    } else {
+        Err(Error::Invalid(violations))
     }
 }
 
-/// Finds request `id` in a request file (or the embedded paper-195 requests) and validates it.
+/// Finds request `id` in a request file (or the embedded paper-195 requests) and validates it,
+/// reporting its fields under its own index in the file.
 pub fn find_request(instance: &Instance, path: Option<&Path>, id: &str) -> Result<Request> {
-    let request = load_requests(path)?
-        .requests
-        .into_iter()
-        .find(|r| r.id == id)
-        .ok_or_else(|| {
-            Error::invalid(
-                "E3401",
-                "--request-id",
-                format!("no request with id `{id}` in the request file"),
-                "give an id present in the file's `requests[].id`",
-            )
-        })?;
-    validate_requests(instance, std::slice::from_ref(&request))?;
-    Ok(request)
+    let set = load_requests(path)?;
+    let Some(index) = set.requests.iter().position(|r| r.id == id) else {
+        return Err(Error::invalid(
+            "E3401",
+            "--request-id",
+            format!("no request with id `{id}` in the request file"),
+            "give an id present in the file's `requests[].id`",
+        ));
+    };
+    let request = set.requests[index].clone();
+    let violations = validate::validate_request(
+        &request,
+        index,
+        &instance.graph,
+        instance.profile.drone.max_payload_kg,
+    );
+    if violations.is_empty() {
+        Ok(request)
+    } else {
+        Err(Error::Invalid(violations))
+    }
 }
 
 /// Validates requests against the instance, reporting every violation at once.

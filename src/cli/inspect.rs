@@ -141,16 +141,16 @@ pub fn run(args: InspectArgs) -> Result<i32> {
     };
     let report = InspectReport { network, request };
     if args.json {
-        super::print_json(&report);
+        super::print_json(&report)?;
     } else {
-        print_human(&report);
+        print_human(&report)?;
     }
     Ok(0)
 }
 
-fn print_human(report: &InspectReport) {
+fn print_human(report: &InspectReport) -> Result<()> {
     let n = &report.network;
-    println!(
+    outln!(
         "network: {} nodes, {} segments ({:.1} km), {} pads on {} nodes",
         n.nodes,
         n.segments,
@@ -158,7 +158,7 @@ fn print_human(report: &InspectReport) {
         n.pads,
         n.pad_nodes
     );
-    println!(
+    outln!(
         "wind: mean {:.2} m/s, max {:.2} m/s; averaged wind {:.2} m/s from {:.0} deg; formation {:?}",
         n.mean_wind_speed_mps,
         n.max_wind_speed_mps,
@@ -167,15 +167,18 @@ fn print_human(report: &InspectReport) {
         n.formation
     );
     if let Some(r) = &report.request {
-        println!(
+        outln!(
             "request {}: route {:.0} m, {} support drone(s) (table: {})",
-            r.request_id, r.route_distance_m, r.support_drones, r.support_decision.count
+            r.request_id,
+            r.route_distance_m,
+            r.support_drones,
+            r.support_decision.count
         );
-        println!("  drone role      payload_kg capacity_mah slot  x_m    y_m   still mAh/min  head-wind mAh/min");
+        outln!("  drone role      payload_kg capacity_mah slot  x_m    y_m   still mAh/min  head-wind mAh/min");
         for d in &r.swarm.drones {
             let slot = r.swarm.initial_slot[d.id];
             let p = r.swarm.slots_m[slot];
-            println!(
+            outln!(
                 "  {:>5} {:<9} {:>10.3} {:>12.0} {:>4} {:>6.2} {:>6.2} {:>13.2} {:>18.2}",
                 d.id,
                 format!("{:?}", d.role),
@@ -189,4 +192,5 @@ fn print_human(report: &InspectReport) {
             );
         }
     }
+    Ok(())
 }

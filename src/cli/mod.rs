@@ -4,6 +4,15 @@
 use clap::{Parser, Subcommand};
 use serde::Serialize;
 
+/// `println!` to stdout that returns [`crate::Error::Output`] from the calling function instead
+/// of panicking when stdout cannot be written (a closed pipe, a full disk).
+macro_rules! outln {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        writeln!(std::io::stdout().lock(), $($arg)*).map_err($crate::Error::from_output)?
+    }};
+}
+
 pub mod batch;
 pub mod generate;
 pub mod inputs;
@@ -55,6 +64,8 @@ pub fn main() -> i32 {
     };
     match result {
         Ok(code) => code,
+        // The reader of stdout went away (`| head`): nothing is left to say to anyone.
+        Err(e) if e.is_broken_pipe() => 0,
         Err(e) => {
             eprintln!("error: {e}");
             e.exit_code()
@@ -63,9 +74,13 @@ pub fn main() -> i32 {
 }
 
 /// Prints `value` as pretty JSON to stdout.
-pub fn print_json<T: Serialize>(value: &T) {
-    println!(
+///
+/// # Errors
+/// [`crate::Error::Output`] when stdout cannot be written.
+pub fn print_json<T: Serialize>(value: &T) -> crate::error::Result<()> {
+    outln!(
         "{}",
         serde_json::to_string_pretty(value).expect("serialising plain data cannot fail")
     );
+    Ok(())
 }

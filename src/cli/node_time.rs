@@ -36,9 +36,10 @@ pub struct NodeTimeArgs {
     /// MILP backend (with --method milp).
     #[arg(long, value_enum, default_value_t = MilpBackend::all()[0])]
     pub backend: MilpBackend,
-    /// Time limit in seconds; a stopped solve reports its incumbent as `feasible`.
-    #[arg(long, allow_negative_numbers = true)]
-    pub time_limit: Option<f64>,
+    /// Time limit in seconds, at most 1e6; a stopped solve reports its incumbent as `feasible`
+    /// with its lower bound.
+    #[arg(long, allow_negative_numbers = true, default_value_t = 10.0)]
+    pub time_limit: f64,
     /// Print the result as JSON on stdout.
     #[arg(long)]
     pub json: bool,
@@ -89,19 +90,19 @@ pub fn run(args: NodeTimeArgs) -> Result<i32> {
         }
     };
     let limits = Limits {
-        time_limit_s: args.time_limit,
+        time_limit_s: Some(args.time_limit),
         node_limit: None,
     };
     let solution = node_time::solve(args.method, args.backend, pads, &times, &limits)?;
     if args.json {
-        crate::cli::print_json(&solution);
+        crate::cli::print_json(&solution)?;
     } else {
-        print_human(&solution, &times, args.backend);
+        print_human(&solution, &times, args.backend)?;
     }
     Ok(0)
 }
 
-fn print_human(s: &NodeTimeSolution, times: &[f64], backend: MilpBackend) {
+fn print_human(s: &NodeTimeSolution, times: &[f64], backend: MilpBackend) -> Result<()> {
     let status = match s.status {
         SolveStatus::Optimal => "optimal",
         SolveStatus::Feasible => "feasible, not proven optimal",
@@ -112,18 +113,19 @@ fn print_human(s: &NodeTimeSolution, times: &[f64], backend: MilpBackend) {
     } else {
         s.method.name().to_string()
     };
-    println!(
+    outln!(
         "node time: {} min ({status}; method {method})",
         s.makespan_min
     );
-    println!("lower bound: {} min", s.lower_bound_min);
+    outln!("lower bound: {} min", s.lower_bound_min);
     for (i, pad) in s.assignment.iter().enumerate() {
         let load: f64 = pad.iter().map(|&j| times[j]).sum();
         let drones: Vec<String> = pad
             .iter()
             .map(|&j| format!("{j} ({} min)", times[j]))
             .collect();
-        println!("pad {i}: load {load} min: drones {}", drones.join(", "));
+        outln!("pad {i}: load {load} min: drones {}", drones.join(", "));
     }
-    println!("solve time: {:.3} ms", s.solve_ms);
+    outln!("solve time: {:.3} ms", s.solve_ms);
+    Ok(())
 }

@@ -77,16 +77,16 @@ pub fn run(args: SolveArgs) -> Result<i32> {
     };
     let report = context.plan(&request, &options)?;
     if args.json {
-        super::print_json(&report);
+        super::print_json(&report)?;
     } else {
-        print_human(&report);
+        print_human(&report)?;
     }
     Ok(if report.plan.success { 0 } else { 1 })
 }
 
-fn print_human(report: &crate::compose::RequestReport) {
+fn print_human(report: &crate::compose::RequestReport) -> Result<()> {
     let plan = &report.plan;
-    println!(
+    outln!(
         "request {}: {} -> {}, formation {:?}, {} delivery + {} support drones",
         report.request_id,
         plan.source,
@@ -96,7 +96,7 @@ fn print_human(report: &crate::compose::RequestReport) {
         report.support_drones
     );
     for hop in &plan.hops {
-        println!(
+        outln!(
             "  fly {} -> {} via {} segment(s): {:.0} m, tt {:.2} min, shared {:.1} mAh in {} transfer(s)",
             hop.from,
             hop.to,
@@ -107,14 +107,18 @@ fn print_human(report: &crate::compose::RequestReport) {
             hop.transfers.len()
         );
         if let Some(stop) = &hop.stop {
-            println!(
+            outln!(
                 "  recharge at {} on {} pad(s): nt {:.2} min ({:?}), pads {:?}",
-                stop.node, stop.pads, stop.nt_min, stop.status, stop.assignment
+                stop.node,
+                stop.pads,
+                stop.nt_min,
+                stop.status,
+                stop.assignment
             );
         }
     }
     if plan.success {
-        println!(
+        outln!(
             "delivered: dt {:.2} min = tt {:.2} + nt {:.2}; {} stop(s); {:.2} ms",
             plan.dt_min,
             plan.tt_min,
@@ -123,9 +127,10 @@ fn print_human(report: &crate::compose::RequestReport) {
             report.execution_ms
         );
     } else {
-        println!(
+        outln!(
             "failed: {}",
             plan.failure.as_deref().unwrap_or("unknown reason")
         );
     }
+    Ok(())
 }

@@ -37,7 +37,7 @@
 //! assert_eq!(exact(5, &times, &Limits::default()).unwrap().makespan_min, 60.0);
 //! ```
 
-use crate::error::{Error, Result, Violation};
+use crate::error::{show, Error, Result, Violation};
 use crate::solver::{MilpBackend, SolveStatus};
 use serde::Serialize;
 
@@ -124,7 +124,7 @@ pub struct NodeTimeSolution {
 ///
 /// # Errors
 /// [`Error::Invalid`] listing `E5001` (no pads), `E5002` (empty list), `E5003` (negative time),
-/// `E5004` (NaN or infinite time).
+/// `E5004` (NaN, infinite, or above [`MAX_CHARGE_TIME_MIN`]).
 ///
 /// # Complexity
 /// `O(n)`.
@@ -147,11 +147,15 @@ pub fn validate(pads: usize, charge_times_min: &[f64]) -> Result<()> {
         ));
     }
     for (j, &p) in charge_times_min.iter().enumerate() {
-        if !p.is_finite() {
+        if !(p.is_finite() && p <= MAX_CHARGE_TIME_MIN) {
             violations.push(Violation::new(
                 "E5004",
                 format!("charge_times_min[{j}]"),
-                format!("charge time {p} is not a finite number"),
+                format!(
+                    "charge time {} is not a finite number of at most {} min",
+                    show(p),
+                    show(MAX_CHARGE_TIME_MIN)
+                ),
                 "give a finite charge time in minutes",
             ));
         } else if p < 0.0 {
@@ -170,15 +174,30 @@ pub fn validate(pads: usize, charge_times_min: &[f64]) -> Result<()> {
     }
 }
 
-/// Checks the limits: a time limit must be a finite number of seconds, 0 or more (`E5006`).
+/// Longest time limit accepted, seconds (about 11.6 days): any solve that needs more is not one a
+/// time limit should wait for, and every longer value would overflow a `Duration` somewhere.
+pub const MAX_TIME_LIMIT_S: f64 = 1e6;
+
+/// Longest charge time accepted, minutes (about 1,900 years): keeps every sum of charge times
+/// finite and exact to well below a minute.
+pub const MAX_CHARGE_TIME_MIN: f64 = 1e9;
+
+/// Checks the limits: a time limit must be a number of seconds in `[0, MAX_TIME_LIMIT_S]`
+/// (`E5006`).
 pub(crate) fn validate_limits(limits: &Limits) -> Result<()> {
     match limits.time_limit_s {
-        Some(t) if !(t.is_finite() && t >= 0.0) => Err(Error::invalid(
-            "E5006",
-            "time_limit_s",
-            format!("time limit {t} s is not a finite number of seconds >= 0"),
-            "give a time limit such as 10, or none",
-        )),
+        Some(t) if !(t.is_finite() && (0.0..=MAX_TIME_LIMIT_S).contains(&t)) => {
+            Err(Error::invalid(
+                "E5006",
+                "time_limit_s",
+                format!(
+                    "time limit {} s is not a number of seconds in [0, {}]",
+                    show(t),
+                    show(MAX_TIME_LIMIT_S)
+                ),
+                "give a time limit such as 10",
+            ))
+        }
         _ => Ok(()),
     }
 }

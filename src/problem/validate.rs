@@ -329,6 +329,19 @@ pub fn validate_request_set(
     graph: &SkywayGraph,
     max_payload_kg: f64,
 ) -> Vec<Violation> {
+    let mut out = validate_request_set_header(set);
+    for (k, r) in set.requests.iter().enumerate() {
+        out.extend(validate_request(r, k, graph, max_payload_kg));
+    }
+    out
+}
+
+/// The rules of a request set that do not need the network: its header (E3001, E3002) and unique
+/// ids (E3102).
+///
+/// # Complexity
+/// O(number of requests) expected time.
+pub fn validate_request_set_header(set: &RequestSet) -> Vec<Violation> {
     let mut out = Vec::new();
     if set.schema_version != SCHEMA_VERSION {
         out.push(Violation::new(
@@ -361,7 +374,6 @@ pub fn validate_request_set(
                 "rename one of the requests so that ids are unique",
             ));
         }
-        out.extend(validate_request(r, k, graph, max_payload_kg));
     }
     out
 }
