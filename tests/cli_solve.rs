@@ -425,3 +425,74 @@ fn request_files_with_a_wrong_schema_or_repeated_ids_are_refused_and_fields_keep
     assert_eq!(out.status.code(), Some(2), "{err}");
     assert!(err.contains("[E3302] requests[1].packages_kg[0]"), "{err}");
 }
+
+#[test]
+fn counts_beyond_their_stated_bounds_are_coded_errors() {
+    // Each once panicked, aborted on an allocation or ran for minutes.
+    let out = swarmplan(&[
+        "solve",
+        "--request-id",
+        "r00001",
+        "--support",
+        "18446744073709551615",
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("[E0006] --support"), "{err}");
+
+    let paper = std::fs::read_to_string(
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("instances/profiles/paper.toml"),
+    )
+    .unwrap();
+    for (from, to, code, field) in [
+        (
+            "select_swarm_size = 5 ",
+            "select_swarm_size = 4294967295 ",
+            "E2006",
+            "formation.select_swarm_size",
+        ),
+        (
+            "direction_bins = 8 ",
+            "direction_bins = 4294967295 ",
+            "E2006",
+            "formation.direction_bins",
+        ),
+        (
+            r#"level = "n+4""#,
+            r#"level = "n+4294967295""#,
+            "E2023",
+            "redundancy.rows[3].level",
+        ),
+    ] {
+        assert!(paper.contains(from), "{from}");
+        let f = tmp(&format!(
+            "{code}-{}.toml",
+            field.replace(['.', '[', ']'], "_")
+        ));
+        std::fs::write(&f, paper.replace(from, to)).unwrap();
+        let out = swarmplan(&[
+            "solve",
+            "--request-id",
+            "r00001",
+            "--profile",
+            f.to_str().unwrap(),
+        ]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{field}: {err}");
+        assert!(err.contains(&format!("[{code}] {field}")), "{field}: {err}");
+    }
+
+    let many = vec!["0.5"; 33].join(",");
+    let out = swarmplan(&[
+        "solve",
+        "--from",
+        "n010",
+        "--to",
+        "n168",
+        "--packages",
+        &many,
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("[E3304] requests[0].packages_kg"), "{err}");
+}

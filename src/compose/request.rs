@@ -8,7 +8,7 @@ use crate::error::{Error, Result};
 use crate::formation::FormationKind;
 use crate::network::SkywayGraph;
 use crate::precompose::{self, Positioning, SupportDecision, Swarm};
-use crate::problem::{Network, Profile, Request};
+use crate::problem::{Network, Profile, Request, MAX_SUPPORT_DRONES};
 use serde::Serialize;
 use std::time::Instant;
 
@@ -120,6 +120,14 @@ impl<'a> Context<'a> {
             route_distance_m,
             &self.average_wind,
         );
+        if let Some(n) = support.filter(|&n| n > MAX_SUPPORT_DRONES) {
+            return Err(Error::invalid(
+                "E0006",
+                "--support",
+                format!("{n} support drones, more than the {MAX_SUPPORT_DRONES} a swarm may have"),
+                "give --support 32 or fewer, or leave it to the redundancy table",
+            ));
+        }
         let support_drones = support.unwrap_or(support_decision.count);
         let swarm = precompose::build_swarm(
             self.profile,

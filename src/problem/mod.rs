@@ -12,5 +12,16 @@ pub use network::{Network, Node, Segment};
 pub use profile::Profile;
 pub use request::{Request, RequestSet};
 
+/// Most delivery drones (packages) in one request: the exact node time at a stop, an NP-hard
+/// P||Cmax over every drone of the swarm, is fast far beyond the paper's 2-8 packages but takes
+/// minutes on swarms of 45 drones (rule E3304).
+pub const MAX_DELIVERY_DRONES: usize = 32;
+
+/// Most support drones in one swarm, from the redundancy table (E2023) or `--support` (E0006).
+pub const MAX_SUPPORT_DRONES: usize = 32;
+
+/// Most drones in a swarm a profile may rank formations with (`formation.select_swarm_size`).
+pub const MAX_SWARM_DRONES: usize = MAX_DELIVERY_DRONES + MAX_SUPPORT_DRONES;
+
 /// Version of the JSON/TOML schemas written and read by this build.
 pub const SCHEMA_VERSION: u32 = 1;

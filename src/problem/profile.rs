@@ -563,19 +563,23 @@ pub fn validate_profile(p: &Profile) -> Vec<Violation> {
             "set a floor in (0, 1], e.g. 0.5",
         ));
     }
-    if p.formation.select_swarm_size == 0 {
+    let swarm_size = p.formation.select_swarm_size as usize;
+    if !(1..=super::MAX_SWARM_DRONES).contains(&swarm_size) {
         out.push(Violation::new(
             "E2006",
             "formation.select_swarm_size",
-            "must be at least 1, got 0",
+            format!(
+                "must be in 1..={}, got {swarm_size}",
+                super::MAX_SWARM_DRONES
+            ),
             "set the swarm size used to rank formations, e.g. 5",
         ));
     }
-    if p.formation.direction_bins == 0 {
+    if !(1..=360).contains(&p.formation.direction_bins) {
         out.push(Violation::new(
             "E2006",
             "formation.direction_bins",
-            "must be at least 1, got 0",
+            format!("must be in 1..=360, got {}", p.formation.direction_bins),
             "set the number of wind direction bins, e.g. 8",
         ));
     }
@@ -640,6 +644,19 @@ pub fn validate_profile(p: &Profile) -> Vec<Violation> {
             ));
         }
         for (i, r) in rows.iter().enumerate() {
+            if let RedundancyLevel::NPlus(k) = r.level {
+                if k as usize > super::MAX_SUPPORT_DRONES {
+                    out.push(Violation::new(
+                        "E2023",
+                        format!("redundancy.rows[{i}].level"),
+                        format!(
+                            "n+{k} asks for more than {} support drones",
+                            super::MAX_SUPPORT_DRONES
+                        ),
+                        "use a level of at most n+32, or 2n / 2(n+1)",
+                    ));
+                }
+            }
             let ok_range = r.from_pct.is_finite() && (0.0..=100.0).contains(&r.from_pct);
             let ok_order = i == 0 || r.from_pct > rows[i - 1].from_pct;
             if !ok_range || !ok_order {

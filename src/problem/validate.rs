@@ -30,8 +30,9 @@
 //! | E3301 | `requests[k].packages_kg`           | at least one package |
 //! | E3302 | `requests[k].packages_kg[p]`        | finite and > 0 |
 //! | E3303 | `requests[k].packages_kg[p]`        | at most the drone's max payload |
+//! | E3304 | `requests[k].packages_kg`           | at most [`MAX_DELIVERY_DRONES`] packages |
 
-use super::{Network, Request, RequestSet, SCHEMA_VERSION};
+use super::{Network, Request, RequestSet, MAX_DELIVERY_DRONES, SCHEMA_VERSION};
 use crate::error::Violation;
 use crate::network::SkywayGraph;
 use std::collections::{HashMap, HashSet};
@@ -290,6 +291,17 @@ pub fn validate_request(
             format!("{at}.packages_kg"),
             "the request has no packages",
             "list at least one package mass in kg (one delivery drone per package)",
+        ));
+    }
+    if r.packages_kg.len() > MAX_DELIVERY_DRONES {
+        out.push(Violation::new(
+            "E3304",
+            format!("{at}.packages_kg"),
+            format!(
+                "{} packages, more than the {MAX_DELIVERY_DRONES} delivery drones a swarm may have",
+                r.packages_kg.len()
+            ),
+            "split the request into requests of at most 32 packages",
         ));
     }
     for (p, &m) in r.packages_kg.iter().enumerate() {
