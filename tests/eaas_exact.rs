@@ -497,3 +497,117 @@ proptest! {
         }
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// Fluid relaxation: LP bound and fair QP.
+
+use swarmplan::eaas::fluid;
+
+#[test]
+fn fluid_bounds_of_the_known_hops_match_hand_computation() {
+    // (instance, objective, expected LP value): the relaxation of these one-leg hops is their
+    // energy balance, solved by hand in each instance's source; for the needy pair on 3 pads the
+    // LP also gives 95 (max deficit 100 - (S - 30) / 2 with S <= 40) and on 1 pad 230.
+    for (name, expect) in [
+        ("pb_overshares_3_pads", 20.0),
+        ("pb_overshares_1_pad", 60.0),
+        ("needy_pair_max_min", 5.0),
+        ("needy_pair_node_time_3_pads", 95.0),
+        ("needy_pair_node_time_1_pad", 230.0),
+        ("needy_pair_feasible", 0.0),
+    ] {
+        let k = known(name);
+        for mode in [Reorder::Paper, Reorder::Free, Reorder::None] {
+            let o = fluid::bound(&k.problem, &k.objective, mode, 10.0).unwrap();
+            assert_eq!(o.status, ExactStatus::Optimal, "{name}");
+            let b = o.bound.unwrap();
+            assert!(
+                (b - expect).abs() < 1e-5 * (1.0 + expect),
+                "{name} {mode:?}: {b}"
+            );
+        }
+    }
+}
+
+#[test]
+fn an_infeasible_fluid_lp_proves_the_hop_unflyable() {
+    // Needy pair with rho = 5: 20 mAh can move in 4 min, 30 are needed (by hand).
+    let mut p = known("needy_pair_max_min").problem;
+    p.rho_mah_per_min = 5.0;
+    let o = fluid::bound(&p, &Objective::Feasible, Reorder::Free, 10.0).unwrap();
+    assert_eq!(o.status, ExactStatus::Infeasible);
+    let f = fluid::fair(&p, Reorder::Free, &Objective::Feasible, 10.0).unwrap();
+    assert_eq!(f.status, ExactStatus::Infeasible);
+}
+
+#[test]
+fn fair_qp_of_the_needy_pair_splits_the_support_drone_evenly_and_flies() {
+    // By hand: deficits 115 - a0, 115 - a1 and a0 + a1 with a0 + a1 <= 40; the unconstrained
+    // optimum a0 = a1 = 460 / 12 violates the rate limit, so a0 = a1 = 20: 2 x 95^2 + 40^2.
+    let k = known("needy_pair_max_min");
+    let o = fluid::fair(&k.problem, Reorder::Paper, &Objective::MaxMinArrival, 10.0).unwrap();
+    assert_eq!(o.status, ExactStatus::Optimal);
+    assert!(
+        (o.model_objective.unwrap() - 19_650.0).abs() < 1e-3,
+        "{:?}",
+        o.model_objective
+    );
+    let out = o.outcome.as_ref().unwrap();
+    assert!(out.feasible);
+    assert!(check_segment(&k.problem, out).is_empty());
+    assert!((fluid::squared_deficits(&k.problem, &out.final_battery_mah) - 19_650.0).abs() < 1e-2);
+    assert!((o.objective.unwrap() - 5.0).abs() < 1e-4);
+    // Nobody is full at the start of pb_overshares: the fair optimum there shares nothing
+    // (the gradient at a = 0 is -2 x 20 + 2 x 20 = 0): 3 x 20^2.
+    let k = known("pb_overshares_3_pads");
+    let o = fluid::fair(&k.problem, Reorder::None, &k.objective, 10.0).unwrap();
+    assert!((o.model_objective.unwrap() - 1_200.0).abs() < 1e-3);
+    assert!((o.objective.unwrap() - 20.0).abs() < 1e-3, "{o:?}");
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+
+    #[test]
+    fn fluid_bound_never_exceeds_any_schedule(seed in any::<u64>()) {
+        let p = integral_hop(seed);
+        let policies: Vec<_> = [SharingPolicy::None, SharingPolicy::Pb, SharingPolicy::Fb]
+            .iter()
+            .map(|&x| simulate(&p, x).unwrap())
+            .filter(|o| o.feasible)
+            .collect();
+        for mode in [Reorder::Paper, Reorder::Free, Reorder::None] {
+            let lp = fluid::bound(&p, &NT2, mode, 10.0).unwrap();
+            let qp = fluid::fair(&p, mode, &NT2, 10.0).unwrap();
+            if let Some(out) = &qp.outcome {
+                let v = check_segment(&p, out);
+                prop_assert!(v.is_empty(), "fair schedule: {:?}", v);
+            }
+            for backend in MilpBackend::all() {
+                let o = solve_milp(&p, &NT2, &options(backend, mode, 1.0)).unwrap();
+                if lp.status == ExactStatus::Infeasible {
+                    prop_assert_eq!(o.status, ExactStatus::Infeasible);
+                    prop_assert_eq!(qp.status, ExactStatus::Infeasible);
+                    continue;
+                }
+                prop_assert_eq!(lp.status, ExactStatus::Optimal);
+                let b = lp.bound.unwrap();
+                if o.status == ExactStatus::Optimal {
+                    prop_assert!(b <= o.objective.unwrap() + 1e-6, "{:?}: lp {} > milp {:?}", mode, b, o.objective);
+                    if let Some(out) = &o.outcome {
+                        let sq = fluid::squared_deficits(&p, &out.final_battery_mah);
+                        prop_assert!(qp.model_objective.unwrap() <= sq + 1e-4, "qp above milp schedule");
+                    }
+                }
+            }
+            if mode != Reorder::None {
+                for h in &policies {
+                    let hv = brute_node_time(&p, 2, 1.0, &h.final_battery_mah);
+                    prop_assert!(lp.bound.unwrap() <= hv + 1e-6, "lp {:?} > heuristic {}", lp.bound, hv);
+                    let sq = fluid::squared_deficits(&p, &h.final_battery_mah);
+                    prop_assert!(qp.model_objective.unwrap() <= sq + 1e-4, "qp above heuristic");
+                }
+            }
+        }
+    }
+}
