@@ -536,7 +536,7 @@ fn an_infeasible_fluid_lp_proves_the_hop_unflyable() {
     p.rho_mah_per_min = 5.0;
     let o = fluid::bound(&p, &Objective::Feasible, Reorder::Free, 10.0).unwrap();
     assert_eq!(o.status, ExactStatus::Infeasible);
-    let f = fluid::fair(&p, Reorder::Free, &Objective::Feasible, 10.0).unwrap();
+    let f = fluid::fair(&p, &Objective::Feasible, Reorder::Free, 10.0).unwrap();
     assert_eq!(f.status, ExactStatus::Infeasible);
 }
 
@@ -545,7 +545,7 @@ fn fair_qp_of_the_needy_pair_splits_the_support_drone_evenly_and_flies() {
     // By hand: deficits 115 - a0, 115 - a1 and a0 + a1 with a0 + a1 <= 40; the unconstrained
     // optimum a0 = a1 = 460 / 12 violates the rate limit, so a0 = a1 = 20: 2 x 95^2 + 40^2.
     let k = known("needy_pair_max_min");
-    let o = fluid::fair(&k.problem, Reorder::Paper, &Objective::MaxMinArrival, 10.0).unwrap();
+    let o = fluid::fair(&k.problem, &Objective::MaxMinArrival, Reorder::Paper, 10.0).unwrap();
     assert_eq!(o.status, ExactStatus::Optimal);
     assert!(
         (o.model_objective.unwrap() - 19_650.0).abs() < 1e-3,
@@ -560,7 +560,7 @@ fn fair_qp_of_the_needy_pair_splits_the_support_drone_evenly_and_flies() {
     // Nobody is full at the start of pb_overshares: the fair optimum there shares nothing
     // (the gradient at a = 0 is -2 x 20 + 2 x 20 = 0): 3 x 20^2.
     let k = known("pb_overshares_3_pads");
-    let o = fluid::fair(&k.problem, Reorder::None, &k.objective, 10.0).unwrap();
+    let o = fluid::fair(&k.problem, &k.objective, Reorder::None, 10.0).unwrap();
     assert!((o.model_objective.unwrap() - 1_200.0).abs() < 1e-3);
     assert!((o.objective.unwrap() - 20.0).abs() < 1e-3, "{o:?}");
 }
@@ -578,7 +578,7 @@ proptest! {
             .collect();
         for mode in [Reorder::Paper, Reorder::Free, Reorder::None] {
             let lp = fluid::bound(&p, &NT2, mode, 10.0).unwrap();
-            let qp = fluid::fair(&p, mode, &NT2, 10.0).unwrap();
+            let qp = fluid::fair(&p, &NT2, mode, 10.0).unwrap();
             if let Some(out) = &qp.outcome {
                 let v = check_segment(&p, out);
                 prop_assert!(v.is_empty(), "fair schedule: {:?}", v);

@@ -22,13 +22,10 @@
 //! ([`fair`]) it minimises `sum_d (C_d - b_d(tt))^2` over every drone, and its amounts are laid out
 //! as a concrete schedule and replayed.
 
-use super::milp::{
-    objective_of, validate_objective, validate_time_limit, ExactOutcome, ExactStatus, Objective,
-    Reorder,
-};
+use super::milp::{objective_of, validate_inputs, ExactOutcome, ExactStatus, Objective, Reorder};
 use super::reorder::{busy_drones, choose_consumer_slot, slot_distance_m};
 use super::simulate::evaluate;
-use super::{sharing_budget_mah, validate, Role, SegmentProblem, Transfer, TIME_TOL_MIN};
+use super::{sharing_budget_mah, Role, SegmentProblem, Transfer, TIME_TOL_MIN};
 use crate::error::{Error, Result};
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
@@ -41,6 +38,14 @@ use std::time::Instant;
 struct Row {
     terms: Vec<(usize, f64)>,
     rhs: f64,
+}
+
+/// The row `sum vars (<= or =) rhs`.
+fn sum_row(vars: impl Iterator<Item = usize>, rhs: f64) -> Row {
+    Row {
+        terms: vars.map(|v| (v, 1.0)).collect(),
+        rhs,
+    }
 }
 
 /// The relaxation's variables and constraints, in clarabel's `A x + s = b`, `s in K` form.
@@ -118,16 +123,10 @@ impl Fluid {
             }
             if mode != Reorder::None {
                 for fc in &f {
-                    m.eq.push(Row {
-                        terms: fc.iter().map(|&v| (v, 1.0)).collect(),
-                        rhs: tau,
-                    });
+                    m.eq.push(sum_row(fc.iter().copied(), tau));
                 }
                 for j in 0..open.len() {
-                    m.eq.push(Row {
-                        terms: f.iter().map(|fc| (fc[j], 1.0)).collect(),
-                        rhs: tau,
-                    });
+                    m.eq.push(sum_row(f.iter().map(|fc| fc[j]), tau));
                 }
                 for &s in &supports {
                     for (ci, &c) in delivery.iter().enumerate() {
@@ -143,26 +142,12 @@ impl Fluid {
                 }
             }
             for &s in &supports {
-                let terms: Vec<(usize, f64)> = delivery
-                    .iter()
-                    .filter_map(|&c| m.a[s][c][i])
-                    .map(|v| (v, 1.0))
-                    .collect();
-                m.le.push(Row {
-                    terms,
-                    rhs: rho * tau,
-                });
+                let row = sum_row(delivery.iter().filter_map(|&c| m.a[s][c][i]), rho * tau);
+                m.le.push(row);
             }
             for &c in &delivery {
-                let terms: Vec<(usize, f64)> = supports
-                    .iter()
-                    .filter_map(|&s| m.a[s][c][i])
-                    .map(|v| (v, 1.0))
-                    .collect();
-                m.le.push(Row {
-                    terms,
-                    rhs: rho * tau,
-                });
+                let row = sum_row(supports.iter().filter_map(|&s| m.a[s][c][i]), rho * tau);
+                m.le.push(row);
             }
             // Battery balance: b_next - b_prev + use - received = 0.
             for d in 0..n {
@@ -204,16 +189,11 @@ impl Fluid {
             }
         }
         for &s in &supports {
-            let terms: Vec<(usize, f64)> = m.a[s]
-                .iter()
-                .flatten()
-                .flatten()
-                .map(|&v| (v, 1.0))
-                .collect();
-            m.le.push(Row {
-                terms,
-                rhs: sharing_budget_mah(problem, s),
-            });
+            let row = sum_row(
+                m.a[s].iter().flatten().flatten().copied(),
+                sharing_budget_mah(problem, s),
+            );
+            m.le.push(row);
         }
         m
     }
@@ -322,9 +302,7 @@ pub fn bound(
     mode: Reorder,
     time_limit_s: f64,
 ) -> Result<ExactOutcome> {
-    validate(problem)?;
-    validate_objective(objective)?;
-    validate_time_limit(time_limit_s)?;
+    validate_inputs(problem, objective, time_limit_s)?;
     let start = Instant::now();
     let mut m = Fluid::build(problem, mode);
     let n = problem.drones.len();
@@ -395,9 +373,9 @@ pub fn bound(
 ///
 /// # Arguments
 /// * `problem` - the hop.
+/// * `objective` - how the replayed schedule is scored in [`ExactOutcome::objective`].
 /// * `mode` - re-ordering mode of the relaxation; the schedule itself uses the paper's fixed
 ///   re-ordering for out-of-range consumers.
-/// * `objective` - how the replayed schedule is scored in [`ExactOutcome::objective`].
 /// * `time_limit_s` - clarabel's time limit.
 ///
 /// # Returns
@@ -415,13 +393,11 @@ pub fn bound(
 /// As [`bound`], plus `O(L S D T)` for the layout of `T` transfers.
 pub fn fair(
     problem: &SegmentProblem,
-    mode: Reorder,
     objective: &Objective,
+    mode: Reorder,
     time_limit_s: f64,
 ) -> Result<ExactOutcome> {
-    validate(problem)?;
-    validate_objective(objective)?;
-    validate_time_limit(time_limit_s)?;
+    validate_inputs(problem, objective, time_limit_s)?;
     let start = Instant::now();
     let m = Fluid::build(problem, mode);
     let n = problem.drones.len();

@@ -266,7 +266,18 @@ pub fn validate_objective(objective: &Objective) -> Result<()> {
     Ok(())
 }
 
-pub(crate) fn validate_time_limit(time_limit_s: f64) -> Result<()> {
+/// Checks a hop, an objective and a time limit: the inputs of every exact hop model.
+pub(crate) fn validate_inputs(
+    problem: &SegmentProblem,
+    objective: &Objective,
+    time_limit_s: f64,
+) -> Result<()> {
+    validate(problem)?;
+    validate_objective(objective)?;
+    validate_time_limit(time_limit_s)
+}
+
+fn validate_time_limit(time_limit_s: f64) -> Result<()> {
     if time_limit_s.is_finite() && time_limit_s > 0.0 {
         Ok(())
     } else {
@@ -807,9 +818,7 @@ pub fn solve_milp(
     objective: &Objective,
     options: &MilpOptions,
 ) -> Result<ExactOutcome> {
-    validate(problem)?;
-    validate_objective(objective)?;
-    validate_time_limit(options.time_limit_s)?;
+    validate_inputs(problem, objective, options.time_limit_s)?;
     let grid = Grid::new(problem, options.period_min)?;
     let start = Instant::now();
     let solved = run(problem, &grid, objective, options, false)?;
