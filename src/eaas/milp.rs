@@ -172,7 +172,7 @@ impl Grid {
     /// [`MAX_PERIODS`] periods.
     pub fn new(problem: &SegmentProblem, period_min: f64) -> Result<Grid> {
         if !(period_min.is_finite() && period_min > 0.0) {
-            return Err(invalid(
+            return Err(Error::invalid(
                 "E4101",
                 "period_min",
                 format!("{period_min} is not a finite duration > 0"),
@@ -189,7 +189,7 @@ impl Grid {
             }
             let m = (lg.duration_min / period_min - 1e-9).ceil().max(1.0);
             if leg.len() as f64 + m > MAX_PERIODS as f64 {
-                return Err(invalid(
+                return Err(Error::invalid(
                     "E4102",
                     "period_min",
                     format!("more than {MAX_PERIODS} periods at {period_min} min"),
@@ -226,10 +226,6 @@ impl Grid {
             .map(|t| self.len_min(t))
             .fold(0.0, f64::max)
     }
-}
-
-pub(crate) fn invalid(code: &'static str, field: &str, cause: String, action: &str) -> Error {
-    Error::Invalid(vec![Violation::new(code, field, cause, action)])
 }
 
 /// Checks the objective's numbers.
@@ -281,7 +277,7 @@ fn validate_time_limit(time_limit_s: f64) -> Result<()> {
     if time_limit_s.is_finite() && time_limit_s > 0.0 {
         Ok(())
     } else {
-        Err(invalid(
+        Err(Error::invalid(
             "E4105",
             "time_limit_s",
             format!("{time_limit_s} is not a finite time > 0"),
