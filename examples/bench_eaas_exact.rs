@@ -37,7 +37,11 @@ fn hop(rng: &mut ChaCha8Rng, nd: usize, ns: usize, periods: usize) -> SegmentPro
         }],
         drones: (0..n)
             .map(|d| DroneState {
-                role: if d < nd { Role::Delivery } else { Role::Support },
+                role: if d < nd {
+                    Role::Delivery
+                } else {
+                    Role::Support
+                },
                 capacity_mah: 100.0,
                 battery_mah: if d < nd {
                     rng.random_range(30.0..100.0)

@@ -611,3 +611,63 @@ proptest! {
         }
     }
 }
+
+/// A hop too large to solve in a millisecond: 5 delivery and 2 support drones, 8 periods.
+fn large_hop() -> SegmentProblem {
+    let mut p = integral_hop(7);
+    let n = 7;
+    p.drones = (0..n)
+        .map(|d| DroneState {
+            role: if d < 5 { Role::Delivery } else { Role::Support },
+            capacity_mah: 100.0,
+            battery_mah: if d < 5 { 40.0 + 10.0 * d as f64 } else { 100.0 },
+        })
+        .collect();
+    p.legs = vec![Leg {
+        duration_min: 8.0,
+        rate_mah_per_min: (0..n)
+            .map(|d| (0..n).map(|q| 2.0 + ((d * 3 + q) % 4) as f64).collect())
+            .collect(),
+    }];
+    p.slots_m = (0..n).map(|q| Vector2::new(0.7 * q as f64, 0.0)).collect();
+    p.initial_slot = vec![0, 1, 3, 5, 6, 2, 4];
+    p.rho_mah_per_min = 8.0;
+    p
+}
+
+#[test]
+fn a_solve_stopped_by_the_time_limit_says_so_and_labels_its_bound() {
+    let p = large_hop();
+    let nt = Objective::NodeTime {
+        pads: 2,
+        pad_rate_mah_per_min: 10.0,
+    };
+    let lp = fluid::bound(&p, &nt, Reorder::Paper, 10.0).unwrap();
+    assert_eq!(lp.status, ExactStatus::Optimal);
+    for backend in MilpBackend::all() {
+        let o = solve_milp(
+            &p,
+            &nt,
+            &MilpOptions {
+                time_limit_s: 0.001,
+                ..options(backend, Reorder::Paper, 1.0)
+            },
+        )
+        .unwrap();
+        match o.status {
+            ExactStatus::Feasible => {
+                let (v, b) = (o.objective.unwrap(), o.bound.unwrap());
+                assert!(
+                    b <= v + 1e-6 && b >= lp.bound.unwrap() - 1e-6,
+                    "bound {b}, incumbent {v}"
+                );
+                assert_checked(&p, &o);
+            }
+            ExactStatus::TimeLimitNoSolution => {
+                assert!(o.objective.is_none() && o.transfers.is_empty());
+                assert!(o.bound.unwrap() >= lp.bound.unwrap() - 1e-6);
+            }
+            s => panic!("a 1 ms solve of this hop reported {s:?}"),
+        }
+    }
+}

@@ -136,7 +136,8 @@ pub struct ExactOutcome {
     /// Objective value reported by the model itself (grid MILP, LP or QP).
     pub model_objective: Option<f64>,
     /// A proven bound on the model's optimum (lower for minimisation, upper for maximisation):
-    /// the optimum itself when optimal, the LP relaxation's value after a time limit.
+    /// the optimum itself when optimal; after a time limit the better of the LP relaxation's
+    /// value and the fluid LP bound.
     pub bound: Option<f64>,
     /// Longest period of the grid, minutes: the MILP is optimal over schedules whose transfers
     /// occupy whole periods of this grid. `0` for the continuous-time fluid models.
@@ -775,7 +776,7 @@ fn swaps_only(
 ///
 /// # Returns
 /// An [`ExactOutcome`]: status, objective of the replayed schedule and of the model, a bound
-/// (the optimum when proven, else the LP relaxation's value), grid step, solve time, the schedule
+/// (the optimum when proven, else the better of the LP relaxation and the fluid LP), grid step, solve time, the schedule
 /// and its replay through the segment evaluation. Optimal means optimal over full-period grid
 /// schedules of step [`ExactOutcome::grid_step_min`].
 ///
@@ -891,16 +892,25 @@ fn node_time_ms(start: Instant) -> f64 {
     start.elapsed().as_secs_f64() * 1e3
 }
 
-/// The LP relaxation's optimum: a bound on the MILP's optimum.
+/// A bound on the MILP's optimum after a time limit: the better of the LP relaxation (all
+/// binaries in `[0, 1]`, when its solve finishes in the time limit) and the fluid LP bound
+/// (`models/eaas_fluid.md`, valid for every continuous-time schedule, hence for the MILP's).
 fn relaxation_bound(
     problem: &SegmentProblem,
     grid: &Grid,
     objective: &Objective,
     options: &MilpOptions,
 ) -> Result<Option<f64>> {
-    Ok(match run(problem, grid, objective, options, true)? {
+    let lp = match run(problem, grid, objective, options, true)? {
         Solved::Values(r) if r.proven => Some(r.value),
         _ => None,
+    };
+    let fluid = super::fluid::bound(problem, objective, options.reorder, options.time_limit_s)?;
+    let maximise = matches!(objective, Objective::MaxMinArrival);
+    Ok(match (lp, fluid.bound) {
+        (Some(a), Some(b)) if maximise => Some(a.min(b)),
+        (Some(a), Some(b)) => Some(a.max(b)),
+        (a, b) => a.or(b),
     })
 }
 
