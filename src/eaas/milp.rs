@@ -146,7 +146,8 @@ pub struct ExactOutcome {
     pub periods: usize,
     /// Wall-clock time of the solve, milliseconds.
     pub solve_ms: f64,
-    /// The schedule, consecutive periods of the same (support, consumer, slot) merged.
+    /// The schedule, consecutive periods of the same (support, consumer, slot) within a leg
+    /// merged.
     pub transfers: Vec<Transfer>,
     /// The schedule replayed by the segment evaluation; passes [`crate::check::check_segment`].
     /// `None` without a schedule, or for a `free` schedule whose slot permutation is not a set of
@@ -691,7 +692,8 @@ fn run(
     }
 }
 
-/// Merges the periods in which each move is on into transfers, by start then support drone.
+/// Merges the consecutive periods of one leg in which a move is on into transfers, by start then
+/// support drone.
 fn transfers_of(
     problem: &SegmentProblem,
     grid: &Grid,
@@ -714,7 +716,10 @@ fn transfers_of(
             }
             let q = slot_of(k, t);
             let mut e = t + 1;
-            while e < grid.periods() && on[k][e] && slot_of(k, e) == q {
+            // Merge within a leg only: at a leg end the consumer's rate changes, and a transfer
+            // that filled its consumer may go on only as a new transfer (rule 4).
+            while e < grid.periods() && on[k][e] && slot_of(k, e) == q && grid.leg[e] == grid.leg[t]
+            {
                 e += 1;
             }
             let (a, z) = (grid.points_min[t], grid.points_min[e]);
