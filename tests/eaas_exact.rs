@@ -671,3 +671,49 @@ fn a_solve_stopped_by_the_time_limit_says_so_and_labels_its_bound() {
         }
     }
 }
+
+#[test]
+fn a_hop_of_zero_duration_keeps_the_departure_batteries() {
+    // No period: nothing to share; node time of deficits 75, 75, 0 on 3 pads at 1 mAh/min = 75,
+    // lowest delivery battery 25 (by hand).
+    let mut p = known("needy_pair_max_min").problem;
+    p.legs[0].duration_min = 0.0;
+    let nt3 = Objective::NodeTime {
+        pads: 3,
+        pad_rate_mah_per_min: 1.0,
+    };
+    for backend in MilpBackend::all() {
+        for (objective, expect) in [
+            (nt3, 75.0),
+            (Objective::MaxMinArrival, 25.0),
+            (Objective::Feasible, 0.0),
+        ] {
+            let o = solve_milp(&p, &objective, &options(backend, Reorder::Paper, 1.0)).unwrap();
+            assert_eq!(o.status, ExactStatus::Optimal);
+            assert_eq!(o.periods, 0);
+            assert!(close(o.objective.unwrap(), expect), "{objective:?}: {o:?}");
+            assert_checked(&p, &o);
+            let f = fluid::bound(&p, &objective, Reorder::Paper, 10.0).unwrap();
+            assert!(
+                close(f.bound.unwrap(), expect),
+                "fluid {objective:?}: {f:?}"
+            );
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(12))]
+
+    #[test]
+    fn every_backend_finds_the_same_optimum(seed in any::<u64>()) {
+        let p = integral_hop(seed);
+        for reorder in [Reorder::Paper, Reorder::Free] {
+            let v: Vec<f64> = MilpBackend::all()
+                .into_iter()
+                .map(|b| nt_of(&solve_milp(&p, &NT2, &options(b, reorder, 1.0)).unwrap()))
+                .collect();
+            prop_assert!(v.iter().all(|x| (x - v[0]).abs() <= 1e-6 * (1.0 + v[0].abs()) || (x.is_infinite() && v[0].is_infinite())), "{:?}", v);
+        }
+    }
+}

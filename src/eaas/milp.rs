@@ -857,6 +857,14 @@ pub fn solve_milp(
         .is_none_or(|sl| swaps_only(problem, &transfers, &grid, sl));
     let final_battery = if representable {
         let replay = evaluate(problem, &transfers).into_outcome();
+        if !replay.feasible && !raw.proven {
+            // A backend stopped by the limit may return values that are not a solution (HiGHS
+            // reports a time limit without saying whether it has an incumbent).
+            out.status = ExactStatus::TimeLimitNoSolution;
+            out.bound = relaxation_bound(problem, &grid, objective, options)?;
+            out.solve_ms = node_time_ms(start);
+            return Ok(out);
+        }
         if !replay.feasible {
             return Err(Error::Backend {
                 backend: options.backend.name().to_string(),
