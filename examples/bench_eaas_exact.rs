@@ -1,28 +1,22 @@
 //! Solve time of the hop MILP (node time on 2 pads) against swarm size and number of periods, for
-//! each re-ordering mode, with the fluid LP bound and PB beside it. Seeded random hops: `D`
-//! delivery and `S` support drones (capacity 100 mAh) on a Vee with 0.7 m spacing (range 1.2 m),
-//! one leg of `P` minutes on a 1-minute grid, rates 2-6 mAh/min varying by slot, rho = 8 mAh/min,
+//! each re-ordering mode, with the fluid LP bound's time beside it. Seeded random hops: `D`
+//! delivery and `S` support drones (capacity 100 mAh) on the library's Vee with 0.7 m spacing
+//! (range 1.2 m), one leg of `P` minutes on a 1-minute grid, rates 2-6 mAh/min varying by slot, rho = 8 mAh/min,
 //! delivery batteries 30-100 mAh (some need sharing to fly), support drones full. Three hops per
 //! size; each reported time is the median, with the status counts.
 //!
 //! `cargo run --release --example bench_eaas_exact [-- TIME_LIMIT_S]` (default 30 s per solve).
 
-use nalgebra::Vector2;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use swarmplan::eaas::milp::{solve_milp, ExactStatus, MilpOptions, Objective, Reorder};
 use swarmplan::eaas::{fluid, DroneState, Leg, Role, SegmentProblem};
+use swarmplan::formation::{slots_m, FormationKind};
 use swarmplan::solver::MilpBackend;
 
 fn hop(rng: &mut ChaCha8Rng, nd: usize, ns: usize, periods: usize) -> SegmentProblem {
     let n = nd + ns;
-    let slots_m: Vec<Vector2<f64>> = (0..n)
-        .map(|q| {
-            let row = (q as u32).div_ceil(2) as f64;
-            let side = if q % 2 == 1 { -1.0 } else { 1.0 };
-            Vector2::new(-0.7 * row, side * 0.7 * row)
-        })
-        .collect();
+    let slots_m = slots_m(FormationKind::Vee, n, 0.7);
     // Support drones in the middle of the formation.
     let mut initial_slot: Vec<usize> = (0..n).collect();
     for s in 0..ns {
