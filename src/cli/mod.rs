@@ -14,6 +14,7 @@ macro_rules! outln {
 }
 
 pub mod batch;
+pub mod eaas;
 pub mod generate;
 pub mod inputs;
 pub mod inspect;
@@ -43,6 +44,8 @@ pub enum Command {
     Solve(solve::SolveArgs),
     /// Plan every request of a request set with one or more method combinations.
     Batch(batch::BatchArgs),
+    /// One hop of a request: sharing heuristics against the exact MILP, fluid bound and fair QP.
+    Eaas(eaas::EaasArgs),
 }
 
 /// Parses the process arguments, runs the subcommand, prints errors, returns the exit code.
@@ -61,6 +64,7 @@ pub fn main() -> i32 {
         Command::NodeTime(args) => node_time::run(args),
         Command::Solve(args) => solve::run(args),
         Command::Batch(args) => batch::run(args),
+        Command::Eaas(args) => eaas::run(args),
     };
     match result {
         Ok(code) => code,

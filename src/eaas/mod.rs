@@ -21,6 +21,8 @@ use nalgebra::Vector2;
 use serde::{Deserialize, Serialize};
 
 mod fb;
+pub mod fluid;
+pub mod milp;
 mod none;
 mod pb;
 pub mod reorder;

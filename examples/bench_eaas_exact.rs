@@ -1,0 +1,119 @@
+//! Solve time of the hop MILP (node time on 2 pads) against swarm size and number of periods, for
+//! each re-ordering mode, with the fluid LP bound's time beside it. Seeded random hops: `D`
+//! delivery and `S` support drones (capacity 100 mAh) on the library's Vee with 0.7 m spacing
+//! (range 1.2 m), one leg of `P` minutes on a 1-minute grid, rates 2-6 mAh/min varying by slot, rho = 8 mAh/min,
+//! delivery batteries 30-100 mAh (some need sharing to fly), support drones full. Three hops per
+//! size; each reported time is the median, with the status counts.
+//!
+//! `cargo run --release --example bench_eaas_exact [-- TIME_LIMIT_S]` (default 30 s per solve).
+
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use swarmplan::eaas::milp::{solve_milp, ExactStatus, MilpOptions, Objective, Reorder};
+use swarmplan::eaas::{fluid, DroneState, Leg, Role, SegmentProblem};
+use swarmplan::formation::{slots_m, FormationKind};
+use swarmplan::solver::MilpBackend;
+
+fn hop(rng: &mut ChaCha8Rng, nd: usize, ns: usize, periods: usize) -> SegmentProblem {
+    let n = nd + ns;
+    let slots_m = slots_m(FormationKind::Vee, n, 0.7);
+    // Support drones in the middle of the formation.
+    let mut initial_slot: Vec<usize> = (0..n).collect();
+    for s in 0..ns {
+        initial_slot.swap(nd + s, s);
+    }
+    SegmentProblem {
+        legs: vec![Leg {
+            duration_min: periods as f64,
+            rate_mah_per_min: (0..n)
+                .map(|_| (0..n).map(|_| rng.random_range(2.0..6.0)).collect())
+                .collect(),
+        }],
+        drones: (0..n)
+            .map(|d| DroneState {
+                role: if d < nd {
+                    Role::Delivery
+                } else {
+                    Role::Support
+                },
+                capacity_mah: 100.0,
+                battery_mah: if d < nd {
+                    rng.random_range(30.0..100.0)
+                } else {
+                    100.0
+                },
+            })
+            .collect(),
+        slots_m,
+        initial_slot,
+        rho_mah_per_min: 8.0,
+        range_m: 1.2,
+        gamma_mah: 40.0,
+        lambda_mah: 16.0,
+        delta_mah: 5.0,
+    }
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+fn main() {
+    let time_limit_s: f64 = std::env::args()
+        .nth(1)
+        .and_then(|a| a.parse().ok())
+        .unwrap_or(30.0);
+    let objective = Objective::NodeTime {
+        pads: 2,
+        pad_rate_mah_per_min: 10.0,
+    };
+    let backend = MilpBackend::all()[0];
+    println!(
+        "backend {}, time limit {time_limit_s} s per solve, 3 hops per row",
+        backend.name()
+    );
+    println!("| D | S | periods | reorder | milp median ms | statuses (opt/feas/infeas/none) | fluid median ms |");
+    println!("|---|---|---|---|---|---|---|");
+    for (nd, ns) in [(2, 1), (3, 1), (4, 2), (5, 2)] {
+        for periods in [4, 8, 16] {
+            for reorder in [Reorder::None, Reorder::Paper, Reorder::Free] {
+                let mut rng = ChaCha8Rng::seed_from_u64(1000 + 10 * nd as u64 + ns as u64);
+                let (mut ms, mut fl, mut counts) = (Vec::new(), Vec::new(), [0usize; 4]);
+                for _ in 0..3 {
+                    let p = hop(&mut rng, nd, ns, periods);
+                    let o = solve_milp(
+                        &p,
+                        &objective,
+                        &MilpOptions {
+                            period_min: 1.0,
+                            reorder,
+                            backend,
+                            time_limit_s,
+                        },
+                    )
+                    .expect("valid hop");
+                    ms.push(o.solve_ms);
+                    counts[match o.status {
+                        ExactStatus::Optimal => 0,
+                        ExactStatus::Feasible => 1,
+                        ExactStatus::Infeasible => 2,
+                        ExactStatus::TimeLimitNoSolution => 3,
+                    }] += 1;
+                    let f = fluid::bound(&p, &objective, reorder, time_limit_s).expect("valid hop");
+                    fl.push(f.solve_ms);
+                }
+                println!(
+                    "| {nd} | {ns} | {periods} | {} | {:.1} | {}/{}/{}/{} | {:.2} |",
+                    reorder.name(),
+                    median(ms),
+                    counts[0],
+                    counts[1],
+                    counts[2],
+                    counts[3],
+                    median(fl)
+                );
+            }
+        }
+    }
+}

@@ -1,0 +1,343 @@
+//! `swarmplan eaas`: one hop of a request's plan, solved by the sharing heuristics and the exact
+//! models side by side.
+//!
+//! ```text
+//! swarmplan eaas --request-id r001 --hop 0 --methods pb,fb,milp,fluid,fair --time-limit 10
+//! swarmplan eaas --request-id r001 --hop 1 --methods milp --reorder free --period-min 0.5 --json
+//! ```
+//!
+//! The request is planned as `swarmplan solve` does (PB sharing, sequential route); hop `I` of
+//! that plan (its path and departure batteries) is the hop studied. The objective is the node time
+//! at the hop's end when that node has pads, else the lowest delivery arrival battery. Each
+//! method's gap is measured against the best reference available, labelled: the MILP optimum
+//! (`optimal`, over grid schedules), its incumbent after a time limit (`incumbent`), or the fluid
+//! LP bound (`bound`).
+
+use super::inputs::{self, InstanceArgs};
+use crate::compose::{Context, PlanOptions, Planner, RouteMethod};
+use crate::eaas::milp::{objective_of, solve_milp, ExactOutcome, ExactStatus, MilpOptions};
+use crate::eaas::milp::{Objective, Reorder};
+use crate::eaas::{fluid, simulate, SegmentProblem, SharingPolicy, Transfer};
+use crate::error::{Error, Result};
+use crate::precompose::Positioning;
+use crate::solver::{Gap, MilpBackend, ReferenceKind};
+use serde::Serialize;
+use std::path::PathBuf;
+
+/// A method `swarmplan eaas` can run on a hop.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, clap::ValueEnum)]
+#[serde(rename_all = "lowercase")]
+pub enum HopMethod {
+    /// No sharing.
+    None,
+    /// Priority-based heuristic (Algorithm 2).
+    Pb,
+    /// Fairness-based heuristic (Algorithm 3).
+    Fb,
+    /// Time-indexed MILP (optimal over grid schedules).
+    Milp,
+    /// Fluid LP bound (valid for every continuous-time schedule).
+    Fluid,
+    /// Fair QP optimum laid out as a schedule.
+    Fair,
+}
+
+/// Arguments of `swarmplan eaas`.
+#[derive(Debug, clap::Args)]
+pub struct EaasArgs {
+    /// Network and profile.
+    #[command(flatten)]
+    pub instance: InstanceArgs,
+    /// Request set (JSON) [default: the shipped paper-195 requests].
+    #[arg(long, alias = "request-file", value_name = "FILE")]
+    pub requests: Option<PathBuf>,
+    /// Id of the request in the request set.
+    #[arg(long, value_name = "ID")]
+    pub request_id: String,
+    /// Index of the hop in the request's plan (0 = the first hop).
+    #[arg(long, value_name = "I", default_value_t = 0)]
+    pub hop: usize,
+    /// Methods, comma-separated.
+    #[arg(
+        long,
+        value_enum,
+        value_delimiter = ',',
+        default_value = "pb,fb,milp,fluid,fair"
+    )]
+    pub methods: Vec<HopMethod>,
+    /// MILP backend.
+    #[arg(long, value_enum, default_value_t = MilpBackend::all()[0])]
+    pub backend: MilpBackend,
+    /// Time limit of each solve, seconds.
+    #[arg(long, default_value_t = 60.0, allow_negative_numbers = true)]
+    pub time_limit: f64,
+    /// Longest period of the MILP's grid, minutes.
+    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
+    pub period_min: f64,
+    /// Re-ordering allowed to the exact models.
+    #[arg(long, value_enum, default_value_t = Reorder::Paper)]
+    pub reorder: Reorder,
+    /// Print the report as JSON.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// One method's result on the hop.
+#[derive(Debug, Clone, Serialize)]
+pub struct MethodRow {
+    /// The method.
+    pub method: HopMethod,
+    /// `heuristic`, `exact_grid` (MILP), `bound` (fluid LP) or `fair_layout` (QP schedule).
+    pub kind: &'static str,
+    /// Solve status of the exact models; `None` for the heuristics.
+    pub status: Option<ExactStatus>,
+    /// Whether the method's schedule flies (`None` without a schedule).
+    pub feasible: Option<bool>,
+    /// Objective of the schedule (node time, min, or lowest delivery arrival battery, mAh); the
+    /// bound itself for `fluid`.
+    pub objective: Option<f64>,
+    /// The model's proven bound on the objective (MILP, fluid LP).
+    pub bound: Option<f64>,
+    /// `fair` only: the QP optimum, sum of squared end deficits over every drone, mAh^2 (a lower
+    /// bound on that sum for every continuous-time schedule).
+    pub qp_squared_deficits_mah2: Option<f64>,
+    /// Gap against the reference, with its kind.
+    pub gap: Option<Gap>,
+    /// MILP grid step, minutes.
+    pub grid_step_min: Option<f64>,
+    /// Wall-clock time, ms.
+    pub solve_ms: f64,
+    /// The schedule.
+    pub transfers: Vec<Transfer>,
+}
+
+/// The report.
+#[derive(Debug, Clone, Serialize)]
+pub struct EaasReport {
+    /// Request id.
+    pub request_id: String,
+    /// Hop index.
+    pub hop: usize,
+    /// Node ids flown over.
+    pub path: Vec<String>,
+    /// The objective every method is scored by.
+    pub objective: Objective,
+    /// Re-ordering mode of the exact models.
+    pub reorder: Reorder,
+    /// The hop's sharing problem.
+    pub problem: SegmentProblem,
+    /// One row per method, in the order asked.
+    pub rows: Vec<MethodRow>,
+}
+
+/// Runs the subcommand; exit code 0.
+///
+/// # Errors
+/// Bad input (files, request id, `--hop` out of range: `E4110`, options of the exact models), or a
+/// backend failure.
+pub fn run(args: EaasArgs) -> Result<i32> {
+    let instance = args.instance.load()?;
+    let request = inputs::find_request(&instance, args.requests.as_deref(), &args.request_id)?;
+    let context = Context::new(&instance.network, &instance.graph, &instance.profile);
+    let options = PlanOptions {
+        sharing: SharingPolicy::Pb,
+        positioning: Positioning::LocationAware,
+        route: RouteMethod::Sequential,
+        support: None,
+    };
+    let report = context.plan(&request, &options)?;
+    let hops = &report.plan.hops;
+    let hop = hops.get(args.hop).ok_or_else(|| {
+        Error::invalid(
+            "E4110",
+            "--hop",
+            format!("hop {} of a plan with {} hop(s)", args.hop, hops.len()),
+            "give a hop index below the number of hops (see `swarmplan solve`)",
+        )
+    })?;
+    let graph = &instance.graph;
+    let nodes: Vec<usize> = hop
+        .path
+        .iter()
+        .filter_map(|id| graph.index_of(id))
+        .collect();
+    let path = graph
+        .path_from_nodes(&nodes)
+        .ok_or_else(|| Error::Backend {
+            backend: "compose".into(),
+            message: format!("the plan's hop path {:?} is not a network path", hop.path),
+        })?;
+    let planner = Planner::new(graph, &instance.profile, &report.swarm, SharingPolicy::Pb);
+    let problem = planner.segment_problem(&path, &hop.departure_battery_mah);
+    let end = nodes.last().copied().unwrap_or(0);
+    let objective = match graph.pads(end) {
+        0 => Objective::MaxMinArrival,
+        pads => Objective::NodeTime {
+            pads: pads as usize,
+            pad_rate_mah_per_min: graph
+                .pad_rate_mah_per_min(end, instance.profile.pads.charge_rate_mah_per_min),
+        },
+    };
+    let rows = rows(&problem, &objective, &args)?;
+    let out = EaasReport {
+        request_id: request.id.clone(),
+        hop: args.hop,
+        path: hop.path.clone(),
+        objective,
+        reorder: args.reorder,
+        problem,
+        rows,
+    };
+    if args.json {
+        super::print_json(&out);
+    } else {
+        print_human(&out);
+    }
+    Ok(0)
+}
+
+fn exact_row(method: HopMethod, kind: &'static str, o: ExactOutcome) -> MethodRow {
+    MethodRow {
+        method,
+        kind,
+        status: Some(o.status),
+        feasible: o.outcome.as_ref().map(|x| x.feasible),
+        objective: if method == HopMethod::Fluid {
+            o.bound
+        } else {
+            o.objective
+        },
+        bound: if method == HopMethod::Fair {
+            None
+        } else {
+            o.bound
+        },
+        qp_squared_deficits_mah2: if method == HopMethod::Fair {
+            o.model_objective
+        } else {
+            None
+        },
+        gap: None,
+        grid_step_min: (method == HopMethod::Milp).then_some(o.grid_step_min),
+        solve_ms: o.solve_ms,
+        transfers: o.transfers,
+    }
+}
+
+/// Runs every method, then labels the gaps against the best reference.
+fn rows(
+    problem: &SegmentProblem,
+    objective: &Objective,
+    args: &EaasArgs,
+) -> Result<Vec<MethodRow>> {
+    let mut rows = Vec::new();
+    for &m in &args.methods {
+        let start = std::time::Instant::now();
+        let row = match m {
+            HopMethod::None | HopMethod::Pb | HopMethod::Fb => {
+                let policy = match m {
+                    HopMethod::Pb => SharingPolicy::Pb,
+                    HopMethod::Fb => SharingPolicy::Fb,
+                    _ => SharingPolicy::None,
+                };
+                let o = simulate(problem, policy)?;
+                MethodRow {
+                    method: m,
+                    kind: "heuristic",
+                    status: None,
+                    feasible: Some(o.feasible),
+                    objective: if o.feasible {
+                        Some(objective_of(problem, objective, &o.final_battery_mah)?)
+                    } else {
+                        None
+                    },
+                    bound: None,
+                    qp_squared_deficits_mah2: None,
+                    gap: None,
+                    grid_step_min: None,
+                    solve_ms: start.elapsed().as_secs_f64() * 1e3,
+                    transfers: o.transfers,
+                }
+            }
+            HopMethod::Milp => {
+                let opt = MilpOptions {
+                    period_min: args.period_min,
+                    reorder: args.reorder,
+                    backend: args.backend,
+                    time_limit_s: args.time_limit,
+                };
+                exact_row(m, "exact_grid", solve_milp(problem, objective, &opt)?)
+            }
+            HopMethod::Fluid => exact_row(
+                m,
+                "bound",
+                fluid::bound(problem, objective, args.reorder, args.time_limit)?,
+            ),
+            HopMethod::Fair => exact_row(
+                m,
+                "fair_layout",
+                fluid::fair(problem, objective, args.reorder, args.time_limit)?,
+            ),
+        };
+        rows.push(row);
+    }
+    let reference = rows
+        .iter()
+        .find_map(|r| match (r.method, r.status, r.objective) {
+            (HopMethod::Milp, Some(ExactStatus::Optimal), Some(v)) => {
+                Some((v, ReferenceKind::Optimal))
+            }
+            (HopMethod::Milp, Some(ExactStatus::Feasible), Some(v)) => {
+                Some((v, ReferenceKind::Incumbent))
+            }
+            _ => None,
+        })
+        .or_else(|| {
+            rows.iter()
+                .find(|r| r.method == HopMethod::Fluid && r.status == Some(ExactStatus::Optimal))
+                .and_then(|r| r.bound.map(|b| (b, ReferenceKind::Bound)))
+        });
+    if let Some((v, kind)) = reference {
+        for r in rows.iter_mut() {
+            if matches!(r.method, HopMethod::Milp | HopMethod::Fluid) {
+                continue;
+            }
+            r.gap = r.objective.map(|h| Gap::new(h, v, kind));
+        }
+    }
+    Ok(rows)
+}
+
+fn print_human(r: &EaasReport) {
+    println!(
+        "request {} hop {}: {} ({} leg(s), {} drones), objective {:?}, reorder {}",
+        r.request_id,
+        r.hop,
+        r.path.join(" -> "),
+        r.problem.legs.len(),
+        r.problem.drones.len(),
+        r.objective,
+        r.reorder.name()
+    );
+    for row in &r.rows {
+        let num = |x: Option<f64>| x.map_or("-".to_string(), |v| format!("{v:.4}"));
+        let gap = row.gap.map_or("-".to_string(), |g| match g.relative {
+            Some(x) => format!("{:+.4}% vs {:?}", 100.0 * x, g.reference),
+            None => format!("n/a vs {:?}", g.reference),
+        });
+        println!(
+            "  {:<6} {:<12} status {:<24} feasible {:<5} objective {:<12} bound {:<12} gap {:<24} {}{:.1} ms, {} transfer(s)",
+            format!("{:?}", row.method).to_lowercase(),
+            row.kind,
+            row.status.map_or("-".to_string(), |s| format!("{s:?}")),
+            row.feasible.map_or("-".to_string(), |f| f.to_string()),
+            num(row.objective),
+            num(row.bound),
+            gap,
+            row.grid_step_min
+                .map_or(String::new(), |h| format!("grid {h} min, ")),
+            row.solve_ms,
+            row.transfers.len()
+        );
+    }
+}

@@ -1,0 +1,955 @@
+//! Time-indexed MILP for one hop's sharing schedule, see `models/eaas_milp.md`.
+//!
+//! The hop `[0, tt]` is cut into periods `t in 0..P` of length `h_t <= period_min`, every leg end a
+//! period boundary (leg `l` of duration `τ_l` gives `ceil(τ_l / period_min)` equal periods). A
+//! transfer occupies whole periods: in a period a support drone `s` either serves one consumer for
+//! the whole period, moving `rho h_t`, or serves nobody. Batteries are then linear inside a period,
+//! so `0 <= b_d <= C_d` at the grid points holds at every instant.
+//!
+//! ```text
+//! y[k][t] in {0,1}   move k = (s, c, q): s serves c, c flying in slot q, during period t
+//! b[d][t]  in [0, C_d]  battery of d at grid point t (t = 0..P; b[d][0] = b_d(0))
+//! sum_{k: s_k = s} y[k][t] <= 1                                  one consumer per support drone
+//! sum_{k: c_k = p} y[k][t] + sum_{k: partner_k = p} y[k][t] <= 1  a delivery drone moves once
+//! b[d][t+1] = b[d][t] - h_t r[l(t)][d][π(d)] - h_t sum_k Δr[k][d] y[k][t]
+//!             + rho h_t (sum_{k: c_k = d} y[k][t] - sum_{k: s_k = d} y[k][t])
+//! rho sum_{k: s_k = s, t} h_t y[k][t] <= B_s                     support reserve (rule 5)
+//! ```
+//!
+//! `Δr[k][d]` is the change of `d`'s rate while move `k` runs (the consumer in `q`, the swap
+//! partner in `π(c)`). Re-ordering ([`Reorder`]) decides which moves exist: `none` only in-range
+//! consumers in their own slots; `paper` also out-of-range consumers swapped with the delivery
+//! drone of any in-range slot; `free` replaces moves by a per-period assignment `z[d][q][t]` of
+//! delivery drones to non-support slots. Objectives ([`Objective`]): the node time at the hop's end
+//! (pad assignment in the same model), the lowest arrival battery of the delivery drones, or
+//! feasibility alone. The optimum is optimal over full-period grid schedules of step `h`, which
+//! the outcome carries ([`ExactOutcome::grid_step_min`]).
+
+use super::simulate::evaluate;
+use super::{
+    reorder, sharing_budget_mah, validate, Role, SegmentOutcome, SegmentProblem, Transfer,
+    TIME_TOL_MIN,
+};
+use crate::error::{Error, Result, Violation};
+use crate::node_time;
+use crate::solver::MilpBackend;
+use good_lp::{
+    constraint, variable, Expression, ProblemVariables, ResolutionError, Solution, SolutionStatus,
+    SolverModel, Variable, WithTimeLimit,
+};
+use serde::{Deserialize, Serialize};
+use std::time::Instant;
+
+/// Largest number of periods a grid may have (guards against a tiny `period_min`).
+pub const MAX_PERIODS: usize = 100_000;
+
+/// How drones may change formation slots while sharing.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, clap::ValueEnum)]
+#[serde(rename_all = "lowercase")]
+pub enum Reorder {
+    /// The paper's fixed re-ordering: an out-of-range consumer swaps with the delivery drone of an
+    /// in-range slot (any such slot, not only the nearest) for the transfer; in-range consumers
+    /// stay.
+    Paper,
+    /// Any permutation of the delivery drones over the non-support slots in each period.
+    Free,
+    /// No movement: only consumers within range in their own slots are served.
+    None,
+}
+
+impl Reorder {
+    /// The mode's name as used on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Reorder::Paper => "paper",
+            Reorder::Free => "free",
+            Reorder::None => "none",
+        }
+    }
+}
+
+/// What an exact hop model optimises.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Objective {
+    /// Minimise the node time at the hop's end, minutes: the makespan of charging every drone
+    /// (delivery and support) to full on `pads` identical pads, drone `d` taking
+    /// `ct_d = (C_d - b_d(tt)) / pad_rate_mah_per_min` minutes.
+    NodeTime {
+        /// Pads `k` at the stop ending the hop.
+        pads: usize,
+        /// Charging rate of a pad, mAh/min.
+        pad_rate_mah_per_min: f64,
+    },
+    /// Maximise the lowest arrival battery `min_{d in D_d} b_d(tt)` over the delivery drones, mAh.
+    MaxMinArrival,
+    /// Any schedule with no drone below zero; objective value 0.
+    Feasible,
+}
+
+/// Outcome of an exact hop solve.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ExactStatus {
+    /// Proven optimal (over the model's schedules: grid schedules for the MILP).
+    Optimal,
+    /// An incumbent; the time limit stopped the proof. The bound is reported separately.
+    Feasible,
+    /// Proven: no schedule of the model keeps every drone at or above zero.
+    Infeasible,
+    /// The time limit expired before any feasible schedule was found.
+    TimeLimitNoSolution,
+}
+
+/// Settings of a MILP solve.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MilpOptions {
+    /// Longest period of the grid, minutes (default 1.0).
+    pub period_min: f64,
+    /// Re-ordering mode (default [`Reorder::Paper`]).
+    pub reorder: Reorder,
+    /// Backend (default: the first of [`MilpBackend::all`]).
+    pub backend: MilpBackend,
+    /// Wall-clock limit of each backend call, seconds (default 60).
+    pub time_limit_s: f64,
+}
+
+impl Default for MilpOptions {
+    fn default() -> Self {
+        MilpOptions {
+            period_min: 1.0,
+            reorder: Reorder::Paper,
+            backend: MilpBackend::all()[0],
+            time_limit_s: 60.0,
+        }
+    }
+}
+
+/// Result of [`solve_milp`] (and of the fluid models, with their own meaning of each field).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ExactOutcome {
+    /// Optimal, feasible (time limit), infeasible or no solution in time.
+    pub status: ExactStatus,
+    /// Objective of the returned schedule, re-evaluated from its replay (node time in minutes,
+    /// lowest delivery arrival battery in mAh, or 0 for feasibility); `None` without a schedule.
+    pub objective: Option<f64>,
+    /// Objective value reported by the model itself (grid MILP, LP or QP).
+    pub model_objective: Option<f64>,
+    /// A proven bound on the model's optimum (lower for minimisation, upper for maximisation):
+    /// the optimum itself when optimal; after a time limit the better of the LP relaxation's
+    /// value and the fluid LP bound.
+    pub bound: Option<f64>,
+    /// Longest period of the grid, minutes: the MILP is optimal over schedules whose transfers
+    /// occupy whole periods of this grid. `0` for the continuous-time fluid models.
+    pub grid_step_min: f64,
+    /// Number of periods of the grid (legs for the fluid models).
+    pub periods: usize,
+    /// Wall-clock time of the solve, milliseconds.
+    pub solve_ms: f64,
+    /// The schedule, consecutive periods of the same (support, consumer, slot) within a leg
+    /// merged.
+    pub transfers: Vec<Transfer>,
+    /// The schedule replayed by the segment evaluation; passes [`crate::check::check_segment`].
+    /// `None` without a schedule, or for a `free` schedule whose slot permutation is not a set of
+    /// consumer swaps (see [`ExactOutcome::slots`]).
+    pub outcome: Option<SegmentOutcome>,
+    /// `free` only: the slot of every drone in every period.
+    pub slots: Option<Vec<Vec<usize>>>,
+}
+
+/// The time grid of a hop.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Grid {
+    /// Period start times, minutes, then `tt`: `P + 1` points.
+    pub points_min: Vec<f64>,
+    /// Leg flown in each period.
+    pub leg: Vec<usize>,
+}
+
+impl Grid {
+    /// Cuts every leg of positive duration into `ceil(τ_l / period_min)` equal periods.
+    ///
+    /// # Errors
+    /// `E4101` for a `period_min` that is not finite and positive, `E4102` for more than
+    /// [`MAX_PERIODS`] periods.
+    pub fn new(problem: &SegmentProblem, period_min: f64) -> Result<Grid> {
+        if !(period_min.is_finite() && period_min > 0.0) {
+            return Err(Error::invalid(
+                "E4101",
+                "period_min",
+                format!("{period_min} is not a finite duration > 0"),
+                "give the grid step in minutes, such as 1.0",
+            ));
+        }
+        let mut points_min = vec![0.0];
+        let mut leg = Vec::new();
+        let mut at = 0.0;
+        for (l, lg) in problem.legs.iter().enumerate() {
+            if lg.duration_min <= TIME_TOL_MIN {
+                at += lg.duration_min;
+                continue;
+            }
+            let m = (lg.duration_min / period_min - 1e-9).ceil().max(1.0);
+            if leg.len() as f64 + m > MAX_PERIODS as f64 {
+                return Err(Error::invalid(
+                    "E4102",
+                    "period_min",
+                    format!("more than {MAX_PERIODS} periods at {period_min} min"),
+                    "choose a longer period",
+                ));
+            }
+            let m = m as usize;
+            for i in 1..=m {
+                leg.push(l);
+                points_min.push(if i == m {
+                    at + lg.duration_min
+                } else {
+                    at + lg.duration_min * i as f64 / m as f64
+                });
+            }
+            at += lg.duration_min;
+        }
+        Ok(Grid { points_min, leg })
+    }
+
+    /// Number of periods `P`.
+    pub fn periods(&self) -> usize {
+        self.leg.len()
+    }
+
+    /// Length `h_t` of period `t`, minutes.
+    pub fn len_min(&self, t: usize) -> f64 {
+        self.points_min[t + 1] - self.points_min[t]
+    }
+
+    /// Longest period, minutes (0 for an empty grid).
+    pub fn step_min(&self) -> f64 {
+        (0..self.periods())
+            .map(|t| self.len_min(t))
+            .fold(0.0, f64::max)
+    }
+}
+
+/// Checks the objective's numbers.
+///
+/// # Errors
+/// `E4103` for zero pads, `E4104` for a pad rate that is not finite and positive.
+pub fn validate_objective(objective: &Objective) -> Result<()> {
+    if let Objective::NodeTime {
+        pads,
+        pad_rate_mah_per_min,
+    } = *objective
+    {
+        let mut v = Vec::new();
+        if pads == 0 {
+            v.push(Violation::new(
+                "E4103",
+                "pads",
+                "0 pads".to_string(),
+                "give at least one pad",
+            ));
+        }
+        if !(pad_rate_mah_per_min.is_finite() && pad_rate_mah_per_min > 0.0) {
+            v.push(Violation::new(
+                "E4104",
+                "pad_rate_mah_per_min",
+                format!("{pad_rate_mah_per_min} is not a finite rate > 0"),
+                "give the pad charging rate in mAh/min",
+            ));
+        }
+        if !v.is_empty() {
+            return Err(Error::Invalid(v));
+        }
+    }
+    Ok(())
+}
+
+/// Checks a hop, an objective and a time limit: the inputs of every exact hop model.
+pub(crate) fn validate_inputs(
+    problem: &SegmentProblem,
+    objective: &Objective,
+    time_limit_s: f64,
+) -> Result<()> {
+    validate(problem)?;
+    validate_objective(objective)?;
+    validate_time_limit(time_limit_s)
+}
+
+fn validate_time_limit(time_limit_s: f64) -> Result<()> {
+    if time_limit_s.is_finite() && time_limit_s > 0.0 {
+        Ok(())
+    } else {
+        Err(Error::invalid(
+            "E4105",
+            "time_limit_s",
+            format!("{time_limit_s} is not a finite time > 0"),
+            "give the time limit in seconds",
+        ))
+    }
+}
+
+/// Objective value of a replayed hop: node time by the exact P||Cmax search on the charge times
+/// `(C_d - b_d(tt)) / pad_rate` (a battery above capacity counts as full), lowest delivery arrival
+/// battery, or 0.
+///
+/// # Errors
+/// Those of [`node_time::exact`] (none for valid inputs).
+pub fn objective_of(
+    problem: &SegmentProblem,
+    objective: &Objective,
+    final_battery_mah: &[f64],
+) -> Result<f64> {
+    match *objective {
+        Objective::NodeTime {
+            pads,
+            pad_rate_mah_per_min,
+        } => {
+            let times: Vec<f64> = problem
+                .drones
+                .iter()
+                .zip(final_battery_mah)
+                .map(|(d, &b)| ((d.capacity_mah - b) / pad_rate_mah_per_min).max(0.0))
+                .collect();
+            Ok(node_time::exact(pads, &times, &node_time::Limits::default())?.makespan_min)
+        }
+        Objective::MaxMinArrival => Ok(problem
+            .drones
+            .iter()
+            .zip(final_battery_mah)
+            .filter(|(d, _)| d.role == Role::Delivery)
+            .map(|(_, &b)| b)
+            .fold(f64::INFINITY, f64::min)),
+        Objective::Feasible => Ok(0.0),
+    }
+}
+
+/// One possible transfer pattern in a period: `support` serves `consumer` flying in `slot`; when
+/// `partner` is set it holds the consumer's initial slot meanwhile.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Move {
+    support: usize,
+    consumer: usize,
+    slot: usize,
+    partner: Option<usize>,
+}
+
+/// Moves allowed by `reorder` (`free` uses every support-consumer pair; slots come from `z`).
+fn moves(problem: &SegmentProblem, mode: Reorder) -> Vec<Move> {
+    let n = problem.drones.len();
+    let role = |d: usize| problem.drones[d].role;
+    let mut out = Vec::new();
+    for s in (0..n).filter(|&s| role(s) == Role::Support) {
+        let qs = problem.initial_slot[s];
+        for c in (0..n).filter(|&c| role(c) == Role::Delivery) {
+            let own = problem.initial_slot[c];
+            let in_range = reorder::slot_distance_m(problem, qs, own) <= problem.range_m;
+            match mode {
+                Reorder::Free => out.push(Move {
+                    support: s,
+                    consumer: c,
+                    slot: own,
+                    partner: None,
+                }),
+                _ if in_range => out.push(Move {
+                    support: s,
+                    consumer: c,
+                    slot: own,
+                    partner: None,
+                }),
+                Reorder::None => {}
+                Reorder::Paper => {
+                    for q in 0..n {
+                        let p = reorder::occupant(problem, q);
+                        if q != own
+                            && role(p) == Role::Delivery
+                            && reorder::slot_distance_m(problem, qs, q) <= problem.range_m
+                        {
+                            out.push(Move {
+                                support: s,
+                                consumer: c,
+                                slot: q,
+                                partner: Some(p),
+                            });
+                        }
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Values of one solve of the model.
+struct Raw {
+    /// `y[k][t]` rounded.
+    on: Vec<Vec<bool>>,
+    /// `free`: slot of every drone in every period.
+    slots: Option<Vec<Vec<usize>>>,
+    /// Objective value in the model.
+    value: f64,
+    /// The backend proved optimality.
+    proven: bool,
+}
+
+/// How a backend call ended.
+enum Solved {
+    Values(Raw),
+    Infeasible,
+    NoSolution,
+}
+
+/// Builds and solves the MILP (or its LP relaxation when `relax`) on any good_lp solver.
+///
+/// # Errors
+/// [`Error::Backend`] when the backend fails for a reason other than infeasibility or the time
+/// limit.
+#[allow(clippy::too_many_arguments)]
+fn solve_with<S: good_lp::Solver>(
+    solver: S,
+    backend_name: &str,
+    problem: &SegmentProblem,
+    grid: &Grid,
+    mode: Reorder,
+    objective: &Objective,
+    relax: bool,
+    time_limit_s: f64,
+) -> Result<Solved>
+where
+    S::Model: WithTimeLimit + SolverModel<Error = ResolutionError>,
+{
+    let n = problem.drones.len();
+    let np = grid.periods();
+    let rho = problem.rho_mah_per_min;
+    let mv = moves(problem, mode);
+    let delivery: Vec<usize> = (0..n)
+        .filter(|&d| problem.drones[d].role == Role::Delivery)
+        .collect();
+    let open_slots: Vec<usize> = delivery.iter().map(|&d| problem.initial_slot[d]).collect();
+    let bin = |vars: &mut ProblemVariables| {
+        if relax {
+            vars.add(variable().min(0.0).max(1.0))
+        } else {
+            vars.add(variable().binary())
+        }
+    };
+    let mut vars = ProblemVariables::new();
+    let y: Vec<Vec<Variable>> = mv
+        .iter()
+        .map(|_| (0..np).map(|_| bin(&mut vars)).collect())
+        .collect();
+    // z[i][j][t]: delivery drone delivery[i] in slot open_slots[j] during t (free only).
+    let z: Vec<Vec<Vec<Variable>>> = if mode == Reorder::Free {
+        (0..delivery.len())
+            .map(|_| {
+                (0..open_slots.len())
+                    .map(|_| (0..np).map(|_| bin(&mut vars)).collect())
+                    .collect()
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
+    let b: Vec<Vec<Variable>> = problem
+        .drones
+        .iter()
+        .map(|d| {
+            (0..np)
+                .map(|_| vars.add(variable().min(0.0).max(d.capacity_mah)))
+                .collect()
+        })
+        .collect();
+    let b_at = |d: usize, t: usize| -> Expression {
+        if t == 0 {
+            Expression::from(problem.drones[d].battery_mah)
+        } else {
+            Expression::from(b[d][t - 1])
+        }
+    };
+    // Objective variables.
+    let (goal, pad_vars) = match *objective {
+        Objective::NodeTime { pads, .. } => {
+            let m = pads.min(n);
+            let x: Vec<Vec<Variable>> = (0..n)
+                .map(|d| (0..=d.min(m - 1)).map(|_| bin(&mut vars)).collect())
+                .collect();
+            let w: Vec<Vec<Variable>> = x
+                .iter()
+                .map(|xd| xd.iter().map(|_| vars.add(variable().min(0.0))).collect())
+                .collect();
+            (Some(vars.add(variable().min(0.0))), Some((x, w)))
+        }
+        Objective::MaxMinArrival => (Some(vars.add(variable())), None),
+        Objective::Feasible => (None, None),
+    };
+    let mut model = match (objective, goal) {
+        (Objective::MaxMinArrival, Some(g)) => vars.maximise(g),
+        (_, Some(g)) => vars.minimise(g),
+        _ => vars.minimise(Expression::from(0.0)),
+    }
+    .using(solver)
+    .with_time_limit(time_limit_s);
+
+    for t in 0..np {
+        let h = grid.len_min(t);
+        let rates = &problem.legs[grid.leg[t]].rate_mah_per_min;
+        for s in (0..n).filter(|&s| problem.drones[s].role == Role::Support) {
+            let once: Expression = (0..mv.len())
+                .filter(|&k| mv[k].support == s)
+                .map(|k| y[k][t])
+                .sum();
+            model.add_constraint(constraint!(once <= 1.0));
+        }
+        for &p in &delivery {
+            let moved: Expression = (0..mv.len())
+                .filter(|&k| mv[k].consumer == p || mv[k].partner == Some(p))
+                .map(|k| y[k][t])
+                .sum();
+            model.add_constraint(constraint!(moved <= 1.0));
+        }
+        if mode == Reorder::Free {
+            for zi in &z {
+                let one: Expression = zi.iter().map(|zij| zij[t]).sum();
+                model.add_constraint(constraint!(one == 1.0));
+            }
+            for j in 0..open_slots.len() {
+                let one: Expression = z.iter().map(|zi| zi[j][t]).sum();
+                model.add_constraint(constraint!(one == 1.0));
+            }
+            for (k, m) in mv.iter().enumerate() {
+                let i = delivery.iter().position(|&d| d == m.consumer).unwrap_or(0);
+                let qs = problem.initial_slot[m.support];
+                let near: Expression = (0..open_slots.len())
+                    .filter(|&j| {
+                        reorder::slot_distance_m(problem, qs, open_slots[j]) <= problem.range_m
+                    })
+                    .map(|j| z[i][j][t])
+                    .sum();
+                model.add_constraint(constraint!(y[k][t] <= near));
+            }
+        }
+        for d in 0..n {
+            let own = problem.initial_slot[d];
+            let mut used = Expression::from(0.0);
+            if mode == Reorder::Free && problem.drones[d].role == Role::Delivery {
+                let i = delivery.iter().position(|&x| x == d).unwrap_or(0);
+                for (j, &q) in open_slots.iter().enumerate() {
+                    used += h * rates[d][q] * z[i][j][t];
+                }
+            } else {
+                used += h * rates[d][own];
+                for (k, m) in mv.iter().enumerate() {
+                    if m.consumer == d && m.slot != own {
+                        used += h * (rates[d][m.slot] - rates[d][own]) * y[k][t];
+                    }
+                    if m.partner == Some(d) {
+                        let to = problem.initial_slot[m.consumer];
+                        used += h * (rates[d][to] - rates[d][own]) * y[k][t];
+                    }
+                }
+            }
+            for (k, m) in mv.iter().enumerate() {
+                if m.consumer == d {
+                    used -= rho * h * y[k][t];
+                }
+                if m.support == d {
+                    used += rho * h * y[k][t];
+                }
+            }
+            let next = Expression::from(b[d][t]);
+            let prev = b_at(d, t);
+            model.add_constraint(constraint!(next == prev - used));
+        }
+    }
+    for s in (0..n).filter(|&s| problem.drones[s].role == Role::Support) {
+        let given: Expression = (0..mv.len())
+            .filter(|&k| mv[k].support == s)
+            .flat_map(|k| (0..np).map(move |t| (k, t)))
+            .map(|(k, t)| rho * grid.len_min(t) * y[k][t])
+            .sum();
+        let budget = sharing_budget_mah(problem, s);
+        model.add_constraint(constraint!(given <= budget));
+    }
+    match (*objective, goal, &pad_vars) {
+        (
+            Objective::NodeTime {
+                pad_rate_mah_per_min,
+                ..
+            },
+            Some(g),
+            Some((x, w)),
+        ) => {
+            let m = x.last().map_or(0, |xd| xd.len());
+            for d in 0..n {
+                let cap = problem.drones[d].capacity_mah;
+                let ct = (cap - b_at(d, np)) * (1.0 / pad_rate_mah_per_min);
+                let big = cap / pad_rate_mah_per_min;
+                let once: Expression = x[d].iter().copied().sum();
+                model.add_constraint(constraint!(once == 1.0));
+                for i in 0..x[d].len() {
+                    model
+                        .add_constraint(constraint!(w[d][i] >= ct.clone() - big * (1.0 - x[d][i])));
+                }
+            }
+            for i in 0..m {
+                let load: Expression = w[i..].iter().map(|wd| wd[i]).sum();
+                model.add_constraint(constraint!(load <= g));
+            }
+        }
+        (Objective::MaxMinArrival, Some(g), _) => {
+            for &d in &delivery {
+                model.add_constraint(constraint!(g <= b_at(d, np)));
+            }
+        }
+        _ => {}
+    }
+    let solution = match model.solve() {
+        Ok(s) => s,
+        Err(ResolutionError::Infeasible) => return Ok(Solved::Infeasible),
+        Err(ResolutionError::Other(msg)) if msg.contains("Time limit") => {
+            return Ok(Solved::NoSolution)
+        }
+        Err(e) => {
+            return Err(Error::Backend {
+                backend: backend_name.to_string(),
+                message: e.to_string(),
+            })
+        }
+    };
+    let proven = matches!(
+        solution.status(),
+        SolutionStatus::Optimal | SolutionStatus::GapLimit
+    );
+    let value = match goal {
+        Some(g) => solution.value(g),
+        None => 0.0,
+    };
+    let on: Vec<Vec<bool>> = y
+        .iter()
+        .map(|yk| yk.iter().map(|&v| solution.value(v) > 0.5).collect())
+        .collect();
+    let slots = (mode == Reorder::Free).then(|| {
+        (0..np)
+            .map(|t| {
+                let mut slot = problem.initial_slot.clone();
+                for (i, &d) in delivery.iter().enumerate() {
+                    if let Some(j) = (0..open_slots.len()).max_by(|&a, &b| {
+                        solution
+                            .value(z[i][a][t])
+                            .total_cmp(&solution.value(z[i][b][t]))
+                    }) {
+                        slot[d] = open_slots[j];
+                    }
+                }
+                slot
+            })
+            .collect()
+    });
+    Ok(Solved::Values(Raw {
+        on,
+        slots,
+        value,
+        proven,
+    }))
+}
+
+/// Runs [`solve_with`] on the chosen backend.
+fn run(
+    problem: &SegmentProblem,
+    grid: &Grid,
+    objective: &Objective,
+    options: &MilpOptions,
+    relax: bool,
+) -> Result<Solved> {
+    let (m, o, t) = (options.reorder, objective, options.time_limit_s);
+    match options.backend {
+        #[cfg(feature = "microlp")]
+        MilpBackend::Microlp => solve_with(
+            good_lp::solvers::microlp::microlp,
+            "microlp",
+            problem,
+            grid,
+            m,
+            o,
+            relax,
+            t,
+        ),
+        #[cfg(feature = "highs")]
+        MilpBackend::Highs => solve_with(
+            |p| {
+                good_lp::solvers::highs::highs(p)
+                    .set_threads(1)
+                    .set_option("mip_rel_gap", node_time::REL_TOL)
+                    .set_option("mip_abs_gap", 0.0)
+            },
+            "highs",
+            problem,
+            grid,
+            m,
+            o,
+            relax,
+            t,
+        ),
+    }
+}
+
+/// Merges the consecutive periods of one leg in which a move is on into transfers, by start then
+/// support drone.
+fn transfers_of(
+    problem: &SegmentProblem,
+    grid: &Grid,
+    mv: &[Move],
+    on: &[Vec<bool>],
+    slots: Option<&Vec<Vec<usize>>>,
+) -> Vec<Transfer> {
+    let rho = problem.rho_mah_per_min;
+    let slot_of = |k: usize, t: usize| match slots {
+        Some(sl) => sl[t][mv[k].consumer],
+        None => mv[k].slot,
+    };
+    let mut out: Vec<Transfer> = Vec::new();
+    for (k, m) in mv.iter().enumerate() {
+        let mut t = 0;
+        while t < grid.periods() {
+            if !on[k][t] {
+                t += 1;
+                continue;
+            }
+            let q = slot_of(k, t);
+            let mut e = t + 1;
+            // Merge within a leg only: at a leg end the consumer's rate changes, and a transfer
+            // that filled its consumer may go on only as a new transfer (rule 4).
+            while e < grid.periods() && on[k][e] && slot_of(k, e) == q && grid.leg[e] == grid.leg[t]
+            {
+                e += 1;
+            }
+            let (a, z) = (grid.points_min[t], grid.points_min[e]);
+            out.push(Transfer {
+                support: m.support,
+                consumer: m.consumer,
+                start_min: a,
+                end_min: z,
+                energy_mah: rho * (z - a),
+                consumer_slot: q,
+            });
+            t = e;
+        }
+    }
+    out.sort_by(|a, b| {
+        a.start_min
+            .total_cmp(&b.start_min)
+            .then(a.support.cmp(&b.support))
+    });
+    out
+}
+
+/// Whether every period's slot permutation is the identity except consumer swaps with delivery
+/// drones, so that the transfers alone describe it.
+fn swaps_only(
+    problem: &SegmentProblem,
+    transfers: &[Transfer],
+    grid: &Grid,
+    slots: &[Vec<usize>],
+) -> bool {
+    (0..grid.periods()).all(|t| {
+        let mid = 0.5 * (grid.points_min[t] + grid.points_min[t + 1]);
+        let active: Vec<Transfer> = transfers
+            .iter()
+            .filter(|x| x.start_min < mid && mid < x.end_min)
+            .copied()
+            .collect();
+        let partners: Vec<usize> = active
+            .iter()
+            .filter_map(|x| reorder::swap_partner(problem, x))
+            .collect();
+        let distinct = partners
+            .iter()
+            .all(|p| active.iter().all(|x| x.consumer != *p))
+            && partners
+                .iter()
+                .enumerate()
+                .all(|(i, p)| !partners[..i].contains(p));
+        distinct && reorder::slot_assignment(problem, &active) == slots[t]
+    })
+}
+
+/// Solves the time-indexed sharing MILP of one hop.
+///
+/// # Arguments
+/// * `problem` - the hop (legs with rates, drones, formation, `rho`, `R`, `delta`).
+/// * `objective` - node time at the hop's end, lowest delivery arrival battery, or feasibility.
+/// * `options` - grid step, re-ordering mode, backend, time limit.
+///
+/// # Returns
+/// An [`ExactOutcome`]: status, objective of the replayed schedule and of the model, a bound
+/// (the optimum when proven, else the better of the LP relaxation and the fluid LP), grid step, solve time, the schedule
+/// and its replay through the segment evaluation. Optimal means optimal over full-period grid
+/// schedules of step [`ExactOutcome::grid_step_min`].
+///
+/// # Errors
+/// [`Error::Invalid`] for a malformed problem (`E4001`-`E4012`), a bad grid (`E4101`, `E4102`),
+/// objective (`E4103`, `E4104`) or time limit (`E4105`); [`Error::Backend`] when the backend
+/// fails, or returns a schedule whose replay is not flyable (`E4106` in the message).
+///
+/// # Complexity
+/// `O(M P)` binaries for `M` moves and `P` periods (`free`: also `D^2 P`), plus `n min(k, n)` pad
+/// binaries; exponential worst case.
+///
+/// # Example
+/// ```
+/// use swarmplan::eaas::*;
+/// use swarmplan::eaas::milp::{solve_milp, ExactStatus, MilpOptions, Objective};
+/// use nalgebra::Vector2;
+/// // One delivery drone (80 mAh, 10 mAh/min) next to a support drone, 10 minutes.
+/// let p = SegmentProblem {
+///     legs: vec![Leg { duration_min: 10.0, rate_mah_per_min: vec![vec![10.0, 10.0], vec![5.0, 5.0]] }],
+///     drones: vec![
+///         DroneState { role: Role::Delivery, capacity_mah: 200.0, battery_mah: 80.0 },
+///         DroneState { role: Role::Support, capacity_mah: 500.0, battery_mah: 500.0 },
+///     ],
+///     slots_m: vec![Vector2::new(0.0, 0.0), Vector2::new(1.0, 0.0)],
+///     initial_slot: vec![0, 1],
+///     rho_mah_per_min: 4.0, range_m: 1.2, gamma_mah: 50.0, lambda_mah: 20.0, delta_mah: 100.0,
+/// };
+/// let o = solve_milp(&p, &Objective::MaxMinArrival, &MilpOptions::default()).unwrap();
+/// assert_eq!(o.status, ExactStatus::Optimal);
+/// // 80 - 100 + 4 * 10 = 20 mAh with sharing during the whole hop.
+/// assert!((o.objective.unwrap() - 20.0).abs() < 1e-6);
+/// ```
+pub fn solve_milp(
+    problem: &SegmentProblem,
+    objective: &Objective,
+    options: &MilpOptions,
+) -> Result<ExactOutcome> {
+    validate_inputs(problem, objective, options.time_limit_s)?;
+    let grid = Grid::new(problem, options.period_min)?;
+    let start = Instant::now();
+    let solved = run(problem, &grid, objective, options, false)?;
+    let mut out = ExactOutcome {
+        status: ExactStatus::Infeasible,
+        objective: None,
+        model_objective: None,
+        bound: None,
+        grid_step_min: grid.step_min(),
+        periods: grid.periods(),
+        solve_ms: 0.0,
+        transfers: Vec::new(),
+        outcome: None,
+        slots: None,
+    };
+    let raw = match solved {
+        Solved::Values(raw) => raw,
+        Solved::Infeasible => {
+            out.solve_ms = node_time_ms(start);
+            return Ok(out);
+        }
+        Solved::NoSolution => {
+            out.status = ExactStatus::TimeLimitNoSolution;
+            out.bound = relaxation_bound(problem, &grid, objective, options)?;
+            out.solve_ms = node_time_ms(start);
+            return Ok(out);
+        }
+    };
+    let mv = moves(problem, options.reorder);
+    let transfers = transfers_of(problem, &grid, &mv, &raw.on, raw.slots.as_ref());
+    let representable = raw
+        .slots
+        .as_ref()
+        .is_none_or(|sl| swaps_only(problem, &transfers, &grid, sl));
+    let final_battery = if representable {
+        let replay = evaluate(problem, &transfers).into_outcome();
+        if !replay.feasible && !raw.proven {
+            // A backend stopped by the limit may return values that are not a solution (HiGHS
+            // reports a time limit without saying whether it has an incumbent).
+            out.status = ExactStatus::TimeLimitNoSolution;
+            out.bound = relaxation_bound(problem, &grid, objective, options)?;
+            out.solve_ms = node_time_ms(start);
+            return Ok(out);
+        }
+        if !replay.feasible {
+            return Err(Error::Backend {
+                backend: options.backend.name().to_string(),
+                message: format!(
+                    "E4106: the schedule returned does not fly (first failure {:?}); \
+                     report it with the instance",
+                    replay.failure
+                ),
+            });
+        }
+        let fb = replay.final_battery_mah.clone();
+        out.outcome = Some(replay);
+        fb
+    } else {
+        replay_free(
+            problem,
+            &grid,
+            &transfers,
+            raw.slots.as_deref().unwrap_or(&[]),
+        )
+    };
+    out.objective = Some(objective_of(problem, objective, &final_battery)?);
+    out.model_objective = Some(raw.value);
+    out.transfers = transfers;
+    out.slots = raw.slots;
+    if raw.proven {
+        out.status = ExactStatus::Optimal;
+        out.bound = Some(raw.value);
+    } else {
+        out.status = ExactStatus::Feasible;
+        out.bound = relaxation_bound(problem, &grid, objective, options)?;
+    }
+    out.solve_ms = node_time_ms(start);
+    Ok(out)
+}
+
+fn node_time_ms(start: Instant) -> f64 {
+    start.elapsed().as_secs_f64() * 1e3
+}
+
+/// A bound on the MILP's optimum after a time limit: the better of the LP relaxation (all
+/// binaries in `[0, 1]`, when its solve finishes in the time limit) and the fluid LP bound
+/// (`models/eaas_fluid.md`, valid for every continuous-time schedule, hence for the MILP's).
+fn relaxation_bound(
+    problem: &SegmentProblem,
+    grid: &Grid,
+    objective: &Objective,
+    options: &MilpOptions,
+) -> Result<Option<f64>> {
+    let lp = match run(problem, grid, objective, options, true)? {
+        Solved::Values(r) if r.proven => Some(r.value),
+        _ => None,
+    };
+    let fluid = super::fluid::bound(problem, objective, options.reorder, options.time_limit_s)?;
+    let maximise = matches!(objective, Objective::MaxMinArrival);
+    Ok(match (lp, fluid.bound) {
+        (Some(a), Some(b)) if maximise => Some(a.min(b)),
+        (Some(a), Some(b)) => Some(a.max(b)),
+        (a, b) => a.or(b),
+    })
+}
+
+/// Final batteries of a `free` schedule, integrating per period with the given slots.
+fn replay_free(
+    problem: &SegmentProblem,
+    grid: &Grid,
+    transfers: &[Transfer],
+    slots: &[Vec<usize>],
+) -> Vec<f64> {
+    let rho = problem.rho_mah_per_min;
+    let mut b: Vec<f64> = problem.drones.iter().map(|d| d.battery_mah).collect();
+    for (t, slot) in slots.iter().enumerate().take(grid.periods()) {
+        let h = grid.len_min(t);
+        let mid = 0.5 * (grid.points_min[t] + grid.points_min[t + 1]);
+        let rates = &problem.legs[grid.leg[t]].rate_mah_per_min;
+        for (d, bd) in b.iter_mut().enumerate() {
+            *bd -= h * rates[d][slot[d]];
+        }
+        for x in transfers
+            .iter()
+            .filter(|x| x.start_min < mid && mid < x.end_min)
+        {
+            b[x.support] -= rho * h;
+            b[x.consumer] += rho * h;
+        }
+    }
+    b
+}
