@@ -17,7 +17,7 @@ use super::inputs::{self, InstanceArgs};
 use crate::compose::{Context, PlanOptions, Planner, RouteMethod};
 use crate::eaas::milp::{objective_of, solve_milp, ExactOutcome, ExactStatus, MilpOptions};
 use crate::eaas::milp::{Objective, Reorder};
-use crate::eaas::{fluid, simulate, SegmentProblem, SharingPolicy, Transfer};
+use crate::eaas::{fluid, simulate_with, PolicyOptions, SegmentProblem, SharingPolicy, Transfer};
 use crate::error::{Error, Result};
 use crate::precompose::Positioning;
 use crate::solver::{Gap, MilpBackend, ReferenceKind};
@@ -178,7 +178,8 @@ pub fn run(args: EaasArgs) -> Result<i32> {
                 .pad_rate_mah_per_min(end, instance.profile.pads.charge_rate_mah_per_min),
         },
     };
-    let rows = rows(&problem, &objective, &args)?;
+    let readings = PolicyOptions::from(&instance.profile.readings);
+    let rows = rows(&problem, &objective, &args, &readings)?;
     let out = EaasReport {
         request_id: request.id.clone(),
         hop: args.hop,
@@ -189,9 +190,9 @@ pub fn run(args: EaasArgs) -> Result<i32> {
         rows,
     };
     if args.json {
-        super::print_json(&out);
+        super::print_json(&out)?;
     } else {
-        print_human(&out);
+        print_human(&out)?;
     }
     Ok(0)
 }
@@ -229,6 +230,7 @@ fn rows(
     problem: &SegmentProblem,
     objective: &Objective,
     args: &EaasArgs,
+    readings: &PolicyOptions,
 ) -> Result<Vec<MethodRow>> {
     let mut rows = Vec::new();
     for &m in &args.methods {
@@ -240,7 +242,7 @@ fn rows(
                     HopMethod::Fb => SharingPolicy::Fb,
                     _ => SharingPolicy::None,
                 };
-                let o = simulate(problem, policy)?;
+                let o = simulate_with(problem, policy, readings)?;
                 MethodRow {
                     method: m,
                     kind: "heuristic",
@@ -308,8 +310,8 @@ fn rows(
     Ok(rows)
 }
 
-fn print_human(r: &EaasReport) {
-    println!(
+fn print_human(r: &EaasReport) -> Result<()> {
+    outln!(
         "request {} hop {}: {} ({} leg(s), {} drones), objective {:?}, reorder {}",
         r.request_id,
         r.hop,
@@ -325,7 +327,7 @@ fn print_human(r: &EaasReport) {
             Some(x) => format!("{:+.4}% vs {:?}", 100.0 * x, g.reference),
             None => format!("n/a vs {:?}", g.reference),
         });
-        println!(
+        outln!(
             "  {:<6} {:<12} status {:<24} feasible {:<5} objective {:<12} bound {:<12} gap {:<24} {}{:.1} ms, {} transfer(s)",
             format!("{:?}", row.method).to_lowercase(),
             row.kind,
@@ -340,4 +342,5 @@ fn print_human(r: &EaasReport) {
             row.transfers.len()
         );
     }
+    Ok(())
 }

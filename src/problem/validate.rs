@@ -341,11 +341,9 @@ pub fn validate_request_set(
     graph: &SkywayGraph,
     max_payload_kg: f64,
 ) -> Vec<Violation> {
-    let mut out = validate_request_set_header(set);
-    for (k, r) in set.requests.iter().enumerate() {
-        out.extend(validate_request(r, k, graph, max_payload_kg));
-    }
-    out
+    set_rules(set, |k, r, out| {
+        out.extend(validate_request(r, k, graph, max_payload_kg))
+    })
 }
 
 /// The rules of a request set that do not need the network: its header (E3001, E3002) and unique
@@ -354,6 +352,14 @@ pub fn validate_request_set(
 /// # Complexity
 /// O(number of requests) expected time.
 pub fn validate_request_set_header(set: &RequestSet) -> Vec<Violation> {
+    set_rules(set, |_, _, _| {})
+}
+
+/// The header rules, then request by request in file order the unique-id rule and `each`.
+fn set_rules(
+    set: &RequestSet,
+    mut each: impl FnMut(usize, &Request, &mut Vec<Violation>),
+) -> Vec<Violation> {
     let mut out = Vec::new();
     if set.schema_version != SCHEMA_VERSION {
         out.push(Violation::new(
@@ -386,6 +392,7 @@ pub fn validate_request_set_header(set: &RequestSet) -> Vec<Violation> {
                 "rename one of the requests so that ids are unique",
             ));
         }
+        each(k, r, &mut out);
     }
     out
 }
