@@ -1,11 +1,15 @@
 //! Solve time of the hop MILP (node time on 2 pads) against swarm size and number of periods, for
 //! each re-ordering mode, with the fluid LP bound's time beside it. Seeded random hops: `D`
 //! delivery and `S` support drones (capacity 100 mAh) on the library's Vee with 0.7 m spacing
-//! (range 1.2 m), one leg of `P` minutes on a 1-minute grid, rates 2-6 mAh/min varying by slot, rho = 8 mAh/min,
+//! (range 1.2 m), one leg of `P` minutes on a 1-minute grid, rates 2-6 mAh/min varying by slot, rho = 8 mAh/min
+//! (both times 16 / P beyond 16 periods),
 //! delivery batteries 30-100 mAh (some need sharing to fly), support drones full. Three hops per
 //! size; each reported time is the median, with the status counts.
 //!
-//! `cargo run --release --example bench_eaas_exact [-- TIME_LIMIT_S]` (default 30 s per solve).
+//! `cargo run --release --example bench_eaas_exact [-- TIME_LIMIT_S [BACKEND [D,S,P ...]]]`
+//! (default 30 s per solve, the first backend of the build, and the sizes below); with the
+//! `highs` feature, `-- 10 highs 10,3,30` times the goal size (10 delivery and 3 support
+//! drones, 30 periods).
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -16,6 +20,9 @@ use swarmplan::solver::MilpBackend;
 
 fn hop(rng: &mut ChaCha8Rng, nd: usize, ns: usize, periods: usize) -> SegmentProblem {
     let n = nd + ns;
+    // Beyond 16 periods rates and rho shrink in proportion, so a hop uses the same share of a
+    // battery whatever its length (otherwise long hops are infeasible for every schedule).
+    let scale = 16.0 / (periods.max(16) as f64);
     let slots_m = slots_m(FormationKind::Vee, n, 0.7);
     // Support drones in the middle of the formation.
     let mut initial_slot: Vec<usize> = (0..n).collect();
@@ -26,7 +33,7 @@ fn hop(rng: &mut ChaCha8Rng, nd: usize, ns: usize, periods: usize) -> SegmentPro
         legs: vec![Leg {
             duration_min: periods as f64,
             rate_mah_per_min: (0..n)
-                .map(|_| (0..n).map(|_| rng.random_range(2.0..6.0)).collect())
+                .map(|_| (0..n).map(|_| scale * rng.random_range(2.0..6.0)).collect())
                 .collect(),
         }],
         drones: (0..n)
@@ -46,7 +53,7 @@ fn hop(rng: &mut ChaCha8Rng, nd: usize, ns: usize, periods: usize) -> SegmentPro
             .collect(),
         slots_m,
         initial_slot,
-        rho_mah_per_min: 8.0,
+        rho_mah_per_min: 8.0 * scale,
         range_m: 1.2,
         gamma_mah: 40.0,
         lambda_mah: 16.0,
@@ -60,23 +67,42 @@ fn median(mut v: Vec<f64>) -> f64 {
 }
 
 fn main() {
-    let time_limit_s: f64 = std::env::args()
-        .nth(1)
-        .and_then(|a| a.parse().ok())
-        .unwrap_or(30.0);
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let time_limit_s: f64 = args.first().and_then(|a| a.parse().ok()).unwrap_or(30.0);
+    let backend = match args.get(1).map(String::as_str) {
+        None => MilpBackend::all()[0],
+        Some(name) => *MilpBackend::all()
+            .iter()
+            .find(|b| b.name() == name)
+            .unwrap_or_else(|| panic!("backend {name} is not in this build")),
+    };
+    let mut sizes: Vec<(usize, usize, usize)> = args
+        .iter()
+        .skip(2)
+        .map(|a| {
+            let v: Vec<usize> = a.split(',').map(|x| x.parse().expect("D,S,P")).collect();
+            (v[0], v[1], v[2])
+        })
+        .collect();
+    if sizes.is_empty() {
+        for (nd, ns) in [(2, 1), (3, 1), (4, 2), (5, 2)] {
+            for periods in [4, 8, 16] {
+                sizes.push((nd, ns, periods));
+            }
+        }
+    }
     let objective = Objective::NodeTime {
         pads: 2,
         pad_rate_mah_per_min: 10.0,
     };
-    let backend = MilpBackend::all()[0];
     println!(
         "backend {}, time limit {time_limit_s} s per solve, 3 hops per row",
         backend.name()
     );
     println!("| D | S | periods | reorder | milp median ms | statuses (opt/feas/infeas/none) | fluid median ms |");
     println!("|---|---|---|---|---|---|---|");
-    for (nd, ns) in [(2, 1), (3, 1), (4, 2), (5, 2)] {
-        for periods in [4, 8, 16] {
+    for &(nd, ns, periods) in &sizes {
+        {
             for reorder in [Reorder::None, Reorder::Paper, Reorder::Free] {
                 let mut rng = ChaCha8Rng::seed_from_u64(1000 + 10 * nd as u64 + ns as u64);
                 let (mut ms, mut fl, mut counts) = (Vec::new(), Vec::new(), [0usize; 4]);

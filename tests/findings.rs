@@ -55,7 +55,8 @@ fn batch(extra: &[&str]) -> BTreeMap<String, (u64, u64)> {
         .output()
         .expect("the binary runs");
     assert!(out.status.success(), "{out:?}");
-    let rows: Value = serde_json::from_slice(&out.stdout).unwrap_or_else(|e| panic!("{e}: {out:?}"));
+    let rows: Value =
+        serde_json::from_slice(&out.stdout).unwrap_or_else(|e| panic!("{e}: {out:?}"));
     let mut counts = BTreeMap::new();
     for row in rows.as_array().expect("an array of summaries") {
         let o = &row["options"];
@@ -82,9 +83,18 @@ fn the_findings_table_counts_on_the_first_500_requests() {
         "--route",
         "sequential",
     ]);
-    got.extend(batch(&["--sharing", "none", "--route", "sequential,dijkstra"]));
+    got.extend(batch(&[
+        "--sharing",
+        "none",
+        "--route",
+        "sequential,dijkstra",
+    ]));
     got.extend(batch(&["--sharing", "pb", "--route", "dijkstra"]));
-    let d = |k: &str| got.get(k).unwrap_or_else(|| panic!("no row {k}: {got:?}")).0;
+    let d = |k: &str| {
+        got.get(k)
+            .unwrap_or_else(|| panic!("no row {k}: {got:?}"))
+            .0
+    };
 
     // Regression pins (delivered out of 500).
     let pinned = [

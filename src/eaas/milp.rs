@@ -602,10 +602,30 @@ where
         }
         _ => {}
     }
+    if np == 0 {
+        // No period: the empty schedule is the only one (and HiGHS refuses an empty model).
+        let replay = evaluate(problem, &[]).into_outcome();
+        if !replay.feasible {
+            return Ok(Solved::Infeasible);
+        }
+        return Ok(Solved::Values(Raw {
+            on: y.iter().map(|_| Vec::new()).collect(),
+            slots: (mode == Reorder::Free).then(Vec::new),
+            value: objective_of(problem, objective, &replay.final_battery_mah)?,
+            proven: true,
+        }));
+    }
     let solution = match model.solve() {
         Ok(s) => s,
         Err(ResolutionError::Infeasible) => return Ok(Solved::Infeasible),
-        Err(ResolutionError::Other(msg)) if msg.contains("Time limit") => {
+        // microlp says "Time limit"; HiGHS stopped by its limit before any incumbent reports
+        // the model status NoSolutionFound.
+        Err(ResolutionError::Other(msg))
+            if msg.contains("Time limit") || msg.contains("NoSolutionFound") =>
+        {
+            return Ok(Solved::NoSolution)
+        }
+        Err(ResolutionError::Str(msg)) if msg.contains("NoSolutionFound") => {
             return Ok(Solved::NoSolution)
         }
         Err(e) => {
