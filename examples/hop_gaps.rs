@@ -130,6 +130,8 @@ struct Rows {
     direct: Vec<DirectRow>,
     plans: [usize; 2],
     delivered: [usize; 2],
+    /// Solves the backend failed on (numerical errors), per policy: hop left out, counted.
+    errors: [usize; 2],
 }
 
 fn main() -> ExitCode {
@@ -227,6 +229,7 @@ fn run(args: &Args) -> Result<()> {
         for p in 0..2 {
             all.plans[p] += part.plans[p];
             all.delivered[p] += part.delivered[p];
+            all.errors[p] += part.errors[p];
         }
     }
     all.hops.sort_by_key(|h| (h.request, h.policy, h.hop));
@@ -310,8 +313,13 @@ fn request_rows(
                 pads,
                 pad_rate_mah_per_min: graph.pad_rate_mah_per_min(end, pad_rate_default),
             };
-            let exact = solve_milp(&problem, &objective, milp)?;
-            let lp = fluid::bound(&problem, &objective, Reorder::Paper, time_limit_s)?;
+            let (Ok(exact), Ok(lp)) = (
+                solve_milp(&problem, &objective, milp),
+                fluid::bound(&problem, &objective, Reorder::Paper, time_limit_s),
+            ) else {
+                rows.errors[p] += 1;
+                continue;
+            };
             rows.hops.push(HopRow {
                 request: index,
                 request_id: request.id.clone(),
@@ -360,13 +368,20 @@ fn request_rows(
                 continue;
             };
             let problem: SegmentProblem = planner.segment_problem(&path, &full);
-            let lp = fluid::bound(&problem, &Objective::Feasible, Reorder::Paper, time_limit_s)?;
+            let Ok(lp) = fluid::bound(&problem, &Objective::Feasible, Reorder::Paper, time_limit_s)
+            else {
+                rows.errors[p] += 1;
+                continue;
+            };
             let (milp_status, milp_ms, periods, checked) = if lp.status == ExactStatus::Infeasible {
                 let periods = swarmplan::eaas::milp::Grid::new(&problem, milp.period_min)
                     .map_or(0, |g| g.periods());
                 (None, 0.0, periods, false)
             } else {
-                let o = solve_milp(&problem, &Objective::Feasible, milp)?;
+                let Ok(o) = solve_milp(&problem, &Objective::Feasible, milp) else {
+                    rows.errors[p] += 1;
+                    continue;
+                };
                 let checked = o.outcome.as_ref().is_some_and(|x| {
                     x.feasible && swarmplan::check::check_segment(&problem, x).is_empty()
                 });
@@ -556,6 +571,10 @@ fn print_table(
             direct.len(),
         );
     }
+    println!(
+        "backend errors (solve left out, hop or test not counted above): PB {}, FB {}",
+        all.errors[0], all.errors[1]
+    );
     println!();
     println!(
         "Direct hops to the destination that the policy failed (Algorithm 1 lines 5-10), full \
