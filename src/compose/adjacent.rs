@@ -25,10 +25,7 @@ impl Planner<'_> {
     ) -> Result<Plan> {
         let graph = self.graph();
         let speed = self.speed_m_per_min();
-        let mut plan = Plan::new(
-            graph.id_of(source).to_string(),
-            graph.id_of(destination).to_string(),
-        );
+        let mut plan = self.empty_plan(source, destination);
         if source == destination {
             return Ok(plan.finish());
         }

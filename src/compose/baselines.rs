@@ -82,10 +82,7 @@ impl Planner<'_> {
         floyd_warshall: bool,
     ) -> Result<Plan> {
         let graph = self.graph();
-        let mut plan = Plan::new(
-            graph.id_of(source).to_string(),
-            graph.id_of(destination).to_string(),
-        );
+        let mut plan = self.empty_plan(source, destination);
         if source == destination {
             return Ok(plan.finish());
         }

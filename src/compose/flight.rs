@@ -1,7 +1,7 @@
 //! Flying one hop: turning a network path into the segment problem of in-flight sharing, and the
 //! node time at a recharging stop.
 
-use super::plan::{Hop, SegmentFlown, Stop};
+use super::plan::{Hop, Plan, SegmentFlown, Stop};
 use crate::eaas::{self, SegmentOutcome, SegmentProblem, SharingPolicy};
 use crate::energy::{self, Wind};
 use crate::error::Result;
@@ -51,6 +51,14 @@ impl<'a> Planner<'a> {
     /// The swarm.
     pub fn swarm(&self) -> &Swarm {
         self.swarm
+    }
+
+    /// The plan of `source -> destination` before any hop is flown.
+    pub(crate) fn empty_plan(&self, source: usize, destination: usize) -> Plan {
+        Plan::new(
+            self.graph.id_of(source).to_string(),
+            self.graph.id_of(destination).to_string(),
+        )
     }
 
     /// The readings of the paper the planner follows (the profile's `[readings]`).
