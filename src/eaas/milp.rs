@@ -585,10 +585,13 @@ where
                 let big = cap / pad_rate_mah_per_min;
                 let once: Expression = x[d].iter().copied().sum();
                 model.add_constraint(constraint!(once == 1.0));
+                // ct_d split over the pads, all of it on the pad x chooses.
                 for i in 0..x[d].len() {
-                    model
-                        .add_constraint(constraint!(w[d][i] >= ct.clone() - big * (1.0 - x[d][i])));
+                    model.add_constraint(constraint!(w[d][i] <= big * x[d][i]));
                 }
+                let split: Expression = w[d].iter().copied().sum();
+                model.add_constraint(constraint!(split == ct.clone()));
+                model.add_constraint(constraint!(ct <= g));
             }
             for i in 0..m {
                 let load: Expression = w[i..].iter().map(|wd| wd[i]).sum();
