@@ -496,3 +496,53 @@ fn counts_beyond_their_stated_bounds_are_coded_errors() {
     assert_eq!(out.status.code(), Some(2), "{err}");
     assert!(err.contains("[E3304] requests[0].packages_kg"), "{err}");
 }
+
+/// `--sharing exact` on flat-stop (arithmetic in tests/exact_route.rs): dt 25.295 against PB's
+/// 27.28, the hop's solve and the route's solve counts in the JSON; bad solver settings are coded
+/// errors with exit 2.
+#[test]
+fn exact_sharing_solves_each_hop_and_bad_settings_exit_2() {
+    let args = [
+        "--from",
+        "A",
+        "--to",
+        "B",
+        "--packages",
+        "0.21,0.21,0.44",
+        "--support",
+        "1",
+    ];
+    let mut exact: Vec<&str> = args.to_vec();
+    exact.extend(["--sharing", "exact", "--json"]);
+    let out = solve("flat-stop.json", &exact);
+    assert_eq!(out.status.code(), Some(0), "{out:?}");
+    let plan = &json(&out)["plan"];
+    assert!(close(plan["dt_min"].as_f64().unwrap(), 25.295), "{plan}");
+    let solve0 = &plan["hops"][0]["sharing_solve"];
+    assert_eq!(solve0["status"], "optimal", "{solve0}");
+    assert_eq!(solve0["grid_step_min"], 1.0);
+    assert!(close(solve0["bound"].as_f64().unwrap(), 15.295), "{solve0}");
+    // The direct hop (no schedule flies it) and the hop to M.
+    assert_eq!(plan["hop_solves"]["solves"], 2, "{plan}");
+    assert_eq!(plan["hop_solves"]["infeasible"], 1, "{plan}");
+    let mut pb: Vec<&str> = args.to_vec();
+    pb.extend(["--sharing", "pb", "--json"]);
+    let plan = json(&solve("flat-stop.json", &pb))["plan"].clone();
+    assert!(close(plan["dt_min"].as_f64().unwrap(), 27.28), "{plan}");
+    assert!(plan.get("hop_solves").is_none(), "{plan}");
+    for (flag, value, code) in [
+        ("--reorder", "free", "E4113"),
+        ("--hop-time-limit", "0", "E4105"),
+        ("--period-min", "-1", "E4101"),
+    ] {
+        let mut bad: Vec<&str> = args.to_vec();
+        bad.extend(["--sharing", "exact", flag, value]);
+        let out = solve("flat-stop.json", &bad);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{flag} {value}: {err}");
+        assert!(
+            err.contains(code) && err.contains(flag),
+            "{flag} {value}: {err}"
+        );
+    }
+}

@@ -1,10 +1,11 @@
 //! `swarmplan batch`: plan every request of a request set with one or more method combinations and
 //! report success counts (with their denominator), delivery and node times, and run time.
 
-use super::inputs::{self, InstanceArgs};
+use super::inputs::{self, ExactArgs, InstanceArgs};
 use crate::compose::{
     lpt_node_time_gaps, Context, LptGapSummary, PlanOptions, RequestReport, RouteMethod,
 };
+use crate::eaas::exact_hop::HopSolveCounts;
 use crate::eaas::SharingPolicy;
 use crate::error::{Error, Result};
 use crate::precompose::Positioning;
@@ -19,6 +20,9 @@ pub struct BatchArgs {
     /// Network and profile.
     #[command(flatten)]
     pub instance: InstanceArgs,
+    /// Solver settings of `--sharing exact|fair`.
+    #[command(flatten)]
+    pub exact: ExactArgs,
     /// Request set (JSON) [default: the shipped paper-195 requests].
     #[arg(long, value_name = "FILE")]
     pub requests: Option<PathBuf>,
@@ -76,6 +80,10 @@ pub struct Summary {
     pub shared_mah: f64,
     /// LPT against the exact node time at every stop of the delivered requests.
     pub lpt_node_time: LptGapSummary,
+    /// `exact` and `fair`: the hop solves made over all requests (candidate hops included);
+    /// with a solve stopped by its time limit the numbers depend on the machine's speed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub hop_solves: Option<HopSolveCounts>,
     /// Wall-clock time for the whole set, ms.
     pub wall_ms: f64,
 }
@@ -124,7 +132,8 @@ pub fn run(args: BatchArgs) -> Result<i32> {
         ));
     }
     inputs::validate_requests(&instance, &requests)?;
-    let context = Context::new(&instance.network, &instance.graph, &instance.profile);
+    let mut context = Context::new(&instance.network, &instance.graph, &instance.profile);
+    context.exact = args.exact.settings()?;
     let combos = combinations(&args);
     let mut summaries = Vec::new();
     let mut outcomes = Vec::new();
@@ -164,10 +173,11 @@ pub fn run(args: BatchArgs) -> Result<i32> {
     if args.json {
         super::print_json(&summaries)?;
     } else {
-        outln!("sharing,positioning,route,delivered,requests,mean_dt_min,mean_nt_min,mean_stops,stops,lpt_optimal,lpt_mean_gap,lpt_max_gap,wall_ms");
+        outln!("sharing,positioning,route,delivered,requests,mean_dt_min,mean_nt_min,mean_stops,stops,lpt_optimal,lpt_mean_gap,lpt_max_gap,hop_solves,hop_solves_unproven,wall_ms");
         for s in &summaries {
+            let hops = s.hop_solves.unwrap_or_default();
             outln!(
-                "{},{},{},{},{},{:.3},{:.3},{:.3},{},{},{:.6},{:.6},{:.0}",
+                "{},{},{},{},{},{:.3},{:.3},{:.3},{},{},{:.6},{:.6},{},{},{:.0}",
                 label(&s.options.sharing),
                 label(&s.options.positioning),
                 s.options.route.name(),
@@ -180,6 +190,8 @@ pub fn run(args: BatchArgs) -> Result<i32> {
                 s.lpt_node_time.lpt_optimal,
                 s.lpt_node_time.mean_gap,
                 s.lpt_node_time.max_gap,
+                hops.solves,
+                hops.time_limit_incumbent + hops.time_limit_no_solution + hops.backend_errors,
                 s.wall_ms
             );
         }
@@ -282,6 +294,13 @@ fn summarise(options: PlanOptions, reports: &[RequestReport], wall_ms: f64) -> R
                 .iter()
                 .flat_map(|r| r.plan.hops.iter().filter_map(|h| h.stop.as_ref())),
         )?,
+        hop_solves: options.sharing.is_exact().then(|| {
+            let mut sum = HopSolveCounts::default();
+            for c in reports.iter().filter_map(|r| r.plan.hop_solves.as_ref()) {
+                sum.merge(c);
+            }
+            sum
+        }),
         wall_ms,
     })
 }

@@ -1,9 +1,12 @@
 //! Loading and validating the instance files shared by several subcommands. Without a path, the
 //! shipped paper-195 instance and `paper` profile embedded in the binary are used.
 
-use crate::error::{Error, Result};
+use crate::eaas::exact_hop::{ExactSettings, DEFAULT_HOP_TIME_LIMIT_S};
+use crate::eaas::milp::Reorder;
+use crate::error::{Error, Result, Violation};
 use crate::network::SkywayGraph;
 use crate::problem::{io, validate, Network, Profile, Request, RequestSet};
+use crate::solver::MilpBackend;
 use std::path::{Path, PathBuf};
 
 const EMBEDDED_NETWORK: &str = include_str!("../../instances/paper-195/network.json");
@@ -24,6 +27,72 @@ pub struct InstanceArgs {
     /// batteries, FB charging rounds for full drones, Algorithm 1 looking at adjacent nodes only.
     #[arg(long)]
     pub literal: bool,
+}
+
+/// Solver settings of the exact and fair sharing policies (`--sharing exact|fair`).
+#[derive(Debug, Clone, clap::Args)]
+pub struct ExactArgs {
+    /// Exact policy: MILP backend of every hop solve.
+    #[arg(long, value_enum, default_value_t = MilpBackend::all()[0])]
+    pub backend: MilpBackend,
+    /// Exact and fair policies: time limit of each hop solve, seconds.
+    #[arg(long = "hop-time-limit", default_value_t = DEFAULT_HOP_TIME_LIMIT_S, allow_negative_numbers = true)]
+    pub hop_time_limit_s: f64,
+    /// Exact policy: longest period of the hop MILP's grid, minutes.
+    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
+    pub period_min: f64,
+    /// Exact and fair policies: re-ordering allowed (`paper` or `none`).
+    #[arg(long, value_enum, default_value_t = Reorder::Paper)]
+    pub reorder: Reorder,
+}
+
+impl ExactArgs {
+    /// The settings, checked: a grid step that is finite and positive (E4101), a time limit in
+    /// `(0, 1e6]` seconds (E4105), re-ordering other than `free` (E4113).
+    ///
+    /// # Errors
+    /// [`Error::Invalid`] with every violation.
+    pub fn settings(&self) -> Result<ExactSettings> {
+        let mut v = Vec::new();
+        if !(self.period_min.is_finite() && self.period_min > 0.0) {
+            v.push(Violation::new(
+                "E4101",
+                "--period-min",
+                format!("{} is not a finite duration > 0", self.period_min),
+                "give the grid step in minutes, such as 1.0",
+            ));
+        }
+        if !(self.hop_time_limit_s > 0.0 && self.hop_time_limit_s <= 1e6) {
+            v.push(Violation::new(
+                "E4105",
+                "--hop-time-limit",
+                format!(
+                    "{} is not a time in (0, 1e6] seconds",
+                    self.hop_time_limit_s
+                ),
+                "give the time limit of each hop solve in seconds, such as 10",
+            ));
+        }
+        if self.reorder == Reorder::Free {
+            v.push(Violation::new(
+                "E4113",
+                "--reorder",
+                "free re-ordering on a route".to_string(),
+                "use --reorder paper or none: a free schedule is not always a set of transfers \
+                 a plan can carry (`swarmplan eaas --reorder free` studies one hop)",
+            ));
+        }
+        if !v.is_empty() {
+            return Err(Error::Invalid(v));
+        }
+        Ok(ExactSettings {
+            period_min: self.period_min,
+            reorder: self.reorder,
+            backend: self.backend,
+            time_limit_s: self.hop_time_limit_s,
+            prune_candidates: true,
+        })
+    }
 }
 
 /// A validated network with its graph, and a validated profile.

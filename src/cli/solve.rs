@@ -1,6 +1,6 @@
 //! `swarmplan solve`: plan one request and print the plan.
 
-use super::inputs::{self, InstanceArgs};
+use super::inputs::{self, ExactArgs, InstanceArgs};
 use crate::compose::{Context, PlanOptions, RouteMethod};
 use crate::eaas::SharingPolicy;
 use crate::error::{Error, Result};
@@ -14,6 +14,9 @@ pub struct SolveArgs {
     /// Network and profile.
     #[command(flatten)]
     pub instance: InstanceArgs,
+    /// Solver settings of `--sharing exact|fair`.
+    #[command(flatten)]
+    pub exact: ExactArgs,
     /// Request set (JSON) holding the request [default: the shipped paper-195 requests].
     #[arg(long, value_name = "FILE")]
     pub request_file: Option<PathBuf>,
@@ -68,7 +71,8 @@ pub fn run(args: SolveArgs) -> Result<i32> {
         )),
     };
     inputs::validate_requests(&instance, std::slice::from_ref(&request))?;
-    let context = Context::new(&instance.network, &instance.graph, &instance.profile);
+    let mut context = Context::new(&instance.network, &instance.graph, &instance.profile);
+    context.exact = args.exact.settings()?;
     let options = PlanOptions {
         sharing: args.sharing,
         positioning: args.positioning,
@@ -116,6 +120,25 @@ fn print_human(report: &crate::compose::RequestReport) -> Result<()> {
                 stop.assignment
             );
         }
+    }
+    if let Some(c) = &plan.hop_solves {
+        let grid = match report.options.sharing {
+            crate::eaas::SharingPolicy::Exact => " (optimal over full-period grid schedules)",
+            _ => "",
+        };
+        outln!(
+            "hop solves: {} made{grid}: {} optimal, {} infeasible, {} stopped at the limit with a \
+             schedule, {} without, {} backend error(s); {} schedule(s) that do not fly; {} hop(s) flew without \
+             sharing instead",
+            c.solves,
+            c.optimal,
+            c.infeasible,
+            c.time_limit_incumbent,
+            c.time_limit_no_solution,
+            c.backend_errors,
+            c.schedule_does_not_fly,
+            c.fallbacks
+        );
     }
     if plan.success {
         outln!(

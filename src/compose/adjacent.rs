@@ -3,7 +3,7 @@
 //! "adjacent"`, see models/compose.md).
 
 use super::plan::Plan;
-use super::Planner;
+use super::{HopEnd, Planner};
 use crate::eaas::SharingPolicy;
 use crate::error::Result;
 
@@ -58,9 +58,9 @@ impl Planner<'_> {
                 policies.push(self.sharing());
             }
             for policy in policies {
-                let outcome = self.fly(&path, &full, policy)?;
-                if outcome.feasible {
-                    plan.push(self.hop(&path, &full, outcome, None));
+                let flight = self.fly(&path, &full, policy, HopEnd::NoStop)?;
+                if flight.outcome.feasible {
+                    plan.push(self.hop(&path, &full, flight, None));
                     return Ok(plan.finish());
                 }
             }
@@ -76,14 +76,19 @@ impl Planner<'_> {
                 let Some(path) = graph.path_from_nodes(&nodes) else {
                     continue;
                 };
-                let outcome = self.fly(&path, &full, self.sharing())?;
-                if !outcome.feasible {
+                let end = if v != destination && graph.pads(v) > 0 {
+                    HopEnd::Stop
+                } else {
+                    HopEnd::NoStop
+                };
+                let flight = self.fly(&path, &full, self.sharing(), end)?;
+                if !flight.outcome.feasible {
                     continue;
                 }
                 let stop = if v == destination {
                     None
                 } else {
-                    self.stop_at(v, &outcome.final_battery_mah)?
+                    self.stop_at(v, &flight.outcome.final_battery_mah)?
                 };
                 let tt_min = graph.leg(current, v).map_or(0.0, |l| l.distance_m) / speed;
                 let mut cost = tt_min + stop.as_ref().map_or(0.0, |s| s.nt_min);
@@ -93,10 +98,10 @@ impl Planner<'_> {
                 // Strict improvement keeps the lowest node index among equal costs.
                 if cost < best_cost {
                     best_cost = cost;
-                    best = Some((v, nodes, path, outcome, stop));
+                    best = Some((v, nodes, path, flight, stop));
                 }
             }
-            let Some((v, nodes, path, outcome, stop)) = best else {
+            let Some((v, nodes, path, flight, stop)) = best else {
                 return Ok(plan.fail(format!(
                     "dead end at {}: neither the destination nor any neighbour not yet visited is \
                      reachable without stopping",
@@ -105,11 +110,11 @@ impl Planner<'_> {
             };
             visited[v] = true;
             if v == destination {
-                plan.push(self.hop(&path, &full, outcome, None));
+                plan.push(self.hop(&path, &full, flight, None));
                 return Ok(plan.finish());
             }
             if stop.is_some() {
-                plan.push(self.hop(&path, &full, outcome, stop));
+                plan.push(self.hop(&path, &full, flight, stop));
                 hop_nodes = vec![v];
             } else {
                 hop_nodes = nodes;

@@ -2,7 +2,7 @@
 //! recharging only where the swarm must.
 
 use super::plan::Plan;
-use super::Planner;
+use super::{HopEnd, Planner};
 use crate::eaas::SharingPolicy;
 use crate::error::Result;
 use petgraph::graph::{DiGraph, NodeIndex};
@@ -22,8 +22,8 @@ impl Planner<'_> {
                 let Some(path) = graph.path_from_nodes(&[u, v]) else {
                     continue;
                 };
-                let outcome = self.fly(&path, &full, SharingPolicy::None)?;
-                let nt = match self.stop_at(v, &outcome.final_battery_mah)? {
+                let flight = self.fly(&path, &full, SharingPolicy::None, HopEnd::Stop)?;
+                let nt = match self.stop_at(v, &flight.outcome.final_battery_mah)? {
                     Some(stop) => stop.nt_min,
                     None => 0.0,
                 };
@@ -106,13 +106,14 @@ impl Planner<'_> {
                 let path = graph
                     .path_from_nodes(&route[at..=j])
                     .expect("the route follows network edges");
-                let outcome = self.fly(&path, &battery, self.sharing())?;
-                if !outcome.feasible {
+                // Reachability only: the hop's schedule is optimised once j is chosen.
+                let flight = self.fly(&path, &battery, self.sharing(), HopEnd::NoStop)?;
+                if !flight.outcome.feasible {
                     break;
                 }
-                reached = Some((j, path, outcome));
+                reached = Some((j, path, flight));
             }
-            let Some((j, path, outcome)) = reached else {
+            let Some((j, path, flight)) = reached else {
                 let next = (at + 1..=last)
                     .find(|&j| j == last || graph.pads(route[j]) > 0)
                     .expect("the destination is on the route");
@@ -123,11 +124,22 @@ impl Planner<'_> {
                 )));
             };
             if j == last {
-                plan.push(self.hop(&path, &battery, outcome, None));
+                plan.push(self.hop(&path, &battery, flight, None));
                 return Ok(plan.finish());
             }
-            let stop = self.stop_at(route[j], &outcome.final_battery_mah)?;
-            plan.push(self.hop(&path, &battery, outcome, stop));
+            let flight = if self.sharing().is_exact() {
+                // The least node time at the chosen stop (the exact schedule) or the fair one.
+                let at_stop = self.fly(&path, &battery, self.sharing(), HopEnd::Stop)?;
+                if at_stop.outcome.feasible {
+                    at_stop
+                } else {
+                    flight
+                }
+            } else {
+                flight
+            };
+            let stop = self.stop_at(route[j], &flight.outcome.final_battery_mah)?;
+            plan.push(self.hop(&path, &battery, flight, stop));
             battery = self.full_battery_mah();
             at = j;
         }

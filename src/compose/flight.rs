@@ -2,6 +2,8 @@
 //! node time at a recharging stop.
 
 use super::plan::{Hop, Plan, SegmentFlown, Stop};
+use crate::eaas::exact_hop::{self, ExactSettings, HopSolve, HopSolveCounts};
+use crate::eaas::milp::Objective;
 use crate::eaas::{self, SegmentOutcome, SegmentProblem, SharingPolicy};
 use crate::energy::{self, Wind};
 use crate::error::Result;
@@ -16,6 +18,25 @@ use std::collections::HashMap;
 /// Rate matrices `[drone][slot]` per directed edge `(from, to)`.
 type RateCache = RefCell<HashMap<(usize, usize), Vec<Vec<f64>>>>;
 
+/// Where a flown hop ends, which decides what the exact and fair policies optimise.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum HopEnd {
+    /// At a recharging stop: the least node time there.
+    Stop,
+    /// At the destination, or at a node passed without charging: any schedule that flies.
+    NoStop,
+}
+
+/// A hop flown under a policy: the replayed schedule, and for the exact and fair policies how
+/// their solve ended.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Flight {
+    /// The schedule and batteries.
+    pub outcome: SegmentOutcome,
+    /// The exact or fair solve behind the schedule (`None` for the simulated policies).
+    pub solve: Option<HopSolve>,
+}
+
 /// Everything fixed while one request is planned: network, profile, swarm and sharing policy.
 pub struct Planner<'a> {
     graph: &'a SkywayGraph,
@@ -24,6 +45,10 @@ pub struct Planner<'a> {
     sharing: SharingPolicy,
     /// Consumption-rate matrices `[drone][slot]` per directed edge `(from, to)`, computed once.
     rates: RateCache,
+    /// Settings of the exact and fair policies.
+    exact: ExactSettings,
+    /// Hop solves of the exact and fair policies made so far.
+    solves: RefCell<HopSolveCounts>,
 }
 
 impl<'a> Planner<'a> {
@@ -40,7 +65,36 @@ impl<'a> Planner<'a> {
             swarm,
             sharing,
             rates: RefCell::new(HashMap::new()),
+            exact: ExactSettings::default(),
+            solves: RefCell::new(HopSolveCounts::default()),
         }
+    }
+
+    /// The planner with the given settings of the exact and fair policies.
+    pub fn with_exact(mut self, settings: ExactSettings) -> Planner<'a> {
+        self.exact = settings;
+        self
+    }
+
+    /// Settings of the exact and fair policies.
+    pub fn exact_settings(&self) -> &ExactSettings {
+        &self.exact
+    }
+
+    /// Charging rate of the pads at `node`, mAh/min.
+    pub fn pad_rate_mah_per_min(&self, node: usize) -> f64 {
+        self.graph
+            .pad_rate_mah_per_min(node, self.profile.pads.charge_rate_mah_per_min)
+    }
+
+    /// Counts of the exact and fair hop solves made so far.
+    pub fn hop_solves(&self) -> HopSolveCounts {
+        *self.solves.borrow()
+    }
+
+    /// Forgets the hop solves counted so far.
+    pub(crate) fn reset_hop_solves(&self) {
+        *self.solves.borrow_mut() = HopSolveCounts::default();
     }
 
     /// The network.
@@ -134,15 +188,45 @@ impl<'a> Planner<'a> {
         }
     }
 
-    /// Simulates flying `path` without stopping under `policy`.
+    /// Flies `path` without stopping under `policy`: PB, FB and the baselines are simulated; the
+    /// exact and fair policies solve their model, for the least node time at the stop ending the
+    /// hop when `end` is [`HopEnd::Stop`] and the node has pads, else for any schedule that flies.
+    ///
+    /// # Errors
+    /// Those of [`eaas::simulate_with`] and [`exact_hop::fly_exact`].
     pub fn fly(
         &self,
         path: &Path,
         battery_mah: &[f64],
         policy: SharingPolicy,
-    ) -> Result<SegmentOutcome> {
-        let options = eaas::PolicyOptions::from(&self.profile.readings);
-        eaas::simulate_with(&self.segment_problem(path, battery_mah), policy, &options)
+        end: HopEnd,
+    ) -> Result<Flight> {
+        let problem = self.segment_problem(path, battery_mah);
+        if !policy.is_exact() {
+            let options = eaas::PolicyOptions::from(&self.profile.readings);
+            return Ok(Flight {
+                outcome: eaas::simulate_with(&problem, policy, &options)?,
+                solve: None,
+            });
+        }
+        let last = *path.nodes.last().expect("a path has at least one node");
+        let pads = self.graph.pads(last);
+        let objective = if end == HopEnd::Stop && pads > 0 {
+            Objective::NodeTime {
+                pads: pads as usize,
+                pad_rate_mah_per_min: self
+                    .graph
+                    .pad_rate_mah_per_min(last, self.profile.pads.charge_rate_mah_per_min),
+            }
+        } else {
+            Objective::Feasible
+        };
+        let (outcome, solve) = exact_hop::fly_exact(&problem, policy, &objective, &self.exact)?;
+        self.solves.borrow_mut().add(&solve);
+        Ok(Flight {
+            outcome,
+            solve: Some(solve),
+        })
     }
 
     /// The recharging stop at `node` for a swarm arriving with `arrival_mah`: every drone charges to
@@ -179,9 +263,10 @@ impl<'a> Planner<'a> {
         &self,
         path: &Path,
         departure_mah: &[f64],
-        outcome: SegmentOutcome,
+        flight: Flight,
         stop: Option<Stop>,
     ) -> Hop {
+        let Flight { outcome, solve } = flight;
         let ids = |i: &usize| self.graph.id_of(*i).to_string();
         Hop {
             from: ids(&path.nodes[0]),
@@ -206,6 +291,7 @@ impl<'a> Planner<'a> {
             transfers: outcome.transfers,
             departure_battery_mah: departure_mah.to_vec(),
             arrival_battery_mah: outcome.final_battery_mah,
+            sharing_solve: solve,
             stop,
         }
     }

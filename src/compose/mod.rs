@@ -15,7 +15,7 @@ mod plan;
 mod request;
 mod sequential;
 
-pub use flight::Planner;
+pub use flight::{Flight, HopEnd, Planner};
 pub use gaps::{lpt_node_time_gaps, LptGapSummary};
 pub use plan::{Hop, Plan, SegmentFlown, Stop};
 pub use request::{Context, PlanOptions, RequestReport, SwarmChoice};
@@ -83,7 +83,8 @@ impl Planner<'_> {
         method: RouteMethod,
     ) -> crate::error::Result<Plan> {
         let adjacent = self.readings().candidates == Candidates::Adjacent;
-        match method {
+        self.reset_hop_solves();
+        let mut plan = match method {
             RouteMethod::Sequential | RouteMethod::Astar if adjacent => {
                 self.compose_adjacent(source, destination, method == RouteMethod::Astar)
             }
@@ -91,6 +92,10 @@ impl Planner<'_> {
             RouteMethod::Astar => self.compose_sequential(source, destination, true),
             RouteMethod::Dijkstra => self.compose_fixed_route(source, destination, false),
             RouteMethod::FloydWarshall => self.compose_fixed_route(source, destination, true),
+        }?;
+        if self.sharing().is_exact() {
+            plan.hop_solves = Some(self.hop_solves());
         }
+        Ok(plan)
     }
 }

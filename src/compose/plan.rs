@@ -1,5 +1,6 @@
 //! The output of route composition.
 
+use crate::eaas::exact_hop::{HopSolve, HopSolveCounts};
 use crate::eaas::Transfer;
 use crate::solver::SolveStatus;
 use serde::Serialize;
@@ -26,6 +27,11 @@ pub struct Plan {
     pub dt_min: f64,
     /// Energy shared in flight over the whole plan, mAh.
     pub shared_mah: f64,
+    /// Exact and fair policies: how every hop solve made while composing ended, candidate hops
+    /// included. `all_proven` in these counts is what makes the route's schedules optimal over
+    /// grid schedules.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub hop_solves: Option<HopSolveCounts>,
 }
 
 /// One hop: a flight without stopping between two stops, possibly over several segments.
@@ -51,6 +57,9 @@ pub struct Hop {
     pub departure_battery_mah: Vec<f64>,
     /// Battery of every drone at the end of the hop, mAh.
     pub arrival_battery_mah: Vec<f64>,
+    /// Exact and fair policies: how the solve of this hop's schedule ended.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sharing_solve: Option<HopSolve>,
     /// The recharging stop at `to`; `None` at the destination.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub stop: Option<Stop>,
@@ -104,6 +113,7 @@ impl Plan {
             nt_min: 0.0,
             dt_min: 0.0,
             shared_mah: 0.0,
+            hop_solves: None,
         }
     }
 

@@ -2,6 +2,7 @@
 //! route composition.
 
 use super::{Plan, Planner, RouteMethod};
+use crate::eaas::exact_hop::ExactSettings;
 use crate::eaas::SharingPolicy;
 use crate::energy::Wind;
 use crate::error::{Error, Result};
@@ -34,6 +35,8 @@ pub struct Context<'a> {
     pub formation: FormationKind,
     /// The network's averaged wind.
     pub average_wind: Wind,
+    /// Solver settings of the exact and fair sharing policies.
+    pub exact: ExactSettings,
 }
 
 /// The planned request.
@@ -83,6 +86,7 @@ impl<'a> Context<'a> {
             profile,
             formation,
             average_wind,
+            exact: ExactSettings::default(),
         }
     }
 
@@ -160,7 +164,8 @@ impl<'a> Context<'a> {
             Some(0)
         };
         let choice = self.swarm_for(request, options.positioning, support)?;
-        let planner = Planner::new(self.graph, self.profile, &choice.swarm, options.sharing);
+        let planner = Planner::new(self.graph, self.profile, &choice.swarm, options.sharing)
+            .with_exact(self.exact);
         let plan = planner.compose(choice.source, choice.destination, options.route)?;
         let execution_ms = start.elapsed().as_secs_f64() * 1e3;
         Ok(RequestReport {

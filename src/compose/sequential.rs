@@ -1,11 +1,57 @@
 //! Algorithm 1 of the paper (sequential composition) and its A*-style variant.
 
 use super::plan::Plan;
-use super::Planner;
-use crate::eaas::SharingPolicy;
+use super::{Flight, HopEnd, Planner, Stop};
+use crate::eaas::milp::Objective;
+use crate::eaas::{fluid, milp::ExactStatus, SharingPolicy};
 use crate::error::Result;
+use crate::network::Path;
+
+/// Relative tolerance, on minutes, of pruning a candidate by its lower bound: a bound computed
+/// in floating point may sit slightly above the true value, so a candidate is pruned only when
+/// its bound exceeds the best cost by more than this fraction.
+const PRUNE_TOL_MIN: f64 = 1e-6;
+
+/// A candidate stop: node, hop path, A* look-ahead (min), lower bound on its cost (min).
+type Candidate = (usize, Path, f64, f64);
 
 impl Planner<'_> {
+    /// Exact and fair policies: every candidate with a lower bound on its cost `tt + nt + look-
+    /// ahead`, `nt` bounded by the fluid LP of `models/eaas_fluid.md` (valid for every
+    /// continuous-time schedule, so for every grid schedule and the fair layout), sorted by bound
+    /// then node; candidates the LP proves unflyable are dropped.
+    fn bounded_candidates(
+        &self,
+        candidates: Vec<Candidate>,
+        battery: &[f64],
+    ) -> Result<Vec<Candidate>> {
+        let speed = self.speed_m_per_min();
+        let settings = self.exact_settings();
+        let mut out = Vec::with_capacity(candidates.len());
+        for (v, path, look_ahead_min, _) in candidates {
+            let problem = self.segment_problem(&path, battery);
+            let objective = Objective::NodeTime {
+                pads: self.graph().pads(v) as usize,
+                pad_rate_mah_per_min: self.pad_rate_mah_per_min(v),
+            };
+            let nt_bound = match fluid::bound(
+                &problem,
+                &objective,
+                settings.reorder,
+                settings.time_limit_s,
+            ) {
+                Ok(o) if o.status == ExactStatus::Infeasible => continue,
+                Ok(o) => o.bound.unwrap_or(0.0).max(0.0),
+                // A failed bound prunes nothing.
+                Err(_) => 0.0,
+            };
+            let bound = path.distance_m / speed + nt_bound + look_ahead_min;
+            out.push((v, path, look_ahead_min, bound));
+        }
+        out.sort_by(|a, b| a.3.total_cmp(&b.3).then(a.0.cmp(&b.0)));
+        Ok(out)
+    }
+
     /// Algorithm 1. From the current node: fly straight to the destination if every drone can
     /// without sharing; else straight with sharing if that makes it; else fly (with sharing) to the
     /// recharging node, not yet stopped at, reachable without stopping, with the least `tt + nt`
@@ -39,16 +85,16 @@ impl Planner<'_> {
                 )));
             };
             // Lines 5-7: every drone reaches the destination on its own battery.
-            let outcome = self.fly(&direct, &battery, SharingPolicy::None)?;
-            if outcome.feasible {
-                plan.push(self.hop(&direct, &battery, outcome, None));
+            let flight = self.fly(&direct, &battery, SharingPolicy::None, HopEnd::NoStop)?;
+            if flight.outcome.feasible {
+                plan.push(self.hop(&direct, &battery, flight, None));
                 return Ok(plan.finish());
             }
             // Lines 8-10: in-flight sharing makes the direct flight possible.
             if self.sharing().shares() {
-                let outcome = self.fly(&direct, &battery, self.sharing())?;
-                if outcome.feasible {
-                    plan.push(self.hop(&direct, &battery, outcome, None));
+                let flight = self.fly(&direct, &battery, self.sharing(), HopEnd::NoStop)?;
+                if flight.outcome.feasible {
+                    plan.push(self.hop(&direct, &battery, flight, None));
                     return Ok(plan.finish());
                 }
             }
@@ -57,8 +103,7 @@ impl Planner<'_> {
             let endurance_min = self.endurance_bound_min(&battery, min_rates);
             // Shortest paths v -> current, flown reversed: one Dijkstra for all candidates.
             let towards_current = graph.shortest_paths_to(current);
-            let mut best = None;
-            let mut best_cost = f64::INFINITY;
+            let mut candidates = Vec::new();
             for v in 0..graph.node_count() {
                 if stopped[v] || graph.pads(v) == 0 || v == destination {
                     continue;
@@ -75,31 +120,50 @@ impl Planner<'_> {
                 }) else {
                     continue;
                 };
-                let outcome = self.fly(&path, &battery, self.sharing())?;
-                if !outcome.feasible {
+                let look_ahead_min = if astar {
+                    to_destination_m[v] / speed
+                } else {
+                    0.0
+                };
+                candidates.push((v, path, look_ahead_min, 0.0));
+            }
+            if self.sharing().is_exact() && self.exact_settings().prune_candidates {
+                // Lower bounds on each candidate's cost; the most promising are solved first,
+                // and a candidate whose bound exceeds the best cost found is never solved.
+                candidates = self.bounded_candidates(candidates, &battery)?;
+            }
+            let mut best: Option<(usize, Path, Flight, Stop)> = None;
+            let mut best_cost = f64::INFINITY;
+            for (v, path, look_ahead_min, bound_min) in candidates {
+                if bound_min > best_cost + PRUNE_TOL_MIN * (1.0 + best_cost) {
+                    break;
+                }
+                let flight = self.fly(&path, &battery, self.sharing(), HopEnd::Stop)?;
+                if !flight.outcome.feasible {
                     continue;
                 }
                 let stop = self
-                    .stop_at(v, &outcome.final_battery_mah)?
+                    .stop_at(v, &flight.outcome.final_battery_mah)?
                     .expect("candidates have pads");
-                let mut cost = path.distance_m / speed + stop.nt_min;
-                if astar {
-                    cost += to_destination_m[v] / speed;
-                }
-                // Strict improvement keeps the lowest node index among equal costs.
-                if cost < best_cost {
+                let cost = path.distance_m / speed + stop.nt_min + look_ahead_min;
+                // The lowest node index among equal costs.
+                let better = match &best {
+                    None => true,
+                    Some((b, ..)) => cost < best_cost || (cost == best_cost && v < *b),
+                };
+                if better {
                     best_cost = cost;
-                    best = Some((v, path, outcome, stop));
+                    best = Some((v, path, flight, stop));
                 }
             }
-            let Some((v, path, outcome, stop)) = best else {
+            let Some((v, path, flight, stop)) = best else {
                 return Ok(plan.fail(format!(
                     "dead end at {}: neither the destination nor any recharging node not yet \
                      stopped at is reachable without stopping",
                     graph.id_of(current)
                 )));
             };
-            plan.push(self.hop(&path, &battery, outcome, Some(stop)));
+            plan.push(self.hop(&path, &battery, flight, Some(stop)));
             stopped[v] = true;
             current = v;
             battery = self.full_battery_mah();

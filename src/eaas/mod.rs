@@ -20,6 +20,7 @@ pub use crate::problem::profile::{PbRequest, Readings};
 use nalgebra::Vector2;
 use serde::{Deserialize, Serialize};
 
+pub mod exact_hop;
 mod fb;
 pub mod fluid;
 pub mod milp;
@@ -105,12 +106,27 @@ pub enum SharingPolicy {
     Pb,
     /// Fairness-based sharing (the paper's Algorithm 3).
     Fb,
+    /// The hop MILP's optimal grid schedule on every hop (`models/eaas_milp.md`): least node
+    /// time at a stop, any flying schedule into the destination.
+    Exact,
+    /// The fair QP's schedule on every hop (`models/eaas_fluid.md`), FB's exact counterpart.
+    Fair,
 }
 
 impl SharingPolicy {
-    /// Whether the policy moves energy in flight (PB and FB); `none` and `idle-support` do not.
+    /// Whether the policy moves energy in flight (PB, FB, exact, fair); `none` and `idle-support`
+    /// do not.
     pub fn shares(self) -> bool {
-        matches!(self, SharingPolicy::Pb | SharingPolicy::Fb)
+        matches!(
+            self,
+            SharingPolicy::Pb | SharingPolicy::Fb | SharingPolicy::Exact | SharingPolicy::Fair
+        )
+    }
+
+    /// Whether the schedule comes from an exact model (the MILP or the fair QP) rather than
+    /// from simulating a policy; see [`exact_hop::fly_exact`].
+    pub fn is_exact(self) -> bool {
+        matches!(self, SharingPolicy::Exact | SharingPolicy::Fair)
     }
 
     /// Whether the swarm flies support drones: every policy but the paper's baseline `none`.
@@ -277,6 +293,14 @@ pub fn simulate_with(
         SharingPolicy::None | SharingPolicy::IdleSupport => none::plan(problem),
         SharingPolicy::Pb => pb::plan(problem, options),
         SharingPolicy::Fb => fb::plan(problem, options),
+        SharingPolicy::Exact | SharingPolicy::Fair => {
+            return Err(Error::invalid(
+                "E4014",
+                "policy",
+                format!("{policy:?} needs an objective and solver settings"),
+                "use eaas::exact_hop::fly_exact for the exact and fair policies",
+            ))
+        }
     };
     let run = simulate::evaluate(problem, &plan);
     Ok(run.into_outcome())

@@ -1,0 +1,287 @@
+//! The exact and fair sharing policies on a hop of a route: the hop MILP's optimal grid schedule
+//! ([`SharingPolicy::Exact`]) or the fair QP's schedule ([`SharingPolicy::Fair`]) in place of PB
+//! or FB, see `models/eaas.md`, "Exact and fair policies on a route".
+//!
+//! The objective follows from where the hop ends: at a recharging stop, the node time there
+//! ([`Objective::NodeTime`]); at the destination, or at a node passed without charging, any
+//! schedule that flies ([`Objective::Feasible`], Algorithm 1's line 8 answered exactly over grid
+//! schedules). A hop that flies without sharing always has a schedule: the empty one is a grid
+//! schedule, and when a solve stops at its limit without one, or the fair layout does not fly,
+//! the empty schedule is flown and the fallback is recorded ([`HopSolve::fallback`]).
+
+use super::milp::{solve_milp, ExactStatus, MilpOptions, Objective, Reorder};
+use super::{fluid, simulate_with, PolicyOptions, SegmentOutcome, SegmentProblem, SharingPolicy};
+use crate::error::{Error, Result};
+use crate::solver::MilpBackend;
+use serde::{Deserialize, Serialize};
+
+/// Default wall-clock limit of one hop solve inside a route, seconds.
+pub const DEFAULT_HOP_TIME_LIMIT_S: f64 = 10.0;
+
+/// Settings of the exact and fair policies.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ExactSettings {
+    /// Longest period of the MILP's grid, minutes.
+    pub period_min: f64,
+    /// Re-ordering mode (`paper` or `none`; a `free` schedule is not always a set of transfers).
+    pub reorder: Reorder,
+    /// MILP backend.
+    pub backend: MilpBackend,
+    /// Wall-clock limit of each hop solve, seconds.
+    pub time_limit_s: f64,
+    /// Algorithm 1: skip candidate stops whose lower bound (`tt` + the fluid LP's node-time
+    /// bound) exceeds the best cost found (default). `false` solves every candidate, the
+    /// brute-force cross-check of the pruning (`models/compose.md`).
+    pub prune_candidates: bool,
+}
+
+impl Default for ExactSettings {
+    fn default() -> Self {
+        ExactSettings {
+            period_min: 1.0,
+            reorder: Reorder::Paper,
+            backend: MilpBackend::all()[0],
+            time_limit_s: DEFAULT_HOP_TIME_LIMIT_S,
+            prune_candidates: true,
+        }
+    }
+}
+
+/// What the hop solve optimised.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum HopGoal {
+    /// The node time at the stop ending the hop, minutes.
+    NodeTimeMin,
+    /// Any schedule that flies (the hop ends at the destination or passes a node).
+    Feasible,
+}
+
+/// Why the hop flies the empty schedule instead of the solver's.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Fallback {
+    /// The MILP stopped at its limit with no schedule; the hop flies without sharing.
+    NoSolutionInTime,
+    /// The fair QP's schedule, laid out and replayed, does not fly; the hop flies without sharing.
+    FairLayoutDoesNotFly,
+    /// The backend failed on the hop; the hop flies without sharing.
+    BackendError,
+    /// The model found no schedule although the empty one flies (a battery within the
+    /// evaluation's tolerance `1e-6` mAh below zero at a grid point); the hop flies without
+    /// sharing.
+    ModelRejectsEmptySchedule,
+}
+
+/// How the exact or fair solve of one hop ended.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct HopSolve {
+    /// `exact` (the MILP) or `fair` (the QP).
+    pub policy: SharingPolicy,
+    /// What was optimised.
+    pub goal: HopGoal,
+    /// The solver's status: for `exact`, `optimal` is optimal over full-period schedules of
+    /// `grid_step_min`; `feasible` an incumbent after the time limit; `infeasible` no grid
+    /// schedule flies; `time_limit_no_solution` none found in time. For `fair`, `optimal` means
+    /// the QP was solved (its schedule is a layout, not an optimum) and `infeasible` that no
+    /// continuous-time schedule flies. `None` when the backend failed (see `backend_error`).
+    pub status: Option<ExactStatus>,
+    /// The backend's message when it failed on this hop (microlp can fail numerically).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub backend_error: Option<String>,
+    /// The flown schedule's node time (goal `node_time_min`), minutes.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub objective: Option<f64>,
+    /// A proven lower bound on the node time over the solver's schedules (the optimum when
+    /// `optimal`; the LP relaxation or fluid bound after a limit; the fair QP has none).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bound: Option<f64>,
+    /// Longest grid period, minutes (0 for the fair QP, which is continuous in time).
+    pub grid_step_min: f64,
+    /// Whether the solver's own schedule flies (always for an `exact` schedule; the fair QP's
+    /// layout may not).
+    pub schedule_flies: bool,
+    /// Set when the empty schedule is flown instead of the solver's.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fallback: Option<Fallback>,
+}
+
+/// Counts of the hop solves made while composing one route (every candidate hop, not only the
+/// hops flown).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
+pub struct HopSolveCounts {
+    /// Hop solves made.
+    pub solves: usize,
+    /// Proven optimal (the fair QP: solved).
+    pub optimal: usize,
+    /// Stopped at the time limit with an incumbent.
+    pub time_limit_incumbent: usize,
+    /// Proven: no schedule of the model flies.
+    pub infeasible: usize,
+    /// Stopped at the time limit without a schedule.
+    pub time_limit_no_solution: usize,
+    /// Solves on which the backend failed.
+    pub backend_errors: usize,
+    /// Solves that returned a schedule that does not fly (the fair QP's layout).
+    pub schedule_does_not_fly: usize,
+    /// Hops that flew the empty schedule instead (see [`Fallback`]).
+    pub fallbacks: usize,
+}
+
+impl HopSolveCounts {
+    /// Adds one solve.
+    pub fn add(&mut self, solve: &HopSolve) {
+        self.solves += 1;
+        match solve.status {
+            Some(ExactStatus::Optimal) => self.optimal += 1,
+            Some(ExactStatus::Feasible) => self.time_limit_incumbent += 1,
+            Some(ExactStatus::Infeasible) => self.infeasible += 1,
+            Some(ExactStatus::TimeLimitNoSolution) => self.time_limit_no_solution += 1,
+            None => self.backend_errors += 1,
+        }
+        if matches!(
+            solve.status,
+            Some(ExactStatus::Optimal | ExactStatus::Feasible)
+        ) && !solve.schedule_flies
+        {
+            self.schedule_does_not_fly += 1;
+        }
+        if solve.fallback.is_some() {
+            self.fallbacks += 1;
+        }
+    }
+
+    /// Adds every solve of `other`.
+    pub fn merge(&mut self, other: &HopSolveCounts) {
+        self.solves += other.solves;
+        self.optimal += other.optimal;
+        self.time_limit_incumbent += other.time_limit_incumbent;
+        self.infeasible += other.infeasible;
+        self.time_limit_no_solution += other.time_limit_no_solution;
+        self.backend_errors += other.backend_errors;
+        self.schedule_does_not_fly += other.schedule_does_not_fly;
+        self.fallbacks += other.fallbacks;
+    }
+
+    /// Whether every solve ended proven (optimal or infeasible), so the route's hop schedules are
+    /// optimal over the solver's schedules.
+    pub fn all_proven(&self) -> bool {
+        self.time_limit_incumbent == 0
+            && self.time_limit_no_solution == 0
+            && self.backend_errors == 0
+    }
+}
+
+/// Flies a hop under [`SharingPolicy::Exact`] or [`SharingPolicy::Fair`].
+///
+/// # Arguments
+/// * `problem` - the hop.
+/// * `policy` - `exact` or `fair`.
+/// * `objective` - [`Objective::NodeTime`] when the hop ends at a stop, else
+///   [`Objective::Feasible`].
+/// * `settings` - grid, re-ordering, backend, time limit.
+///
+/// # Returns
+/// The flown schedule replayed by the segment evaluation (infeasible when no schedule of the
+/// model flies, or none was found in time and the hop does not fly without sharing either), and
+/// how the solve ended.
+///
+/// # Errors
+/// `E4114` for a policy other than `exact` and `fair`, `E4113` for `free` re-ordering; those of
+/// [`solve_milp`] and [`fluid::fair`] for bad input. A backend failure is not an error here: it
+/// is recorded in [`HopSolve::backend_error`] and the hop flies without sharing if it can.
+///
+/// # Complexity
+/// One MILP (exponential worst case, bounded by the time limit) or one QP (interior point).
+pub fn fly_exact(
+    problem: &SegmentProblem,
+    policy: SharingPolicy,
+    objective: &Objective,
+    settings: &ExactSettings,
+) -> Result<(SegmentOutcome, HopSolve)> {
+    if settings.reorder == Reorder::Free {
+        return Err(Error::invalid(
+            "E4113",
+            "--reorder",
+            "free re-ordering on a route",
+            "use --reorder paper or none: a free schedule is not always a set of transfers a \
+             plan can carry (use `swarmplan eaas --reorder free` on one hop)",
+        ));
+    }
+    let goal = match objective {
+        Objective::NodeTime { .. } => HopGoal::NodeTimeMin,
+        _ => HopGoal::Feasible,
+    };
+    let solved = match policy {
+        SharingPolicy::Exact => match solve_milp(
+            problem,
+            objective,
+            &MilpOptions {
+                period_min: settings.period_min,
+                reorder: settings.reorder,
+                backend: settings.backend,
+                time_limit_s: settings.time_limit_s,
+            },
+        ) {
+            Ok(o) => Ok(o),
+            Err(Error::Backend { backend, message }) => Err(format!("{backend}: {message}")),
+            Err(e) => return Err(e),
+        },
+        SharingPolicy::Fair => {
+            match fluid::fair(problem, objective, settings.reorder, settings.time_limit_s) {
+                Ok(o) => Ok(o),
+                Err(Error::Backend { backend, message }) => Err(format!("{backend}: {message}")),
+                Err(e) => return Err(e),
+            }
+        }
+        other => {
+            return Err(Error::invalid(
+                "E4114",
+                "policy",
+                format!("{other:?} is not an exact policy"),
+                "use eaas::simulate_with for none, idle-support, pb and fb",
+            ))
+        }
+    };
+    let (status, bound, grid_step_min, schedule, backend_error) = match solved {
+        Ok(o) => (Some(o.status), o.bound, o.grid_step_min, o.outcome, None),
+        Err(message) => (None, None, 0.0, None, Some(message)),
+    };
+    let exact_node_time = goal == HopGoal::NodeTimeMin && policy == SharingPolicy::Exact;
+    let mut solve = HopSolve {
+        policy,
+        goal,
+        status,
+        backend_error,
+        objective: None,
+        bound: bound.filter(|_| exact_node_time),
+        grid_step_min,
+        schedule_flies: schedule.as_ref().is_some_and(|o| o.feasible),
+        fallback: None,
+    };
+    let outcome = match schedule.filter(|o| o.feasible) {
+        Some(o) => o,
+        None => {
+            let empty = simulate_with(problem, SharingPolicy::None, &PolicyOptions::default())?;
+            if empty.feasible {
+                solve.fallback = Some(match (policy, status) {
+                    (_, None) => Fallback::BackendError,
+                    (SharingPolicy::Fair, Some(ExactStatus::Optimal)) => {
+                        Fallback::FairLayoutDoesNotFly
+                    }
+                    (_, Some(ExactStatus::TimeLimitNoSolution)) => Fallback::NoSolutionInTime,
+                    _ => Fallback::ModelRejectsEmptySchedule,
+                });
+            }
+            empty
+        }
+    };
+    if goal == HopGoal::NodeTimeMin && outcome.feasible {
+        solve.objective = Some(super::milp::objective_of(
+            problem,
+            objective,
+            &outcome.final_battery_mah,
+        )?);
+    }
+    Ok((outcome, solve))
+}
