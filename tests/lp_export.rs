@@ -307,10 +307,7 @@ fn lp_file_states_the_hop_and_has_the_size_of_the_model() {
         }
         let last = format!("b_d{}_t{periods}", n - 1);
         for name in ["y_k0_t0", "b_d0_t1", last.as_str()] {
-            check(
-                lp.bounds.contains_key(name),
-                format!("no variable {name}"),
-            );
+            check(lp.bounds.contains_key(name), format!("no variable {name}"));
         }
         let goal = match k.objective {
             Objective::NodeTime { .. } => Some(("M", false)),
@@ -329,11 +326,7 @@ fn lp_file_states_the_hop_and_has_the_size_of_the_model() {
 
 /// The value of every variable of the file at the schedule of a MILP optimum: `y` from its
 /// transfers, `b` integrated period by period, `g` the lowest delivery arrival battery.
-fn point_of(
-    k: &Known,
-    lp: &Lp,
-    transfers: &[swarmplan::eaas::Transfer],
-) -> HashMap<String, f64> {
+fn point_of(k: &Known, lp: &Lp, transfers: &[swarmplan::eaas::Transfer]) -> HashMap<String, f64> {
     let p = &k.problem;
     let n = p.drones.len();
     let mv: Vec<Move> = lp
@@ -406,7 +399,10 @@ fn the_milp_optimum_is_a_point_of_the_lp_file_with_the_same_objective() {
         let o = solve_milp(&k.problem, &k.objective, &opt).unwrap();
         assert_eq!(o.status, ExactStatus::Optimal, "{}", k.name);
         let x = point_of(&k, &lp, &o.transfers);
-        assert_eq!(x.len() - 1 + usize::from(k.objective != Objective::Feasible), lp.bounds.len());
+        assert_eq!(
+            x.len() - 1 + usize::from(k.objective != Objective::Feasible),
+            lp.bounds.len()
+        );
         let value = |terms: &[(f64, String)]| -> f64 {
             terms
                 .iter()
@@ -482,19 +478,19 @@ fn highs_reads_the_lp_file_and_finds_the_known_optimum() {
             write_lp(&k.problem, &k.objective, &opt, &k.name, &path).unwrap();
             let (status, value) = solve_file(&path);
             if status != highs_sys::MODEL_STATUS_OPTIMAL as i32 {
-                failing.push(format!("{} {}: HiGHS status {status}", k.name, reorder.name()));
+                failing.push(format!(
+                    "{} {}: HiGHS status {status}",
+                    k.name,
+                    reorder.name()
+                ));
                 continue;
             }
             if reorder == k.reorder && !close(value, k.optimum) {
                 failing.push(format!("{}: {value}, known {}", k.name, k.optimum));
             }
             for backend in MilpBackend::all() {
-                let o = solve_milp(
-                    &k.problem,
-                    &k.objective,
-                    &MilpOptions { backend, ..opt },
-                )
-                .unwrap();
+                let o =
+                    solve_milp(&k.problem, &k.objective, &MilpOptions { backend, ..opt }).unwrap();
                 let model = o.model_objective.unwrap();
                 if o.status != ExactStatus::Optimal || !close(value, model) {
                     failing.push(format!(

@@ -1151,9 +1151,13 @@ fn lp_header(
         let e = (t..grid.periods())
             .find(|&e| grid.leg[e] != l)
             .unwrap_or(grid.periods());
+        let span = if e - t == 1 {
+            format!("t{t}")
+        } else {
+            format!("t{t}..t{}", e - 1)
+        };
         out.push(format!(
-            "  t{t}..t{}: leg {l}, [{}, {}), {} period(s) of {} min",
-            e - 1,
+            "  {span}: leg {l}, [{}, {}), {} period(s) of {} min",
             grid.points_min[t],
             grid.points_min[e],
             e - t,

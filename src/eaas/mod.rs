@@ -22,6 +22,7 @@ use serde::{Deserialize, Serialize};
 
 mod fb;
 pub mod fluid;
+pub mod hop_file;
 pub mod milp;
 mod none;
 mod pb;

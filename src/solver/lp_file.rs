@@ -105,7 +105,9 @@ impl<E: WriteToLpFileFormat + ?Sized> fmt::Display for Text<'_, E> {
 }
 
 /// Splits the `lp-solvers` backend's expression text (`+2 x -1 y`) into (coefficient, name).
-fn terms<E: WriteToLpFileFormat + ?Sized>(e: &E) -> std::result::Result<Vec<(f64, String)>, String> {
+fn terms<E: WriteToLpFileFormat + ?Sized>(
+    e: &E,
+) -> std::result::Result<Vec<(f64, String)>, String> {
     let text = Text(e).to_string();
     let tokens: Vec<&str> = text.split_whitespace().collect();
     tokens
