@@ -62,21 +62,24 @@ fn temp_path(name: &str) -> PathBuf {
     dir.join(name)
 }
 
+/// Terms `coefficient name` of a linear expression.
+type Terms = Vec<(f64, String)>;
+
 /// A CPLEX LP file as far as these models use it.
 #[derive(Debug, Default)]
 struct Lp {
     header: Vec<String>,
     maximise: bool,
-    objective: Vec<(f64, String)>,
+    objective: Terms,
     /// (terms, operator, rhs)
-    rows: Vec<(Vec<(f64, String)>, String, f64)>,
+    rows: Vec<(Terms, String, f64)>,
     /// name -> (lower, upper)
     bounds: HashMap<String, (f64, f64)>,
     generals: Vec<String>,
 }
 
-fn terms(tokens: &[&str]) -> Vec<(f64, String)> {
-    assert!(tokens.len() % 2 == 0, "terms {tokens:?}");
+fn terms(tokens: &[&str]) -> Terms {
+    assert!(tokens.len().is_multiple_of(2), "terms {tokens:?}");
     tokens
         .chunks(2)
         .map(|p| (p[0].parse().unwrap(), p[1].to_string()))
