@@ -507,5 +507,32 @@ fn highs_reads_the_lp_file_and_finds_the_known_optimum() {
             }
         }
     }
+    // A hop of the shipped instance (r00001's last hop: 11 legs, 16 periods of uneven length,
+    // max-min): the file's optimum is the bound (the model objective) of `eaas --methods milp`.
+    let path = temp_path("r00001-9.lp");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_swarmplan"))
+        .args([
+            "eaas",
+            "--request-id",
+            "r00001",
+            "--hop",
+            "9",
+            "--methods",
+            "milp",
+            "--json",
+        ])
+        .args(["--backend", "highs", "--write-lp", path.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0), "{out:?}");
+    let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let milp = &report["rows"][0];
+    assert_eq!(milp["status"], "optimal");
+    let (status, value) = solve_file(&path);
+    assert_eq!(status, highs_sys::MODEL_STATUS_OPTIMAL as i32);
+    let model = milp["bound"].as_f64().unwrap();
+    if !close(value, model) {
+        failing.push(format!("r00001 hop 9: file {value}, eaas milp {model}"));
+    }
     assert!(failing.is_empty(), "failing:\n{}", failing.join("\n"));
 }
