@@ -452,7 +452,7 @@ fn lp_export_rejects_a_bad_grid_with_its_code() {
 #[test]
 fn highs_reads_the_lp_file_and_finds_the_known_optimum() {
     use std::ffi::CString;
-    fn solve_file(path: &std::path::Path) -> (i32, f64) {
+    fn solve_file(path: &std::path::Path) -> (highs_sys::HighsInt, f64) {
         let file = CString::new(path.to_str().unwrap()).unwrap();
         let key = |s: &str| CString::new(s).unwrap();
         // SAFETY: one HiGHS instance, created and destroyed here, used from this thread only;
@@ -470,7 +470,7 @@ fn highs_reads_the_lp_file_and_finds_the_known_optimum() {
             let status = highs_sys::Highs_getModelStatus(h);
             let value = highs_sys::Highs_getObjectiveValue(h);
             highs_sys::Highs_destroy(h);
-            (status as i32, value)
+            (status, value)
         }
     }
     let mut failing = Vec::new();
@@ -480,7 +480,7 @@ fn highs_reads_the_lp_file_and_finds_the_known_optimum() {
             let path = temp_path(&format!("{}-{}.lp", k.name, reorder.name()));
             write_lp(&k.problem, &k.objective, &opt, &k.name, &path).unwrap();
             let (status, value) = solve_file(&path);
-            if status != highs_sys::MODEL_STATUS_OPTIMAL as i32 {
+            if status != highs_sys::MODEL_STATUS_OPTIMAL {
                 failing.push(format!(
                     "{} {}: HiGHS status {status}",
                     k.name,
@@ -529,7 +529,7 @@ fn highs_reads_the_lp_file_and_finds_the_known_optimum() {
     let milp = &report["rows"][0];
     assert_eq!(milp["status"], "optimal");
     let (status, value) = solve_file(&path);
-    assert_eq!(status, highs_sys::MODEL_STATUS_OPTIMAL as i32);
+    assert_eq!(status, highs_sys::MODEL_STATUS_OPTIMAL);
     let model = milp["bound"].as_f64().unwrap();
     if !close(value, model) {
         failing.push(format!("r00001 hop 9: file {value}, eaas milp {model}"));
