@@ -173,7 +173,7 @@ fn a_bad_hop_file_is_reported_with_its_codes_and_exit_2() {
     broken["hop"]["initial_slot"] = serde_json::json!([0, 0, 1]);
     broken["end"]["pads"] = Value::from(0);
     let err = run("broken.json", &broken);
-    for code in ["E4113", "E4003", "hop.initial_slot", "E4103", "end.pads"] {
+    for code in ["E4115", "E4003", "hop.initial_slot", "E4103", "end.pads"] {
         assert!(err.contains(code), "{code}: {err}");
     }
     let path = temp_path("not-json.json");

@@ -443,7 +443,7 @@ fn lp_export_rejects_a_bad_grid_with_its_code() {
     let mut still = k.problem.clone();
     still.legs[0].duration_min = 0.0;
     let err = lp_text(&still, &k.objective, &options(k.reorder, 1.0), "x").unwrap_err();
-    assert!(err.to_string().contains("E4114"), "{err}");
+    assert!(err.to_string().contains("E4116"), "{err}");
 }
 
 /// HiGHS reads the written file and solves it; its optimum is the known optimum and the model

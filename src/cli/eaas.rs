@@ -155,9 +155,9 @@ pub struct EaasReport {
 /// Runs the subcommand; exit code 0.
 ///
 /// # Errors
-/// Bad input (files, request id, `--hop` out of range: `E4110`, a bad hop file: `E4111`-`E4113`
-/// and the hop's own codes, options of the exact models), an unwritable output file, or a backend
-/// failure.
+/// Bad input (files, request id, `--hop` out of range: `E4110`, a bad hop file: `E4111`,
+/// `E4112`, `E4115` and the hop's own codes, options of the exact models), an unwritable output
+/// file, or a backend failure.
 pub fn run(args: EaasArgs) -> Result<i32> {
     let (hop, readings) = match &args.hop_file {
         Some(path) => {

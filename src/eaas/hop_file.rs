@@ -12,7 +12,7 @@
 //! as at a request's destination; it decides the objective of the exact models
 //! ([`HopFile::objective`]). The other fields besides `hop` record where the hop comes from.
 //! Unknown fields are rejected; codes `E4111` (unreadable file), `E4112` (schema version),
-//! `E4113` (path and ends disagree), and the hop's and the end's own rules (`E4001`-`E4013`,
+//! `E4115` (path and ends disagree), and the hop's and the end's own rules (`E4001`-`E4013`,
 //! `E4103`, `E4104`) under `hop.` and `end.`.
 
 use super::milp::{validate_objective, Objective};
@@ -80,7 +80,7 @@ impl HopFile {
         }
         if self.path.first() != Some(&self.from) || self.path.last() != Some(&self.to) {
             v.push(Violation::new(
-                "E4113",
+                "E4115",
                 "path",
                 format!(
                     "path {:?} does not lead from `{}` to `{}`",

@@ -980,7 +980,7 @@ pub fn solve_milp(
 /// and that the optimum is optimal over full-period schedules on this grid, and its size.
 ///
 /// # Errors
-/// Those of [`solve_milp`] for bad input (`E4001`-`E4012`, `E4101`-`E4105`); `E4114` for a hop
+/// Those of [`solve_milp`] for bad input (`E4001`-`E4012`, `E4101`-`E4105`); `E4116` for a hop
 /// with no period (every leg of zero duration: the model has no schedule to write);
 /// [`Error::Backend`] if the model cannot be captured.
 pub fn lp_text(
@@ -993,7 +993,7 @@ pub fn lp_text(
     let grid = Grid::new(problem, options.period_min)?;
     if grid.periods() == 0 {
         return Err(Error::invalid(
-            "E4114",
+            "E4116",
             "hop.legs",
             "every leg has zero duration: the MILP has no period",
             "export a hop that flies for some time",
