@@ -72,3 +72,122 @@ fn eaas_rejects_a_hop_beyond_the_plan_and_a_bad_grid_with_codes() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("E4101"));
 }
+
+fn temp_path(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("swarmplan-cli-eaas-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+/// A report without its wall-clock times, the only field that differs between two runs.
+fn without_times(v: &Value) -> Value {
+    match v {
+        Value::Object(m) => Value::Object(
+            m.iter()
+                .filter(|(k, _)| k.as_str() != "solve_ms")
+                .map(|(k, x)| (k.clone(), without_times(x)))
+                .collect(),
+        ),
+        Value::Array(a) => Value::Array(a.iter().map(without_times).collect()),
+        x => x.clone(),
+    }
+}
+
+#[test]
+fn a_written_hop_file_gives_the_report_of_the_request() {
+    // r00001's plan (paper-195, paper profile): hop 6 flies n165 -> n164 -> n163 and ends on
+    // 4 pads, hop 9 ends at the destination, which has none.
+    for (hop, ends_on_pads) in [("6", true), ("9", false)] {
+        let file = temp_path(&format!("r00001-{hop}.json"));
+        let lp = temp_path(&format!("r00001-{hop}.lp"));
+        let file_arg = file.to_str().unwrap();
+        let common = ["--methods", "pb,milp", "--time-limit", "20", "--json"];
+        let mut args = vec!["eaas", "--request-id", "r00001", "--hop", hop];
+        args.extend(common);
+        args.extend(["--write-hop", file_arg, "--write-lp", lp.to_str().unwrap()]);
+        let from_request = swarmplan(&args);
+        assert_eq!(from_request.status.code(), Some(0), "{from_request:?}");
+        let mut args = vec!["eaas", "--hop-file", file_arg];
+        args.extend(common);
+        let from_file = swarmplan(&args);
+        assert_eq!(from_file.status.code(), Some(0), "{from_file:?}");
+        let a: Value = serde_json::from_slice(&from_request.stdout).unwrap();
+        let b: Value = serde_json::from_slice(&from_file.stdout).unwrap();
+        assert_eq!(row(&a, "milp")["status"], "optimal", "hop {hop}");
+        assert_eq!(without_times(&a), without_times(&b), "hop {hop}");
+
+        let written: Value =
+            serde_json::from_str(&std::fs::read_to_string(&file).unwrap()).unwrap();
+        assert_eq!(written["schema_version"], 1);
+        assert_eq!(written["request_id"], "r00001");
+        assert_eq!(written["hop_index"].to_string(), hop);
+        assert_eq!(written["profile"], "paper");
+        assert_eq!(written["path"], a["path"]);
+        assert_eq!(written["from"], a["path"][0]);
+        assert_eq!(written["hop"], a["problem"]);
+        assert_eq!(written["end"].is_object(), ends_on_pads, "hop {hop}");
+        assert_eq!(a["objective"].get("node_time").is_some(), ends_on_pads);
+        let text = std::fs::read_to_string(&lp).unwrap();
+        assert!(
+            text.contains(&format!("\\ hop: request r00001 hop {hop}: ")),
+            "{text}"
+        );
+        assert!(text.contains("\\ reorder: paper"));
+    }
+}
+
+#[test]
+fn a_bad_hop_file_is_reported_with_its_codes_and_exit_2() {
+    let good = temp_path("good.json");
+    let out = swarmplan(&[
+        "eaas",
+        "--request-id",
+        "r00001",
+        "--hop",
+        "6",
+        "--methods",
+        "pb",
+        "--write-hop",
+        good.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{out:?}");
+    let hop: Value = serde_json::from_str(&std::fs::read_to_string(&good).unwrap()).unwrap();
+    let run = |name: &str, file: &Value| {
+        let path = temp_path(name);
+        std::fs::write(&path, file.to_string()).unwrap();
+        let out = swarmplan(&["eaas", "--hop-file", path.to_str().unwrap()]);
+        assert_eq!(out.status.code(), Some(2), "{name}: {out:?}");
+        String::from_utf8_lossy(&out.stderr).into_owned()
+    };
+    let mut unknown = hop.clone();
+    unknown["hop"]["wind"] = Value::from(3.0);
+    let err = run("unknown.json", &unknown);
+    assert!(err.contains("E4111") && err.contains("wind"), "{err}");
+    let mut version = hop.clone();
+    version["schema_version"] = Value::from(2);
+    version["new_field"] = Value::from(true);
+    let err = run("version.json", &version);
+    assert!(err.contains("E4112") && !err.contains("E4111"), "{err}");
+    let mut broken = hop.clone();
+    broken["to"] = Value::from("n000");
+    broken["hop"]["initial_slot"] = serde_json::json!([0, 0, 1]);
+    broken["end"]["pads"] = Value::from(0);
+    let err = run("broken.json", &broken);
+    for code in ["E4115", "E4003", "hop.initial_slot", "E4103", "end.pads"] {
+        assert!(err.contains(code), "{code}: {err}");
+    }
+    let path = temp_path("not-json.json");
+    std::fs::write(&path, "{\"schema_version\": 1,").unwrap();
+    let out = swarmplan(&["eaas", "--hop-file", path.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("E4111"));
+    let out = swarmplan(&[
+        "eaas",
+        "--hop-file",
+        good.to_str().unwrap(),
+        "--request-id",
+        "r00001",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("cannot be used with"));
+}

@@ -4,10 +4,14 @@
 //! ```text
 //! swarmplan eaas --request-id r001 --hop 0 --methods pb,fb,milp,fluid,fair --time-limit 10
 //! swarmplan eaas --request-id r001 --hop 1 --methods milp --reorder free --period-min 0.5 --json
+//! swarmplan eaas --request-id r001 --hop 1 --write-hop hop.json --write-lp hop.lp --methods pb
+//! swarmplan eaas --hop-file hop.json --methods pb,milp
 //! ```
 //!
 //! The request is planned as `swarmplan solve` does (PB sharing, sequential route); hop `I` of
-//! that plan (its path and departure batteries) is the hop studied. The objective is the node time
+//! that plan (its path and departure batteries) is the hop studied, or the hop of a hop file
+//! (`--hop-file`, see [`crate::eaas::hop_file`]). `--write-hop` writes the hop as a hop file,
+//! `--write-lp` the MILP of `milp` in CPLEX LP format; the methods then run as usual. The objective is the node time
 //! at the hop's end when that node has pads, else the lowest delivery arrival battery. Each
 //! method's gap is measured against the best reference available, labelled: the MILP optimum
 //! (`optimal`, over grid schedules), its incumbent after a time limit (`incumbent`), or the fluid
@@ -15,7 +19,10 @@
 
 use super::inputs::{self, InstanceArgs};
 use crate::compose::{Context, PlanOptions, Planner, RouteMethod};
-use crate::eaas::milp::{objective_of, solve_milp, ExactOutcome, ExactStatus, MilpOptions};
+use crate::eaas::hop_file::{read_hop_file, write_hop_file, HopEnd, HopFile};
+use crate::eaas::milp::{
+    objective_of, solve_milp, write_lp, ExactOutcome, ExactStatus, MilpOptions,
+};
 use crate::eaas::milp::{Objective, Reorder};
 use crate::eaas::{fluid, simulate_with, PolicyOptions, SegmentProblem, SharingPolicy, Transfer};
 use crate::error::{Error, Result};
@@ -52,11 +59,26 @@ pub struct EaasArgs {
     #[arg(long, alias = "request-file", value_name = "FILE")]
     pub requests: Option<PathBuf>,
     /// Id of the request in the request set.
-    #[arg(long, value_name = "ID")]
-    pub request_id: String,
+    #[arg(long, value_name = "ID", required_unless_present = "hop_file")]
+    pub request_id: Option<String>,
     /// Index of the hop in the request's plan (0 = the first hop).
     #[arg(long, value_name = "I", default_value_t = 0)]
     pub hop: usize,
+    /// Solve the hop of this hop file (JSON, as `--write-hop` writes it) instead of planning a
+    /// request; the profile given still sets PB's and FB's readings.
+    #[arg(
+        long,
+        value_name = "FILE",
+        conflicts_with_all = ["request_id", "requests", "hop", "network", "write_hop"]
+    )]
+    pub hop_file: Option<PathBuf>,
+    /// Write the hop as a hop file (JSON) before running the methods.
+    #[arg(long, value_name = "FILE")]
+    pub write_hop: Option<PathBuf>,
+    /// Write the hop's MILP (objective, `--reorder`, `--period-min` as for `milp`) in CPLEX LP
+    /// format before running the methods.
+    #[arg(long, value_name = "FILE")]
+    pub write_lp: Option<PathBuf>,
     /// Methods, comma-separated.
     #[arg(
         long,
@@ -133,11 +155,62 @@ pub struct EaasReport {
 /// Runs the subcommand; exit code 0.
 ///
 /// # Errors
-/// Bad input (files, request id, `--hop` out of range: `E4110`, options of the exact models), or a
-/// backend failure.
+/// Bad input (files, request id, `--hop` out of range: `E4110`, a bad hop file: `E4111`,
+/// `E4112`, `E4115` and the hop's own codes, options of the exact models), an unwritable output
+/// file, or a backend failure.
 pub fn run(args: EaasArgs) -> Result<i32> {
+    let (hop, readings) = match &args.hop_file {
+        Some(path) => {
+            let profile = args.instance.load_profile()?;
+            (read_hop_file(path)?, PolicyOptions::from(&profile.readings))
+        }
+        None => planned_hop(&args)?,
+    };
+    let objective = hop.objective();
+    if let Some(path) = &args.write_hop {
+        write_hop_file(path, &hop)?;
+        eprintln!("wrote hop file {}", path.display());
+    }
+    if let Some(path) = &args.write_lp {
+        let about = format!(
+            "request {} hop {}: {}",
+            hop.request_id,
+            hop.hop_index,
+            hop.path.join(" -> ")
+        );
+        let size = write_lp(&hop.hop, &objective, &milp_options(&args), &about, path)?;
+        eprintln!(
+            "wrote LP file {}: {} variables ({} binary), {} constraints",
+            path.display(),
+            size.variables,
+            size.binaries,
+            size.constraints
+        );
+    }
+    let rows = rows(&hop.hop, &objective, &args, &readings)?;
+    let out = EaasReport {
+        request_id: hop.request_id,
+        hop: hop.hop_index,
+        path: hop.path,
+        objective,
+        reorder: args.reorder,
+        problem: hop.hop,
+        rows,
+    };
+    if args.json {
+        super::print_json(&out)?;
+    } else {
+        print_human(&out)?;
+    }
+    Ok(0)
+}
+
+/// Plans the request as `swarmplan solve` does and takes hop `--hop` of the plan; the readings
+/// of PB and FB come from the profile.
+fn planned_hop(args: &EaasArgs) -> Result<(HopFile, PolicyOptions)> {
     let instance = args.instance.load()?;
-    let request = inputs::find_request(&instance, args.requests.as_deref(), &args.request_id)?;
+    let id = args.request_id.as_deref().unwrap_or_default();
+    let request = inputs::find_request(&instance, args.requests.as_deref(), id)?;
     let context = Context::new(&instance.network, &instance.graph, &instance.profile);
     let options = PlanOptions {
         sharing: SharingPolicy::Pb,
@@ -170,31 +243,41 @@ pub fn run(args: EaasArgs) -> Result<i32> {
     let planner = Planner::new(graph, &instance.profile, &report.swarm, SharingPolicy::Pb);
     let problem = planner.segment_problem(&path, &hop.departure_battery_mah);
     let end = nodes.last().copied().unwrap_or(0);
-    let objective = match graph.pads(end) {
-        0 => Objective::MaxMinArrival,
-        pads => Objective::NodeTime {
+    let end = match graph.pads(end) {
+        0 => None,
+        pads => Some(HopEnd {
             pads: pads as usize,
             pad_rate_mah_per_min: graph
                 .pad_rate_mah_per_min(end, instance.profile.pads.charge_rate_mah_per_min),
-        },
+        }),
     };
-    let readings = PolicyOptions::from(&instance.profile.readings);
-    let rows = rows(&problem, &objective, &args, &readings)?;
-    let out = EaasReport {
-        request_id: request.id.clone(),
-        hop: args.hop,
-        path: hop.path.clone(),
-        objective,
-        reorder: args.reorder,
-        problem,
-        rows,
-    };
-    if args.json {
-        super::print_json(&out)?;
+    let profile = if args.instance.literal {
+        format!("{} (--literal)", instance.profile.name)
     } else {
-        print_human(&out)?;
+        instance.profile.name.clone()
+    };
+    let file = HopFile {
+        schema_version: crate::eaas::hop_file::HOP_FILE_SCHEMA_VERSION,
+        request_id: request.id.clone(),
+        hop_index: args.hop,
+        from: hop.path.first().cloned().unwrap_or_default(),
+        to: hop.path.last().cloned().unwrap_or_default(),
+        path: hop.path.clone(),
+        profile: Some(profile),
+        end,
+        hop: problem,
+    };
+    Ok((file, PolicyOptions::from(&instance.profile.readings)))
+}
+
+/// Settings of the `milp` method and of `--write-lp`.
+fn milp_options(args: &EaasArgs) -> MilpOptions {
+    MilpOptions {
+        period_min: args.period_min,
+        reorder: args.reorder,
+        backend: args.backend,
+        time_limit_s: args.time_limit,
     }
-    Ok(0)
 }
 
 fn exact_row(method: HopMethod, kind: &'static str, o: ExactOutcome) -> MethodRow {
@@ -261,15 +344,11 @@ fn rows(
                     transfers: o.transfers,
                 }
             }
-            HopMethod::Milp => {
-                let opt = MilpOptions {
-                    period_min: args.period_min,
-                    reorder: args.reorder,
-                    backend: args.backend,
-                    time_limit_s: args.time_limit,
-                };
-                exact_row(m, "exact_grid", solve_milp(problem, objective, &opt)?)
-            }
+            HopMethod::Milp => exact_row(
+                m,
+                "exact_grid",
+                solve_milp(problem, objective, &milp_options(args))?,
+            ),
             HopMethod::Fluid => exact_row(
                 m,
                 "bound",

@@ -112,13 +112,7 @@ impl InstanceArgs {
             Some(p) => io::read_json(p)?,
             None => io::parse_json(EMBEDDED_NETWORK, "embedded paper-195 network")?,
         };
-        let mut profile: Profile = match &self.profile {
-            Some(p) => io::read_toml(p)?,
-            None => io::parse_toml(EMBEDDED_PROFILE, "embedded paper profile")?,
-        };
-        if self.literal {
-            profile.readings = crate::problem::profile::Readings::literal();
-        }
+        let profile = self.read_profile()?;
         let mut violations = validate::validate_network(&network);
         violations.extend(crate::problem::profile::validate_profile(&profile));
         if !violations.is_empty() {
@@ -130,6 +124,29 @@ impl InstanceArgs {
             graph,
             profile,
         })
+    }
+
+    /// Reads and validates the profile alone, for a command that needs no network.
+    pub fn load_profile(&self) -> Result<Profile> {
+        let profile = self.read_profile()?;
+        let violations = crate::problem::profile::validate_profile(&profile);
+        if violations.is_empty() {
+            Ok(profile)
+        } else {
+            Err(Error::Invalid(violations))
+        }
+    }
+
+    /// The profile given (or the embedded `paper` profile), `--literal` applied, not validated.
+    fn read_profile(&self) -> Result<Profile> {
+        let mut profile: Profile = match &self.profile {
+            Some(p) => io::read_toml(p)?,
+            None => io::parse_toml(EMBEDDED_PROFILE, "embedded paper profile")?,
+        };
+        if self.literal {
+            profile.readings = crate::problem::profile::Readings::literal();
+        }
+        Ok(profile)
     }
 }
 

@@ -32,12 +32,15 @@ use super::{
 };
 use crate::error::{Error, Result, Violation};
 use crate::node_time;
+use crate::solver::lp_file::LpCapture;
+pub use crate::solver::lp_file::LpSize;
 use crate::solver::MilpBackend;
 use good_lp::{
     constraint, variable, Expression, ProblemVariables, ResolutionError, Solution, SolutionStatus,
     SolverModel, Variable, WithTimeLimit,
 };
 use serde::{Deserialize, Serialize};
+use std::path::Path;
 use std::time::Instant;
 
 /// Largest number of periods a grid may have (guards against a tiny `period_min`).
@@ -389,6 +392,8 @@ struct Raw {
     value: f64,
     /// The backend proved optimality.
     proven: bool,
+    /// Name of every variable, in the order they were added (`y_k{k}_t{t}`, ...).
+    names: Vec<String>,
 }
 
 /// How a backend call ended.
@@ -425,24 +430,32 @@ where
         .filter(|&d| problem.drones[d].role == Role::Delivery)
         .collect();
     let open_slots: Vec<usize> = delivery.iter().map(|&d| problem.initial_slot[d]).collect();
-    let bin = |vars: &mut ProblemVariables| {
+    let bin = |vars: &mut ProblemVariables, name: String| {
         if relax {
-            vars.add(variable().min(0.0).max(1.0))
+            vars.add(variable().min(0.0).max(1.0).name(name))
         } else {
-            vars.add(variable().binary())
+            vars.add(variable().binary().name(name))
         }
     };
     let mut vars = ProblemVariables::new();
-    let y: Vec<Vec<Variable>> = mv
-        .iter()
-        .map(|_| (0..np).map(|_| bin(&mut vars)).collect())
+    let y: Vec<Vec<Variable>> = (0..mv.len())
+        .map(|k| {
+            (0..np)
+                .map(|t| bin(&mut vars, format!("y_k{k}_t{t}")))
+                .collect()
+        })
         .collect();
     // z[i][j][t]: delivery drone delivery[i] in slot open_slots[j] during t (free only).
     let z: Vec<Vec<Vec<Variable>>> = if mode == Reorder::Free {
         (0..delivery.len())
-            .map(|_| {
+            .map(|i| {
                 (0..open_slots.len())
-                    .map(|_| (0..np).map(|_| bin(&mut vars)).collect())
+                    .map(|j| {
+                        let (c, q) = (delivery[i], open_slots[j]);
+                        (0..np)
+                            .map(|t| bin(&mut vars, format!("z_c{c}_q{q}_t{t}")))
+                            .collect()
+                    })
                     .collect()
             })
             .collect()
@@ -452,9 +465,14 @@ where
     let b: Vec<Vec<Variable>> = problem
         .drones
         .iter()
-        .map(|d| {
+        .enumerate()
+        .map(|(d, drone)| {
+            // b[d][t] is the battery at grid point t + 1 (b[d][0] is the constant b_d(0)).
             (0..np)
-                .map(|_| vars.add(variable().min(0.0).max(d.capacity_mah)))
+                .map(|t| {
+                    let name = format!("b_d{d}_t{}", t + 1);
+                    vars.add(variable().min(0.0).max(drone.capacity_mah).name(name))
+                })
                 .collect()
         })
         .collect();
@@ -470,17 +488,28 @@ where
         Objective::NodeTime { pads, .. } => {
             let m = pads.min(n);
             let x: Vec<Vec<Variable>> = (0..n)
-                .map(|d| (0..=d.min(m - 1)).map(|_| bin(&mut vars)).collect())
+                .map(|d| {
+                    (0..=d.min(m - 1))
+                        .map(|i| bin(&mut vars, format!("x_d{d}_p{i}")))
+                        .collect()
+                })
                 .collect();
-            let w: Vec<Vec<Variable>> = x
-                .iter()
-                .map(|xd| xd.iter().map(|_| vars.add(variable().min(0.0))).collect())
+            let w: Vec<Vec<Variable>> = (0..n)
+                .map(|d| {
+                    (0..x[d].len())
+                        .map(|i| vars.add(variable().min(0.0).name(format!("w_d{d}_p{i}"))))
+                        .collect()
+                })
                 .collect();
-            (Some(vars.add(variable().min(0.0))), Some((x, w)))
+            (Some(vars.add(variable().min(0.0).name("M"))), Some((x, w)))
         }
-        Objective::MaxMinArrival => (Some(vars.add(variable())), None),
+        Objective::MaxMinArrival => (Some(vars.add(variable().name("g"))), None),
         Objective::Feasible => (None, None),
     };
+    let names: Vec<String> = vars
+        .iter_variables_with_def()
+        .map(|(_, def)| def.get_name().to_string())
+        .collect();
     let mut model = match (objective, goal) {
         (Objective::MaxMinArrival, Some(g)) => vars.maximise(g),
         (_, Some(g)) => vars.minimise(g),
@@ -616,6 +645,7 @@ where
             slots: (mode == Reorder::Free).then(Vec::new),
             value: objective_of(problem, objective, &replay.final_battery_mah)?,
             proven: true,
+            names,
         }));
     }
     let solution = match model.solve() {
@@ -672,6 +702,7 @@ where
         slots,
         value,
         proven,
+        names,
     }))
 }
 
@@ -922,6 +953,235 @@ pub fn solve_milp(
     }
     out.solve_ms = node_time_ms(start);
     Ok(out)
+}
+
+/// Writes the MILP [`solve_milp`] builds for this hop, objective and options (grid step,
+/// re-ordering) in CPLEX LP format, for any MILP solver.
+///
+/// The model is built by the same code as for [`solve_milp`]'s backends and handed to
+/// [`crate::solver::lp_file::LpCapture`] instead of a solver. Variables are named after
+/// `models/eaas_milp.md`: `y_k{k}_t{t}` (move `k` in period `t`, the moves listed in the
+/// header), `z_c{c}_q{q}_t{t}` (`free`: delivery drone `c` in slot `q`), `b_d{d}_t{t}` (battery
+/// at grid point `t >= 1`, mAh), `x_d{d}_p{i}`, `w_d{d}_p{i}` (drone `d` on pad `i`, its charge
+/// time there, min), `M` (node time, min), `g` (lowest delivery arrival battery, mAh). The
+/// objective is the variable `M` or `g` (0 for feasibility) with no constant, so the file's
+/// optimum is [`ExactOutcome::model_objective`].
+///
+/// # Arguments
+/// * `problem` - the hop.
+/// * `objective` - node time at the hop's end, lowest delivery arrival battery, or feasibility.
+/// * `options` - grid step and re-ordering mode (backend and time limit are not used, the time
+///   limit must still be valid).
+/// * `about` - one line naming the hop for the file's header, such as
+///   `request r00001 hop 0: n000 -> n012`.
+///
+/// # Returns
+/// The LP text, whose header comment states the hop, objective, re-ordering, grid, the moves
+/// and that the optimum is optimal over full-period schedules on this grid, and its size.
+///
+/// # Errors
+/// Those of [`solve_milp`] for bad input (`E4001`-`E4012`, `E4101`-`E4105`); `E4116` for a hop
+/// with no period (every leg of zero duration: the model has no schedule to write);
+/// [`Error::Backend`] if the model cannot be captured.
+pub fn lp_text(
+    problem: &SegmentProblem,
+    objective: &Objective,
+    options: &MilpOptions,
+    about: &str,
+) -> Result<(String, LpSize)> {
+    validate_inputs(problem, objective, options.time_limit_s)?;
+    let grid = Grid::new(problem, options.period_min)?;
+    if grid.periods() == 0 {
+        return Err(Error::invalid(
+            "E4116",
+            "hop.legs",
+            "every leg has zero duration: the MILP has no period",
+            "export a hop that flies for some time",
+        ));
+    }
+    let capture = LpCapture::new();
+    let solved = solve_with(
+        capture.solver(),
+        "lp-file",
+        problem,
+        &grid,
+        options.reorder,
+        objective,
+        false,
+        options.time_limit_s,
+    )?;
+    let lost = |what: &str| Error::Backend {
+        backend: "lp-file".into(),
+        message: format!("the model was not captured ({what})"),
+    };
+    let Solved::Values(raw) = solved else {
+        return Err(lost("no values"));
+    };
+    let mut model = capture.take().ok_or_else(|| lost("empty capture"))?;
+    model.rename(&raw.names)?;
+    let size = model.size();
+    let header = lp_header(problem, objective, options, &grid, about, &size);
+    Ok((model.to_lp("swarmplan_hop_milp", &header), size))
+}
+
+/// Writes [`lp_text`] to `path`.
+///
+/// # Arguments
+/// As [`lp_text`], and `path`, the file to write (replaced if it exists).
+///
+/// # Returns
+/// The size of the model written.
+///
+/// # Errors
+/// Those of [`lp_text`]; [`Error::Io`] when the file cannot be written.
+///
+/// # Example
+/// ```
+/// use swarmplan::eaas::*;
+/// use swarmplan::eaas::milp::{write_lp, MilpOptions, Objective};
+/// use nalgebra::Vector2;
+/// let p = SegmentProblem {
+///     legs: vec![Leg { duration_min: 3.0, rate_mah_per_min: vec![vec![10.0, 10.0], vec![5.0, 5.0]] }],
+///     drones: vec![
+///         DroneState { role: Role::Delivery, capacity_mah: 200.0, battery_mah: 80.0 },
+///         DroneState { role: Role::Support, capacity_mah: 500.0, battery_mah: 500.0 },
+///     ],
+///     slots_m: vec![Vector2::new(0.0, 0.0), Vector2::new(1.0, 0.0)],
+///     initial_slot: vec![0, 1],
+///     rho_mah_per_min: 4.0, range_m: 1.2, gamma_mah: 50.0, lambda_mah: 20.0, delta_mah: 100.0,
+/// };
+/// let path = std::env::temp_dir().join("swarmplan_doc_example.lp");
+/// let size = write_lp(&p, &Objective::MaxMinArrival, &MilpOptions::default(), "example", &path).unwrap();
+/// // One move (support 1 serves 0) in 3 periods: 3 binaries.
+/// assert_eq!(size.binaries, 3);
+/// assert!(std::fs::read_to_string(&path).unwrap().contains("y_k0_t2"));
+/// ```
+pub fn write_lp(
+    problem: &SegmentProblem,
+    objective: &Objective,
+    options: &MilpOptions,
+    about: &str,
+    path: &Path,
+) -> Result<LpSize> {
+    let (text, size) = lp_text(problem, objective, options, about)?;
+    std::fs::write(path, text).map_err(|source| Error::Io {
+        path: path.display().to_string(),
+        source,
+    })?;
+    Ok(size)
+}
+
+/// Comment lines opening an exported LP file.
+fn lp_header(
+    problem: &SegmentProblem,
+    objective: &Objective,
+    options: &MilpOptions,
+    grid: &Grid,
+    about: &str,
+    size: &LpSize,
+) -> Vec<String> {
+    let n = problem.drones.len();
+    let supports = (0..n)
+        .filter(|&d| problem.drones[d].role == Role::Support)
+        .count();
+    let tt: f64 = problem.legs.iter().map(|l| l.duration_min).sum();
+    let goal = match *objective {
+        Objective::NodeTime {
+            pads,
+            pad_rate_mah_per_min,
+        } => format!(
+            "node_time, pads = {pads}, pad_rate_mah_per_min = {pad_rate_mah_per_min}: \
+             minimise M, the node time at the hop's end, min"
+        ),
+        Objective::MaxMinArrival => {
+            "max_min_arrival: maximise g, the lowest delivery arrival battery, mAh".to_string()
+        }
+        Objective::Feasible => "feasible: minimise 0, any schedule that flies".to_string(),
+    };
+    let mut out = vec![
+        "swarmplan: time-indexed sharing MILP of one hop (models/eaas_milp.md), CPLEX LP format"
+            .to_string(),
+        format!(
+            "hop: {about}; {} leg(s), tt = {tt} min, {n} drones ({} delivery, {supports} support)",
+            problem.legs.len(),
+            n - supports
+        ),
+        format!("objective: {goal}"),
+        "objective constant: 0 (the optimum of this file is the MILP's model objective)"
+            .to_string(),
+        format!("reorder: {}", options.reorder.name()),
+        format!(
+            "grid: period_min = {}, grid_step_min = {}, periods = {}",
+            options.period_min,
+            grid.step_min(),
+            grid.periods()
+        ),
+        "optimal over full-period schedules on this grid (a transfer runs for whole periods), \
+         not over every continuous-time schedule"
+            .to_string(),
+        format!(
+            "size: {} variables ({} binary), {} constraints ({} without variables that always \
+             hold left out)",
+            size.variables, size.binaries, size.constraints, size.trivial_constraints_left_out
+        ),
+        "variables: y_k{k}_t{t} move k runs in period t; b_d{d}_t{t} battery of drone d at grid \
+         point t >= 1, mAh (t = 0 is the departure battery, a constant)"
+            .to_string(),
+    ];
+    if options.reorder == Reorder::Free {
+        out.push(
+            "variables: z_c{c}_q{q}_t{t} delivery drone c flies in slot q during period t".into(),
+        );
+    }
+    match objective {
+        Objective::NodeTime { .. } => out.push(
+            "variables: x_d{d}_p{i} drone d charges on pad i; w_d{d}_p{i} its charge time on \
+             pad i, min; M node time, min"
+                .into(),
+        ),
+        Objective::MaxMinArrival => {
+            out.push("variables: g lowest delivery arrival battery, mAh".into())
+        }
+        Objective::Feasible => {}
+    }
+    out.push("periods (t, leg l, [start, end) min):".into());
+    let mut t = 0;
+    while t < grid.periods() {
+        let l = grid.leg[t];
+        let e = (t..grid.periods())
+            .find(|&e| grid.leg[e] != l)
+            .unwrap_or(grid.periods());
+        let span = if e - t == 1 {
+            format!("t{t}")
+        } else {
+            format!("t{t}..t{}", e - 1)
+        };
+        out.push(format!(
+            "  {span}: leg {l}, [{}, {}), {} period(s) of {} min",
+            grid.points_min[t],
+            grid.points_min[e],
+            e - t,
+            grid.len_min(t)
+        ));
+        t = e;
+    }
+    out.push(
+        "moves (k: support s serves consumer c flying in slot q; p the swap partner holding c's \
+         slot):"
+            .into(),
+    );
+    for (k, m) in moves(problem, options.reorder).iter().enumerate() {
+        let slot = if options.reorder == Reorder::Free {
+            "slot from z".to_string()
+        } else {
+            format!("q{}", m.slot)
+        };
+        out.push(match m.partner {
+            Some(p) => format!("  k{k}: s{} c{} {slot} p{p}", m.support, m.consumer),
+            None => format!("  k{k}: s{} c{} {slot}", m.support, m.consumer),
+        });
+    }
+    out
 }
 
 fn node_time_ms(start: Instant) -> f64 {

@@ -23,6 +23,7 @@ use serde::{Deserialize, Serialize};
 pub mod exact_hop;
 mod fb;
 pub mod fluid;
+pub mod hop_file;
 pub mod milp;
 mod none;
 mod pb;

@@ -3,8 +3,11 @@
 //! Backends are chosen by enum, never by string: `microlp` (pure Rust, default) and, with the
 //! `highs` feature, HiGHS. Convex models use clarabel directly. An outcome (optimal, feasible with
 //! an incumbent after a limit, infeasible) is data; `Err` is for bad input and broken backends.
+//! [`lp_file`] writes a good_lp model in CPLEX LP format instead of solving it.
 
 use serde::Serialize;
+
+pub mod lp_file;
 
 /// MILP backend.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, clap::ValueEnum)]

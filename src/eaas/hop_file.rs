@@ -1,0 +1,181 @@
+//! Hop files: one hop's sharing problem as JSON, so that it can be solved again, changed or
+//! handed to others without the network, the request and the planner that produced it.
+//!
+//! ```json
+//! {"schema_version": 1, "request_id": "r00001", "hop_index": 0, "from": "n000", "to": "n012",
+//!  "path": ["n000", "n007", "n012"], "profile": "paper",
+//!  "end": {"pads": 3, "pad_rate_mah_per_min": 100.0},
+//!  "hop": { ...a SegmentProblem... }}
+//! ```
+//!
+//! `end` holds the pads at the hop's end node, or is `null` (or absent) when that node has none,
+//! as at a request's destination; it decides the objective of the exact models
+//! ([`HopFile::objective`]). The other fields besides `hop` record where the hop comes from.
+//! Unknown fields are rejected; codes `E4111` (unreadable file), `E4112` (schema version),
+//! `E4115` (path and ends disagree), and the hop's and the end's own rules (`E4001`-`E4013`,
+//! `E4103`, `E4104`) under `hop.` and `end.`.
+
+use super::milp::{validate_objective, Objective};
+use super::{validate, SegmentProblem};
+use crate::error::{Error, Result, Violation};
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+/// The only schema version of hop files.
+pub const HOP_FILE_SCHEMA_VERSION: u32 = 1;
+
+/// Pads at the node ending a hop.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HopEnd {
+    /// Number of pads `k`.
+    pub pads: usize,
+    /// Charging rate of a pad, mAh/min.
+    pub pad_rate_mah_per_min: f64,
+}
+
+/// One hop of a request's plan, with where it comes from.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HopFile {
+    /// Must equal [`HOP_FILE_SCHEMA_VERSION`].
+    pub schema_version: u32,
+    /// Id of the request whose plan holds the hop.
+    pub request_id: String,
+    /// Index of the hop in that plan (0 = the first hop).
+    pub hop_index: usize,
+    /// Node the hop leaves from.
+    pub from: String,
+    /// Node the hop ends at.
+    pub to: String,
+    /// Node ids flown over, `from` first and `to` last.
+    pub path: Vec<String>,
+    /// Name of the parameter profile the hop was built with, when known.
+    #[serde(default)]
+    pub profile: Option<String>,
+    /// Pads at `to`, or `None` when it has none (a request's destination).
+    pub end: Option<HopEnd>,
+    /// The hop's sharing problem.
+    pub hop: SegmentProblem,
+}
+
+impl HopFile {
+    /// The objective of the exact models on this hop: the node time on `end`'s pads, or the
+    /// lowest delivery arrival battery when the hop ends without pads.
+    pub fn objective(&self) -> Objective {
+        match self.end {
+            Some(e) => Objective::NodeTime {
+                pads: e.pads,
+                pad_rate_mah_per_min: e.pad_rate_mah_per_min,
+            },
+            None => Objective::MaxMinArrival,
+        }
+    }
+
+    /// Every broken rule of the file, each field named from the file's top level.
+    pub fn violations(&self) -> Vec<Violation> {
+        let mut v = Vec::new();
+        if self.schema_version != HOP_FILE_SCHEMA_VERSION {
+            v.push(version_violation(self.schema_version));
+        }
+        if self.path.first() != Some(&self.from) || self.path.last() != Some(&self.to) {
+            v.push(Violation::new(
+                "E4115",
+                "path",
+                format!(
+                    "path {:?} does not lead from `{}` to `{}`",
+                    self.path, self.from, self.to
+                ),
+                "give the node ids flown over, `from` first and `to` last",
+            ));
+        }
+        let prefixed = |e: Error, prefix: &str| match e {
+            Error::Invalid(list) => list
+                .into_iter()
+                .map(|mut x| {
+                    x.field = format!("{prefix}.{}", x.field);
+                    x
+                })
+                .collect(),
+            other => vec![Violation::new(
+                "E4111",
+                prefix,
+                other.to_string(),
+                "check the file",
+            )],
+        };
+        if let Err(e) = validate(&self.hop) {
+            v.extend(prefixed(e, "hop"));
+        }
+        if let Err(e) = validate_objective(&self.objective()) {
+            v.extend(prefixed(e, "end"));
+        }
+        v
+    }
+}
+
+fn version_violation(version: u32) -> Violation {
+    Violation::new(
+        "E4112",
+        "schema_version",
+        format!("schema_version is {version}, this build reads {HOP_FILE_SCHEMA_VERSION}"),
+        format!(
+            "write the hop again with this build's `swarmplan eaas --write-hop`, or set \
+             schema_version to {HOP_FILE_SCHEMA_VERSION} after checking the file against README.md"
+        ),
+    )
+}
+
+/// Reads and checks a hop file.
+///
+/// # Arguments
+/// * `path` - the JSON file, as [`write_hop_file`] writes it.
+///
+/// # Returns
+/// The hop file, its hop valid for every sharing policy and exact model.
+///
+/// # Errors
+/// [`Error::Io`] when the file cannot be read; [`Error::Invalid`] with `E4111` for malformed
+/// JSON, an unknown, missing or mistyped field (line and column), `E4112` alone for another
+/// schema version, else every violation of [`HopFile::violations`] at once.
+pub fn read_hop_file(path: &Path) -> Result<HopFile> {
+    let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
+        path: path.display().to_string(),
+        source,
+    })?;
+    let unreadable = |e: serde_json::Error| {
+        Error::invalid(
+            "E4111",
+            path.display().to_string(),
+            format!("not a hop file: {e}"),
+            "write hop files with `swarmplan eaas --write-hop`; see README.md for the fields",
+        )
+    };
+    // The version first: another version may have other fields.
+    #[derive(Deserialize)]
+    struct Version {
+        schema_version: Option<u32>,
+    }
+    let version: Version = serde_json::from_str(&text).map_err(unreadable)?;
+    if let Some(v) = version
+        .schema_version
+        .filter(|&v| v != HOP_FILE_SCHEMA_VERSION)
+    {
+        return Err(Error::Invalid(vec![version_violation(v)]));
+    }
+    let file: HopFile = serde_json::from_str(&text).map_err(unreadable)?;
+    let violations = file.violations();
+    if violations.is_empty() {
+        Ok(file)
+    } else {
+        Err(Error::Invalid(violations))
+    }
+}
+
+/// Writes a hop file as pretty JSON.
+///
+/// # Errors
+/// [`Error::Io`] when the file cannot be written.
+pub fn write_hop_file(path: &Path, file: &HopFile) -> Result<()> {
+    crate::problem::io::write_json(path, file)
+}
