@@ -4,7 +4,7 @@
 //!
 //! ```text
 //! cargo run --release --example hop_gaps -- [--profile F] [--network F] [--requests F] \
-//!     [--limit N] [--time-limit S] [--period-min X] [--threads T] [--csv FILE]
+//!     [--limit N] [--time-limit S] [--period-min X] [--backend B] [--threads T] [--csv FILE]
 //! ```
 //!
 //! Defaults: the `fast-sharing` profile, the paper-195 network, its first 1,000 requests, 3 s per
@@ -61,6 +61,9 @@ struct Args {
     /// Longest period of the MILP's grid, minutes.
     #[arg(long, default_value_t = 1.0)]
     period_min: f64,
+    /// MILP backend [default: the first of the build].
+    #[arg(long, value_enum)]
+    backend: Option<MilpBackend>,
     /// Worker threads (each takes the next request of the file; the output does not depend on it,
     /// except through the wall-clock time limits).
     #[arg(long, default_value_t = 1)]
@@ -176,7 +179,7 @@ fn run(args: &Args) -> Result<()> {
     requests.truncate(args.limit);
     validate_requests(&instance, &requests)?;
     let threads = args.threads.max(1);
-    let backend = MilpBackend::all()[0];
+    let backend = args.backend.unwrap_or(MilpBackend::all()[0]);
     let milp = MilpOptions {
         period_min: args.period_min,
         reorder: Reorder::Paper,
