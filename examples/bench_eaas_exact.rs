@@ -99,13 +99,14 @@ fn main() {
         "backend {}, time limit {time_limit_s} s per solve, 3 hops per row",
         backend.name()
     );
-    println!("| D | S | periods | reorder | milp median ms | statuses (opt/feas/infeas/none) | fluid median ms |");
-    println!("|---|---|---|---|---|---|---|");
+    println!("| D | S | periods | reorder | milp median ms | statuses (opt/feas/infeas/none) | fluid median ms | fair QP median ms |");
+    println!("|---|---|---|---|---|---|---|---|");
     for &(nd, ns, periods) in &sizes {
         {
             for reorder in [Reorder::None, Reorder::Paper, Reorder::Free] {
                 let mut rng = ChaCha8Rng::seed_from_u64(1000 + 10 * nd as u64 + ns as u64);
-                let (mut ms, mut fl, mut counts) = (Vec::new(), Vec::new(), [0usize; 4]);
+                let (mut ms, mut fl, mut fq, mut counts) =
+                    (Vec::new(), Vec::new(), Vec::new(), [0usize; 4]);
                 for _ in 0..3 {
                     let p = hop(&mut rng, nd, ns, periods);
                     let o = solve_milp(
@@ -128,16 +129,19 @@ fn main() {
                     }] += 1;
                     let f = fluid::bound(&p, &objective, reorder, time_limit_s).expect("valid hop");
                     fl.push(f.solve_ms);
+                    let q = fluid::fair(&p, &objective, reorder, time_limit_s).expect("valid hop");
+                    fq.push(q.solve_ms);
                 }
                 println!(
-                    "| {nd} | {ns} | {periods} | {} | {:.1} | {}/{}/{}/{} | {:.2} |",
+                    "| {nd} | {ns} | {periods} | {} | {:.1} | {}/{}/{}/{} | {:.2} | {:.2} |",
                     reorder.name(),
                     median(ms),
                     counts[0],
                     counts[1],
                     counts[2],
                     counts[3],
-                    median(fl)
+                    median(fl),
+                    median(fq)
                 );
             }
         }
