@@ -191,3 +191,33 @@ fn a_bad_hop_file_is_reported_with_its_codes_and_exit_2() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("cannot be used with"));
 }
+
+#[test]
+fn a_hop_into_a_destination_with_pads_is_scored_by_arrival_battery_not_node_time() {
+    // r00000 (paper-195) flies n179 -> n049 without stopping; n049 has 2 pads, but the swarm
+    // delivers there and does not recharge, so the hop has no node time.
+    let file = temp_path("r00000-0.json");
+    let out = swarmplan(&[
+        "eaas",
+        "--request-id",
+        "r00000",
+        "--hop",
+        "0",
+        "--methods",
+        "pb",
+        "--json",
+        "--write-hop",
+        file.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{out:?}");
+    let a: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(a["path"].as_array().unwrap().last().unwrap(), "n049", "{a}");
+    assert!(
+        a["objective"].get("node_time").is_none(),
+        "{}",
+        a["objective"]
+    );
+    assert_eq!(a["objective"], "max_min_arrival", "{}", a["objective"]);
+    let written: Value = serde_json::from_str(&std::fs::read_to_string(&file).unwrap()).unwrap();
+    assert!(written["end"].is_null(), "{}", written["end"]);
+}

@@ -12,7 +12,7 @@
 //! that plan (its path and departure batteries) is the hop studied, or the hop of a hop file
 //! (`--hop-file`, see [`crate::eaas::hop_file`]). `--write-hop` writes the hop as a hop file,
 //! `--write-lp` the MILP of `milp` in CPLEX LP format; the methods then run as usual. The objective is the node time
-//! at the hop's end when that node has pads, else the lowest delivery arrival battery. Each
+//! at the hop's end when the plan stops there, else (the destination) the lowest delivery arrival battery. Each
 //! method's gap is measured against the best reference available, labelled: the MILP optimum
 //! (`optimal`, over grid schedules), its incumbent after a time limit (`incumbent`), or the fluid
 //! LP bound (`bound`).
@@ -243,7 +243,13 @@ fn planned_hop(args: &EaasArgs) -> Result<(HopFile, PolicyOptions)> {
     let planner = Planner::new(graph, &instance.profile, &report.swarm, SharingPolicy::Pb);
     let problem = planner.segment_problem(&path, &hop.departure_battery_mah);
     let end = nodes.last().copied().unwrap_or(0);
-    let end = match graph.pads(end) {
+    // A plan's hop without a stop ends at the destination: no node time there, whatever its pads.
+    let pads = if hop.stop.is_some() {
+        graph.pads(end)
+    } else {
+        0
+    };
+    let end = match pads {
         0 => None,
         pads => Some(HopEnd {
             pads: pads as usize,
