@@ -12,6 +12,7 @@ use swarmplan::network::SkywayGraph;
 use swarmplan::precompose::Positioning;
 use swarmplan::problem::io::{read_json, read_toml};
 use swarmplan::problem::{Network, Profile, Request, RequestSet};
+use swarmplan::solver::MilpBackend;
 
 const TOL: f64 = 1e-6;
 
@@ -64,7 +65,7 @@ fn plan_checked(
 /// 252.78 mAh to the 0.44 kg drone: ct 6.1122 and 11.1678, best split {6.655, 6.655} | {6.1122,
 /// 11.1678} = 17.28. The direct flight A -> B needs 331 + 331 + 728 = 1390 mAh of sharing, more
 /// than 120 x 10 = 1200 (and the support budget 2000 - 1728 - 50 = 222): no schedule flies it.
-/// So dt = 5 + 15.295 + 5 = 25.295 under exact and fair, 27.28 under PB.
+/// So dt = 5 + 15.295 + 5 = 25.295 under exact (on every backend) and fair, 27.28 under PB.
 #[test]
 fn exact_and_fair_routes_reach_the_half_total_charge_bound_where_pb_overshares() {
     let dir = root().join("instances/tiny");
@@ -82,7 +83,10 @@ fn exact_and_fair_routes_reach_the_half_total_charge_bound_where_pb_overshares()
         (SharingPolicy::Exact, 25.295),
         (SharingPolicy::Fair, 25.295),
     ];
-    for route in RouteMethod::ALL {
+    for (route, backend) in RouteMethod::ALL
+        .into_iter()
+        .flat_map(|r| MilpBackend::all().into_iter().map(move |b| (r, b)))
+    {
         for (sharing, dt) in expected {
             let options = PlanOptions {
                 sharing,
@@ -96,7 +100,10 @@ fn exact_and_fair_routes_reach_the_half_total_charge_bound_where_pb_overshares()
                 &profile,
                 &request,
                 &options,
-                ExactSettings::default(),
+                ExactSettings {
+                    backend,
+                    ..ExactSettings::default()
+                },
             );
             let p = &r.plan;
             assert!(p.success, "{options:?}: {:?}", p.failure);
