@@ -94,17 +94,11 @@ fn exact_and_fair_routes_reach_the_half_total_charge_bound_where_pb_overshares()
                 route,
                 support: Some(1),
             };
-            let r = plan_checked(
-                &network,
-                &graph,
-                &profile,
-                &request,
-                &options,
-                ExactSettings {
-                    backend,
-                    ..ExactSettings::default()
-                },
-            );
+            let r = plan_checked(&network, &graph, &profile, &request, &options, {
+                let mut settings = ExactSettings::default();
+                settings.milp.backend = backend;
+                settings
+            });
             let p = &r.plan;
             assert!(p.success, "{options:?}: {:?}", p.failure);
             assert_eq!(p.stops(), ["M"], "{options:?}");

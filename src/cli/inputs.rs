@@ -2,7 +2,7 @@
 //! shipped paper-195 instance and `paper` profile embedded in the binary are used.
 
 use crate::eaas::exact_hop::{ExactSettings, DEFAULT_HOP_TIME_LIMIT_S};
-use crate::eaas::milp::Reorder;
+use crate::eaas::milp::{MilpOptions, Reorder};
 use crate::error::{Error, Result, Violation};
 use crate::network::SkywayGraph;
 use crate::problem::{io, validate, Network, Profile, Request, RequestSet};
@@ -86,10 +86,12 @@ impl ExactArgs {
             return Err(Error::Invalid(v));
         }
         Ok(ExactSettings {
-            period_min: self.period_min,
-            reorder: self.reorder,
-            backend: self.backend,
-            time_limit_s: self.hop_time_limit_s,
+            milp: MilpOptions {
+                period_min: self.period_min,
+                reorder: self.reorder,
+                backend: self.backend,
+                time_limit_s: self.hop_time_limit_s,
+            },
             prune_candidates: true,
         })
     }

@@ -37,8 +37,8 @@ impl Planner<'_> {
             let nt_bound = match fluid::bound(
                 &problem,
                 &objective,
-                settings.reorder,
-                settings.time_limit_s,
+                settings.milp.reorder,
+                settings.milp.time_limit_s,
             ) {
                 Ok(o) if o.status == ExactStatus::Infeasible => continue,
                 Ok(o) => o.bound.unwrap_or(0.0).max(0.0),

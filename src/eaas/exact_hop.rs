@@ -12,23 +12,18 @@
 use super::milp::{solve_milp, ExactStatus, MilpOptions, Objective, Reorder};
 use super::{fluid, simulate_with, PolicyOptions, SegmentOutcome, SegmentProblem, SharingPolicy};
 use crate::error::{Error, Result};
-use crate::solver::MilpBackend;
 use serde::{Deserialize, Serialize};
 
 /// Default wall-clock limit of one hop solve inside a route, seconds.
 pub const DEFAULT_HOP_TIME_LIMIT_S: f64 = 10.0;
 
 /// Settings of the exact and fair policies.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ExactSettings {
-    /// Longest period of the MILP's grid, minutes.
-    pub period_min: f64,
-    /// Re-ordering mode (`paper` or `none`; a `free` schedule is not always a set of transfers).
-    pub reorder: Reorder,
-    /// MILP backend.
-    pub backend: MilpBackend,
-    /// Wall-clock limit of each hop solve, seconds.
-    pub time_limit_s: f64,
+    /// Grid step, re-ordering (`paper` or `none`: a `free` schedule is not always a set of
+    /// transfers), backend and the time limit of each hop solve (the fair QP uses the last two of
+    /// its own: re-ordering and time limit).
+    pub milp: MilpOptions,
     /// Algorithm 1: skip candidate stops whose lower bound (`tt` + the fluid LP's node-time
     /// bound) exceeds the best cost found (default). `false` solves every candidate, the
     /// brute-force cross-check of the pruning (`models/compose.md`).
@@ -38,10 +33,10 @@ pub struct ExactSettings {
 impl Default for ExactSettings {
     fn default() -> Self {
         ExactSettings {
-            period_min: 1.0,
-            reorder: Reorder::Paper,
-            backend: MilpBackend::all()[0],
-            time_limit_s: DEFAULT_HOP_TIME_LIMIT_S,
+            milp: MilpOptions {
+                time_limit_s: DEFAULT_HOP_TIME_LIMIT_S,
+                ..MilpOptions::default()
+            },
             prune_candidates: true,
         }
     }
@@ -199,7 +194,8 @@ pub fn fly_exact(
     objective: &Objective,
     settings: &ExactSettings,
 ) -> Result<(SegmentOutcome, HopSolve)> {
-    if settings.reorder == Reorder::Free {
+    let milp = &settings.milp;
+    if milp.reorder == Reorder::Free {
         return Err(Error::invalid(
             "E4113",
             "--reorder",
@@ -213,22 +209,13 @@ pub fn fly_exact(
         _ => HopGoal::Feasible,
     };
     let solved = match policy {
-        SharingPolicy::Exact => match solve_milp(
-            problem,
-            objective,
-            &MilpOptions {
-                period_min: settings.period_min,
-                reorder: settings.reorder,
-                backend: settings.backend,
-                time_limit_s: settings.time_limit_s,
-            },
-        ) {
+        SharingPolicy::Exact => match solve_milp(problem, objective, milp) {
             Ok(o) => Ok(o),
             Err(Error::Backend { backend, message }) => Err(format!("{backend}: {message}")),
             Err(e) => return Err(e),
         },
         SharingPolicy::Fair => {
-            match fluid::fair(problem, objective, settings.reorder, settings.time_limit_s) {
+            match fluid::fair(problem, objective, milp.reorder, milp.time_limit_s) {
                 Ok(o) => Ok(o),
                 Err(Error::Backend { backend, message }) => Err(format!("{backend}: {message}")),
                 Err(e) => return Err(e),
