@@ -40,7 +40,7 @@ impl Default for ExactSettings {
         ExactSettings {
             period_min: 1.0,
             reorder: Reorder::Paper,
-            backend: MilpBackend::all()[0],
+            backend: MilpBackend::default(),
             time_limit_s: DEFAULT_HOP_TIME_LIMIT_S,
             prune_candidates: true,
         }
