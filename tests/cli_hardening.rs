@@ -1,0 +1,188 @@
+//! Hardening regressions (issue 14) from the command line: every quantity of a network and a
+//! profile in its stated range. Each reproducer exits 2 with its code, fast.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn swarmplan(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_swarmplan"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+fn repo(path: &str) -> String {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join(path)
+        .to_str()
+        .unwrap()
+        .to_string()
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli_hardening");
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+fn write(name: &str, text: &[u8]) -> String {
+    let path = tmp(name);
+    std::fs::write(&path, text).unwrap();
+    path.to_str().unwrap().to_string()
+}
+
+fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).to_string()
+}
+
+/// Asserts exit code 2 and that stderr names `code` and every one of `words`.
+fn assert_exit_2_with(out: &Output, code: &str, words: &[&str]) {
+    let err = stderr(out);
+    assert_eq!(out.status.code(), Some(2), "{code}: {err}");
+    assert!(err.contains(&format!("[{code}]")), "{code} missing: {err}");
+    for w in words {
+        assert!(err.contains(w), "{code}: '{w}' missing: {err}");
+    }
+}
+
+/// flat-stop (A - M - B, 2500 m each, pads at M) with one node or segment field replaced.
+fn flat_stop_with(name: &str, from: &str, to: &str) -> String {
+    let text = std::fs::read_to_string(repo("instances/tiny/flat-stop.json")).unwrap();
+    assert!(text.contains(from), "{from}");
+    write(name, text.replacen(from, to, 1).as_bytes())
+}
+
+/// The flat profile with one line replaced.
+fn flat_profile_with(name: &str, from: &str, to: &str) -> String {
+    let text = std::fs::read_to_string(repo("instances/tiny/flat.toml")).unwrap();
+    assert!(text.contains(from), "{from}");
+    write(name, text.replacen(from, to, 1).as_bytes())
+}
+
+fn solve_a_to_b(network: &str, profile: &str, extra: &[&str]) -> Output {
+    let mut args = vec![
+        "solve",
+        "--network",
+        network,
+        "--profile",
+        profile,
+        "--from",
+        "A",
+        "--to",
+        "B",
+        "--packages",
+        "0.21,0.21,0.44",
+    ];
+    args.extend_from_slice(extra);
+    swarmplan(&args)
+}
+
+#[test]
+fn network_quantities_beyond_their_stated_ranges_exit_2_with_codes() {
+    let profile = repo("instances/tiny/flat.toml");
+    let segment = r#"{ "from": "A", "to": "M", "wind_speed_mps""#;
+    let cases: [(&str, String, &str, &[&str]); 7] = [
+        (
+            "x 1e308",
+            flat_stop_with("x1e308.json", r#""x_m": 2500.0"#, r#""x_m": 1e308"#),
+            "E1106",
+            &["nodes[1].x_m", "[-1e7, 1e7] m"],
+        ),
+        (
+            "distance 1e308 (was: E5004 charge time inf)",
+            flat_stop_with(
+                "d1e308.json",
+                segment,
+                r#"{ "from": "A", "to": "M", "distance_m": 1e308, "wind_speed_mps""#,
+            ),
+            "E1208",
+            &["segments[0].distance_m", "(0, 1e6] m"],
+        ),
+        (
+            "distance 1e200 (was: destination not connected)",
+            flat_stop_with(
+                "d1e200.json",
+                segment,
+                r#"{ "from": "A", "to": "M", "distance_m": 1e200, "wind_speed_mps""#,
+            ),
+            "E1208",
+            &["segments[0].distance_m", "1e200"],
+        ),
+        (
+            "Euclidean length 2e6 m",
+            flat_stop_with("far.json", r#""x_m": 5000.0"#, r#""x_m": 2000000.0"#),
+            "E1208",
+            &["segments[1].distance_m", "Euclidean"],
+        ),
+        (
+            "pad rate 1e-300",
+            flat_stop_with(
+                "rate.json",
+                r#""pads": 2 }"#,
+                r#""pads": 2, "pad_charge_rate_mah_per_min": 1e-300 }"#,
+            ),
+            "E1107",
+            &["nodes[1].pad_charge_rate_mah_per_min", "[0.1, 1e6]"],
+        ),
+        (
+            "pads 4294967295",
+            flat_stop_with("pads.json", r#""pads": 2"#, r#""pads": 4294967295"#),
+            "E1108",
+            &["nodes[1].pads", "1000"],
+        ),
+        (
+            "y -2e7",
+            flat_stop_with(
+                "y.json",
+                r#""y_m": 0.0, "pads": 2"#,
+                r#""y_m": -2e7, "pads": 2"#,
+            ),
+            "E1106",
+            &["nodes[1].y_m"],
+        ),
+    ];
+    for (what, network, code, words) in cases {
+        let out = solve_a_to_b(&network, &profile, &["--sharing", "none"]);
+        assert_exit_2_with(&out, code, words);
+        let _ = what;
+    }
+}
+
+#[test]
+fn profile_quantities_beyond_their_stated_ranges_exit_2_with_e2013() {
+    let network = repo("instances/tiny/flat-stop.json");
+    let cases = [
+        // Was E4007 on legs[2] from inside the planner.
+        ("speed_kmh = 30.0", "speed_kmh = 1e-300", "drone.speed_kmh"),
+        (
+            "battery_mah = 1000.0",
+            "battery_mah = 1e308",
+            "drone.battery_mah",
+        ),
+        (
+            "lambda_mah = 1200.0",
+            "lambda_mah = 0.01",
+            "sharing.lambda_mah",
+        ),
+        (
+            "extra_batteries = 1",
+            "extra_batteries = 65",
+            "support.extra_batteries",
+        ),
+        (
+            "charge_rate_mah_per_min = 100.0",
+            "charge_rate_mah_per_min = 1e-9",
+            "pads.charge_rate_mah_per_min",
+        ),
+        (
+            "endurance_min = 10.0",
+            "endurance_min = 1e300",
+            "energy.endurance_min",
+        ),
+    ];
+    for (from, to, field) in cases {
+        let profile = flat_profile_with("p.toml", from, to);
+        let out = solve_a_to_b(&network, &profile, &["--sharing", "fb"]);
+        assert_exit_2_with(&out, "E2013", &[field, "stated range"]);
+    }
+}
