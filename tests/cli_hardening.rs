@@ -1,5 +1,5 @@
 //! Hardening regressions (issue 14) from the command line: every quantity of a network and a
-//! profile in its stated range. Each reproducer exits 2 with its code, fast.
+//! profile in its stated range, and FB's work bound. Each reproducer exits 2 with its code, fast.
 
 use std::path::PathBuf;
 use std::process::{Command, Output};
@@ -185,4 +185,21 @@ fn profile_quantities_beyond_their_stated_ranges_exit_2_with_e2013() {
         let out = solve_a_to_b(&network, &profile, &["--sharing", "fb"]);
         assert_exit_2_with(&out, "E2013", &[field, "stated range"]);
     }
+}
+
+#[test]
+fn fb_with_a_tiny_lambda_ends_with_e4015_instead_of_running_for_minutes() {
+    // lambda = 1 mAh at rho = 120 mAh/min: a round of 0.5 s, 600 rounds per support drone on a
+    // 5-minute hop; 4 support drones ask for 2,400 rounds, over the bound of 500.
+    let network = repo("instances/tiny/flat-stop.json");
+    let profile = flat_profile_with("lambda1.toml", "lambda_mah = 1200.0", "lambda_mah = 1.0");
+    let out = solve_a_to_b(&network, &profile, &["--sharing", "fb", "--support", "4"]);
+    assert_exit_2_with(
+        &out,
+        "E4015",
+        &["lambda_mah", "rounds", "raise sharing.lambda_mah"],
+    );
+    // PB does not depend on lambda and plans the same request.
+    let out = solve_a_to_b(&network, &profile, &["--sharing", "pb", "--support", "4"]);
+    assert!(matches!(out.status.code(), Some(0 | 1)), "{}", stderr(&out));
 }
