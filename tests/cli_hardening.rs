@@ -1,5 +1,6 @@
 //! Hardening regressions (issue 14) from the command line: every quantity of a network and a
-//! profile in its stated range, and FB's work bound. Each reproducer exits 2 with its code, fast.
+//! profile in its stated range, FB's work bound, and codes on unreadable files, non-UTF-8 files
+//! and command-line usage errors. Each reproducer exits 2 with its code, fast.
 
 use std::path::PathBuf;
 use std::process::{Command, Output};
@@ -202,4 +203,86 @@ fn fb_with_a_tiny_lambda_ends_with_e4015_instead_of_running_for_minutes() {
     // PB does not depend on lambda and plans the same request.
     let out = solve_a_to_b(&network, &profile, &["--sharing", "pb", "--support", "4"]);
     assert!(matches!(out.status.code(), Some(0 | 1)), "{}", stderr(&out));
+}
+
+#[test]
+fn unreadable_and_non_utf8_files_exit_2_with_e0008_and_e0009() {
+    let missing = tmp("no-such-file.json");
+    let missing = missing.to_str().unwrap();
+    let dir = tmp("a-directory");
+    std::fs::create_dir_all(&dir).unwrap();
+    let dir = dir.to_str().unwrap();
+    let latin1 = write(
+        "latin1.json",
+        b"{\"schema_version\": 1, \"name\": \"caf\xe9\"}",
+    );
+    for bad in [missing, dir] {
+        for args in [
+            vec!["inspect", "--network", bad],
+            vec!["solve", "--profile", bad, "--request-id", "r00001"],
+            vec!["batch", "--requests", bad, "--limit", "1"],
+            vec!["eaas", "--hop-file", bad],
+            vec!["node-time", "--file", bad],
+        ] {
+            assert_exit_2_with(&swarmplan(&args), "E0008", &["cannot read the file"]);
+        }
+    }
+    for args in [
+        vec!["inspect", "--network", &latin1],
+        vec!["solve", "--profile", &latin1, "--request-id", "r00001"],
+        vec!["batch", "--requests", &latin1, "--limit", "1"],
+        vec!["eaas", "--hop-file", &latin1],
+        vec!["node-time", "--file", &latin1],
+    ] {
+        assert_exit_2_with(
+            &swarmplan(&args),
+            "E0009",
+            &["not UTF-8", "line 1 column 35"],
+        );
+    }
+}
+
+#[test]
+fn usage_errors_exit_2_with_e0007_and_help_and_version_exit_0() {
+    for args in [
+        vec!["no-such-command"],
+        vec![],
+        vec!["solve", "--no-such-flag"],
+        vec!["node-time", "--pads"],
+        vec!["node-time", "--pads", "three", "--times", "1"],
+        vec!["solve", "--sharing", "telepathy", "--request-id", "r00001"],
+        vec!["batch", "--threads", "-1"],
+    ] {
+        let out = swarmplan(&args);
+        assert_exit_2_with(&out, "E0007", &["command line"]);
+    }
+    // A value parser's own code is kept, not replaced by E0007.
+    let out = swarmplan(&["generate", "network", "--nodes", "ten", "-o", "x.json"]);
+    assert_exit_2_with(&out, "E1901", &[]);
+    assert!(!stderr(&out).contains("E0007"));
+    for args in [
+        vec!["--help"],
+        vec!["--version"],
+        vec!["solve", "--help"],
+        vec!["help"],
+    ] {
+        let out = swarmplan(&args);
+        assert_eq!(out.status.code(), Some(0), "{args:?}: {}", stderr(&out));
+        assert!(!out.stdout.is_empty());
+    }
+}
+
+#[test]
+fn a_file_that_cannot_be_written_exits_2_with_e0010() {
+    let out = swarmplan(&[
+        "generate",
+        "network",
+        "--nodes",
+        "10",
+        "--seed",
+        "1",
+        "-o",
+        "/no-such-directory/network.json",
+    ]);
+    assert_exit_2_with(&out, "E0010", &["cannot write the file"]);
 }
