@@ -70,7 +70,7 @@ fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let time_limit_s: f64 = args.first().and_then(|a| a.parse().ok()).unwrap_or(30.0);
     let backend = match args.get(1).map(String::as_str) {
-        None => MilpBackend::all()[0],
+        None => MilpBackend::default(),
         Some(name) => *MilpBackend::all()
             .iter()
             .find(|b| b.name() == name)

@@ -179,7 +179,7 @@ fn run(args: &Args) -> Result<()> {
     requests.truncate(args.limit);
     validate_requests(&instance, &requests)?;
     let threads = args.threads.max(1);
-    let backend = args.backend.unwrap_or(MilpBackend::all()[0]);
+    let backend = args.backend.unwrap_or_default();
     let milp = MilpOptions {
         period_min: args.period_min,
         reorder: Reorder::Paper,

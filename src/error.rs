@@ -50,8 +50,9 @@ pub enum Error {
     /// The input breaks one or more rules; every violation found is listed, not only the first.
     #[error("invalid input, {} problem(s):\n{}", .0.len(), list(.0))]
     Invalid(Vec<Violation>),
-    /// A file could not be read or written.
-    #[error("cannot access {path}: {source}; check the path and its permissions")]
+    /// A file could not be written (`E0010`). A file that cannot be read is an [`Error::Invalid`]
+    /// with `E0008` or `E0009`.
+    #[error("[E0010] {path}: cannot write the file: {source}; check that its directory exists and is writable")]
     Io {
         /// The path concerned.
         path: String,

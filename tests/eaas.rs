@@ -820,3 +820,22 @@ fn two_support_drones_serve_their_nearest_delivery_drones_at_the_same_time() {
     passes(&p, &pb);
     assert!(!simulate(&p, SharingPolicy::None).unwrap().feasible);
 }
+
+#[test]
+fn fb_refuses_a_hop_over_its_work_bound_with_e4015_and_plans_one_within_it() {
+    // tt = 10 min at rho = 4 mAh/min: 40 / lambda rounds for the one support drone.
+    let mut p = two_drones();
+    p.lambda_mah = 0.01; // 4,000 rounds: over MAX_FB_ROUNDS = 500
+    let e = simulate(&p, SharingPolicy::Fb).unwrap_err().to_string();
+    assert!(e.contains("[E4015] lambda_mah"), "{e}");
+    assert!(
+        e.contains("4000 rounds") && e.contains("at least 1 mAh"),
+        "{e}"
+    );
+    // PB does not depend on lambda.
+    assert!(simulate(&p, SharingPolicy::Pb).is_ok());
+    p.lambda_mah = 0.1; // 400 rounds, within MAX_FB_ROUNDS
+    const { assert!(400.0 <= swarmplan::eaas::MAX_FB_ROUNDS) };
+    let o = simulate(&p, SharingPolicy::Fb).unwrap();
+    passes(&p, &o);
+}

@@ -329,7 +329,14 @@ fn validation_reports_every_violation_at_once() {
         NodeTimeMethod::Lpt,
         NodeTimeMethod::Brute,
     ] {
-        let e = solve(method, MilpBackend::all()[0], 0, &[1.0], &Limits::default()).unwrap_err();
+        let e = solve(
+            method,
+            MilpBackend::default(),
+            0,
+            &[1.0],
+            &Limits::default(),
+        )
+        .unwrap_err();
         assert_eq!(e.exit_code(), 2);
         assert_eq!(codes(e), vec!["E5001"]);
     }
@@ -356,4 +363,17 @@ fn brute_force_refuses_beyond_its_size_limit() {
     let e = exact(3, &times, &Limits::default()).unwrap();
     check(3, &times, &e);
     assert_eq!(e.makespan_min, 70.0);
+}
+
+#[test]
+fn the_default_backend_is_the_first_compiled_one_or_none_with_e0011() {
+    let r = milp(3, &[60.0, 50.0], MilpBackend::default(), &Limits::default());
+    match MilpBackend::all().first() {
+        Some(&first) => {
+            assert_eq!(MilpBackend::default(), first);
+            assert!((r.unwrap().makespan_min - 60.0).abs() < 1e-9);
+        }
+        // A build without microlp and highs (`cargo test --no-default-features`).
+        None => assert!(r.unwrap_err().to_string().contains("[E0011]")),
+    }
 }

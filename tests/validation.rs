@@ -223,3 +223,106 @@ fn file_readers_name_the_file_in_every_field() {
         Ok(_) => panic!("invalid requests accepted"),
     }
 }
+
+/// The shipped profiles, each as a TOML table.
+fn shipped_profiles() -> Vec<(String, toml::Table)> {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("instances/profiles");
+    let mut out = Vec::new();
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        let text = std::fs::read_to_string(&path).unwrap();
+        out.push((
+            path.display().to_string(),
+            text.parse::<toml::Table>().unwrap(),
+        ));
+    }
+    out.sort_by(|a, b| a.0.cmp(&b.0));
+    out
+}
+
+/// Sets the dotted `field` of a profile table to `value` (an integer for integer fields).
+fn set_field(t: &mut toml::Table, field: &str, value: f64) {
+    let (section, name) = field.split_once('.').unwrap();
+    let mut table = t;
+    let mut name = name;
+    let mut section = section;
+    loop {
+        table = table
+            .entry(section)
+            .or_insert_with(|| toml::Value::Table(toml::Table::new()))
+            .as_table_mut()
+            .unwrap();
+        match name.split_once('.') {
+            Some((s, n)) => {
+                section = s;
+                name = n;
+            }
+            None => break,
+        }
+    }
+    let v = match table.get(name) {
+        Some(toml::Value::Integer(_)) => toml::Value::Integer(value as i64),
+        _ => toml::Value::Float(value),
+    };
+    table.insert(name.to_string(), v);
+}
+
+#[test]
+fn every_profile_quantity_has_a_stated_range_and_each_bound_is_enforced_with_e2013() {
+    use swarmplan::problem::profile::{profile_ranges, validate_profile};
+    use swarmplan::problem::Profile;
+    for (name, table) in shipped_profiles() {
+        let profile: Profile = toml::from_str(&toml::to_string(&table).unwrap()).unwrap();
+        assert_eq!(
+            validate_profile(&profile),
+            vec![],
+            "{name} is within its ranges"
+        );
+        let ranges = profile_ranges(&profile);
+        assert!(ranges.len() >= 30, "{name}: {} ranges", ranges.len());
+        let mut failures = Vec::new();
+        for r in ranges {
+            // Just outside each end (below a minimum of 0 is a sign error, reported as E2002,
+            // E2003 or E2022, not E2013); just inside each end is valid.
+            let mut outside = vec![r.max * 1.5 + 1.0];
+            if r.min > 0.0 {
+                outside.push(r.min / 2.0);
+            }
+            for v in outside {
+                let mut t = table.clone();
+                set_field(&mut t, r.field, v);
+                let p: Profile = toml::from_str(&toml::to_string(&t).unwrap()).unwrap();
+                let got = validate_profile(&p);
+                if !got.iter().any(|x| x.code == "E2013" && x.field == r.field) {
+                    failures.push(format!("{name}: {} = {v}: {got:?}", r.field));
+                }
+            }
+        }
+        assert!(failures.is_empty(), "{}", failures.join("\n"));
+    }
+}
+
+#[test]
+fn network_coordinates_lengths_pad_rates_and_pad_counts_have_stated_ranges() {
+    let text = r#"{"schema_version": 1, "nodes": [
+        {"id": "A", "x_m": 1e7, "y_m": -1e7, "pads": 1000, "pad_charge_rate_mah_per_min": 0.1},
+        {"id": "B", "x_m": 1e7, "y_m": -9999000.0, "pads": 0, "pad_charge_rate_mah_per_min": 1e6},
+        {"id": "C", "x_m": 10000001.0, "y_m": 0.0, "pads": 1001, "pad_charge_rate_mah_per_min": 0.09},
+        {"id": "D", "x_m": 0.0, "y_m": 0.0, "pads": 0}],
+      "segments": [
+        {"from": "A", "to": "B", "wind_speed_mps": 0, "wind_from_deg": 0},
+        {"from": "A", "to": "D", "distance_m": 1e6, "wind_speed_mps": 0, "wind_from_deg": 0},
+        {"from": "B", "to": "D", "distance_m": 1000000.1, "wind_speed_mps": 0, "wind_from_deg": 0},
+        {"from": "C", "to": "D", "wind_speed_mps": 0, "wind_from_deg": 0}]}"#;
+    let n: Network = parse_json(text, "t").unwrap();
+    assert_eq!(
+        codes_and_fields(&validate_network(&n)),
+        pairs(&[
+            ("E1106", "nodes[2].x_m"),
+            ("E1107", "nodes[2].pad_charge_rate_mah_per_min"),
+            ("E1108", "nodes[2].pads"),
+            ("E1208", "segments[2].distance_m"),
+            ("E1208", "segments[3].distance_m"),
+        ])
+    );
+}

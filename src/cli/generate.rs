@@ -111,7 +111,7 @@ fn parse_max_package(s: &str) -> std::result::Result<f64, String> {
 ///
 /// # Errors
 /// [`crate::Error::Invalid`] for parameters out of range or an invalid network file (exit code 2);
-/// [`crate::Error::Io`] when a file cannot be read or written.
+/// E0008, E0009 when a file cannot be read; [`crate::Error::Io`] (E0010) when one cannot be written.
 pub fn run(cmd: GenerateCommand) -> Result<i32> {
     match cmd {
         GenerateCommand::Network(a) => {

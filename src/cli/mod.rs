@@ -52,11 +52,17 @@ pub enum Command {
 pub fn main() -> i32 {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
-        Err(e) => {
-            let code = if e.use_stderr() { 2 } else { 0 };
-            let _ = e.print();
-            return code;
-        }
+        Err(e) => match coded_usage_error(&e) {
+            Some(message) => {
+                eprint!("{message}");
+                return 2;
+            }
+            // `--help`, `--version`: clap prints them to stdout.
+            None => {
+                let _ = e.print();
+                return 0;
+            }
+        },
     };
     let result = match cli.command {
         Command::Generate(cmd) => generate::run(cmd),
@@ -75,6 +81,37 @@ pub fn main() -> i32 {
             e.exit_code()
         }
     }
+}
+
+/// The message of a command-line error, with a code: its own when a value parser gave one (the
+/// `E19xx`, `E39xx` checks of `generate`), else `E0007` (an unknown or missing argument, a value
+/// that does not parse). `None` for `--help` and `--version`, which are not errors.
+///
+/// # Example
+/// ```
+/// use clap::Parser;
+/// let e = swarmplan::cli::Cli::try_parse_from(["swarmplan", "node-time", "--pads", "x"]).unwrap_err();
+/// assert!(swarmplan::cli::coded_usage_error(&e).unwrap().contains("[E0007]"));
+/// let help = swarmplan::cli::Cli::try_parse_from(["swarmplan", "--help"]).unwrap_err();
+/// assert!(swarmplan::cli::coded_usage_error(&help).is_none());
+/// ```
+pub fn coded_usage_error(e: &clap::Error) -> Option<String> {
+    if !e.use_stderr() {
+        return None;
+    }
+    let text = e.render().to_string();
+    if has_code(&text) {
+        return Some(text);
+    }
+    let rest = text.strip_prefix("error: ").unwrap_or(&text);
+    Some(format!("error: [E0007] command line: {rest}"))
+}
+
+/// Whether `text` holds a rule code such as `[E1901]`.
+fn has_code(text: &str) -> bool {
+    text.as_bytes().windows(7).any(|w| {
+        w[0] == b'[' && w[1] == b'E' && w[2..6].iter().all(u8::is_ascii_digit) && w[6] == b']'
+    })
 }
 
 /// Prints `value` as pretty JSON to stdout.

@@ -135,18 +135,24 @@ fn version_violation(version: u32) -> Violation {
 /// The hop file, its hop valid for every sharing policy and exact model.
 ///
 /// # Errors
-/// [`Error::Io`] when the file cannot be read; [`Error::Invalid`] with `E4111` for malformed
-/// JSON, an unknown, missing or mistyped field (line and column), `E4112` alone for another
-/// schema version, else every violation of [`HopFile::violations`] at once.
+/// [`Error::Invalid`] with `E0008` or `E0009` when the file cannot be read or is not UTF-8
+/// text, else those of [`parse_hop_file`].
 pub fn read_hop_file(path: &Path) -> Result<HopFile> {
-    let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
-        path: path.display().to_string(),
-        source,
-    })?;
+    let text = crate::problem::io::read_text(path)?;
+    parse_hop_file(&text, &path.display().to_string())
+}
+
+/// Parses and checks the text of a hop file; `origin` names its source in messages.
+///
+/// # Errors
+/// [`Error::Invalid`] with `E4111` for malformed JSON, an unknown, missing or mistyped field
+/// (line and column), `E4112` alone for another schema version, else every violation of
+/// [`HopFile::violations`] at once.
+pub fn parse_hop_file(text: &str, origin: &str) -> Result<HopFile> {
     let unreadable = |e: serde_json::Error| {
         Error::invalid(
             "E4111",
-            path.display().to_string(),
+            origin,
             format!("not a hop file: {e}"),
             "write hop files with `swarmplan eaas --write-hop`; see README.md for the fields",
         )
@@ -156,14 +162,14 @@ pub fn read_hop_file(path: &Path) -> Result<HopFile> {
     struct Version {
         schema_version: Option<u32>,
     }
-    let version: Version = serde_json::from_str(&text).map_err(unreadable)?;
+    let version: Version = serde_json::from_str(text).map_err(unreadable)?;
     if let Some(v) = version
         .schema_version
         .filter(|&v| v != HOP_FILE_SCHEMA_VERSION)
     {
         return Err(Error::Invalid(vec![version_violation(v)]));
     }
-    let file: HopFile = serde_json::from_str(&text).map_err(unreadable)?;
+    let file: HopFile = serde_json::from_str(text).map_err(unreadable)?;
     let violations = file.violations();
     if violations.is_empty() {
         Ok(file)

@@ -111,7 +111,7 @@ pub struct MilpOptions {
     pub period_min: f64,
     /// Re-ordering mode (default [`Reorder::Paper`]).
     pub reorder: Reorder,
-    /// Backend (default: the first of [`MilpBackend::all`]).
+    /// Backend (default: [`MilpBackend::default`]).
     pub backend: MilpBackend,
     /// Wall-clock limit of each backend call, seconds (default 60).
     pub time_limit_s: f64,
@@ -122,7 +122,7 @@ impl Default for MilpOptions {
         MilpOptions {
             period_min: 1.0,
             reorder: Reorder::Paper,
-            backend: MilpBackend::all()[0],
+            backend: MilpBackend::default(),
             time_limit_s: 60.0,
         }
     }
@@ -743,6 +743,11 @@ fn run(
             relax,
             t,
         ),
+        #[cfg(not(any(feature = "microlp", feature = "highs")))]
+        MilpBackend::NoBackend => {
+            let _ = (problem, grid, m, o, relax, t);
+            Err(crate::solver::no_milp_backend("backend"))
+        }
     }
 }
 

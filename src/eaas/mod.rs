@@ -15,7 +15,7 @@
 //! `lambda`). [`simulate`] runs a policy and returns the schedule with every drone's battery; the
 //! independent checker in [`crate::check`] re-verifies it from the raw [`SegmentProblem`].
 
-use crate::error::{Error, Result, Violation};
+use crate::error::{show, Error, Result, Violation};
 pub use crate::problem::profile::{PbRequest, Readings};
 use nalgebra::Vector2;
 use serde::{Deserialize, Serialize};
@@ -37,6 +37,14 @@ pub const ENERGY_TOL_MAH: f64 = 1e-6;
 /// Upper bound on the number of planning iterations of PB and FB (each adds at most one transfer);
 /// a guard against pathological inputs, far above what a segment needs.
 pub const MAX_PLANNING_STEPS: usize = 10_000;
+/// Most FB rounds a hop may need (E4015): the support drones times `ceil(tt * rho / lambda)`, the
+/// rounds FB gives while the hop lasts. Each round replays the schedule so far, so the work of a
+/// hop grows with the square of its rounds: at this bound one FB hop takes some 10 ms, and a
+/// request planned by Algorithm 1 about a second (paper-195, fast-sharing with `lambda_mah` = 25).
+/// Beyond it FB refuses the hop instead of running for minutes (`lambda_mah` = 0.01 at the
+/// paper's rate asks for about 18,000 rounds per support drone on a 30 min hop). The shipped
+/// profiles need at most 11 rounds per support drone on a 23 min hop.
+pub const MAX_FB_ROUNDS: f64 = 500.0;
 
 /// One segment's sharing problem, in plain numbers (see `models/eaas.md`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -293,7 +301,10 @@ pub fn simulate_with(
     let plan = match policy {
         SharingPolicy::None | SharingPolicy::IdleSupport => none::plan(problem),
         SharingPolicy::Pb => pb::plan(problem, options),
-        SharingPolicy::Fb => fb::plan(problem, options),
+        SharingPolicy::Fb => {
+            fb_work_bound(problem)?;
+            fb::plan(problem, options)
+        }
         SharingPolicy::Exact | SharingPolicy::Fair => {
             return Err(Error::invalid(
                 "E4014",
@@ -305,6 +316,46 @@ pub fn simulate_with(
     };
     let run = simulate::evaluate(problem, &plan);
     Ok(run.into_outcome())
+}
+
+/// E4015: the rounds FB would give on this hop, `supports * ceil(tt * rho / lambda)`, must not
+/// exceed [`MAX_FB_ROUNDS`].
+///
+/// # Errors
+/// [`Error::Invalid`] with `E4015` on `lambda_mah`, stating the rounds and the smallest
+/// `lambda_mah` that keeps them within the bound.
+fn fb_work_bound(problem: &SegmentProblem) -> Result<()> {
+    let supports = problem
+        .drones
+        .iter()
+        .filter(|d| d.role == Role::Support)
+        .count() as f64;
+    let tt = travel_time_min(problem);
+    let per_support = (tt * problem.rho_mah_per_min / problem.lambda_mah).ceil();
+    let rounds = supports * per_support;
+    if rounds <= MAX_FB_ROUNDS {
+        return Ok(());
+    }
+    let per_support_max = (MAX_FB_ROUNDS / supports).floor().max(1.0);
+    let lambda_min = tt * problem.rho_mah_per_min / per_support_max;
+    Err(Error::invalid(
+        "E4015",
+        "lambda_mah",
+        format!(
+            "FB would give {} rounds of {} mAh on this hop ({} support drone(s), {} min at {} \
+             mAh/min), more than the bound of {MAX_FB_ROUNDS} rounds per hop",
+            show(rounds),
+            show(problem.lambda_mah),
+            supports,
+            show((tt * 100.0).round() / 100.0),
+            show(problem.rho_mah_per_min)
+        ),
+        format!(
+            "raise sharing.lambda_mah to at least {} mAh, or use PB (see models/eaas.md, \
+             \"FB's work bound\")",
+            show(lambda_min.ceil())
+        ),
+    ))
 }
 
 /// Every drone's battery at every breakpoint (leg ends, transfer starts and ends, consumers

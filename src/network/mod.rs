@@ -62,7 +62,7 @@ pub struct SkywayGraph {
 /// The network as read and its graph.
 ///
 /// # Errors
-/// [`Error::Io`] if the file cannot be read; [`Error::Invalid`] with E0001 for malformed JSON or
+/// [`Error::Invalid`] with E0008 or E0009 if the file cannot be read or is not UTF-8, with E0001 for malformed JSON or
 /// with every E1xxx violation, each field prefixed by the file name (`net.json: segments[3].to`).
 pub fn read_network(path: &std::path::Path) -> Result<(Network, SkywayGraph)> {
     let network: Network = crate::problem::io::read_json(path)?;

@@ -136,7 +136,7 @@ pub fn milp(
     let m = pads.min(n);
     let (order, sorted) = sort_desc(charge_times_min);
     let t = limits.time_limit_s;
-    let (pad_sorted, optimal) = match backend {
+    let (pad_sorted, optimal): (Vec<usize>, bool) = match backend {
         #[cfg(feature = "microlp")]
         MilpBackend::Microlp => {
             solve_with(good_lp::solvers::microlp::microlp, "microlp", m, &sorted, t)?
@@ -155,6 +155,11 @@ pub fn milp(
             &sorted,
             t,
         )?,
+        #[cfg(not(any(feature = "microlp", feature = "highs")))]
+        MilpBackend::NoBackend => {
+            let _ = t;
+            Err(crate::solver::no_milp_backend("--backend"))?
+        }
     };
     let mut pad_of = vec![0; n];
     for (pos, &j) in order.iter().enumerate() {

@@ -6,10 +6,34 @@ use serde::de::DeserializeOwned;
 use serde::Serialize;
 use std::path::Path;
 
-fn read_text(path: &Path) -> Result<String> {
-    std::fs::read_to_string(path).map_err(|source| Error::Io {
-        path: path.display().to_string(),
-        source,
+/// Reads a text file whole.
+///
+/// # Errors
+/// [`Error::Invalid`] with `E0008` when the file cannot be read (missing, a directory, no
+/// permission) and `E0009` when it is not UTF-8 text (the line and column of the first bad byte).
+pub fn read_text(path: &Path) -> Result<String> {
+    let origin = path.display().to_string();
+    let bytes = std::fs::read(path).map_err(|e| {
+        Error::invalid(
+            "E0008",
+            origin.as_str(),
+            format!("cannot read the file: {e}"),
+            "check the path, that it names a file and not a directory, and its read permission",
+        )
+    })?;
+    String::from_utf8(bytes).map_err(|e| {
+        let good = &e.as_bytes()[..e.utf8_error().valid_up_to()];
+        let line = 1 + good.iter().filter(|&&b| b == b'\n').count();
+        let column = 1 + good.iter().rev().take_while(|&&b| b != b'\n').count();
+        Error::invalid(
+            "E0009",
+            origin.as_str(),
+            format!(
+                "not UTF-8 text: invalid byte at line {line} column {column} (byte {})",
+                good.len()
+            ),
+            "save the file as UTF-8 (JSON and TOML files are UTF-8 text)",
+        )
     })
 }
 

@@ -453,6 +453,261 @@ impl Profile {
     }
 }
 
+/// One quantity of a profile with its stated range (rule E2013, the table in README.md, "Ranges").
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StatedRange {
+    /// The profile field, such as `drone.speed_kmh`.
+    pub field: &'static str,
+    /// The field's value in the profile checked.
+    pub value: f64,
+    /// Smallest value allowed (inclusive).
+    pub min: f64,
+    /// Largest value allowed (inclusive).
+    pub max: f64,
+    /// Unit of the quantity.
+    pub unit: &'static str,
+    /// Why the range is what it is, in a few words.
+    pub why: &'static str,
+}
+
+/// Largest number of extra batteries a support drone may carry (E2013).
+pub const MAX_EXTRA_BATTERIES: u32 = 64;
+
+/// Every quantity of a profile with its stated range. With every value in range, a segment of at
+/// most 1e6 m flown at 1 km/h lasts at most 6e4 min, a drone consumes at most about 1e39 mAh/min
+/// (base rate 1e6, payload factor (1 + 1000 / 0.011)^5, wind factor (100.3 / 0.278)^3), and a
+/// charge of at most 65 x 1e6 mAh at 0.1 mAh/min lasts at most 6.5e8 min: every derived number
+/// stays finite.
+pub fn profile_ranges(p: &Profile) -> Vec<StatedRange> {
+    let r = |field, value, min, max, unit, why| StatedRange {
+        field,
+        value,
+        min,
+        max,
+        unit,
+        why,
+    };
+    let f = &p.formation;
+    let mut out = vec![
+        r(
+            "drone.battery_mah",
+            p.drone.battery_mah,
+            1.0,
+            1e6,
+            "mAh",
+            "1 mAh to 1,000 Ah: beyond any drone battery",
+        ),
+        r(
+            "drone.voltage_v",
+            p.drone.voltage_v,
+            1.0,
+            1e3,
+            "V",
+            "one cell to a 1 kV pack",
+        ),
+        r(
+            "drone.speed_kmh",
+            p.drone.speed_kmh,
+            1.0,
+            500.0,
+            "km/h",
+            "walking pace to beyond the fastest multirotor",
+        ),
+        r(
+            "drone.empty_mass_kg",
+            p.drone.empty_mass_kg,
+            0.01,
+            1e3,
+            "kg",
+            "a 10 g micro drone to a 1 t cargo drone",
+        ),
+        r(
+            "drone.battery_mass_kg",
+            p.drone.battery_mass_kg,
+            0.001,
+            1e3,
+            "kg",
+            "1 g to 1 t",
+        ),
+        r(
+            "drone.max_payload_kg",
+            p.drone.max_payload_kg,
+            0.001,
+            1e3,
+            "kg",
+            "1 g to 1 t",
+        ),
+        r(
+            "support.extra_batteries",
+            f64::from(p.support.extra_batteries),
+            0.0,
+            f64::from(MAX_EXTRA_BATTERIES),
+            "batteries",
+            "the paper carries 3; 64 bounds a support drone's capacity",
+        ),
+        r(
+            "sharing.rate_mah_per_min",
+            p.sharing.rate_mah_per_min,
+            0.01,
+            1e6,
+            "mAh/min",
+            "a trickle to a full battery in well under a second",
+        ),
+        r(
+            "sharing.range_m",
+            p.sharing.range_m,
+            0.01,
+            1e3,
+            "m",
+            "1 cm to 1 km of wireless transfer",
+        ),
+        r(
+            "sharing.lambda_mah",
+            p.sharing.lambda_mah,
+            1.0,
+            1e6,
+            "mAh",
+            "at least 1 mAh per FB round, at most a whole battery of the largest size",
+        ),
+        r(
+            "pads.charge_rate_mah_per_min",
+            p.pads.charge_rate_mah_per_min,
+            0.1,
+            1e6,
+            "mAh/min",
+            "a full 4480 mAh charge in 31 days to well under a second",
+        ),
+        r(
+            "energy.endurance_min",
+            p.energy.endurance_min,
+            1.0,
+            1e4,
+            "min",
+            "1 min to a week aloft",
+        ),
+        r(
+            "energy.payload_exponent",
+            p.energy.payload_exponent,
+            0.1,
+            5.0,
+            "",
+            "momentum theory gives 1.5",
+        ),
+        r(
+            "energy.wind_limit_mps",
+            p.energy.wind_limit_mps,
+            0.1,
+            100.0,
+            "m/s",
+            "100 m/s is beyond any storm a drone flies in",
+        ),
+        r(
+            "formation.spacing_m",
+            f.spacing_m,
+            0.01,
+            100.0,
+            "m",
+            "1 cm to 100 m between neighbours",
+        ),
+        r(
+            "formation.shield_gain",
+            f.shield_gain,
+            0.0,
+            1.0,
+            "",
+            "a fraction of a drone's consumption",
+        ),
+        r(
+            "formation.downwash_gain",
+            f.downwash_gain,
+            0.0,
+            1.0,
+            "",
+            "a fraction of a drone's consumption",
+        ),
+        r(
+            "formation.upwash_gain",
+            f.upwash_gain,
+            0.0,
+            1.0,
+            "",
+            "a fraction of a drone's consumption",
+        ),
+        r(
+            "formation.abreast_gain",
+            f.abreast_gain,
+            0.0,
+            1.0,
+            "",
+            "a fraction of a drone's consumption",
+        ),
+        r(
+            "failure.payload_norm_kg",
+            p.failure.payload_norm_kg,
+            0.001,
+            1e3,
+            "kg",
+            "1 g to 1 t",
+        ),
+        r(
+            "failure.distance_norm_m",
+            p.failure.distance_norm_m,
+            1.0,
+            1e7,
+            "m",
+            "1 m to a quarter of the Earth's circumference",
+        ),
+    ];
+    for (field, value) in [
+        ("formation.shield_width_m", f.shield_width_m),
+        ("formation.shield_decay_m", f.shield_decay_m),
+        ("formation.downwash_width_m", f.downwash_width_m),
+        ("formation.upwash_offset_m", f.upwash_offset_m),
+        ("formation.upwash_width_m", f.upwash_width_m),
+        ("formation.wake_decay_m", f.wake_decay_m),
+        ("formation.wake_onset_m", f.wake_onset_m),
+        ("formation.abreast_offset_m", f.abreast_offset_m),
+        ("formation.abreast_width_m", f.abreast_width_m),
+        ("formation.abreast_band_m", f.abreast_band_m),
+    ] {
+        let min = if field == "formation.upwash_offset_m"
+            || field == "formation.wake_onset_m"
+            || field == "formation.abreast_offset_m"
+        {
+            0.0
+        } else {
+            0.001
+        };
+        out.push(r(
+            field,
+            value,
+            min,
+            1e3,
+            "m",
+            "1 mm to 1 km: wakes of a drone",
+        ));
+    }
+    if p.failure.terms == FailureTerms::PerUnit {
+        let w = &p.failure.weights;
+        for (field, value) in [
+            ("failure.weights.payload", w.payload),
+            ("failure.weights.distance", w.distance),
+            ("failure.weights.capacity", w.capacity),
+            ("failure.weights.wind", w.wind),
+        ] {
+            out.push(r(
+                field,
+                value,
+                0.0,
+                100.0,
+                "",
+                "100 batteries per unit of the factor",
+            ));
+        }
+    }
+    out
+}
+
 /// Checks a profile's values; reports every violation at once (codes E2xxx, listed in README.md).
 ///
 /// # Arguments
@@ -711,6 +966,38 @@ pub fn validate_profile(p: &Profile) -> Vec<Violation> {
             "failure.weights",
             "the weighted sum needs at least one weight above 0",
             "give at least one term a positive weight",
+        ));
+    }
+    // Stated ranges (E2013): each quantity that passed the sign rules above must also lie in a
+    // physically meaningful range, so that every number derived from it stays finite.
+    // A field already reported as not finite or of the wrong sign is not reported twice.
+    let reported: Vec<String> = out
+        .iter()
+        .filter(|v| ["E2002", "E2003", "E2020", "E2022"].contains(&v.code))
+        .map(|v| v.field.clone())
+        .collect();
+    for r in profile_ranges(p) {
+        let v = r.value;
+        if reported.iter().any(|f| f == r.field) || !v.is_finite() || (r.min..=r.max).contains(&v) {
+            continue;
+        }
+        let unit = if r.unit.is_empty() {
+            String::new()
+        } else {
+            format!(" {}", r.unit)
+        };
+        let (min, max) = (crate::error::show(r.min), crate::error::show(r.max));
+        out.push(Violation::new(
+            "E2013",
+            r.field,
+            format!(
+                "{}{unit} is outside the stated range [{min}, {max}]{unit}",
+                crate::error::show(v)
+            ),
+            format!(
+                "set a value within [{min}, {max}]{unit} ({}); see \"Ranges\" in README.md",
+                r.why
+            ),
         ));
     }
     out

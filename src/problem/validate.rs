@@ -13,6 +13,9 @@
 //! | E1103 | `nodes[i].x_m`, `nodes[i].y_m`      | finite (negative is fine: the frame's origin is arbitrary) |
 //! | E1104 | `nodes[i].pad_charge_rate_mah_per_min` | finite and > 0 when given |
 //! | E1105 | `nodes`                             | at least one node has pads |
+//! | E1106 | `nodes[i].x_m`, `nodes[i].y_m`      | within ±[`MAX_COORDINATE_M`] (1e7 m) |
+//! | E1107 | `nodes[i].pad_charge_rate_mah_per_min` | within [[`MIN_PAD_RATE_MAH_PER_MIN`], [`MAX_PAD_RATE_MAH_PER_MIN`]] |
+//! | E1108 | `nodes[i].pads`                     | at most [`MAX_PADS`] |
 //! | E1201 | `segments[j].from`, `segments[j].to` | names a node id |
 //! | E1202 | `segments[j]`                       | no self-loop |
 //! | E1203 | `segments[j]`                       | no second segment between the same two nodes (either direction) |
@@ -20,6 +23,7 @@
 //! | E1205 | `segments[j].wind_speed_mps`        | finite and >= 0 |
 //! | E1206 | `segments[j].wind_speed_mps`        | below [`MAX_WIND_SPEED_MPS`] (13.8 m/s) |
 //! | E1207 | `segments[j].wind_from_deg`         | finite, within [0, 360] |
+//! | E1208 | `segments[j].distance_m`            | at most [`MAX_SEGMENT_M`] (1e6 m; given, or the Euclidean distance) |
 //! | E3001 | `schema_version`                    | equals [`SCHEMA_VERSION`] |
 //! | E3002 | `requests`                          | at least one request |
 //! | E3101 | `requests[k].id`                    | not empty |
@@ -33,12 +37,27 @@
 //! | E3304 | `requests[k].packages_kg`           | at most [`MAX_DELIVERY_DRONES`] packages |
 
 use super::{Network, Request, RequestSet, MAX_DELIVERY_DRONES, SCHEMA_VERSION};
-use crate::error::Violation;
+use crate::error::{show, Violation};
 use crate::network::SkywayGraph;
 use std::collections::{HashMap, HashSet};
 
 /// Safe-flight wind limit (m/s): a segment's wind speed must be strictly below it.
 pub const MAX_WIND_SPEED_MPS: f64 = 13.8;
+/// Largest coordinate magnitude, m (E1106): 10,000 km from the frame's origin, a quarter of the
+/// Earth's circumference, holds any city's skyway network; differences stay finite.
+pub const MAX_COORDINATE_M: f64 = 1e7;
+/// Longest segment, m (E1208): 1,000 km, far beyond any drone's range (the paper's flies about 11.5
+/// km on a battery), so that a travel time stays at most 6e4 min at the slowest 1 km/h.
+pub const MAX_SEGMENT_M: f64 = 1e6;
+/// Slowest pad charge rate, mAh/min (E1107, and `pads.charge_rate_mah_per_min` of a profile): a
+/// full 4480 mAh charge in 31 days; slower is not a charger.
+pub const MIN_PAD_RATE_MAH_PER_MIN: f64 = 0.1;
+/// Fastest pad charge rate, mAh/min (E1107): a full charge of the largest battery allowed (1e6
+/// mAh) in a minute.
+pub const MAX_PAD_RATE_MAH_PER_MIN: f64 = 1e6;
+/// Most pads at one node (E1108): more pads than drones change nothing (a swarm has at most 64
+/// drones), and a rooftop holds far fewer than 1,000.
+pub const MAX_PADS: u32 = 1_000;
 
 /// Checks every network rule (E1xxx) and returns every violation found, in file order.
 ///
@@ -100,6 +119,16 @@ pub fn validate_network(n: &Network) -> Vec<Violation> {
                     format!("coordinate is {v}"),
                     "give a finite coordinate in metres",
                 ));
+            } else if v.abs() > MAX_COORDINATE_M {
+                out.push(Violation::new(
+                    "E1106",
+                    format!("nodes[{i}].{name}"),
+                    format!(
+                        "coordinate {} m is outside the stated range [-1e7, 1e7] m",
+                        show(v)
+                    ),
+                    "move the frame's origin near the network (coordinates within ±1e7 m)",
+                ));
             }
         }
         if let Some(rate) = node.pad_charge_rate_mah_per_min {
@@ -110,7 +139,28 @@ pub fn validate_network(n: &Network) -> Vec<Violation> {
                     format!("pad charge rate is {rate}"),
                     "give a finite rate above 0 mAh/min, or omit it to use the profile's rate",
                 ));
+            } else if !(MIN_PAD_RATE_MAH_PER_MIN..=MAX_PAD_RATE_MAH_PER_MIN).contains(&rate) {
+                out.push(Violation::new(
+                    "E1107",
+                    format!("nodes[{i}].pad_charge_rate_mah_per_min"),
+                    format!(
+                        "pad charge rate {} mAh/min is outside the stated range [0.1, 1e6] mAh/min",
+                        show(rate)
+                    ),
+                    "give a rate within [0.1, 1e6] mAh/min, or omit it to use the profile's rate",
+                ));
             }
+        }
+        if node.pads > MAX_PADS {
+            out.push(Violation::new(
+                "E1108",
+                format!("nodes[{i}].pads"),
+                format!(
+                    "{} pads, more than the stated maximum {MAX_PADS}",
+                    node.pads
+                ),
+                "give at most 1000 pads (more pads than drones in a swarm change nothing)",
+            ));
         }
     }
     if !n.nodes.is_empty() && n.nodes.iter().all(|node| node.pads == 0) {
@@ -169,6 +219,7 @@ pub fn validate_network(n: &Network) -> Vec<Violation> {
                 format!("distance is {d}"),
                 "give a finite distance above 0 m, or omit it to use the Euclidean distance",
             )),
+            Some(d) if d > MAX_SEGMENT_M => out.push(too_long(j, d, "distance_m is")),
             None => {
                 if let (Some(a), Some(b)) = (from, to) {
                     let d = euclidean_m(a, b);
@@ -182,6 +233,12 @@ pub fn validate_network(n: &Network) -> Vec<Violation> {
                             ),
                             "give distance_m, or distinct finite coordinates to the two nodes",
                         ));
+                    } else if seg.from != seg.to && d > MAX_SEGMENT_M {
+                        let what = format!(
+                            "distance_m is absent and the Euclidean distance between '{}' and '{}' is",
+                            seg.from, seg.to
+                        );
+                        out.push(too_long(j, d, &what));
                     }
                 }
             }
@@ -214,6 +271,19 @@ pub fn validate_network(n: &Network) -> Vec<Violation> {
         }
     }
     out
+}
+
+/// E1208: a segment longer than [`MAX_SEGMENT_M`]; `what` says where the length comes from.
+fn too_long(j: usize, d: f64, what: &str) -> Violation {
+    Violation::new(
+        "E1208",
+        format!("segments[{j}].distance_m"),
+        format!(
+            "{what} {} m, outside the stated range (0, 1e6] m",
+            show(d)
+        ),
+        "split the segment at intermediate nodes, or check its length and the nodes' coordinates (metres)",
+    )
 }
 
 /// Euclidean distance in metres between two positions.
@@ -408,7 +478,7 @@ fn set_rules(
 /// The request set.
 ///
 /// # Errors
-/// [`crate::Error::Io`] if the file cannot be read; [`crate::Error::Invalid`] with E0001 for
+/// [`crate::Error::Invalid`] with E0008 or E0009 if the file cannot be read or is not UTF-8, with E0001 for
 /// malformed JSON or with every E3xxx violation, each field prefixed by the file name.
 pub fn read_request_set(
     path: &std::path::Path,

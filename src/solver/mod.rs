@@ -19,10 +19,40 @@ pub enum MilpBackend {
     /// HiGHS through good_lp (feature `highs`).
     #[cfg(feature = "highs")]
     Highs,
+    /// No MILP backend in this build (made without the microlp and highs features): a MILP solve
+    /// gives E0011, every other method works.
+    #[cfg(not(any(feature = "microlp", feature = "highs")))]
+    #[value(name = "none")]
+    #[serde(rename = "none")]
+    NoBackend,
+}
+
+impl Default for MilpBackend {
+    /// The first backend of [`MilpBackend::all`]; [`MilpBackend::NoBackend`] in a build without one.
+    fn default() -> Self {
+        #[cfg(feature = "microlp")]
+        return MilpBackend::Microlp;
+        #[cfg(all(feature = "highs", not(feature = "microlp")))]
+        return MilpBackend::Highs;
+        #[cfg(not(any(feature = "microlp", feature = "highs")))]
+        return MilpBackend::NoBackend;
+    }
+}
+
+/// `E0011`: this build has no MILP backend (made without the `microlp` and `highs` features).
+pub fn no_milp_backend(field: &str) -> crate::Error {
+    crate::Error::invalid(
+        "E0011",
+        field,
+        "this build of swarmplan has no MILP backend (built without the microlp and highs features)",
+        "rebuild with the default features (cargo build --release) or --features highs, or use a \
+         method without a MILP (node-time --method exact, --sharing pb|fb, eaas --methods \
+         pb,fb,fluid,fair, --sharing fair)",
+    )
 }
 
 impl MilpBackend {
-    /// Every backend compiled into this build, in a fixed order.
+    /// Every backend compiled into this build, in a fixed order; empty in a build without one.
     pub fn all() -> Vec<MilpBackend> {
         vec![
             #[cfg(feature = "microlp")]
@@ -39,6 +69,8 @@ impl MilpBackend {
             MilpBackend::Microlp => "microlp",
             #[cfg(feature = "highs")]
             MilpBackend::Highs => "highs",
+            #[cfg(not(any(feature = "microlp", feature = "highs")))]
+            MilpBackend::NoBackend => "none",
         }
     }
 }

@@ -1,0 +1,288 @@
+//! Hardening regressions (issue 14) from the command line: every quantity of a network and a
+//! profile in its stated range, FB's work bound, and codes on unreadable files, non-UTF-8 files
+//! and command-line usage errors. Each reproducer exits 2 with its code, fast.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn swarmplan(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_swarmplan"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+fn repo(path: &str) -> String {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join(path)
+        .to_str()
+        .unwrap()
+        .to_string()
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli_hardening");
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+fn write(name: &str, text: &[u8]) -> String {
+    let path = tmp(name);
+    std::fs::write(&path, text).unwrap();
+    path.to_str().unwrap().to_string()
+}
+
+fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).to_string()
+}
+
+/// Asserts exit code 2 and that stderr names `code` and every one of `words`.
+fn assert_exit_2_with(out: &Output, code: &str, words: &[&str]) {
+    let err = stderr(out);
+    assert_eq!(out.status.code(), Some(2), "{code}: {err}");
+    assert!(err.contains(&format!("[{code}]")), "{code} missing: {err}");
+    for w in words {
+        assert!(err.contains(w), "{code}: '{w}' missing: {err}");
+    }
+}
+
+/// flat-stop (A - M - B, 2500 m each, pads at M) with one node or segment field replaced.
+fn flat_stop_with(name: &str, from: &str, to: &str) -> String {
+    let text = std::fs::read_to_string(repo("instances/tiny/flat-stop.json")).unwrap();
+    assert!(text.contains(from), "{from}");
+    write(name, text.replacen(from, to, 1).as_bytes())
+}
+
+/// The flat profile with one line replaced.
+fn flat_profile_with(name: &str, from: &str, to: &str) -> String {
+    let text = std::fs::read_to_string(repo("instances/tiny/flat.toml")).unwrap();
+    assert!(text.contains(from), "{from}");
+    write(name, text.replacen(from, to, 1).as_bytes())
+}
+
+fn solve_a_to_b(network: &str, profile: &str, extra: &[&str]) -> Output {
+    let mut args = vec![
+        "solve",
+        "--network",
+        network,
+        "--profile",
+        profile,
+        "--from",
+        "A",
+        "--to",
+        "B",
+        "--packages",
+        "0.21,0.21,0.44",
+    ];
+    args.extend_from_slice(extra);
+    swarmplan(&args)
+}
+
+#[test]
+fn network_quantities_beyond_their_stated_ranges_exit_2_with_codes() {
+    let profile = repo("instances/tiny/flat.toml");
+    let segment = r#"{ "from": "A", "to": "M", "wind_speed_mps""#;
+    let cases: [(&str, String, &str, &[&str]); 7] = [
+        (
+            "x 1e308",
+            flat_stop_with("x1e308.json", r#""x_m": 2500.0"#, r#""x_m": 1e308"#),
+            "E1106",
+            &["nodes[1].x_m", "[-1e7, 1e7] m"],
+        ),
+        (
+            "distance 1e308 (was: E5004 charge time inf)",
+            flat_stop_with(
+                "d1e308.json",
+                segment,
+                r#"{ "from": "A", "to": "M", "distance_m": 1e308, "wind_speed_mps""#,
+            ),
+            "E1208",
+            &["segments[0].distance_m", "(0, 1e6] m"],
+        ),
+        (
+            "distance 1e200 (was: destination not connected)",
+            flat_stop_with(
+                "d1e200.json",
+                segment,
+                r#"{ "from": "A", "to": "M", "distance_m": 1e200, "wind_speed_mps""#,
+            ),
+            "E1208",
+            &["segments[0].distance_m", "1e200"],
+        ),
+        (
+            "Euclidean length 2e6 m",
+            flat_stop_with("far.json", r#""x_m": 5000.0"#, r#""x_m": 2000000.0"#),
+            "E1208",
+            &["segments[1].distance_m", "Euclidean"],
+        ),
+        (
+            "pad rate 1e-300",
+            flat_stop_with(
+                "rate.json",
+                r#""pads": 2 }"#,
+                r#""pads": 2, "pad_charge_rate_mah_per_min": 1e-300 }"#,
+            ),
+            "E1107",
+            &["nodes[1].pad_charge_rate_mah_per_min", "[0.1, 1e6]"],
+        ),
+        (
+            "pads 4294967295",
+            flat_stop_with("pads.json", r#""pads": 2"#, r#""pads": 4294967295"#),
+            "E1108",
+            &["nodes[1].pads", "1000"],
+        ),
+        (
+            "y -2e7",
+            flat_stop_with(
+                "y.json",
+                r#""y_m": 0.0, "pads": 2"#,
+                r#""y_m": -2e7, "pads": 2"#,
+            ),
+            "E1106",
+            &["nodes[1].y_m"],
+        ),
+    ];
+    for (what, network, code, words) in cases {
+        let out = solve_a_to_b(&network, &profile, &["--sharing", "none"]);
+        assert_exit_2_with(&out, code, words);
+        let _ = what;
+    }
+}
+
+#[test]
+fn profile_quantities_beyond_their_stated_ranges_exit_2_with_e2013() {
+    let network = repo("instances/tiny/flat-stop.json");
+    let cases = [
+        // Was E4007 on legs[2] from inside the planner.
+        ("speed_kmh = 30.0", "speed_kmh = 1e-300", "drone.speed_kmh"),
+        (
+            "battery_mah = 1000.0",
+            "battery_mah = 1e308",
+            "drone.battery_mah",
+        ),
+        (
+            "lambda_mah = 1200.0",
+            "lambda_mah = 0.01",
+            "sharing.lambda_mah",
+        ),
+        (
+            "extra_batteries = 1",
+            "extra_batteries = 65",
+            "support.extra_batteries",
+        ),
+        (
+            "charge_rate_mah_per_min = 100.0",
+            "charge_rate_mah_per_min = 1e-9",
+            "pads.charge_rate_mah_per_min",
+        ),
+        (
+            "endurance_min = 10.0",
+            "endurance_min = 1e300",
+            "energy.endurance_min",
+        ),
+    ];
+    for (from, to, field) in cases {
+        let profile = flat_profile_with("p.toml", from, to);
+        let out = solve_a_to_b(&network, &profile, &["--sharing", "fb"]);
+        assert_exit_2_with(&out, "E2013", &[field, "stated range"]);
+    }
+}
+
+#[test]
+fn fb_with_a_tiny_lambda_ends_with_e4015_instead_of_running_for_minutes() {
+    // lambda = 1 mAh at rho = 120 mAh/min: a round of 0.5 s, 600 rounds per support drone on a
+    // 5-minute hop; 4 support drones ask for 2,400 rounds, over the bound of 500.
+    let network = repo("instances/tiny/flat-stop.json");
+    let profile = flat_profile_with("lambda1.toml", "lambda_mah = 1200.0", "lambda_mah = 1.0");
+    let out = solve_a_to_b(&network, &profile, &["--sharing", "fb", "--support", "4"]);
+    assert_exit_2_with(
+        &out,
+        "E4015",
+        &["lambda_mah", "rounds", "raise sharing.lambda_mah"],
+    );
+    // PB does not depend on lambda and plans the same request.
+    let out = solve_a_to_b(&network, &profile, &["--sharing", "pb", "--support", "4"]);
+    assert!(matches!(out.status.code(), Some(0 | 1)), "{}", stderr(&out));
+}
+
+#[test]
+fn unreadable_and_non_utf8_files_exit_2_with_e0008_and_e0009() {
+    let missing = tmp("no-such-file.json");
+    let missing = missing.to_str().unwrap();
+    let dir = tmp("a-directory");
+    std::fs::create_dir_all(&dir).unwrap();
+    let dir = dir.to_str().unwrap();
+    let latin1 = write(
+        "latin1.json",
+        b"{\"schema_version\": 1, \"name\": \"caf\xe9\"}",
+    );
+    for bad in [missing, dir] {
+        for args in [
+            vec!["inspect", "--network", bad],
+            vec!["solve", "--profile", bad, "--request-id", "r00001"],
+            vec!["batch", "--requests", bad, "--limit", "1"],
+            vec!["eaas", "--hop-file", bad],
+            vec!["node-time", "--file", bad],
+        ] {
+            assert_exit_2_with(&swarmplan(&args), "E0008", &["cannot read the file"]);
+        }
+    }
+    for args in [
+        vec!["inspect", "--network", &latin1],
+        vec!["solve", "--profile", &latin1, "--request-id", "r00001"],
+        vec!["batch", "--requests", &latin1, "--limit", "1"],
+        vec!["eaas", "--hop-file", &latin1],
+        vec!["node-time", "--file", &latin1],
+    ] {
+        assert_exit_2_with(
+            &swarmplan(&args),
+            "E0009",
+            &["not UTF-8", "line 1 column 35"],
+        );
+    }
+}
+
+#[test]
+fn usage_errors_exit_2_with_e0007_and_help_and_version_exit_0() {
+    for args in [
+        vec!["no-such-command"],
+        vec![],
+        vec!["solve", "--no-such-flag"],
+        vec!["node-time", "--pads"],
+        vec!["node-time", "--pads", "three", "--times", "1"],
+        vec!["solve", "--sharing", "telepathy", "--request-id", "r00001"],
+        vec!["batch", "--threads", "-1"],
+    ] {
+        let out = swarmplan(&args);
+        assert_exit_2_with(&out, "E0007", &["command line"]);
+    }
+    // A value parser's own code is kept, not replaced by E0007.
+    let out = swarmplan(&["generate", "network", "--nodes", "ten", "-o", "x.json"]);
+    assert_exit_2_with(&out, "E1901", &[]);
+    assert!(!stderr(&out).contains("E0007"));
+    for args in [
+        vec!["--help"],
+        vec!["--version"],
+        vec!["solve", "--help"],
+        vec!["help"],
+    ] {
+        let out = swarmplan(&args);
+        assert_eq!(out.status.code(), Some(0), "{args:?}: {}", stderr(&out));
+        assert!(!out.stdout.is_empty());
+    }
+}
+
+#[test]
+fn a_file_that_cannot_be_written_exits_2_with_e0010() {
+    let out = swarmplan(&[
+        "generate",
+        "network",
+        "--nodes",
+        "10",
+        "--seed",
+        "1",
+        "-o",
+        "/no-such-directory/network.json",
+    ]);
+    assert_exit_2_with(&out, "E0010", &["cannot write the file"]);
+}
