@@ -214,9 +214,7 @@ impl<'a> Planner<'a> {
         let objective = if end == HopEnd::Stop && pads > 0 {
             Objective::NodeTime {
                 pads: pads as usize,
-                pad_rate_mah_per_min: self
-                    .graph
-                    .pad_rate_mah_per_min(last, self.profile.pads.charge_rate_mah_per_min),
+                pad_rate_mah_per_min: self.pad_rate_mah_per_min(last),
             }
         } else {
             Objective::Feasible
@@ -237,9 +235,7 @@ impl<'a> Planner<'a> {
         if pads == 0 {
             return Ok(None);
         }
-        let rate = self
-            .graph
-            .pad_rate_mah_per_min(node, self.profile.pads.charge_rate_mah_per_min);
+        let rate = self.pad_rate_mah_per_min(node);
         let charge_times_min: Vec<f64> = self
             .swarm
             .drones
