@@ -9,10 +9,10 @@ use nalgebra::Vector2;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::time::Instant;
-use swarmplan::check::check_segment;
-use swarmplan::eaas::{simulate, DroneState, Leg, Role, SegmentProblem, SharingPolicy};
+use swarmplan::check::check_hop;
+use swarmplan::eaas::{simulate, DroneState, LegRates, Role, HopProblem, SharingPolicy};
 
-fn problem(rng: &mut ChaCha8Rng) -> SegmentProblem {
+fn problem(rng: &mut ChaCha8Rng) -> HopProblem {
     let n: usize = 7;
     // Vee with 1 m spacing: apex, then pairs behind.
     let slots_m: Vec<Vector2<f64>> = (0..n)
@@ -23,7 +23,7 @@ fn problem(rng: &mut ChaCha8Rng) -> SegmentProblem {
         })
         .collect();
     let legs = (0..rng.random_range(1..=4))
-        .map(|_| Leg {
+        .map(|_| LegRates {
             duration_min: rng.random_range(1.0..10.0),
             rate_mah_per_min: (0..n)
                 .map(|_| (0..n).map(|_| rng.random_range(100.0..200.0)).collect())
@@ -37,7 +37,7 @@ fn problem(rng: &mut ChaCha8Rng) -> SegmentProblem {
             battery_mah: rng.random_range(1500.0..4480.0),
         })
         .collect();
-    SegmentProblem {
+    HopProblem {
         legs,
         drones,
         slots_m,
@@ -53,7 +53,7 @@ fn problem(rng: &mut ChaCha8Rng) -> SegmentProblem {
 fn main() {
     let count = 10_000;
     let mut rng = ChaCha8Rng::seed_from_u64(2024);
-    let problems: Vec<SegmentProblem> = (0..count).map(|_| problem(&mut rng)).collect();
+    let problems: Vec<HopProblem> = (0..count).map(|_| problem(&mut rng)).collect();
     for policy in [SharingPolicy::None, SharingPolicy::Pb, SharingPolicy::Fb] {
         let start = Instant::now();
         let outcomes: Vec<_> = problems
@@ -66,7 +66,7 @@ fn main() {
         let bad = problems
             .iter()
             .zip(&outcomes)
-            .filter(|(p, o)| !check_segment(p, o).is_empty())
+            .filter(|(p, o)| !check_hop(p, o).is_empty())
             .count();
         println!(
             "{policy:?}: {secs:.3} s for {count} segments ({:.1} us each), feasible {feasible}/{count}, \

@@ -14,11 +14,11 @@
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use swarmplan::eaas::milp::{solve_milp, ExactStatus, MilpOptions, Objective, Reorder};
-use swarmplan::eaas::{fluid, DroneState, Leg, Role, SegmentProblem};
+use swarmplan::eaas::{fluid, DroneState, LegRates, Role, HopProblem};
 use swarmplan::formation::{slots_m, FormationKind};
 use swarmplan::solver::MilpBackend;
 
-fn hop(rng: &mut ChaCha8Rng, nd: usize, ns: usize, periods: usize) -> SegmentProblem {
+fn hop(rng: &mut ChaCha8Rng, nd: usize, ns: usize, periods: usize) -> HopProblem {
     let n = nd + ns;
     // Beyond 16 periods rates and rho shrink in proportion, so a hop uses the same share of a
     // battery whatever its length (otherwise long hops are infeasible for every schedule).
@@ -29,8 +29,8 @@ fn hop(rng: &mut ChaCha8Rng, nd: usize, ns: usize, periods: usize) -> SegmentPro
     for s in 0..ns {
         initial_slot.swap(nd + s, s);
     }
-    SegmentProblem {
-        legs: vec![Leg {
+    HopProblem {
+        legs: vec![LegRates {
             duration_min: periods as f64,
             rate_mah_per_min: (0..n)
                 .map(|_| (0..n).map(|_| scale * rng.random_range(2.0..6.0)).collect())

@@ -7,7 +7,7 @@ use swarmplan::energy::{rate_matrix_mah_per_min, Wind};
 use swarmplan::formation::FormationKind;
 use swarmplan::precompose::{build_swarm, select_formation, Positioning};
 use swarmplan::problem::io::read_toml;
-use swarmplan::problem::{Network, Node, Profile, Segment};
+use swarmplan::problem::{Network, Node, Profile, Edge};
 
 fn main() {
     let path =
@@ -37,7 +37,7 @@ fn main() {
             "rate_matrix_mah_per_min, {n:2} drones: {per_call_us:.2} us/call (checksum {acc:.1})"
         );
     }
-    // A ring of 200 nodes, 200 segments with varied winds.
+    // A ring of 200 nodes, 200 edges with varied winds.
     let nodes: Vec<Node> = (0..200)
         .map(|i| {
             let a = i as f64 / 200.0 * std::f64::consts::TAU;
@@ -50,8 +50,8 @@ fn main() {
             }
         })
         .collect();
-    let segments: Vec<Segment> = (0..200)
-        .map(|i| Segment {
+    let edges: Vec<Edge> = (0..200)
+        .map(|i| Edge {
             from: format!("n{i}"),
             to: format!("n{}", (i + 1) % 200),
             distance_m: None,
@@ -63,12 +63,12 @@ fn main() {
         schema_version: 1,
         name: None,
         nodes,
-        segments,
+        edges,
     };
     let t = Instant::now();
     let (kind, wind) = select_formation(&net, &p);
     println!(
-        "select_formation, 200 segments: {:.2} ms -> {} for {:.2} m/s from {} deg",
+        "select_formation, 200 edges: {:.2} ms -> {} for {:.2} m/s from {} deg",
         t.elapsed().as_secs_f64() * 1e3,
         kind.name(),
         wind.speed_mps,

@@ -38,7 +38,7 @@ use std::time::Instant;
 use swarmplan::cli::inputs::{load_requests, validate_requests, Instance, InstanceArgs};
 use swarmplan::compose::{Context, PlanOptions, Planner, RouteMethod};
 use swarmplan::eaas::milp::{solve_milp, ExactStatus, MilpOptions, Objective, Reorder};
-use swarmplan::eaas::{fluid, simulate_with, PolicyOptions, SegmentProblem, SharingPolicy};
+use swarmplan::eaas::{fluid, simulate_with, PolicyOptions, HopProblem, SharingPolicy};
 use swarmplan::error::Result;
 use swarmplan::precompose::Positioning;
 use swarmplan::problem::Request;
@@ -303,7 +303,7 @@ fn request_rows(
             };
             steps.push(nodes[0]);
             let end = *nodes.last().expect("a hop has nodes");
-            let problem = planner.segment_problem(&path, &hop.departure_battery_mah);
+            let problem = planner.hop_problem(&path, &hop.departure_battery_mah);
             let replay = simulate_with(&problem, policy, &readings)?;
             let replay_matches = replay.feasible
                 && replay
@@ -370,7 +370,7 @@ fn request_rows(
             let Some(path) = graph.shortest_path(from, destination) else {
                 continue;
             };
-            let problem: SegmentProblem = planner.segment_problem(&path, &full);
+            let problem: HopProblem = planner.hop_problem(&path, &full);
             let Ok(lp) = fluid::bound(&problem, &Objective::Feasible, Reorder::Paper, time_limit_s)
             else {
                 rows.errors[p] += 1;
@@ -386,7 +386,7 @@ fn request_rows(
                     continue;
                 };
                 let checked = o.outcome.as_ref().is_some_and(|x| {
-                    x.feasible && swarmplan::check::check_segment(&problem, x).is_empty()
+                    x.feasible && swarmplan::check::check_hop(&problem, x).is_empty()
                 });
                 (Some(o.status), o.solve_ms, o.periods, checked)
             };
@@ -583,7 +583,7 @@ fn print_table(
         "Direct hops to the destination that the policy failed (Algorithm 1 lines 5-10), full \
          batteries, at the source and at every stop before the last hop and at a dead end:"
     );
-    println!("| policy | direct hops tested | MILP finds a flying schedule | of which the schedule passes check_segment | at the source (of sources tested) | fluid LP proves unflyable (every schedule) | MILP infeasible on the grid | MILP no solution in time |");
+    println!("| policy | direct hops tested | MILP finds a flying schedule | of which the schedule passes check_hop | at the source (of sources tested) | fluid LP proves unflyable (every schedule) | MILP infeasible on the grid | MILP no solution in time |");
     println!("|---|---|---|---|---|---|---|---|");
     for line in direct_lines {
         println!("{line}");

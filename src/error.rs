@@ -9,7 +9,7 @@ use std::fmt;
 pub struct Violation {
     /// Stable rule code, such as `E1101`; listed in README.md.
     pub code: &'static str,
-    /// Where the problem is, such as `segments[3].wind_speed_mps` or `--pads`.
+    /// Where the problem is, such as `edges[3].wind_speed_mps` or `--pads`.
     pub field: String,
     /// What is wrong, with the offending value.
     pub cause: String,

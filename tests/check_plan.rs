@@ -185,7 +185,7 @@ fn corrupted_plans_are_rejected_with_their_code() {
         .iter()
         .find(|n| {
             n.id != h.path[0]
-                && !network.segments.iter().any(|s| {
+                && !network.edges.iter().any(|s| {
                     (s.from == h.path[0] && s.to == n.id) || (s.to == h.path[0] && s.from == n.id)
                 })
         })
@@ -205,7 +205,7 @@ fn corrupted_plans_are_rejected_with_their_code() {
 
     // A per-segment breakdown whose travel times do not add up to the hop's.
     let mut p = good.clone();
-    p.hops[0].segments[0].tt_min += 1.0;
+    p.hops[0].legs[0].tt_min += 1.0;
     assert_eq!(check(&p), vec!["P5033"], "segment tt");
 
     // dt that is not tt + nt.

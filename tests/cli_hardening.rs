@@ -97,7 +97,7 @@ fn network_quantities_beyond_their_stated_ranges_exit_2_with_codes() {
                 r#"{ "from": "A", "to": "M", "distance_m": 1e308, "wind_speed_mps""#,
             ),
             "E1208",
-            &["segments[0].distance_m", "(0, 1e6] m"],
+            &["edges[0].distance_m", "(0, 1e6] m"],
         ),
         (
             "distance 1e200 (was: destination not connected)",
@@ -107,13 +107,13 @@ fn network_quantities_beyond_their_stated_ranges_exit_2_with_codes() {
                 r#"{ "from": "A", "to": "M", "distance_m": 1e200, "wind_speed_mps""#,
             ),
             "E1208",
-            &["segments[0].distance_m", "1e200"],
+            &["edges[0].distance_m", "1e200"],
         ),
         (
             "Euclidean length 2e6 m",
             flat_stop_with("far.json", r#""x_m": 5000.0"#, r#""x_m": 2000000.0"#),
             "E1208",
-            &["segments[1].distance_m", "Euclidean"],
+            &["edges[1].distance_m", "Euclidean"],
         ),
         (
             "pad rate 1e-300",

@@ -1,14 +1,14 @@
-//! Segment sharing model: hand-computed cases for none, PB and FB, fixed re-ordering, the support
+//! Edge sharing model: hand-computed cases for none, PB and FB, fixed re-ordering, the support
 //! reserve, piecewise legs, and the independent checker.
 
 use nalgebra::Vector2;
 use proptest::prelude::*;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use swarmplan::check::check_segment;
+use swarmplan::check::check_hop;
 use swarmplan::eaas::{
-    battery_trace, simulate, simulate_with, DroneState, Leg, PbRequest, PolicyOptions, Readings,
-    Role, SegmentOutcome, SegmentProblem, SharingPolicy,
+    battery_trace, simulate, simulate_with, DroneState, LegRates, PbRequest, PolicyOptions, Readings,
+    Role, HopOutcome, HopProblem, SharingPolicy,
 };
 
 const TOL: f64 = 1e-6;
@@ -30,8 +30,8 @@ fn drone(role: Role, capacity_mah: f64, battery_mah: f64) -> DroneState {
 }
 
 /// One leg; `rates[d]` is drone d's rate in every slot.
-fn uniform_leg(duration_min: f64, rates: &[f64]) -> Leg {
-    Leg {
+fn uniform_leg(duration_min: f64, rates: &[f64]) -> LegRates {
+    LegRates {
         duration_min,
         rate_mah_per_min: rates.iter().map(|&r| vec![r; rates.len()]).collect(),
     }
@@ -45,16 +45,16 @@ fn line(xs: &[f64]) -> (Vec<Vector2<f64>>, Vec<usize>) {
     )
 }
 
-fn passes(p: &SegmentProblem, o: &SegmentOutcome) {
-    let v = check_segment(p, o);
+fn passes(p: &HopProblem, o: &HopOutcome) {
+    let v = check_hop(p, o);
     assert!(v.is_empty(), "checker: {v:#?}");
 }
 
 /// d0 delivery (cap 200, 80 mAh, 10 mAh/min), d1 support (500 mAh, 5 mAh/min), 1 m apart,
 /// tt = 10 min, rho = 4, gamma = 50, lambda = 20, delta = 100.
-fn two_drones() -> SegmentProblem {
+fn two_drones() -> HopProblem {
     let (slots_m, initial_slot) = line(&[0.0, 1.0]);
-    SegmentProblem {
+    HopProblem {
         legs: vec![uniform_leg(10.0, &[10.0, 5.0])],
         drones: vec![
             drone(Role::Delivery, 200.0, 80.0),
@@ -113,9 +113,9 @@ fn one_leg_two_drones_by_hand() {
 
 /// d0, d1 delivery (cap 400; 60 and 300 mAh; 12 mAh/min), d2 support (1000 mAh, 5 mAh/min) in the
 /// middle slot; tt = 10, rho = 10, gamma = 150, lambda = 50, delta = 100.
-fn needy_and_healthy() -> SegmentProblem {
+fn needy_and_healthy() -> HopProblem {
     let (slots_m, _) = line(&[0.0, 1.0, 2.0]);
-    SegmentProblem {
+    HopProblem {
         legs: vec![uniform_leg(10.0, &[12.0, 12.0, 5.0])],
         drones: vec![
             drone(Role::Delivery, 400.0, 60.0),
@@ -179,8 +179,8 @@ fn out_of_range_consumer_swaps_next_to_the_support_drone_and_pays_that_slots_rat
     // range 1.2: d0 swaps with d1 (slot 1, 1 m from the support drone).
     // rate[d][slot]: d0: 10 in slot 0, 20 in slot 1; d1: 6 in slot 0, 8 in slot 1; d2: 5.
     let (slots_m, initial_slot) = line(&[0.0, 2.0, 3.0]);
-    let p = SegmentProblem {
-        legs: vec![Leg {
+    let p = HopProblem {
+        legs: vec![LegRates {
             duration_min: 10.0,
             rate_mah_per_min: vec![
                 vec![10.0, 20.0, 99.0],
@@ -215,7 +215,7 @@ fn out_of_range_consumer_swaps_next_to_the_support_drone_and_pays_that_slots_rat
     // The same transfer without the swap is out of range (3 m > 1.2 m).
     let mut unswapped = pb.clone();
     unswapped.transfers[0].consumer_slot = 0;
-    let codes: Vec<_> = check_segment(&p, &unswapped)
+    let codes: Vec<_> = check_hop(&p, &unswapped)
         .iter()
         .map(|v| v.code)
         .collect();
@@ -235,7 +235,7 @@ fn transfer_stops_when_the_consumer_is_full() {
     // full after 1.25 min: [6.25, 7.5], 12.5 mAh. Then it waits to 12.5 > tt.
     // d0 at tt = 100 - 2 * 2.5 = 95.
     let (slots_m, initial_slot) = line(&[0.0, 1.0]);
-    let p = SegmentProblem {
+    let p = HopProblem {
         legs: vec![uniform_leg(10.0, &[2.0, 5.0])],
         drones: vec![
             drone(Role::Delivery, 100.0, 90.0),
@@ -265,7 +265,7 @@ fn support_reserve_delta_is_respected() {
     // Support: 200 mAh, 5 mAh/min over 10 min = 50 of its own, delta = 100: it may share
     // 200 - 50 - 100 = 50 mAh. d0: cap 400, 60 mAh, 10 mAh/min; rho = 10, lambda = 30 (3 min).
     let (slots_m, initial_slot) = line(&[0.0, 1.0]);
-    let p = SegmentProblem {
+    let p = HopProblem {
         legs: vec![uniform_leg(10.0, &[10.0, 5.0])],
         drones: vec![
             drone(Role::Delivery, 400.0, 60.0),
@@ -304,7 +304,7 @@ fn piecewise_legs_change_the_rates() {
     // PB, gamma = 120: 150 - 20 (t - 5) = 120 at st = 6.5; re = 300 - 120 = 180 (18 min at
     // rho = 10, clipped): [6.5, 10], 35 mAh; d0 = 50 + 35 = 85.
     let (slots_m, initial_slot) = line(&[0.0, 1.0]);
-    let p = SegmentProblem {
+    let p = HopProblem {
         legs: vec![
             uniform_leg(5.0, &[10.0, 5.0]),
             uniform_leg(5.0, &[20.0, 5.0]),
@@ -352,7 +352,7 @@ fn pb_literal_reading_skips_a_request_that_starts_while_the_support_is_busy() {
     // Literal reading: d1's st = 1 < 5 is skipped; d0's st = 5 is served: [5, 10];
     //   d0 = 100, d1 = 130 - 100 = 30.
     let (slots_m, _) = line(&[0.0, 1.0, 2.0]);
-    let p = SegmentProblem {
+    let p = HopProblem {
         legs: vec![uniform_leg(10.0, &[10.0, 10.0, 5.0])],
         drones: vec![
             drone(Role::Delivery, 150.0, 100.0),
@@ -405,8 +405,8 @@ fn checker_rejects_corrupted_schedules() {
     let p = needy_and_healthy();
     let fb = simulate(&p, SharingPolicy::Fb).unwrap();
     passes(&p, &fb);
-    let codes = |o: &SegmentOutcome| -> Vec<&'static str> {
-        check_segment(&p, o).iter().map(|v| v.code).collect()
+    let codes = |o: &HopOutcome| -> Vec<&'static str> {
+        check_hop(&p, o).iter().map(|v| v.code).collect()
     };
     // One support drone giving to d0 on [0, 5] and to d1 from t = 4: overlap.
     let mut overlap = fb.clone();
@@ -434,7 +434,7 @@ fn checker_rejects_corrupted_schedules() {
 }
 
 /// A random small segment from a seed.
-fn random_problem(seed: u64) -> SegmentProblem {
+fn random_problem(seed: u64) -> HopProblem {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let deliveries = rng.random_range(1..=4);
     let supports = rng.random_range(0..=2);
@@ -452,7 +452,7 @@ fn random_problem(seed: u64) -> SegmentProblem {
         initial_slot.swap(i, rng.random_range(0..=i));
     }
     let legs = (0..rng.random_range(1..=3))
-        .map(|_| Leg {
+        .map(|_| LegRates {
             duration_min: if rng.random_bool(0.1) {
                 0.0
             } else {
@@ -479,7 +479,7 @@ fn random_problem(seed: u64) -> SegmentProblem {
             drone(role, capacity_mah, battery_mah)
         })
         .collect();
-    SegmentProblem {
+    HopProblem {
         legs,
         drones,
         slots_m,
@@ -496,10 +496,10 @@ fn random_problem(seed: u64) -> SegmentProblem {
 /// x = 0, 1, 2 (drone d in slot d): d0 is 2 m from the support drone, out of range, and the only
 /// in-range slot is d1's. d1 costs 30 mAh/min in d0's slot and 10 in its own; d0 10 everywhere.
 /// tt = 10 min, rho = 4, gamma = 100, lambda = 40 (a round is the whole hop), delta = 100.
-fn swap_partner_hop() -> SegmentProblem {
+fn swap_partner_hop() -> HopProblem {
     let (slots_m, initial_slot) = line(&[0.0, 1.0, 2.0]);
-    SegmentProblem {
-        legs: vec![Leg {
+    HopProblem {
+        legs: vec![LegRates {
             duration_min: 10.0,
             rate_mah_per_min: vec![
                 vec![10.0, 10.0, 10.0],
@@ -567,7 +567,7 @@ fn pb_requests_sized_to_the_hop_end_serve_the_needier_of_two_simultaneous_reques
     // d0's request then starts at 10 = tt and is dropped. Filling the battery, both ask
     // 200 - 100 = 100: the tie goes to d0 by id, which gains 10 mAh/min net to 150, and d1 ends at 0.
     let (slots_m, _) = line(&[0.0, 2.0, 1.0]);
-    let p = SegmentProblem {
+    let p = HopProblem {
         legs: vec![uniform_leg(10.0, &[10.0, 20.0, 5.0])],
         drones: vec![
             drone(Role::Delivery, 200.0, 150.0),
@@ -634,7 +634,7 @@ proptest! {
         for policy in [SharingPolicy::None, SharingPolicy::Pb, SharingPolicy::Fb] {
             for o in &readings {
                 let out = simulate_with(&p, policy, o).unwrap();
-                let v = check_segment(&p, &out);
+                let v = check_hop(&p, &out);
                 prop_assert!(v.is_empty(), "{policy:?} {o:?}: {v:#?}\n{p:?}\n{out:?}");
             }
         }
@@ -713,7 +713,7 @@ fn swap_slot_is_the_nearest_in_range_with_ties_to_the_lower_slot() {
     // Support d0 in slot 0 at (0, 0); slots 1 at (1, 0) and 2 at (0, 1) are both 1 m away;
     // slot 3 at (0.5, 0.5) is 0.707 m away but held by a support drone; consumer d4 in slot 4 at
     // (3, 0). Range 1.2.
-    let p = SegmentProblem {
+    let p = HopProblem {
         legs: vec![uniform_leg(1.0, &[1.0; 5])],
         drones: vec![
             drone(Role::Support, 100.0, 100.0),
@@ -752,7 +752,7 @@ fn problem_round_trips_through_json_with_slots_as_pairs() {
     let p = two_drones();
     let text = serde_json::to_string(&p).unwrap();
     assert!(text.contains("\"slots_m\":[[0.0,0.0],[1.0,0.0]]"), "{text}");
-    let back: SegmentProblem = serde_json::from_str(&text).unwrap();
+    let back: HopProblem = serde_json::from_str(&text).unwrap();
     assert_eq!(back, p);
     let policy: SharingPolicy = serde_json::from_str("\"fb\"").unwrap();
     assert_eq!(policy, SharingPolicy::Fb);
@@ -783,7 +783,7 @@ fn two_support_drones_serve_their_nearest_delivery_drones_at_the_same_time() {
     // gamma = 100. Both request at st = 0 (re = 350, 58.3 min, clipped): [0, 10] each, 60 mAh.
     // Each delivery drone ends at 50 - 100 + 60 = 10; without sharing both empty at t = 5.
     let (slots_m, _) = line(&[0.0, 1.0, 2.0, 3.0]);
-    let p = SegmentProblem {
+    let p = HopProblem {
         legs: vec![uniform_leg(10.0, &[10.0, 10.0, 5.0, 5.0])],
         drones: vec![
             drone(Role::Delivery, 400.0, 50.0),

@@ -5,12 +5,12 @@
 use nalgebra::Vector2;
 use proptest::prelude::*;
 use serde::Deserialize;
-use swarmplan::check::check_segment;
+use swarmplan::check::check_hop;
 use swarmplan::eaas::milp::{
     solve_milp, ExactOutcome, ExactStatus, MilpOptions, Objective, Reorder,
 };
 use swarmplan::eaas::{
-    sharing_budget_mah, simulate, DroneState, Leg, Role, SegmentProblem, SharingPolicy, Transfer,
+    sharing_budget_mah, simulate, DroneState, LegRates, Role, HopProblem, SharingPolicy, Transfer,
 };
 use swarmplan::node_time;
 use swarmplan::solver::MilpBackend;
@@ -32,7 +32,7 @@ struct Table {
 struct Known {
     name: String,
     description: String,
-    problem: SegmentProblem,
+    problem: HopProblem,
     objective: Objective,
     reorder: Reorder,
     period_min: f64,
@@ -67,16 +67,16 @@ fn options(backend: MilpBackend, reorder: Reorder, period_min: f64) -> MilpOptio
 }
 
 /// Every schedule an outcome carries passes the independent checker.
-fn assert_checked(p: &SegmentProblem, o: &ExactOutcome) {
+fn assert_checked(p: &HopProblem, o: &ExactOutcome) {
     if let Some(out) = &o.outcome {
-        let v = check_segment(p, out);
+        let v = check_hop(p, out);
         assert!(v.is_empty(), "checker: {v:#?}");
         assert_eq!(out.transfers.len(), o.transfers.len());
     }
 }
 
 /// Node time of final batteries by the paper's brute force (not the MILP's pad model).
-fn brute_node_time(p: &SegmentProblem, pads: usize, pad_rate: f64, fin: &[f64]) -> f64 {
+fn brute_node_time(p: &HopProblem, pads: usize, pad_rate: f64, fin: &[f64]) -> f64 {
     let times: Vec<f64> = p
         .drones
         .iter()
@@ -249,15 +249,15 @@ fn grid_cuts_legs_into_equal_periods_at_most_period_min_long() {
     let mut p = known("needy_pair_max_min").problem;
     let leg = p.legs[0].clone();
     p.legs = vec![
-        Leg {
+        LegRates {
             duration_min: 2.5,
             ..leg.clone()
         },
-        Leg {
+        LegRates {
             duration_min: 0.0,
             ..leg.clone()
         },
-        Leg {
+        LegRates {
             duration_min: 1.5,
             ..leg
         },
@@ -284,9 +284,9 @@ fn tiny(
     rho: f64,
     delta: f64,
     periods: usize,
-) -> SegmentProblem {
-    SegmentProblem {
-        legs: vec![Leg {
+) -> HopProblem {
+    HopProblem {
+        legs: vec![LegRates {
             duration_min: periods as f64,
             rate_mah_per_min: rates.iter().map(|&r| vec![r; 3]).collect(),
         }],
@@ -323,7 +323,7 @@ fn tiny(
 
 /// Final batteries of every flyable full-period schedule (each period: idle, serve 0, serve 1),
 /// integrated here by hand: batteries are linear in a period, so grid points suffice.
-fn brute_finals(p: &SegmentProblem, periods: usize) -> Vec<Vec<f64>> {
+fn brute_finals(p: &HopProblem, periods: usize) -> Vec<Vec<f64>> {
     let rho = p.rho_mah_per_min;
     let budget = sharing_budget_mah(p, 2);
     let mut out = Vec::new();
@@ -393,14 +393,14 @@ proptest! {
 /// Integral hop: rho = 1 mAh/min, integer rates, batteries, durations and capacities, gamma = C
 /// (PB requests start at breakpoints), lambda integral (FB rounds of whole minutes): every
 /// breakpoint of PB and FB is a whole minute.
-fn integral_hop(seed: u64) -> SegmentProblem {
+fn integral_hop(seed: u64) -> HopProblem {
     use rand::{Rng, SeedableRng};
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
     let nd = rng.random_range(2..=3usize);
     let ns = rng.random_range(1..=2usize);
     let n = nd + ns;
     let legs = (0..rng.random_range(1..=2usize))
-        .map(|_| Leg {
+        .map(|_| LegRates {
             duration_min: rng.random_range(1..=2u32) as f64,
             rate_mah_per_min: (0..n)
                 .map(|_| (0..n).map(|_| rng.random_range(0..=3u32) as f64).collect())
@@ -427,7 +427,7 @@ fn integral_hop(seed: u64) -> SegmentProblem {
         let j = rng.random_range(0..=i);
         initial_slot.swap(i, j);
     }
-    SegmentProblem {
+    HopProblem {
         legs,
         drones,
         slots_m: (0..n).map(|q| Vector2::new(q as f64, 0.0)).collect(),
@@ -554,7 +554,7 @@ fn fair_qp_of_the_needy_pair_splits_the_support_drone_evenly_and_flies() {
     );
     let out = o.outcome.as_ref().unwrap();
     assert!(out.feasible);
-    assert!(check_segment(&k.problem, out).is_empty());
+    assert!(check_hop(&k.problem, out).is_empty());
     assert!((fluid::squared_deficits(&k.problem, &out.final_battery_mah) - 19_650.0).abs() < 1e-2);
     assert!((o.objective.unwrap() - 5.0).abs() < 1e-4);
     // Nobody is full at the start of pb_overshares: the fair optimum there shares nothing
@@ -580,7 +580,7 @@ proptest! {
             let lp = fluid::bound(&p, &NT2, mode, 10.0).unwrap();
             let qp = fluid::fair(&p, &NT2, mode, 10.0).unwrap();
             if let Some(out) = &qp.outcome {
-                let v = check_segment(&p, out);
+                let v = check_hop(&p, out);
                 prop_assert!(v.is_empty(), "fair schedule: {:?}", v);
             }
             for backend in MilpBackend::all() {
@@ -613,7 +613,7 @@ proptest! {
 }
 
 /// A hop too large to solve in a millisecond: 5 delivery and 2 support drones, 8 periods.
-fn large_hop() -> SegmentProblem {
+fn large_hop() -> HopProblem {
     let mut p = integral_hop(7);
     let n = 7;
     p.drones = (0..n)
@@ -623,7 +623,7 @@ fn large_hop() -> SegmentProblem {
             battery_mah: if d < 5 { 40.0 + 10.0 * d as f64 } else { 100.0 },
         })
         .collect();
-    p.legs = vec![Leg {
+    p.legs = vec![LegRates {
         duration_min: 8.0,
         rate_mah_per_min: (0..n)
             .map(|d| (0..n).map(|q| 2.0 + ((d * 3 + q) % 4) as f64).collect())

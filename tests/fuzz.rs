@@ -146,8 +146,8 @@ fn network_along(text: &str, pick: usize) -> std::result::Result<(), TestCaseErr
             if let Ok(graph) = graph {
                 let paper = &seeds().paper;
                 plan_request(&n, &graph, paper, &seeds().first_request)?;
-                if !n.segments.is_empty() {
-                    let seg = &n.segments[pick % n.segments.len()];
+                if !n.edges.is_empty() {
+                    let seg = &n.edges[pick % n.edges.len()];
                     let along = swarmplan::problem::Request {
                         id: "along".into(),
                         source: seg.from.clone(),

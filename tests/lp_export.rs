@@ -10,7 +10,7 @@ use std::path::PathBuf;
 use swarmplan::eaas::milp::{
     lp_text, solve_milp, write_lp, ExactStatus, MilpOptions, Objective, Reorder,
 };
-use swarmplan::eaas::{Role, SegmentProblem};
+use swarmplan::eaas::{Role, HopProblem};
 #[cfg(feature = "highs")]
 use swarmplan::solver::MilpBackend;
 
@@ -30,7 +30,7 @@ struct Table {
 struct Known {
     name: String,
     description: String,
-    problem: SegmentProblem,
+    problem: HopProblem,
     objective: Objective,
     reorder: Reorder,
     period_min: f64,
@@ -163,7 +163,7 @@ struct Move {
     p: Option<usize>,
 }
 
-fn expected_moves(p: &SegmentProblem, reorder: Reorder) -> Vec<Move> {
+fn expected_moves(p: &HopProblem, reorder: Reorder) -> Vec<Move> {
     let n = p.drones.len();
     let dist = |a: usize, b: usize| (p.slots_m[a] - p.slots_m[b]).norm();
     let holder = |q: usize| (0..n).find(|&d| p.initial_slot[d] == q).unwrap();

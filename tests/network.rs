@@ -59,8 +59,8 @@ fn line4_distances_paths_and_node_facts() {
         vec![1, 2, 2, 1]
     );
     assert_eq!(g.neighbors(b), vec![(a, 0), (c, 1)]);
-    assert_eq!(g.segment_between(c, b), Some(1));
-    assert_eq!(g.segment_between(a, c), None);
+    assert_eq!(g.edge_between(c, b), Some(1));
+    assert_eq!(g.edge_between(a, c), None);
     assert!(g.is_fully_connected());
 }
 
@@ -162,7 +162,7 @@ fn floyd_warshall_matches_hand_computed_diamond_distances() {
 fn bfs_reaches_all(n: &Network) -> bool {
     let idx = |id: &str| n.nodes.iter().position(|x| x.id == id).unwrap();
     let mut adj = vec![Vec::new(); n.nodes.len()];
-    for s in &n.segments {
+    for s in &n.edges {
         let (a, b) = (idx(&s.from), idx(&s.to));
         adj[a].push(b);
         adj[b].push(a);
@@ -185,7 +185,7 @@ fn degrees(n: &Network) -> Vec<usize> {
     n.nodes
         .iter()
         .map(|x| {
-            n.segments
+            n.edges
                 .iter()
                 .filter(|s| s.from == x.id || s.to == x.id)
                 .count()
@@ -203,7 +203,7 @@ fn check_generated_network(n: &Network, nodes: usize) {
     assert!(n.nodes.iter().all(|x| x.pads <= 4));
     assert!(n.nodes.iter().any(|x| x.pads > 0));
     assert!(n.nodes.iter().all(|x| x.x_m >= 0.0 && x.y_m >= 0.0));
-    for s in &n.segments {
+    for s in &n.edges {
         assert!(s.wind_speed_mps >= 0.0 && s.wind_speed_mps < 13.8);
         assert!((0.0..360.0).contains(&s.wind_from_deg));
     }
@@ -312,7 +312,7 @@ fn sparse_195_is_paper_195_stretched_to_1000_m_blocks() {
         assert!((2.0 * x.x_m - y.x_m).abs() <= 0.2 && (2.0 * x.y_m - y.y_m).abs() <= 0.2);
     }
     let ends = |n: &Network| {
-        n.segments
+        n.edges
             .iter()
             .map(|s| (s.from.clone(), s.to.clone()))
             .collect::<Vec<_>>()
@@ -354,7 +354,7 @@ proptest! {
         let pos: Vec<(f64, f64)> = n.nodes.iter().map(|x| (x.x_m, x.y_m)).collect();
         let idx = |id: &str| n.nodes.iter().position(|x| x.id == id).unwrap();
         let mut adj = vec![Vec::new(); nodes];
-        for s in &n.segments {
+        for s in &n.edges {
             let (a, b) = (idx(&s.from), idx(&s.to));
             let l = ((pos[a].0 - pos[b].0).powi(2) + (pos[a].1 - pos[b].1).powi(2)).sqrt();
             adj[a].push((b, l));

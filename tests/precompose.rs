@@ -11,7 +11,7 @@ use swarmplan::problem::io::{parse_toml, read_toml};
 use swarmplan::problem::profile::{
     validate_profile, FailureModel, FailureTerms, FailureWeights, RedundancyLevel,
 };
-use swarmplan::problem::{Network, Node, Profile, RequestSet, Segment};
+use swarmplan::problem::{Network, Node, Profile, RequestSet, Edge};
 
 fn shipped_profile(name: &str) -> Profile {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -33,8 +33,8 @@ fn node(id: &str, x_m: f64, y_m: f64) -> Node {
     }
 }
 
-fn seg(from: &str, to: &str, wind_speed_mps: f64, wind_from_deg: f64) -> Segment {
-    Segment {
+fn seg(from: &str, to: &str, wind_speed_mps: f64, wind_from_deg: f64) -> Edge {
+    Edge {
         from: from.into(),
         to: to.into(),
         distance_m: None,
@@ -43,12 +43,12 @@ fn seg(from: &str, to: &str, wind_speed_mps: f64, wind_from_deg: f64) -> Segment
     }
 }
 
-fn network(nodes: Vec<Node>, segments: Vec<Segment>) -> Network {
+fn network(nodes: Vec<Node>, edges: Vec<Edge>) -> Network {
     Network {
         schema_version: 1,
         name: None,
         nodes,
-        segments,
+        edges,
     }
 }
 
@@ -293,13 +293,13 @@ fn per_unit_weights_may_exceed_1_but_not_be_negative_and_normalised_ones_stay_in
     assert!(err.to_string().contains("E0002"), "{err}");
 }
 
-/// Shortest distances from `source` over the network's segments (Euclidean lengths), by a plain
+/// Shortest distances from `source` over the network's edges (Euclidean lengths), by a plain
 /// O(V^2) Dijkstra written for this test, independent of the crate's graph code.
 fn test_dijkstra_m(net: &Network, source: usize) -> Vec<f64> {
     let n = net.nodes.len();
     let at = |id: &str| net.nodes.iter().position(|x| x.id == id).unwrap();
     let mut adj = vec![Vec::new(); n];
-    for s in &net.segments {
+    for s in &net.edges {
         let (a, b) = (at(&s.from), at(&s.to));
         let len = s.distance_m.unwrap_or_else(|| {
             (net.nodes[a].x_m - net.nodes[b].x_m).hypot(net.nodes[a].y_m - net.nodes[b].y_m)
@@ -340,7 +340,7 @@ fn every_row_of_table_2_is_reached_on_the_first_200_paper_195_requests_under_red
         swarmplan::problem::io::read_json(&root.join("instances/paper-195/requests.json"))
             .expect("requests parse");
     let w_mps =
-        net.segments.iter().map(|s| s.wind_speed_mps).sum::<f64>() / net.segments.len() as f64;
+        net.edges.iter().map(|s| s.wind_speed_mps).sum::<f64>() / net.edges.len() as f64;
     assert!((w_mps - 5.262).abs() < 5e-4, "{w_mps}");
     let graph = swarmplan::network::SkywayGraph::new(&net).unwrap();
     let context = swarmplan::compose::Context::new(&net, &graph, &p);

@@ -33,13 +33,13 @@ fn invalid_network_reports_all_eleven_violations_with_fields() {
             ("E1101", "nodes[3].id"),
             ("E1104", "nodes[3].pad_charge_rate_mah_per_min"),
             ("E1105", "nodes"),
-            ("E1206", "segments[0].wind_speed_mps"),
-            ("E1201", "segments[1].to"),
-            ("E1202", "segments[2]"),
-            ("E1203", "segments[3]"),
-            ("E1204", "segments[3].distance_m"),
-            ("E1205", "segments[3].wind_speed_mps"),
-            ("E1207", "segments[3].wind_from_deg"),
+            ("E1206", "edges[0].wind_speed_mps"),
+            ("E1201", "edges[1].to"),
+            ("E1202", "edges[2]"),
+            ("E1203", "edges[3]"),
+            ("E1204", "edges[3].distance_m"),
+            ("E1205", "edges[3].wind_speed_mps"),
+            ("E1207", "edges[3].wind_from_deg"),
         ])
     );
     // Every violation says what is wrong and what to do.
@@ -61,9 +61,9 @@ fn non_finite_numbers_and_schema_version_are_reported() {
     n.schema_version = 9;
     n.nodes[1].x_m = f64::NAN;
     n.nodes[2].y_m = f64::INFINITY;
-    n.segments[0].wind_speed_mps = f64::NAN;
-    n.segments[1].wind_from_deg = f64::NAN;
-    n.segments[2].distance_m = Some(f64::NAN);
+    n.edges[0].wind_speed_mps = f64::NAN;
+    n.edges[1].wind_from_deg = f64::NAN;
+    n.edges[2].distance_m = Some(f64::NAN);
     let v = validate_network(&n);
     assert_eq!(
         codes_and_fields(&v),
@@ -72,11 +72,11 @@ fn non_finite_numbers_and_schema_version_are_reported() {
             ("E1103", "nodes[1].x_m"),
             ("E1103", "nodes[2].y_m"),
             // B's x is NaN, so the default A-B and B-C lengths are NaN as well.
-            ("E1204", "segments[0].distance_m"),
-            ("E1205", "segments[0].wind_speed_mps"),
-            ("E1204", "segments[1].distance_m"),
-            ("E1207", "segments[1].wind_from_deg"),
-            ("E1204", "segments[2].distance_m"),
+            ("E1204", "edges[0].distance_m"),
+            ("E1205", "edges[0].wind_speed_mps"),
+            ("E1204", "edges[1].distance_m"),
+            ("E1207", "edges[1].wind_from_deg"),
+            ("E1204", "edges[2].distance_m"),
         ])
     );
 }
@@ -85,10 +85,10 @@ fn non_finite_numbers_and_schema_version_are_reported() {
 fn wind_just_under_the_limit_is_valid_and_at_the_limit_is_not() {
     let mut n: Network = read_json(&tiny("line4.json")).unwrap();
     assert!(validate_network(&n).is_empty()); // C-D has 13.7 m/s
-    n.segments[2].wind_speed_mps = 13.8;
+    n.edges[2].wind_speed_mps = 13.8;
     assert_eq!(
         codes_and_fields(&validate_network(&n)),
-        pairs(&[("E1206", "segments[2].wind_speed_mps")])
+        pairs(&[("E1206", "edges[2].wind_speed_mps")])
     );
 }
 
@@ -98,7 +98,7 @@ fn coincident_nodes_without_distance_are_reported() {
     n.nodes[1].x_m = 0.0; // B on top of A: A-B has Euclidean length 0
     assert_eq!(
         codes_and_fields(&validate_network(&n)),
-        pairs(&[("E1204", "segments[0].distance_m")])
+        pairs(&[("E1204", "edges[0].distance_m")])
     );
 }
 
@@ -177,14 +177,14 @@ fn malformed_json_and_unknown_fields_are_coded_errors() {
         }
         other => panic!("expected E0001, got {other:?}"),
     }
-    let unknown = r#"{ "schema_version": 1, "nodes": [], "segments": [], "roads": [] }"#;
+    let unknown = r#"{ "schema_version": 1, "nodes": [], "edges": [], "roads": [] }"#;
     match parse_json::<Network>(unknown, "unknown.json") {
         Err(e) => assert_eq!(e.exit_code(), 2),
         Ok(_) => panic!("unknown field accepted"),
     }
     // A well-formed but empty network: no nodes (E1002); no pads cannot be judged without nodes.
     let empty: Network = parse_json(
-        r#"{ "schema_version": 1, "nodes": [], "segments": [] }"#,
+        r#"{ "schema_version": 1, "nodes": [], "edges": [] }"#,
         "e",
     )
     .unwrap();
@@ -309,7 +309,7 @@ fn network_coordinates_lengths_pad_rates_and_pad_counts_have_stated_ranges() {
         {"id": "B", "x_m": 1e7, "y_m": -9999000.0, "pads": 0, "pad_charge_rate_mah_per_min": 1e6},
         {"id": "C", "x_m": 10000001.0, "y_m": 0.0, "pads": 1001, "pad_charge_rate_mah_per_min": 0.09},
         {"id": "D", "x_m": 0.0, "y_m": 0.0, "pads": 0}],
-      "segments": [
+      "edges": [
         {"from": "A", "to": "B", "wind_speed_mps": 0, "wind_from_deg": 0},
         {"from": "A", "to": "D", "distance_m": 1e6, "wind_speed_mps": 0, "wind_from_deg": 0},
         {"from": "B", "to": "D", "distance_m": 1000000.1, "wind_speed_mps": 0, "wind_from_deg": 0},
@@ -321,8 +321,8 @@ fn network_coordinates_lengths_pad_rates_and_pad_counts_have_stated_ranges() {
             ("E1106", "nodes[2].x_m"),
             ("E1107", "nodes[2].pad_charge_rate_mah_per_min"),
             ("E1108", "nodes[2].pads"),
-            ("E1208", "segments[2].distance_m"),
-            ("E1208", "segments[3].distance_m"),
+            ("E1208", "edges[2].distance_m"),
+            ("E1208", "edges[3].distance_m"),
         ])
     );
 }

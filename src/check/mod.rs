@@ -4,7 +4,7 @@
 //! Codes `C3xxx` concern segment schedules ([`segment`]), codes `P5xxx` whole plans ([`plan`]).
 
 pub mod plan;
-pub mod segment;
+pub mod hop;
 
 pub use plan::check_plan;
-pub use segment::check_segment;
+pub use hop::check_hop;

@@ -1,8 +1,8 @@
 //! Re-verifies a composed [`Plan`] from the raw instance ([`Network`], [`Profile`], [`Request`],
-//! [`Swarm`]), without the composition code paths: segments are looked up in `network.segments`,
+//! [`Swarm`]), without the composition code paths: segments are looked up in `network.edges`,
 //! lengths and headings recomputed from the node coordinates, the rate matrices taken from the
 //! energy model (the physics, [`energy::rate_matrix_mah_per_min`]), every hop's sharing schedule
-//! re-integrated by [`check_segment`] and every stop's pad assignment re-added.
+//! re-integrated by [`check_hop`] and every stop's pad assignment re-added.
 //!
 //! Rules (see `models/compose.md`), codes `P5001`-`P5034`:
 //! * the plan answers the request; a failed plan gives a reason (P5001-P5003); under the
@@ -14,7 +14,7 @@
 //!   (P5009-P5013), and the hop's per-segment list follows the path and adds up to `tt` (P5033);
 //! * every hop departs with every battery full (at the source and after every stop) (P5014);
 //! * every hop's schedule is feasible and valid for the segment problem rebuilt from the raw data
-//!   (P5015 wraps each `C3xxx` of [`check_segment`]; P5016 for transfers without a sharing policy);
+//!   (P5015 wraps each `C3xxx` of [`check_hop`]; P5016 for transfers without a sharing policy);
 //! * every stop is at a node with pads: `ct_d = (C_d - b_d) / q_v`, the assignment is a partition
 //!   of every drone over at most `k_v` pads whose makespan equals `nt`, and
 //!   `nt >= max(max ct, sum ct / k_v)` (P5020-P5027); with at most [`OPTIMALITY_CHECK_DRONES`]
@@ -22,9 +22,9 @@
 //! * totals: `tt = sum tt`, `nt = sum nt`, `dt = tt + nt`, shared energy = sum of the transfers
 //!   (P5030-P5032).
 
-use super::check_segment;
+use super::check_hop;
 use crate::compose::{Hop, Plan, Stop};
-use crate::eaas::{self, SegmentOutcome, SegmentProblem, SharingPolicy};
+use crate::eaas::{self, HopOutcome, HopProblem, SharingPolicy};
 use crate::energy::{self, Wind};
 use crate::error::Violation;
 use crate::precompose::{Role, Swarm};
@@ -69,7 +69,7 @@ struct RawLeg {
 /// Every broken rule (codes `P5xxx`); empty when the plan passes.
 ///
 /// # Complexity
-/// `O(N + S)` to index the network, then per hop the segment check of [`check_segment`] plus
+/// `O(N + S)` to index the network, then per hop the segment check of [`check_hop`] plus
 /// `O(D)` per stop for `D` drones.
 pub fn check_plan(
     network: &Network,
@@ -159,7 +159,7 @@ pub fn check_plan(
             ));
         }
         at = hop.to.as_str();
-        check_hop(
+        check_plan_hop(
             &mut out,
             &f,
             hop,
@@ -233,7 +233,7 @@ pub fn check_plan(
 fn raw_leg(network: &Network, a: usize, b: usize) -> Option<RawLeg> {
     let (na, nb) = (&network.nodes[a], &network.nodes[b]);
     let seg = network
-        .segments
+        .edges
         .iter()
         .find(|s| (s.from == na.id && s.to == nb.id) || (s.from == nb.id && s.to == na.id))?;
     let (dx, dy) = (nb.x_m - na.x_m, nb.y_m - na.y_m);
@@ -255,7 +255,7 @@ fn raw_leg(network: &Network, a: usize, b: usize) -> Option<RawLeg> {
 }
 
 #[allow(clippy::too_many_arguments)]
-fn check_hop(
+fn check_plan_hop(
     out: &mut Vec<Violation>,
     f: &str,
     hop: &Hop,
@@ -334,20 +334,20 @@ fn check_hop(
         ));
     }
     // The per-segment breakdown follows the path and adds up to the hop.
-    let pairs_match = hop.segments.len() + 1 == hop.path.len()
+    let pairs_match = hop.legs.len() + 1 == hop.path.len()
         && hop
-            .segments
+            .legs
             .iter()
             .zip(hop.path.windows(2))
             .all(|(s, w)| s.from == w[0] && s.to == w[1]);
-    let segment_tt: f64 = hop.segments.iter().map(|s| s.tt_min).sum();
+    let segment_tt: f64 = hop.legs.iter().map(|s| s.tt_min).sum();
     if !pairs_match || !close(segment_tt, tt) {
         out.push(v(
             "P5033",
-            format!("{f}.segments"),
+            format!("{f}.legs"),
             format!(
-                "the {} segments listed do not follow the path or their tt sum to {segment_tt} min, not {tt} min",
-                hop.segments.len()
+                "the {} legs listed do not follow the path or their tt sum to {segment_tt} min, not {tt} min",
+                hop.legs.len()
             ),
         ));
     }
@@ -383,10 +383,10 @@ fn check_hop(
         ));
     }
     let s = &profile.sharing;
-    let problem = SegmentProblem {
+    let problem = HopProblem {
         legs: legs
             .iter()
-            .map(|l| eaas::Leg {
+            .map(|l| eaas::LegRates {
                 duration_min: l.distance_m / speed_m_per_min,
                 rate_mah_per_min: energy::rate_matrix_mah_per_min(
                     profile,
@@ -416,7 +416,7 @@ fn check_hop(
     };
     // A plan records arrival batteries, not the lowest ones: the lowest are left to the
     // re-integration, whose below-zero test (C3014) is what feasibility means.
-    let outcome = SegmentOutcome {
+    let outcome = HopOutcome {
         feasible: true,
         failure: None,
         transfers: hop.transfers.clone(),
@@ -424,7 +424,7 @@ fn check_hop(
         min_battery_mah: hop.arrival_battery_mah.clone(),
         shared_mah: hop.shared_mah,
     };
-    for x in check_segment(&problem, &outcome) {
+    for x in check_hop(&problem, &outcome) {
         if x.code == "C3017" {
             continue;
         }

@@ -24,7 +24,7 @@ use crate::eaas::milp::{
     objective_of, solve_milp, write_lp, ExactOutcome, ExactStatus, MilpOptions,
 };
 use crate::eaas::milp::{Objective, Reorder};
-use crate::eaas::{fluid, simulate_with, PolicyOptions, SegmentProblem, SharingPolicy, Transfer};
+use crate::eaas::{fluid, simulate_with, PolicyOptions, HopProblem, SharingPolicy, Transfer};
 use crate::error::{Error, Result};
 use crate::precompose::Positioning;
 use crate::solver::{Gap, MilpBackend, ReferenceKind};
@@ -147,7 +147,7 @@ pub struct EaasReport {
     /// Re-ordering mode of the exact models.
     pub reorder: Reorder,
     /// The hop's sharing problem.
-    pub problem: SegmentProblem,
+    pub problem: HopProblem,
     /// One row per method, in the order asked.
     pub rows: Vec<MethodRow>,
 }
@@ -241,7 +241,7 @@ fn planned_hop(args: &EaasArgs) -> Result<(HopFile, PolicyOptions)> {
             message: format!("the plan's hop path {:?} is not a network path", hop.path),
         })?;
     let planner = Planner::new(graph, &instance.profile, &report.swarm, SharingPolicy::Pb);
-    let problem = planner.segment_problem(&path, &hop.departure_battery_mah);
+    let problem = planner.hop_problem(&path, &hop.departure_battery_mah);
     let end = nodes.last().copied().unwrap_or(0);
     // A plan's hop without a stop ends at the destination: no node time there, whatever its pads.
     let pads = if hop.stop.is_some() {
@@ -316,7 +316,7 @@ fn exact_row(method: HopMethod, kind: &'static str, o: ExactOutcome) -> MethodRo
 
 /// Runs every method, then labels the gaps against the best reference.
 fn rows(
-    problem: &SegmentProblem,
+    problem: &HopProblem,
     objective: &Objective,
     args: &EaasArgs,
     readings: &PolicyOptions,

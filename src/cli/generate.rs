@@ -124,7 +124,7 @@ pub fn run(cmd: GenerateCommand) -> Result<i32> {
             eprintln!(
                 "wrote {} nodes, {} segments (seed {}) to {}",
                 network.nodes.len(),
-                network.segments.len(),
+                network.edges.len(),
                 a.seed,
                 a.output.display()
             );

@@ -38,7 +38,7 @@ pub struct NetworkReport {
     /// Nodes.
     pub nodes: usize,
     /// Segments.
-    pub segments: usize,
+    pub edges: usize,
     /// Nodes with at least one pad.
     pub pad_nodes: usize,
     /// Pads in all.
@@ -90,13 +90,13 @@ pub fn run(args: InspectArgs) -> Result<i32> {
     let net = &inst.network;
     let context = Context::new(net, &inst.graph, &inst.profile);
     let (formation, average_wind) = (context.formation, context.average_wind);
-    let speeds: Vec<f64> = net.segments.iter().map(|s| s.wind_speed_mps).collect();
+    let speeds: Vec<f64> = net.edges.iter().map(|s| s.wind_speed_mps).collect();
     let network = NetworkReport {
         nodes: net.nodes.len(),
-        segments: net.segments.len(),
+        edges: net.edges.len(),
         pad_nodes: net.nodes.iter().filter(|n| n.pads > 0).count(),
         pads: net.nodes.iter().map(|n| n.pads as u64).sum(),
-        total_length_m: inst.graph.segments().iter().map(|s| s.distance_m).sum(),
+        total_length_m: inst.graph.edges().iter().map(|s| s.distance_m).sum(),
         mean_wind_speed_mps: speeds.iter().sum::<f64>() / speeds.len().max(1) as f64,
         max_wind_speed_mps: speeds.iter().cloned().fold(0.0, f64::max),
         average_wind,
@@ -153,7 +153,7 @@ fn print_human(report: &InspectReport) -> Result<()> {
     outln!(
         "network: {} nodes, {} segments ({:.1} km), {} pads on {} nodes",
         n.nodes,
-        n.segments,
+        n.edges,
         n.total_length_m / 1000.0,
         n.pads,
         n.pad_nodes

@@ -1,13 +1,13 @@
 //! Flying one hop: turning a network path into the segment problem of in-flight sharing, and the
 //! node time at a recharging stop.
 
-use super::plan::{Hop, Plan, SegmentFlown, Stop};
+use super::plan::{Hop, Plan, LegFlown, Stop};
 use crate::eaas::exact_hop::{self, ExactSettings, HopSolve, HopSolveCounts};
 use crate::eaas::milp::Objective;
-use crate::eaas::{self, SegmentOutcome, SegmentProblem, SharingPolicy};
+use crate::eaas::{self, HopOutcome, HopProblem, SharingPolicy};
 use crate::energy::{self, Wind};
 use crate::error::Result;
-use crate::network::{Path, SkywayGraph};
+use crate::network::{Route, SkywayGraph};
 use crate::node_time::{self, Limits};
 use crate::precompose::{Role, Swarm};
 use crate::problem::profile::Readings;
@@ -32,7 +32,7 @@ pub enum HopEnd {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Flight {
     /// The schedule and batteries.
-    pub outcome: SegmentOutcome,
+    pub outcome: HopOutcome,
     /// The exact or fair solve behind the schedule (`None` for the simulated policies).
     pub solve: Option<HopSolve>,
 }
@@ -136,7 +136,7 @@ impl<'a> Planner<'a> {
     }
 
     /// The in-flight sharing problem of flying `path` with batteries `battery_mah` at departure.
-    pub fn segment_problem(&self, path: &Path, battery_mah: &[f64]) -> SegmentProblem {
+    pub fn hop_problem(&self, path: &Route, battery_mah: &[f64]) -> HopProblem {
         let speed = self.speed_m_per_min();
         let mut cache = self.rates.borrow_mut();
         let legs = path
@@ -157,7 +157,7 @@ impl<'a> Planner<'a> {
                         )
                     })
                     .clone();
-                eaas::Leg {
+                eaas::LegRates {
                     duration_min: leg.distance_m / speed,
                     rate_mah_per_min: rate,
                 }
@@ -175,7 +175,7 @@ impl<'a> Planner<'a> {
             })
             .collect();
         let s = &self.profile.sharing;
-        SegmentProblem {
+        HopProblem {
             legs,
             drones,
             slots_m: self.swarm.slots_m.clone(),
@@ -196,12 +196,12 @@ impl<'a> Planner<'a> {
     /// Those of [`eaas::simulate_with`] and [`exact_hop::fly_exact`].
     pub fn fly(
         &self,
-        path: &Path,
+        path: &Route,
         battery_mah: &[f64],
         policy: SharingPolicy,
         end: HopEnd,
     ) -> Result<Flight> {
-        let problem = self.segment_problem(path, battery_mah);
+        let problem = self.hop_problem(path, battery_mah);
         if !policy.is_exact() {
             let options = eaas::PolicyOptions::from(&self.profile.readings);
             return Ok(Flight {
@@ -257,7 +257,7 @@ impl<'a> Planner<'a> {
     /// Assembles a hop from a flown path.
     pub(crate) fn hop(
         &self,
-        path: &Path,
+        path: &Route,
         departure_mah: &[f64],
         flight: Flight,
         stop: Option<Stop>,
@@ -270,10 +270,10 @@ impl<'a> Planner<'a> {
             path: path.nodes.iter().map(ids).collect(),
             distance_m: path.distance_m,
             tt_min: path.distance_m / self.speed_m_per_min(),
-            segments: path
+            legs: path
                 .legs
                 .iter()
-                .map(|leg| SegmentFlown {
+                .map(|leg| LegFlown {
                     from: ids(&leg.from),
                     to: ids(&leg.to),
                     distance_m: leg.distance_m,
@@ -329,7 +329,7 @@ impl<'a> Planner<'a> {
                     Some(p) => p,
                     None => continue,
                 };
-                let problem = self.segment_problem(&path, &self.full_battery_mah());
+                let problem = self.hop_problem(&path, &self.full_battery_mah());
                 for leg in &problem.legs {
                     for (d, row) in leg.rate_mah_per_min.iter().enumerate() {
                         for &r in row {

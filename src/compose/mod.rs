@@ -17,7 +17,7 @@ mod sequential;
 
 pub use flight::{Flight, HopEnd, Planner};
 pub use gaps::{lpt_node_time_gaps, LptGapSummary};
-pub use plan::{Hop, Plan, SegmentFlown, Stop};
+pub use plan::{Hop, Plan, LegFlown, Stop};
 pub use request::{Context, PlanOptions, RequestReport, SwarmChoice};
 
 use crate::problem::profile::Candidates;

@@ -48,7 +48,7 @@ pub struct Hop {
     /// Travel time `tt`, min.
     pub tt_min: f64,
     /// The network segments flown, in order, each with its own travel time and wind.
-    pub segments: Vec<SegmentFlown>,
+    pub legs: Vec<LegFlown>,
     /// In-flight energy transfers during the hop.
     pub transfers: Vec<Transfer>,
     /// Energy shared during the hop, mAh.
@@ -67,7 +67,7 @@ pub struct Hop {
 
 /// One network segment flown within a hop.
 #[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct SegmentFlown {
+pub struct LegFlown {
     /// Node id flown from.
     pub from: String,
     /// Node id flown to.

@@ -5,7 +5,7 @@ use super::{Flight, HopEnd, Planner, Stop};
 use crate::eaas::milp::Objective;
 use crate::eaas::{fluid, milp::ExactStatus, SharingPolicy};
 use crate::error::Result;
-use crate::network::Path;
+use crate::network::Route;
 
 /// Relative tolerance, on minutes, of pruning a candidate by its lower bound: a bound computed
 /// in floating point may sit slightly above the true value, so a candidate is pruned only when
@@ -13,7 +13,7 @@ use crate::network::Path;
 const PRUNE_TOL_MIN: f64 = 1e-6;
 
 /// A candidate stop: node, hop path, A* look-ahead (min), lower bound on its cost (min).
-type Candidate = (usize, Path, f64, f64);
+type Candidate = (usize, Route, f64, f64);
 
 impl Planner<'_> {
     /// Exact and fair policies: every candidate with a lower bound on its cost `tt + nt + look-
@@ -29,7 +29,7 @@ impl Planner<'_> {
         let settings = self.exact_settings();
         let mut out = Vec::with_capacity(candidates.len());
         for (v, path, look_ahead_min, _) in candidates {
-            let problem = self.segment_problem(&path, battery);
+            let problem = self.hop_problem(&path, battery);
             let objective = Objective::NodeTime {
                 pads: self.graph().pads(v) as usize,
                 pad_rate_mah_per_min: self.pad_rate_mah_per_min(v),
@@ -132,7 +132,7 @@ impl Planner<'_> {
                 // and a candidate whose bound exceeds the best cost found is never solved.
                 candidates = self.bounded_candidates(candidates, &battery)?;
             }
-            let mut best: Option<(usize, Path, Flight, Stop)> = None;
+            let mut best: Option<(usize, Route, Flight, Stop)> = None;
             let mut best_cost = f64::INFINITY;
             for (v, path, look_ahead_min, bound_min) in candidates {
                 if bound_min > best_cost + PRUNE_TOL_MIN * (1.0 + best_cost) {

@@ -10,7 +10,7 @@
 //! the empty schedule is flown and the fallback is recorded ([`HopSolve::fallback`]).
 
 use super::milp::{solve_milp, ExactStatus, MilpOptions, Objective, Reorder};
-use super::{fluid, simulate_with, PolicyOptions, SegmentOutcome, SegmentProblem, SharingPolicy};
+use super::{fluid, simulate_with, PolicyOptions, HopOutcome, HopProblem, SharingPolicy};
 use crate::error::{Error, Result};
 use serde::{Deserialize, Serialize};
 
@@ -189,11 +189,11 @@ impl HopSolveCounts {
 /// # Complexity
 /// One MILP (exponential worst case, bounded by the time limit) or one QP (interior point).
 pub fn fly_exact(
-    problem: &SegmentProblem,
+    problem: &HopProblem,
     policy: SharingPolicy,
     objective: &Objective,
     settings: &ExactSettings,
-) -> Result<(SegmentOutcome, HopSolve)> {
+) -> Result<(HopOutcome, HopSolve)> {
     let milp = &settings.milp;
     if milp.reorder == Reorder::Free {
         return Err(Error::invalid(

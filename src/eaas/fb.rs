@@ -14,12 +14,12 @@
 use super::reorder::{busy_drones, choose_consumer_slot};
 use super::simulate::{evaluate, leg_at};
 use super::{
-    responsible_support, sharing_budget_mah, travel_time_min, PolicyOptions, Role, SegmentProblem,
+    responsible_support, sharing_budget_mah, travel_time_min, PolicyOptions, Role, HopProblem,
     Transfer, ENERGY_TOL_MAH, MAX_PLANNING_STEPS, TIME_TOL_MIN,
 };
 
 /// FB's schedule.
-pub(super) fn plan(problem: &SegmentProblem, options: &PolicyOptions) -> Vec<Transfer> {
+pub(super) fn plan(problem: &HopProblem, options: &PolicyOptions) -> Vec<Transfer> {
     let n = problem.drones.len();
     let owner = responsible_support(problem);
     let tt = travel_time_min(problem);

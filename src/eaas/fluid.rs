@@ -25,7 +25,7 @@
 use super::milp::{objective_of, validate_inputs, ExactOutcome, ExactStatus, Objective, Reorder};
 use super::reorder::{busy_drones, choose_consumer_slot, slot_distance_m};
 use super::simulate::evaluate;
-use super::{sharing_budget_mah, Role, SegmentProblem, Transfer, TIME_TOL_MIN};
+use super::{sharing_budget_mah, Role, HopProblem, Transfer, TIME_TOL_MIN};
 use crate::error::{Error, Result};
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
@@ -72,7 +72,7 @@ impl Fluid {
     }
 
     /// The constant-plus-linear battery of `d` after leg index `i` (`i = 0` is the start).
-    fn battery(&self, problem: &SegmentProblem, d: usize, i: usize) -> (f64, Vec<(usize, f64)>) {
+    fn battery(&self, problem: &HopProblem, d: usize, i: usize) -> (f64, Vec<(usize, f64)>) {
         if i == 0 {
             (problem.drones[d].battery_mah, Vec::new())
         } else {
@@ -80,7 +80,7 @@ impl Fluid {
         }
     }
 
-    fn build(problem: &SegmentProblem, mode: Reorder) -> Fluid {
+    fn build(problem: &HopProblem, mode: Reorder) -> Fluid {
         let n = problem.drones.len();
         let rho = problem.rho_mah_per_min;
         let is_support = |d: usize| problem.drones[d].role == Role::Support;
@@ -199,7 +199,7 @@ impl Fluid {
     }
 
     /// Final battery of `d` as (constant, terms).
-    fn final_battery(&self, problem: &SegmentProblem, d: usize) -> (f64, Vec<(usize, f64)>) {
+    fn final_battery(&self, problem: &HopProblem, d: usize) -> (f64, Vec<(usize, f64)>) {
         self.battery(problem, d, self.legs.len())
     }
 
@@ -297,7 +297,7 @@ fn empty_outcome(legs: usize) -> ExactOutcome {
 /// # Complexity
 /// `O(L (S D + D^2))` variables; interior point, polynomial.
 pub fn bound(
-    problem: &SegmentProblem,
+    problem: &HopProblem,
     objective: &Objective,
     mode: Reorder,
     time_limit_s: f64,
@@ -392,7 +392,7 @@ pub fn bound(
 /// # Complexity
 /// As [`bound`], plus `O(L S D T)` for the layout of `T` transfers.
 pub fn fair(
-    problem: &SegmentProblem,
+    problem: &HopProblem,
     objective: &Objective,
     mode: Reorder,
     time_limit_s: f64,
@@ -437,7 +437,7 @@ pub fn fair(
 }
 
 /// Sum of squared end deficits `sum_d (C_d - b_d)^2`, mAh^2.
-pub fn squared_deficits(problem: &SegmentProblem, final_battery_mah: &[f64]) -> f64 {
+pub fn squared_deficits(problem: &HopProblem, final_battery_mah: &[f64]) -> f64 {
     problem
         .drones
         .iter()
@@ -447,7 +447,7 @@ pub fn squared_deficits(problem: &SegmentProblem, final_battery_mah: &[f64]) -> 
 }
 
 /// Lays the relaxation's amounts out as transfers (see [`fair`]).
-fn layout(problem: &SegmentProblem, m: &Fluid, x: &[f64]) -> Vec<Transfer> {
+fn layout(problem: &HopProblem, m: &Fluid, x: &[f64]) -> Vec<Transfer> {
     let rho = problem.rho_mah_per_min;
     let n = problem.drones.len();
     let mut leg_start = vec![0.0; problem.legs.len() + 1];

@@ -5,7 +5,7 @@
 //! {"schema_version": 1, "request_id": "r00001", "hop_index": 0, "from": "n000", "to": "n012",
 //!  "path": ["n000", "n007", "n012"], "profile": "paper",
 //!  "end": {"pads": 3, "pad_rate_mah_per_min": 100.0},
-//!  "hop": { ...a SegmentProblem... }}
+//!  "hop": { ...a HopProblem... }}
 //! ```
 //!
 //! `end` holds the pads at the hop's end node, or is `null` (or absent) when that node has none,
@@ -16,7 +16,7 @@
 //! `E4103`, `E4104`) under `hop.` and `end.`.
 
 use super::milp::{validate_objective, Objective};
-use super::{validate, SegmentProblem};
+use super::{validate, HopProblem};
 use crate::error::{Error, Result, Violation};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -56,7 +56,7 @@ pub struct HopFile {
     /// Pads at `to`, or `None` when it has none (a request's destination).
     pub end: Option<HopEnd>,
     /// The hop's sharing problem.
-    pub hop: SegmentProblem,
+    pub hop: HopProblem,
 }
 
 impl HopFile {

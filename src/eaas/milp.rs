@@ -27,7 +27,7 @@
 
 use super::simulate::evaluate;
 use super::{
-    reorder, sharing_budget_mah, validate, Role, SegmentOutcome, SegmentProblem, Transfer,
+    reorder, sharing_budget_mah, validate, Role, HopOutcome, HopProblem, Transfer,
     TIME_TOL_MIN,
 };
 use crate::error::{Error, Result, Violation};
@@ -152,10 +152,10 @@ pub struct ExactOutcome {
     /// The schedule, consecutive periods of the same (support, consumer, slot) within a leg
     /// merged.
     pub transfers: Vec<Transfer>,
-    /// The schedule replayed by the segment evaluation; passes [`crate::check::check_segment`].
+    /// The schedule replayed by the segment evaluation; passes [`crate::check::check_hop`].
     /// `None` without a schedule, or for a `free` schedule whose slot permutation is not a set of
     /// consumer swaps (see [`ExactOutcome::slots`]).
-    pub outcome: Option<SegmentOutcome>,
+    pub outcome: Option<HopOutcome>,
     /// `free` only: the slot of every drone in every period.
     pub slots: Option<Vec<Vec<usize>>>,
 }
@@ -175,7 +175,7 @@ impl Grid {
     /// # Errors
     /// `E4101` for a `period_min` that is not finite and positive, `E4102` for more than
     /// [`MAX_PERIODS`] periods.
-    pub fn new(problem: &SegmentProblem, period_min: f64) -> Result<Grid> {
+    pub fn new(problem: &HopProblem, period_min: f64) -> Result<Grid> {
         if !(period_min.is_finite() && period_min > 0.0) {
             return Err(Error::invalid(
                 "E4101",
@@ -269,7 +269,7 @@ pub fn validate_objective(objective: &Objective) -> Result<()> {
 
 /// Checks a hop, an objective and a time limit: the inputs of every exact hop model.
 pub(crate) fn validate_inputs(
-    problem: &SegmentProblem,
+    problem: &HopProblem,
     objective: &Objective,
     time_limit_s: f64,
 ) -> Result<()> {
@@ -298,7 +298,7 @@ fn validate_time_limit(time_limit_s: f64) -> Result<()> {
 /// # Errors
 /// Those of [`node_time::exact`] (none for valid inputs).
 pub fn objective_of(
-    problem: &SegmentProblem,
+    problem: &HopProblem,
     objective: &Objective,
     final_battery_mah: &[f64],
 ) -> Result<f64> {
@@ -337,7 +337,7 @@ struct Move {
 }
 
 /// Moves allowed by `reorder` (`free` uses every support-consumer pair; slots come from `z`).
-fn moves(problem: &SegmentProblem, mode: Reorder) -> Vec<Move> {
+fn moves(problem: &HopProblem, mode: Reorder) -> Vec<Move> {
     let n = problem.drones.len();
     let role = |d: usize| problem.drones[d].role;
     let mut out = Vec::new();
@@ -412,7 +412,7 @@ enum Solved {
 fn solve_with<S: good_lp::Solver>(
     solver: S,
     backend_name: &str,
-    problem: &SegmentProblem,
+    problem: &HopProblem,
     grid: &Grid,
     mode: Reorder,
     objective: &Objective,
@@ -708,7 +708,7 @@ where
 
 /// Runs [`solve_with`] on the chosen backend.
 fn run(
-    problem: &SegmentProblem,
+    problem: &HopProblem,
     grid: &Grid,
     objective: &Objective,
     options: &MilpOptions,
@@ -754,7 +754,7 @@ fn run(
 /// Merges the consecutive periods of one leg in which a move is on into transfers, by start then
 /// support drone.
 fn transfers_of(
-    problem: &SegmentProblem,
+    problem: &HopProblem,
     grid: &Grid,
     mv: &[Move],
     on: &[Vec<bool>],
@@ -804,7 +804,7 @@ fn transfers_of(
 /// Whether every period's slot permutation is the identity except consumer swaps with delivery
 /// drones, so that the transfers alone describe it.
 fn swaps_only(
-    problem: &SegmentProblem,
+    problem: &HopProblem,
     transfers: &[Transfer],
     grid: &Grid,
     slots: &[Vec<usize>],
@@ -859,8 +859,8 @@ fn swaps_only(
 /// use swarmplan::eaas::milp::{solve_milp, ExactStatus, MilpOptions, Objective};
 /// use nalgebra::Vector2;
 /// // One delivery drone (80 mAh, 10 mAh/min) next to a support drone, 10 minutes.
-/// let p = SegmentProblem {
-///     legs: vec![Leg { duration_min: 10.0, rate_mah_per_min: vec![vec![10.0, 10.0], vec![5.0, 5.0]] }],
+/// let p = HopProblem {
+///     legs: vec![LegRates { duration_min: 10.0, rate_mah_per_min: vec![vec![10.0, 10.0], vec![5.0, 5.0]] }],
 ///     drones: vec![
 ///         DroneState { role: Role::Delivery, capacity_mah: 200.0, battery_mah: 80.0 },
 ///         DroneState { role: Role::Support, capacity_mah: 500.0, battery_mah: 500.0 },
@@ -875,7 +875,7 @@ fn swaps_only(
 /// assert!((o.objective.unwrap() - 20.0).abs() < 1e-6);
 /// ```
 pub fn solve_milp(
-    problem: &SegmentProblem,
+    problem: &HopProblem,
     objective: &Objective,
     options: &MilpOptions,
 ) -> Result<ExactOutcome> {
@@ -989,7 +989,7 @@ pub fn solve_milp(
 /// with no period (every leg of zero duration: the model has no schedule to write);
 /// [`Error::Backend`] if the model cannot be captured.
 pub fn lp_text(
-    problem: &SegmentProblem,
+    problem: &HopProblem,
     objective: &Objective,
     options: &MilpOptions,
     about: &str,
@@ -1045,8 +1045,8 @@ pub fn lp_text(
 /// use swarmplan::eaas::*;
 /// use swarmplan::eaas::milp::{write_lp, MilpOptions, Objective};
 /// use nalgebra::Vector2;
-/// let p = SegmentProblem {
-///     legs: vec![Leg { duration_min: 3.0, rate_mah_per_min: vec![vec![10.0, 10.0], vec![5.0, 5.0]] }],
+/// let p = HopProblem {
+///     legs: vec![LegRates { duration_min: 3.0, rate_mah_per_min: vec![vec![10.0, 10.0], vec![5.0, 5.0]] }],
 ///     drones: vec![
 ///         DroneState { role: Role::Delivery, capacity_mah: 200.0, battery_mah: 80.0 },
 ///         DroneState { role: Role::Support, capacity_mah: 500.0, battery_mah: 500.0 },
@@ -1062,7 +1062,7 @@ pub fn lp_text(
 /// assert!(std::fs::read_to_string(&path).unwrap().contains("y_k0_t2"));
 /// ```
 pub fn write_lp(
-    problem: &SegmentProblem,
+    problem: &HopProblem,
     objective: &Objective,
     options: &MilpOptions,
     about: &str,
@@ -1078,7 +1078,7 @@ pub fn write_lp(
 
 /// Comment lines opening an exported LP file.
 fn lp_header(
-    problem: &SegmentProblem,
+    problem: &HopProblem,
     objective: &Objective,
     options: &MilpOptions,
     grid: &Grid,
@@ -1197,7 +1197,7 @@ fn node_time_ms(start: Instant) -> f64 {
 /// binaries in `[0, 1]`, when its solve finishes in the time limit) and the fluid LP bound
 /// (`models/eaas_fluid.md`, valid for every continuous-time schedule, hence for the MILP's).
 fn relaxation_bound(
-    problem: &SegmentProblem,
+    problem: &HopProblem,
     grid: &Grid,
     objective: &Objective,
     options: &MilpOptions,
@@ -1217,7 +1217,7 @@ fn relaxation_bound(
 
 /// Final batteries of a `free` schedule, integrating per period with the given slots.
 fn replay_free(
-    problem: &SegmentProblem,
+    problem: &HopProblem,
     grid: &Grid,
     transfers: &[Transfer],
     slots: &[Vec<usize>],

@@ -13,7 +13,7 @@
 //! Policies: [`SharingPolicy::None`] (baseline), [`SharingPolicy::Pb`] (priority-based, the paper's
 //! Algorithm 2, threshold `gamma`) and [`SharingPolicy::Fb`] (fairness-based, Algorithm 3, round
 //! `lambda`). [`simulate`] runs a policy and returns the schedule with every drone's battery; the
-//! independent checker in [`crate::check`] re-verifies it from the raw [`SegmentProblem`].
+//! independent checker in [`crate::check`] re-verifies it from the raw [`HopProblem`].
 
 use crate::error::{show, Error, Result, Violation};
 pub use crate::problem::profile::{PbRequest, Readings};
@@ -49,9 +49,9 @@ pub const MAX_FB_ROUNDS: f64 = 500.0;
 /// One segment's sharing problem, in plain numbers (see `models/eaas.md`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct SegmentProblem {
+pub struct HopProblem {
     /// Consecutive legs of the flight between two stops; `tt` = the sum of their durations.
-    pub legs: Vec<Leg>,
+    pub legs: Vec<LegRates>,
     /// Drones; the index is the drone id. Delivery drones first, then support drones.
     pub drones: Vec<DroneState>,
     /// Formation slot positions in the body frame, metres; as many slots as drones.
@@ -74,7 +74,7 @@ pub struct SegmentProblem {
 /// A leg of a segment: constant consumption rates for a duration.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct Leg {
+pub struct LegRates {
     /// Duration of the leg, minutes.
     pub duration_min: f64,
     /// `rate_mah_per_min[d][q]` = consumption of drone `d` flying in slot `q`, mAh/min.
@@ -207,7 +207,7 @@ pub enum FailureReason {
 /// The first failure on a segment.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct SegmentFailure {
+pub struct HopFailure {
     /// Failing drone.
     pub drone: usize,
     /// When it fails, minutes from the segment start.
@@ -219,11 +219,11 @@ pub struct SegmentFailure {
 /// Result of flying one segment under a sharing policy.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct SegmentOutcome {
+pub struct HopOutcome {
     /// No drone's battery below zero at any instant.
     pub feasible: bool,
     /// The first failure (earliest time, then lowest drone id), when infeasible.
-    pub failure: Option<SegmentFailure>,
+    pub failure: Option<HopFailure>,
     /// Transfers, by start time then support drone.
     pub transfers: Vec<Transfer>,
     /// Every drone's battery at `tt`, mAh (negative for a drone that failed: the flight is
@@ -244,7 +244,7 @@ pub struct SegmentOutcome {
 ///
 /// # Returns
 /// The schedule and every drone's final and lowest battery; infeasibility is data
-/// ([`SegmentOutcome::feasible`], [`SegmentOutcome::failure`]).
+/// ([`HopOutcome::feasible`], [`HopOutcome::failure`]).
 ///
 /// # Errors
 /// [`Error::Invalid`] (codes `E4001`-`E4012`, every violation at once) for a malformed problem:
@@ -259,8 +259,8 @@ pub struct SegmentOutcome {
 /// ```
 /// use swarmplan::eaas::*;
 /// use nalgebra::Vector2;
-/// let p = SegmentProblem {
-///     legs: vec![Leg { duration_min: 10.0, rate_mah_per_min: vec![vec![10.0, 10.0], vec![5.0, 5.0]] }],
+/// let p = HopProblem {
+///     legs: vec![LegRates { duration_min: 10.0, rate_mah_per_min: vec![vec![10.0, 10.0], vec![5.0, 5.0]] }],
 ///     drones: vec![
 ///         DroneState { role: Role::Delivery, capacity_mah: 200.0, battery_mah: 80.0 },
 ///         DroneState { role: Role::Support, capacity_mah: 500.0, battery_mah: 500.0 },
@@ -274,7 +274,7 @@ pub struct SegmentOutcome {
 /// let pb = simulate(&p, SharingPolicy::Pb).unwrap();
 /// assert!(pb.feasible);
 /// ```
-pub fn simulate(problem: &SegmentProblem, policy: SharingPolicy) -> Result<SegmentOutcome> {
+pub fn simulate(problem: &HopProblem, policy: SharingPolicy) -> Result<HopOutcome> {
     simulate_with(problem, policy, &PolicyOptions::default())
 }
 
@@ -293,10 +293,10 @@ pub fn simulate(problem: &SegmentProblem, policy: SharingPolicy) -> Result<Segme
 /// # Complexity
 /// As [`simulate`].
 pub fn simulate_with(
-    problem: &SegmentProblem,
+    problem: &HopProblem,
     policy: SharingPolicy,
     options: &PolicyOptions,
-) -> Result<SegmentOutcome> {
+) -> Result<HopOutcome> {
     validate(problem)?;
     let plan = match policy {
         SharingPolicy::None | SharingPolicy::IdleSupport => none::plan(problem),
@@ -324,7 +324,7 @@ pub fn simulate_with(
 /// # Errors
 /// [`Error::Invalid`] with `E4015` on `lambda_mah`, stating the rounds and the smallest
 /// `lambda_mah` that keeps them within the bound.
-fn fb_work_bound(problem: &SegmentProblem) -> Result<()> {
+fn fb_work_bound(problem: &HopProblem) -> Result<()> {
     let supports = problem
         .drones
         .iter()
@@ -364,7 +364,7 @@ fn fb_work_bound(problem: &SegmentProblem) -> Result<()> {
 ///
 /// # Arguments
 /// * `problem` - the segment.
-/// * `transfers` - a schedule, typically [`SegmentOutcome::transfers`].
+/// * `transfers` - a schedule, typically [`HopOutcome::transfers`].
 ///
 /// # Returns
 /// `(t_min, battery_mah per drone)` pairs, `t` ascending from 0 to `tt`.
@@ -376,7 +376,7 @@ fn fb_work_bound(problem: &SegmentProblem) -> Result<()> {
 /// # Complexity
 /// `O(P * D)` plus sorting the transfers.
 pub fn battery_trace(
-    problem: &SegmentProblem,
+    problem: &HopProblem,
     transfers: &[Transfer],
 ) -> Result<Vec<(f64, Vec<f64>)>> {
     validate(problem)?;
@@ -403,8 +403,8 @@ pub fn battery_trace(
     Ok(simulate::evaluate(problem, transfers).trace)
 }
 
-/// Segment travel time `tt`, minutes: the sum of the legs' durations.
-pub fn travel_time_min(problem: &SegmentProblem) -> f64 {
+/// Edge travel time `tt`, minutes: the sum of the legs' durations.
+pub fn travel_time_min(problem: &HopProblem) -> f64 {
     problem.legs.iter().map(|l| l.duration_min).sum()
 }
 
@@ -413,7 +413,7 @@ pub fn travel_time_min(problem: &SegmentProblem) -> f64 {
 /// support drone nearest to it in the initial formation, ties to the lower support id. Returns,
 /// per drone id, the responsible support drone (`None` for support drones, and for every drone
 /// when the swarm has no support drone). Each subset is served in drone id order.
-pub fn responsible_support(problem: &SegmentProblem) -> Vec<Option<usize>> {
+pub fn responsible_support(problem: &HopProblem) -> Vec<Option<usize>> {
     let supports: Vec<usize> = (0..problem.drones.len())
         .filter(|&d| problem.drones[d].role == Role::Support)
         .collect();
@@ -440,7 +440,7 @@ pub fn responsible_support(problem: &SegmentProblem) -> Vec<Option<usize>> {
 
 /// Energy support drone `s` may share on the segment, mAh: its battery at `tt` without sharing
 /// (it never moves, so its own consumption is fixed) minus `delta`, floored at zero.
-pub fn sharing_budget_mah(problem: &SegmentProblem, s: usize) -> f64 {
+pub fn sharing_budget_mah(problem: &HopProblem, s: usize) -> f64 {
     let q = problem.initial_slot[s];
     let own: f64 = problem
         .legs
@@ -454,7 +454,7 @@ pub fn sharing_budget_mah(problem: &SegmentProblem, s: usize) -> f64 {
 ///
 /// # Errors
 /// [`Error::Invalid`] with codes `E4001`-`E4012`.
-pub fn validate(problem: &SegmentProblem) -> Result<()> {
+pub fn validate(problem: &HopProblem) -> Result<()> {
     let mut v = Vec::new();
     let n = problem.drones.len();
     let finite_nonneg = |x: f64| x.is_finite() && x >= 0.0;

@@ -1,8 +1,8 @@
 //! No sharing: the baseline. Every drone flies on its own battery.
 
-use super::{SegmentProblem, Transfer};
+use super::{HopProblem, Transfer};
 
 /// The empty schedule.
-pub(super) fn plan(_problem: &SegmentProblem) -> Vec<Transfer> {
+pub(super) fn plan(_problem: &HopProblem) -> Vec<Transfer> {
     Vec::new()
 }

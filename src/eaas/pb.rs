@@ -20,7 +20,7 @@ use super::reorder::{busy_drones, choose_consumer_slot};
 use super::simulate::{evaluate, Run};
 use super::{
     responsible_support, sharing_budget_mah, travel_time_min, PbRequest, PolicyOptions, Role,
-    SegmentProblem, Transfer, ENERGY_TOL_MAH, MAX_PLANNING_STEPS, TIME_TOL_MIN,
+    HopProblem, Transfer, ENERGY_TOL_MAH, MAX_PLANNING_STEPS, TIME_TOL_MIN,
 };
 
 /// An energy request `er = (drone, st, re)`.
@@ -32,7 +32,7 @@ struct Request {
 }
 
 /// PB's schedule.
-pub(super) fn plan(problem: &SegmentProblem, options: &PolicyOptions) -> Vec<Transfer> {
+pub(super) fn plan(problem: &HopProblem, options: &PolicyOptions) -> Vec<Transfer> {
     let owner = responsible_support(problem);
     let tt = travel_time_min(problem);
     let rho = problem.rho_mah_per_min;
@@ -121,7 +121,7 @@ pub(super) fn plan(problem: &SegmentProblem, options: &PolicyOptions) -> Vec<Tra
 
 /// Current requests of every delivery drone that has a responsible support drone.
 fn requests(
-    problem: &SegmentProblem,
+    problem: &HopProblem,
     run: &Run,
     owner: &[Option<usize>],
     tt: f64,

@@ -8,15 +8,15 @@
 //! slot for the duration of the transfer, then return to their initial slots. Re-ordering costs no
 //! time and no energy (paper).
 
-use super::{Role, SegmentProblem, Transfer};
+use super::{Role, HopProblem, Transfer};
 
 /// Distance between slots `a` and `b`, metres.
-pub fn slot_distance_m(problem: &SegmentProblem, a: usize, b: usize) -> f64 {
+pub fn slot_distance_m(problem: &HopProblem, a: usize, b: usize) -> f64 {
     (problem.slots_m[a] - problem.slots_m[b]).norm()
 }
 
 /// The drone whose initial slot is `q`.
-pub fn occupant(problem: &SegmentProblem, q: usize) -> usize {
+pub fn occupant(problem: &HopProblem, q: usize) -> usize {
     problem
         .initial_slot
         .iter()
@@ -25,7 +25,7 @@ pub fn occupant(problem: &SegmentProblem, q: usize) -> usize {
 }
 
 /// The drone swapped with the consumer during `t`, if any.
-pub fn swap_partner(problem: &SegmentProblem, t: &Transfer) -> Option<usize> {
+pub fn swap_partner(problem: &HopProblem, t: &Transfer) -> Option<usize> {
     if t.consumer_slot == problem.initial_slot[t.consumer] {
         None
     } else {
@@ -46,7 +46,7 @@ pub fn swap_partner(problem: &SegmentProblem, t: &Transfer) -> Option<usize> {
 /// # Complexity
 /// `O(S log S)` for `S` slots.
 pub fn choose_consumer_slot(
-    problem: &SegmentProblem,
+    problem: &HopProblem,
     support: usize,
     consumer: usize,
     busy: &[bool],
@@ -72,7 +72,7 @@ pub fn choose_consumer_slot(
 }
 
 /// Drones made busy by transfers in `plan` overlapping `[start, end)`: consumers and swap partners.
-pub fn busy_drones(problem: &SegmentProblem, plan: &[Transfer], start: f64, end: f64) -> Vec<bool> {
+pub fn busy_drones(problem: &HopProblem, plan: &[Transfer], start: f64, end: f64) -> Vec<bool> {
     let mut busy = vec![false; problem.drones.len()];
     for t in plan {
         if t.start_min < end && start < t.end_min {
@@ -86,7 +86,7 @@ pub fn busy_drones(problem: &SegmentProblem, plan: &[Transfer], start: f64, end:
 }
 
 /// Every drone's slot while the transfers `active` run (they must be drone-disjoint).
-pub fn slot_assignment(problem: &SegmentProblem, active: &[Transfer]) -> Vec<usize> {
+pub fn slot_assignment(problem: &HopProblem, active: &[Transfer]) -> Vec<usize> {
     let mut slot = problem.initial_slot.clone();
     for t in active {
         if let Some(p) = swap_partner(problem, t) {

@@ -10,8 +10,8 @@
 
 use super::reorder::slot_assignment;
 use super::{
-    sharing_budget_mah, travel_time_min, FailureReason, Role, SegmentFailure, SegmentOutcome,
-    SegmentProblem, Transfer, ENERGY_TOL_MAH, TIME_TOL_MIN,
+    sharing_budget_mah, travel_time_min, FailureReason, Role, HopFailure, HopOutcome,
+    HopProblem, Transfer, ENERGY_TOL_MAH, TIME_TOL_MIN,
 };
 
 /// A realised schedule with its batteries.
@@ -21,7 +21,7 @@ pub(crate) struct Run {
     /// `(t, batteries)` at every breakpoint.
     pub trace: Vec<(f64, Vec<f64>)>,
     /// First battery below zero.
-    pub failure: Option<SegmentFailure>,
+    pub failure: Option<HopFailure>,
     /// Lowest battery per drone.
     pub min_battery: Vec<f64>,
     /// Energy given per drone (non-zero for support drones only).
@@ -30,13 +30,13 @@ pub(crate) struct Run {
 
 impl Run {
     /// The public outcome.
-    pub fn into_outcome(self) -> SegmentOutcome {
+    pub fn into_outcome(self) -> HopOutcome {
         let final_battery_mah = self
             .trace
             .last()
             .map(|(_, b)| b.clone())
             .unwrap_or_default();
-        SegmentOutcome {
+        HopOutcome {
             feasible: self.failure.is_none(),
             failure: self.failure,
             // fold from +0.0: `f64::sum` of no transfers is -0.0, printed as `-0.0` in reports.
@@ -83,7 +83,7 @@ impl Run {
 }
 
 /// Index of the leg flown just after time `t`; `None` at or after `tt`.
-pub(crate) fn leg_at(problem: &SegmentProblem, t: f64) -> Option<usize> {
+pub(crate) fn leg_at(problem: &HopProblem, t: f64) -> Option<usize> {
     let mut end = 0.0;
     for (l, leg) in problem.legs.iter().enumerate() {
         end += leg.duration_min;
@@ -95,7 +95,7 @@ pub(crate) fn leg_at(problem: &SegmentProblem, t: f64) -> Option<usize> {
 }
 
 /// Realises `plan` over `[0, tt]`.
-pub(crate) fn evaluate(problem: &SegmentProblem, plan: &[Transfer]) -> Run {
+pub(crate) fn evaluate(problem: &HopProblem, plan: &[Transfer]) -> Run {
     let n = problem.drones.len();
     let rho = problem.rho_mah_per_min;
     let tt = travel_time_min(problem);
@@ -131,7 +131,7 @@ pub(crate) fn evaluate(problem: &SegmentProblem, plan: &[Transfer]) -> Run {
     let mut shared = vec![0.0; n];
     let mut active: Vec<Transfer> = Vec::new();
     let mut done: Vec<Transfer> = Vec::new();
-    let mut failure: Option<SegmentFailure> = None;
+    let mut failure: Option<HopFailure> = None;
     let mut next = 0usize;
     let guard = 4 * (plan.len() + problem.legs.len() + 2) * (n + 2) + 16;
 
@@ -182,13 +182,13 @@ pub(crate) fn evaluate(problem: &SegmentProblem, plan: &[Transfer]) -> Run {
         }
         let h = h.max(0.0);
         if failure.is_none() {
-            let mut first: Option<SegmentFailure> = None;
+            let mut first: Option<HopFailure> = None;
             for d in 0..n {
                 let nb = b[d] - net[d] * h;
                 if nb < -ENERGY_TOL_MAH && net[d] > 0.0 {
                     let tf = t + b[d].max(0.0) / net[d];
                     if first.is_none_or(|f| tf < f.time_min) {
-                        first = Some(SegmentFailure {
+                        first = Some(HopFailure {
                             drone: d,
                             time_min: tf,
                             reason: FailureReason::BatteryDepleted,

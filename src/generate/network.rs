@@ -3,7 +3,7 @@
 use super::{below, normal, round_to, shuffle, unit};
 use crate::error::{Error, Result};
 use crate::problem::validate::validate_network;
-use crate::problem::{Network, Node, Segment, SCHEMA_VERSION};
+use crate::problem::{Network, Node, Edge, SCHEMA_VERSION};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
@@ -39,7 +39,7 @@ pub const PAD_PROBABILITIES: [f64; 5] = [0.40, 0.15, 0.20, 0.15, 0.10];
 pub const MEAN_WIND_RANGE_MPS: (f64, f64) = (3.0, 7.0);
 /// Log-normal spread of a segment's wind speed around the network mean.
 pub const WIND_SPEED_LOG_SD: f64 = 0.4;
-/// Segment wind speeds are redrawn until below this cap, m/s (well under the 13.8 m/s limit).
+/// Edge wind speeds are redrawn until below this cap, m/s (well under the 13.8 m/s limit).
 pub const WIND_SPEED_CAP_MPS: f64 = 13.0;
 /// Standard deviation of a segment's wind direction around the prevailing direction, degrees.
 pub const WIND_DIRECTION_SD_DEG: f64 = 25.0;
@@ -97,7 +97,7 @@ pub fn check_network_params(p: &NetworkParams) -> Vec<crate::Violation> {
 ///    `theta + 25 z` degrees (normal noise, wrapped to [0, 360), rounded to 0.1) and the speed
 ///    `v exp(0.4 z' - 0.08)` (log-normal with mean `v`), redrawn until below 13 m/s, rounded to 0.01.
 ///
-/// Segment `distance_m` is left out, so it is the Euclidean distance between the ends.
+/// Edge `distance_m` is left out, so it is the Euclidean distance between the ends.
 ///
 /// # Arguments
 /// * `params` - node count, seed, grid spacing.
@@ -210,7 +210,7 @@ pub fn generate_network(params: &NetworkParams) -> Result<Network> {
     let mut pairs = g.edge_list();
     pairs.sort_unstable();
     let id = |k: usize| format!("n{k:0width$}");
-    let segments = pairs
+    let edges = pairs
         .into_iter()
         .map(|(a, b)| {
             let dir = round_to(
@@ -224,7 +224,7 @@ pub fn generate_network(params: &NetworkParams) -> Result<Network> {
                     break round_to(v, 2);
                 }
             };
-            Segment {
+            Edge {
                 from: id(a),
                 to: id(b),
                 distance_m: None,
@@ -249,7 +249,7 @@ pub fn generate_network(params: &NetworkParams) -> Result<Network> {
             params.seed, params.spacing_m
         )),
         nodes,
-        segments,
+        edges,
     };
     let violations = validate_network(&network);
     if !violations.is_empty() {

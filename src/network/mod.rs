@@ -1,7 +1,7 @@
-//! The skyway network as a graph: rooftop nodes joined by segments that can be flown both ways.
+//! The skyway network as a graph: rooftop nodes joined by edges that can be flown both ways.
 //!
 //! [`SkywayGraph`] is built from a validated [`Network`] on a petgraph [`UnGraph`]. Node `i` of the
-//! graph is `network.nodes[i]` and edge `e` is `network.segments[e]`, so indices are stable and match
+//! graph is `network.nodes[i]` and edge `e` is `network.edges[e]`, so indices are stable and match
 //! the file order. Shortest paths and legs live in [`paths`].
 //!
 //! Conventions: `x_m` is easting and `y_m` northing; a heading is the direction flown, degrees
@@ -9,7 +9,7 @@
 
 pub mod paths;
 
-pub use paths::{Leg, Path, ShortestPathsTo};
+pub use paths::{Leg, Route, ShortestPathsTo};
 
 use crate::error::{Error, Result};
 use crate::problem::validate::{euclidean_m, validate_network};
@@ -21,7 +21,7 @@ use std::collections::HashMap;
 
 /// One segment of the graph, with its length resolved.
 #[derive(Debug, Clone, PartialEq)]
-pub struct SkywaySegment {
+pub struct SkywayEdge {
     /// Index of the `from` node as written in the file.
     pub a: usize,
     /// Index of the `to` node as written in the file.
@@ -48,7 +48,7 @@ struct NodeData {
 pub struct SkywayGraph {
     graph: UnGraph<(), usize>,
     nodes: Vec<NodeData>,
-    segments: Vec<SkywaySegment>,
+    edges: Vec<SkywayEdge>,
     index: HashMap<String, usize>,
     component: Vec<usize>,
 }
@@ -63,7 +63,7 @@ pub struct SkywayGraph {
 ///
 /// # Errors
 /// [`Error::Invalid`] with E0008 or E0009 if the file cannot be read or is not UTF-8, with E0001 for malformed JSON or
-/// with every E1xxx violation, each field prefixed by the file name (`net.json: segments[3].to`).
+/// with every E1xxx violation, each field prefixed by the file name (`net.json: edges[3].to`).
 pub fn read_network(path: &std::path::Path) -> Result<(Network, SkywayGraph)> {
     let network: Network = crate::problem::io::read_json(path)?;
     let graph = SkywayGraph::new(&network).map_err(|e| prefix_fields(e, path))?;
@@ -120,13 +120,13 @@ impl SkywayGraph {
             .enumerate()
             .map(|(i, n)| (n.id.clone(), i))
             .collect();
-        let mut graph = UnGraph::with_capacity(nodes.len(), network.segments.len());
+        let mut graph = UnGraph::with_capacity(nodes.len(), network.edges.len());
         for _ in &nodes {
             graph.add_node(());
         }
-        let mut segments = Vec::with_capacity(network.segments.len());
+        let mut edges = Vec::with_capacity(network.edges.len());
         let mut components = UnionFind::new(nodes.len());
-        for (e, s) in network.segments.iter().enumerate() {
+        for (e, s) in network.edges.iter().enumerate() {
             // Validation guarantees both ids exist.
             let (a, b) = (index[&s.from], index[&s.to]);
             let distance_m = s.distance_m.unwrap_or_else(|| {
@@ -134,7 +134,7 @@ impl SkywayGraph {
             });
             graph.add_edge(NodeIndex::new(a), NodeIndex::new(b), e);
             components.union(a, b);
-            segments.push(SkywaySegment {
+            edges.push(SkywayEdge {
                 a,
                 b,
                 distance_m,
@@ -146,7 +146,7 @@ impl SkywayGraph {
         Ok(SkywayGraph {
             graph,
             nodes,
-            segments,
+            edges,
             index,
             component,
         })
@@ -157,9 +157,9 @@ impl SkywayGraph {
         self.nodes.len()
     }
 
-    /// Number of segments.
-    pub fn segment_count(&self) -> usize {
-        self.segments.len()
+    /// Number of edges.
+    pub fn edge_count(&self) -> usize {
+        self.edges.len()
     }
 
     /// Index of the node with this id, `None` if there is none.
@@ -188,18 +188,18 @@ impl SkywayGraph {
         (self.nodes[i].x_m, self.nodes[i].y_m)
     }
 
-    /// Segment `e` (file order). Panics if `e >= segment_count()`.
-    pub fn segment(&self, e: usize) -> &SkywaySegment {
-        &self.segments[e]
+    /// Edge `e` (file order). Panics if `e >= edge_count()`.
+    pub fn edge(&self, e: usize) -> &SkywayEdge {
+        &self.edges[e]
     }
 
     /// Every segment in file order.
-    pub fn segments(&self) -> &[SkywaySegment] {
-        &self.segments
+    pub fn edges(&self) -> &[SkywayEdge] {
+        &self.edges
     }
 
     /// Index of the segment joining `a` and `b` (either direction), `None` if they are not adjacent.
-    pub fn segment_between(&self, a: usize, b: usize) -> Option<usize> {
+    pub fn edge_between(&self, a: usize, b: usize) -> Option<usize> {
         if a >= self.nodes.len() || b >= self.nodes.len() {
             return None;
         }
@@ -230,12 +230,12 @@ impl SkywayGraph {
         out
     }
 
-    /// Number of segments at node `i`.
+    /// Number of edges at node `i`.
     pub fn degree(&self, i: usize) -> usize {
         self.graph.edges(NodeIndex::new(i)).count()
     }
 
-    /// Whether some chain of segments joins `a` and `b` (a node is connected to itself).
+    /// Whether some chain of edges joins `a` and `b` (a node is connected to itself).
     ///
     /// # Complexity
     /// O(1): connected components are labelled once when the graph is built.

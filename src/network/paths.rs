@@ -15,7 +15,7 @@ pub struct Leg {
     /// Node the leg ends at.
     pub to: usize,
     /// Index of the segment flown.
-    pub segment: usize,
+    pub edge: usize,
     /// Length in metres.
     pub distance_m: f64,
     /// Direction flown, degrees clockwise from north in `[0, 360)`, from the node coordinates
@@ -29,7 +29,7 @@ pub struct Leg {
 
 /// A route: the nodes visited in order and the legs between them.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Path {
+pub struct Route {
     /// Nodes in flight order, source first; `legs.len() + 1` of them.
     pub nodes: Vec<usize>,
     /// Legs in flight order.
@@ -56,12 +56,12 @@ pub fn heading_deg(a: (f64, f64), b: (f64, f64)) -> f64 {
 impl SkywayGraph {
     /// The leg flying from node `from` to adjacent node `to`, `None` if no segment joins them.
     pub fn leg(&self, from: usize, to: usize) -> Option<Leg> {
-        let e = self.segment_between(from, to)?;
-        let s = &self.segments[e];
+        let e = self.edge_between(from, to)?;
+        let s = &self.edges[e];
         Some(Leg {
             from,
             to,
-            segment: e,
+            edge: e,
             distance_m: s.distance_m,
             heading_deg: heading_deg(self.position_m(from), self.position_m(to)),
             wind_speed_mps: s.wind_speed_mps,
@@ -77,7 +77,7 @@ impl SkywayGraph {
     ///
     /// # Complexity
     /// O(n d) for n nodes of degree at most d.
-    pub fn path_from_nodes(&self, nodes: &[usize]) -> Option<Path> {
+    pub fn path_from_nodes(&self, nodes: &[usize]) -> Option<Route> {
         if nodes.is_empty() || nodes.iter().any(|&i| i >= self.node_count()) {
             return None;
         }
@@ -86,7 +86,7 @@ impl SkywayGraph {
             .map(|w| self.leg(w[0], w[1]))
             .collect::<Option<Vec<Leg>>>()?;
         let distance_m = legs.iter().map(|l| l.distance_m).sum();
-        Some(Path {
+        Some(Route {
             nodes: nodes.to_vec(),
             legs,
             distance_m,
@@ -106,7 +106,7 @@ impl SkywayGraph {
             return out;
         }
         let found = dijkstra(&self.graph, NodeIndex::new(from), None, |e| {
-            self.segments[*e.weight()].distance_m
+            self.edges[*e.weight()].distance_m
         });
         for (n, d) in found {
             out[n.index()] = d;
@@ -125,7 +125,7 @@ impl SkywayGraph {
         let n = self.node_count();
         let mut out = vec![vec![f64::INFINITY; n]; n];
         // Edge costs are positive (validated), so there is no negative cycle.
-        if let Ok(map) = floyd_warshall(&self.graph, |e| self.segments[*e.weight()].distance_m) {
+        if let Ok(map) = floyd_warshall(&self.graph, |e| self.edges[*e.weight()].distance_m) {
             for ((a, b), d) in map {
                 if d < f64::MAX {
                     out[a.index()][b.index()] = d;
@@ -161,7 +161,7 @@ impl SkywayGraph {
     ///   "nodes": [ { "id": "A", "x_m": 0, "y_m": 0, "pads": 1 },
     ///              { "id": "B", "x_m": 300, "y_m": 400, "pads": 0 },
     ///              { "id": "C", "x_m": 300, "y_m": 0, "pads": 2 } ],
-    ///   "segments": [ { "from": "A", "to": "B", "wind_speed_mps": 3, "wind_from_deg": 0 },
+    ///   "edges": [ { "from": "A", "to": "B", "wind_speed_mps": 3, "wind_from_deg": 0 },
     ///                 { "from": "C", "to": "B", "wind_speed_mps": 3, "wind_from_deg": 0 } ] }"#,
     ///   "example").unwrap();
     /// let g = SkywayGraph::new(&network).unwrap();
@@ -170,7 +170,7 @@ impl SkywayGraph {
     /// assert_eq!(p.distance_m, 900.0);
     /// assert_eq!(p.legs[1].heading_deg, 180.0); // B to C flies due south
     /// ```
-    pub fn shortest_path(&self, from: usize, to: usize) -> Option<Path> {
+    pub fn shortest_path(&self, from: usize, to: usize) -> Option<Route> {
         if to >= self.node_count() {
             return None;
         }
@@ -202,7 +202,7 @@ pub struct ShortestPathsTo<'a> {
 
 impl ShortestPathsTo<'_> {
     /// The shortest path from `from` to the target, `None` if unreachable or out of range.
-    pub fn path_from(&self, from: usize) -> Option<Path> {
+    pub fn path_from(&self, from: usize) -> Option<Route> {
         let g = self.graph;
         let n = g.node_count();
         let to = self.to;
@@ -223,7 +223,7 @@ impl ShortestPathsTo<'_> {
                 if d[v] >= d[u] {
                     continue;
                 }
-                let via = d[v] + g.segments[e].distance_m;
+                let via = d[v] + g.edges[e].distance_m;
                 if via <= d[u] + eps {
                     next = Some(v);
                     break; // neighbours come sorted by index

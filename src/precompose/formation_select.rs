@@ -15,7 +15,7 @@ use crate::problem::{Network, Profile};
 /// # Complexity
 /// O(segments + B).
 pub fn averaged_wind(network: &Network, profile: &Profile) -> Wind {
-    let segs = &network.segments;
+    let segs = &network.edges;
     if segs.is_empty() {
         return Wind::CALM;
     }
@@ -107,7 +107,7 @@ pub fn select_formation(network: &Network, profile: &Profile) -> (FormationKind,
         .collect();
     // (heading, weight) of every segment flown both ways.
     let mut legs: Vec<(f64, f64)> = Vec::new();
-    for s in &network.segments {
+    for s in &network.edges {
         let (Some(a), Some(b)) = (pos.get(s.from.as_str()), pos.get(s.to.as_str())) else {
             continue;
         };

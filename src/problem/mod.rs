@@ -8,7 +8,7 @@ pub mod profile;
 pub mod request;
 pub mod validate;
 
-pub use network::{Network, Node, Segment};
+pub use network::{Network, Node, Edge};
 pub use profile::Profile;
 pub use request::{Request, RequestSet};
 

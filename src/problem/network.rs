@@ -13,8 +13,10 @@ pub struct Network {
     pub name: Option<String>,
     /// Rooftop nodes.
     pub nodes: Vec<Node>,
-    /// Segments; each can be flown both ways.
-    pub segments: Vec<Segment>,
+    /// Edges (line-of-sight segments between rooftops); each can be flown both ways. Files written
+    /// before the field was named `edges` call it `segments`, which is still read.
+    #[serde(alias = "segments")]
+    pub edges: Vec<Edge>,
 }
 
 /// A rooftop node.
@@ -37,7 +39,7 @@ pub struct Node {
 /// A segment between two nodes, flown in either direction.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct Segment {
+pub struct Edge {
     /// Id of one end.
     pub from: String,
     /// Id of the other end.

@@ -1,7 +1,7 @@
 //! Coded validation rules for networks (E1xxx) and requests (E3xxx).
 //!
 //! Every rule is checked and every violation reported at once, each naming the field
-//! (`segments[3].wind_speed_mps`, `requests[17].packages_kg[2]`), the cause with the offending value,
+//! (`edges[3].wind_speed_mps`, `requests[17].packages_kg[2]`), the cause with the offending value,
 //! and what to do. Profile rules (E2xxx) live with the profile type.
 //!
 //! | code  | field                               | rule |
@@ -16,14 +16,14 @@
 //! | E1106 | `nodes[i].x_m`, `nodes[i].y_m`      | within ±[`MAX_COORDINATE_M`] (1e7 m) |
 //! | E1107 | `nodes[i].pad_charge_rate_mah_per_min` | within [[`MIN_PAD_RATE_MAH_PER_MIN`], [`MAX_PAD_RATE_MAH_PER_MIN`]] |
 //! | E1108 | `nodes[i].pads`                     | at most [`MAX_PADS`] |
-//! | E1201 | `segments[j].from`, `segments[j].to` | names a node id |
-//! | E1202 | `segments[j]`                       | no self-loop |
-//! | E1203 | `segments[j]`                       | no second segment between the same two nodes (either direction) |
-//! | E1204 | `segments[j].distance_m`            | finite and > 0 (given, or the Euclidean distance when absent) |
-//! | E1205 | `segments[j].wind_speed_mps`        | finite and >= 0 |
-//! | E1206 | `segments[j].wind_speed_mps`        | below [`MAX_WIND_SPEED_MPS`] (13.8 m/s) |
-//! | E1207 | `segments[j].wind_from_deg`         | finite, within [0, 360] |
-//! | E1208 | `segments[j].distance_m`            | at most [`MAX_SEGMENT_M`] (1e6 m; given, or the Euclidean distance) |
+//! | E1201 | `edges[j].from`, `edges[j].to` | names a node id |
+//! | E1202 | `edges[j]`                       | no self-loop |
+//! | E1203 | `edges[j]`                       | no second segment between the same two nodes (either direction) |
+//! | E1204 | `edges[j].distance_m`            | finite and > 0 (given, or the Euclidean distance when absent) |
+//! | E1205 | `edges[j].wind_speed_mps`        | finite and >= 0 |
+//! | E1206 | `edges[j].wind_speed_mps`        | below [`MAX_WIND_SPEED_MPS`] (13.8 m/s) |
+//! | E1207 | `edges[j].wind_from_deg`         | finite, within [0, 360] |
+//! | E1208 | `edges[j].distance_m`            | at most [`MAX_SEGMENT_M`] (1e6 m; given, or the Euclidean distance) |
 //! | E3001 | `schema_version`                    | equals [`SCHEMA_VERSION`] |
 //! | E3002 | `requests`                          | at least one request |
 //! | E3101 | `requests[k].id`                    | not empty |
@@ -172,14 +172,14 @@ pub fn validate_network(n: &Network) -> Vec<Violation> {
         ));
     }
     let mut pairs: HashMap<(&str, &str), usize> = HashMap::new();
-    for (j, seg) in n.segments.iter().enumerate() {
+    for (j, seg) in n.edges.iter().enumerate() {
         let from = positions.get(seg.from.as_str()).copied();
         let to = positions.get(seg.to.as_str()).copied();
         for (name, id, pos) in [("from", &seg.from, from), ("to", &seg.to, to)] {
             if pos.is_none() {
                 out.push(Violation::new(
                     "E1201",
-                    format!("segments[{j}].{name}"),
+                    format!("edges[{j}].{name}"),
                     format!("node id '{id}' is not in nodes"),
                     "use the id of a listed node, or add the node",
                 ));
@@ -188,7 +188,7 @@ pub fn validate_network(n: &Network) -> Vec<Violation> {
         if seg.from == seg.to {
             out.push(Violation::new(
                 "E1202",
-                format!("segments[{j}]"),
+                format!("edges[{j}]"),
                 format!("segment joins node '{}' to itself", seg.from),
                 "remove the segment; a segment joins two different nodes",
             ));
@@ -201,9 +201,9 @@ pub fn validate_network(n: &Network) -> Vec<Violation> {
             if let Some(first) = pairs.get(&key) {
                 out.push(Violation::new(
                     "E1203",
-                    format!("segments[{j}]"),
+                    format!("edges[{j}]"),
                     format!(
-                        "segments[{first}] already joins '{}' and '{}' (segments are flown both ways)",
+                        "edges[{first}] already joins '{}' and '{}' (segments are flown both ways)",
                         key.0, key.1
                     ),
                     "keep one segment per pair of nodes",
@@ -215,7 +215,7 @@ pub fn validate_network(n: &Network) -> Vec<Violation> {
         match seg.distance_m {
             Some(d) if !(d.is_finite() && d > 0.0) => out.push(Violation::new(
                 "E1204",
-                format!("segments[{j}].distance_m"),
+                format!("edges[{j}].distance_m"),
                 format!("distance is {d}"),
                 "give a finite distance above 0 m, or omit it to use the Euclidean distance",
             )),
@@ -226,7 +226,7 @@ pub fn validate_network(n: &Network) -> Vec<Violation> {
                     if seg.from != seg.to && !(d.is_finite() && d > 0.0) {
                         out.push(Violation::new(
                             "E1204",
-                            format!("segments[{j}].distance_m"),
+                            format!("edges[{j}].distance_m"),
                             format!(
                                 "distance_m is absent and the Euclidean distance between '{}' and '{}' is {d}",
                                 seg.from, seg.to
@@ -248,14 +248,14 @@ pub fn validate_network(n: &Network) -> Vec<Violation> {
         if !(w.is_finite() && w >= 0.0) {
             out.push(Violation::new(
                 "E1205",
-                format!("segments[{j}].wind_speed_mps"),
+                format!("edges[{j}].wind_speed_mps"),
                 format!("wind speed is {w}"),
                 "give a finite wind speed of 0 m/s or more",
             ));
         } else if w >= MAX_WIND_SPEED_MPS {
             out.push(Violation::new(
                 "E1206",
-                format!("segments[{j}].wind_speed_mps"),
+                format!("edges[{j}].wind_speed_mps"),
                 format!("wind speed {w} m/s is at or over the safe-flight limit {MAX_WIND_SPEED_MPS} m/s"),
                 "drones cannot fly this segment: lower the wind speed below 13.8 m/s or remove the segment",
             ));
@@ -264,7 +264,7 @@ pub fn validate_network(n: &Network) -> Vec<Violation> {
         if !(dir.is_finite() && (0.0..=360.0).contains(&dir)) {
             out.push(Violation::new(
                 "E1207",
-                format!("segments[{j}].wind_from_deg"),
+                format!("edges[{j}].wind_from_deg"),
                 format!("wind direction is {dir}"),
                 "give the direction the wind blows from in degrees clockwise from north, within [0, 360]",
             ));
@@ -277,7 +277,7 @@ pub fn validate_network(n: &Network) -> Vec<Violation> {
 fn too_long(j: usize, d: f64, what: &str) -> Violation {
     Violation::new(
         "E1208",
-        format!("segments[{j}].distance_m"),
+        format!("edges[{j}].distance_m"),
         format!(
             "{what} {} m, outside the stated range (0, 1e6] m",
             show(d)

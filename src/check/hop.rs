@@ -1,5 +1,5 @@
-//! Re-verifies a segment schedule ([`crate::eaas::SegmentOutcome`]) from the raw
-//! [`SegmentProblem`], re-integrating every battery itself. It calls nothing in `crate::eaas` but
+//! Re-verifies a segment schedule ([`crate::eaas::HopOutcome`]) from the raw
+//! [`HopProblem`], re-integrating every battery itself. It calls nothing in `crate::eaas` but
 //! the types.
 //!
 //! Rules (see `models/eaas.md`): transfers name a support drone giving to a delivery drone within
@@ -10,7 +10,7 @@
 //! sharing minus `delta`, and is at or above `delta` whenever it shares; the outcome's feasibility,
 //! first failure, final and lowest batteries and shared total match the re-integration.
 
-use crate::eaas::{Role, SegmentOutcome, SegmentProblem, Transfer};
+use crate::eaas::{Role, HopOutcome, HopProblem, Transfer};
 use crate::error::Violation;
 
 const T_TOL: f64 = 1e-7;
@@ -39,7 +39,7 @@ fn v(code: &'static str, field: String, cause: String) -> Violation {
 ///
 /// # Complexity
 /// `O(T^2 + P * (D + T))` for `T` transfers, `P` pieces and `D` drones.
-pub fn check_segment(problem: &SegmentProblem, outcome: &SegmentOutcome) -> Vec<Violation> {
+pub fn check_hop(problem: &HopProblem, outcome: &HopOutcome) -> Vec<Violation> {
     let mut out = Vec::new();
     let n = problem.drones.len();
     let rho = problem.rho_mah_per_min;
