@@ -1,6 +1,6 @@
-//! Time of one segment's sharing schedule per policy, at paper-like scale: 5 delivery and 2
+//! Time of one hop's sharing schedule per policy, at paper-like scale: 5 delivery and 2
 //! support drones (4480 mAh), 1-4 legs of 1-10 min, rates 100-200 mAh/min, rho = 5.88 mAh/min,
-//! lambda = 2240 mAh, range 1.2 m, 10,000 seeded random segments; each schedule also passes the
+//! lambda = 2240 mAh, range 1.2 m, 10,000 seeded random hops; each schedule also passes the
 //! checker (checked outside the timing).
 //!
 //! `cargo run --release --example bench_eaas`
@@ -10,7 +10,8 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::time::Instant;
 use swarmplan::check::check_hop;
-use swarmplan::eaas::{simulate, DroneState, LegRates, Role, HopProblem, SharingPolicy};
+use swarmplan::eaas::{simulate, DroneState, HopProblem, LegRates, SharingPolicy};
+use swarmplan::problem::Role;
 
 fn problem(rng: &mut ChaCha8Rng) -> HopProblem {
     let n: usize = 7;
@@ -69,7 +70,7 @@ fn main() {
             .filter(|(p, o)| !check_hop(p, o).is_empty())
             .count();
         println!(
-            "{policy:?}: {secs:.3} s for {count} segments ({:.1} us each), feasible {feasible}/{count}, \
+            "{policy:?}: {secs:.3} s for {count} hops ({:.1} us each), feasible {feasible}/{count}, \
              transfers {transfers}, checker failures {bad}/{count}",
             1e6 * secs / count as f64
         );

@@ -14,8 +14,9 @@
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use swarmplan::eaas::milp::{solve_milp, ExactStatus, MilpOptions, Objective, Reorder};
-use swarmplan::eaas::{fluid, DroneState, LegRates, Role, HopProblem};
-use swarmplan::formation::{slots_m, FormationKind};
+use swarmplan::eaas::{fluid, DroneState, HopProblem, LegRates};
+use swarmplan::formation::slots_m;
+use swarmplan::problem::{FormationKind, Role};
 use swarmplan::solver::MilpBackend;
 
 fn hop(rng: &mut ChaCha8Rng, nd: usize, ns: usize, periods: usize) -> HopProblem {

@@ -1,13 +1,13 @@
 //! Speed of the energy model: `cargo run --release --example bench_energy`.
 //! Times `rate_matrix_mah_per_min` (one call per leg of every candidate path in the route planner)
-//! for swarms of 5, 10 and 20 drones, and `select_formation` on a 200-segment network.
+//! for swarms of 5, 10 and 20 drones, and `select_formation` on a 200-edge network.
 
 use std::time::Instant;
-use swarmplan::energy::{rate_matrix_mah_per_min, Wind};
-use swarmplan::formation::FormationKind;
+use swarmplan::energy::rate_matrix_mah_per_min;
 use swarmplan::precompose::{build_swarm, select_formation, Positioning};
 use swarmplan::problem::io::read_toml;
-use swarmplan::problem::{Network, Node, Profile, Edge};
+use swarmplan::problem::FormationKind;
+use swarmplan::problem::{Edge, Network, Node, Profile, Wind};
 
 fn main() {
     let path =

@@ -35,12 +35,13 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
-use swarmplan::cli::inputs::{load_requests, validate_requests, Instance, InstanceArgs};
+use swarmplan::cli::inputs::{load_requests, InstanceArgs};
 use swarmplan::compose::{Context, PlanOptions, Planner, RouteMethod};
 use swarmplan::eaas::milp::{solve_milp, ExactStatus, MilpOptions, Objective, Reorder};
-use swarmplan::eaas::{fluid, simulate_with, PolicyOptions, HopProblem, SharingPolicy};
+use swarmplan::eaas::{fluid, simulate_with, HopProblem, PolicyOptions, SharingPolicy};
 use swarmplan::error::Result;
 use swarmplan::precompose::Positioning;
+use swarmplan::problem::Instance;
 use swarmplan::problem::Request;
 use swarmplan::solver::MilpBackend;
 
@@ -173,11 +174,11 @@ fn policy_name(p: usize) -> &'static str {
 
 fn run(args: &Args) -> Result<()> {
     let started = Instant::now();
-    let instance = args.instance.load()?;
     let mut requests = load_requests(args.requests.as_deref())?.requests;
     let available = requests.len();
     requests.truncate(args.limit);
-    validate_requests(&instance, &requests)?;
+    let instance = args.instance.load()?.with_requests(requests)?;
+    let requests = &instance.requests;
     let threads = args.threads.max(1);
     let backend = args.backend.unwrap_or_default();
     let milp = MilpOptions {
@@ -192,7 +193,6 @@ fn run(args: &Args) -> Result<()> {
         let handles: Vec<_> = (0..threads)
             .map(|_| {
                 let instance = &instance;
-                let requests = &requests;
                 let milp = &milp;
                 let next = &next;
                 scope.spawn(move || {
@@ -250,9 +250,14 @@ fn run(args: &Args) -> Result<()> {
             requests.len()
         );
     }
-    requests.truncate(measured);
     print_table(
-        args, &instance, &requests, available, &all, backend, elapsed,
+        args,
+        &instance,
+        &requests[..measured],
+        available,
+        &all,
+        backend,
+        elapsed,
     );
     if let Some(path) = &args.csv {
         write_csv(path, &all)?;

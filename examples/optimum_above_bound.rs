@@ -1,6 +1,7 @@
 //! How far the proven node time lies above the root lower bound on seeded uniform random charge
 //! times: the quantity that decides whether the exact search has to refute assignments (see
-//! `models/node_time.md`, "Where the slow rows spend their time").
+//! `models/node_time.md`, "Expected excess of the optimum over `sum/k`"; measured figures in
+//! `models/experiments/node_time.md`, "Optimum above the bound").
 //!
 //! ```text
 //! cargo run --release --example optimum_above_bound -- [SEED]

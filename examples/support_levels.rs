@@ -13,7 +13,7 @@
 use clap::Parser;
 use std::path::PathBuf;
 use std::process::ExitCode;
-use swarmplan::cli::inputs::{load_requests, validate_requests, InstanceArgs};
+use swarmplan::cli::inputs::{load_requests, InstanceArgs};
 use swarmplan::compose::Context;
 use swarmplan::precompose::Positioning;
 
@@ -39,15 +39,15 @@ fn main() -> ExitCode {
 }
 
 fn run(args: &Args) -> swarmplan::error::Result<()> {
-    let instance = args.instance.load()?;
     let requests = load_requests(args.requests.as_deref())?.requests;
-    validate_requests(&instance, &requests)?;
+    let instance = args.instance.load()?.with_requests(requests)?;
+    let requests = &instance.requests;
     let context = Context::new(&instance.network, &instance.graph, &instance.profile);
     let profile = &instance.profile;
     let rows = &profile.redundancy.rows;
     let mut count = vec![0usize; rows.len().max(1)];
     let mut p_pct = Vec::with_capacity(requests.len());
-    for r in &requests {
+    for r in requests {
         let choice = context.swarm_for(r, Positioning::LocationAware, None)?;
         count[choice.support_decision.row] += 1;
         p_pct.push(choice.support_decision.probability_pct);

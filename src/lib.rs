@@ -8,11 +8,11 @@
 //! formation over a skyway network of rooftops. The delivery time of a request is
 //!
 //! ```text
-//! dt = sum over flown segments of tt  +  sum over recharging stops of nt
+//! dt = sum over flown hops of tt  +  sum over recharging stops of nt
 //! ```
 //!
-//! where `tt` is a segment's travel time and `nt` the node time: the makespan of charging every drone
-//! to full on the node's `k` pads (identical parallel machines, P||Cmax). On a segment, support drones
+//! where `tt` is a hop's travel time (a hop is a flight between two stops over one or more edges) and `nt` the node time: the makespan of charging every drone
+//! to full on the node's `k` pads (identical parallel machines, P||Cmax). On a hop, support drones
 //! share energy with delivery drones in flight at rate `rho` (mAh/min), one consumer at a time.
 //!
 //! Layout: [`problem`] holds the input types and their validation and knows nothing of solvers;

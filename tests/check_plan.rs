@@ -5,9 +5,9 @@ use std::path::Path;
 use swarmplan::check::check_plan;
 use swarmplan::compose::{Context, PlanOptions, RequestReport, RouteMethod};
 use swarmplan::eaas::SharingPolicy;
-use swarmplan::network::SkywayGraph;
 use swarmplan::precompose::Positioning;
 use swarmplan::problem::io::{read_json, read_toml};
+use swarmplan::problem::SkywayGraph;
 use swarmplan::problem::{Network, Profile, Request, RequestSet};
 
 fn paper_195() -> (Network, SkywayGraph, Profile, Vec<Request>) {
@@ -176,8 +176,8 @@ fn corrupted_plans_are_rejected_with_their_code() {
     let c = check(&p);
     assert!(c.contains(&"P5005"), "truncated: {c:?}");
 
-    // A non-existent segment: replace the path by a direct jump between its ends (the request's
-    // hop has more than one segment or the ends are not adjacent).
+    // A non-existent edge: replace the path by a direct jump between its ends (the request's
+    // hop has more than one edge or the ends are not adjacent).
     let mut p = good.clone();
     let h = &mut p.hops[0];
     let far = network
@@ -193,7 +193,7 @@ fn corrupted_plans_are_rejected_with_their_code() {
         .id
         .clone();
     h.path.insert(1, far);
-    assert!(check(&p).contains(&"P5011"), "non-existent segment");
+    assert!(check(&p).contains(&"P5011"), "non-existent edge");
 
     // tt mismatch: 10% faster than distance / speed.
     let mut p = good.clone();
@@ -203,10 +203,10 @@ fn corrupted_plans_are_rejected_with_their_code() {
     p.dt_min -= dtt;
     assert_eq!(check(&p), vec!["P5013"], "tt mismatch");
 
-    // A per-segment breakdown whose travel times do not add up to the hop's.
+    // A per-leg breakdown whose travel times do not add up to the hop's.
     let mut p = good.clone();
     p.hops[0].legs[0].tt_min += 1.0;
-    assert_eq!(check(&p), vec!["P5033"], "segment tt");
+    assert_eq!(check(&p), vec!["P5033"], "leg tt");
 
     // dt that is not tt + nt.
     let mut p = good.clone();

@@ -62,7 +62,7 @@ fn generate_writes_valid_identical_files_for_the_same_seed() {
     assert_eq!(std::fs::read(&r1).unwrap(), std::fs::read(&r2).unwrap());
     let net: swarmplan::problem::Network = swarmplan::problem::io::read_json(&n1).unwrap();
     assert_eq!(net.nodes.len(), 40);
-    let g = swarmplan::network::SkywayGraph::new(&net).unwrap();
+    let g = swarmplan::problem::SkywayGraph::new(&net).unwrap();
     let set: swarmplan::problem::RequestSet = swarmplan::problem::io::read_json(&r1).unwrap();
     assert_eq!(set.requests.len(), 25);
     assert!(swarmplan::problem::validate::validate_request_set(&set, &g, 1.0).is_empty());

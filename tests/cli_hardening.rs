@@ -46,7 +46,7 @@ fn assert_exit_2_with(out: &Output, code: &str, words: &[&str]) {
     }
 }
 
-/// flat-stop (A - M - B, 2500 m each, pads at M) with one node or segment field replaced.
+/// flat-stop (A - M - B, 2500 m each, pads at M) with one node or edge field replaced.
 fn flat_stop_with(name: &str, from: &str, to: &str) -> String {
     let text = std::fs::read_to_string(repo("instances/tiny/flat-stop.json")).unwrap();
     assert!(text.contains(from), "{from}");
@@ -81,7 +81,7 @@ fn solve_a_to_b(network: &str, profile: &str, extra: &[&str]) -> Output {
 #[test]
 fn network_quantities_beyond_their_stated_ranges_exit_2_with_codes() {
     let profile = repo("instances/tiny/flat.toml");
-    let segment = r#"{ "from": "A", "to": "M", "wind_speed_mps""#;
+    let edge = r#"{ "from": "A", "to": "M", "wind_speed_mps""#;
     let cases: [(&str, String, &str, &[&str]); 7] = [
         (
             "x 1e308",
@@ -93,7 +93,7 @@ fn network_quantities_beyond_their_stated_ranges_exit_2_with_codes() {
             "distance 1e308 (was: E5004 charge time inf)",
             flat_stop_with(
                 "d1e308.json",
-                segment,
+                edge,
                 r#"{ "from": "A", "to": "M", "distance_m": 1e308, "wind_speed_mps""#,
             ),
             "E1208",
@@ -103,7 +103,7 @@ fn network_quantities_beyond_their_stated_ranges_exit_2_with_codes() {
             "distance 1e200 (was: destination not connected)",
             flat_stop_with(
                 "d1e200.json",
-                segment,
+                edge,
                 r#"{ "from": "A", "to": "M", "distance_m": 1e200, "wind_speed_mps""#,
             ),
             "E1208",

@@ -19,10 +19,10 @@ use std::path::Path;
 use swarmplan::check::check_plan;
 use swarmplan::compose::{Context, PlanOptions, RequestReport, RouteMethod};
 use swarmplan::eaas::SharingPolicy;
-use swarmplan::network::SkywayGraph;
 use swarmplan::precompose::Positioning;
 use swarmplan::problem::io::{read_json, read_toml};
 use swarmplan::problem::profile::Candidates;
+use swarmplan::problem::SkywayGraph;
 use swarmplan::problem::{Network, Profile, Request};
 
 const TOL: f64 = 1e-6;

@@ -7,9 +7,10 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use swarmplan::check::check_hop;
 use swarmplan::eaas::{
-    battery_trace, simulate, simulate_with, DroneState, LegRates, PbRequest, PolicyOptions, Readings,
-    Role, HopOutcome, HopProblem, SharingPolicy,
+    battery_trace, simulate, simulate_with, DroneState, HopOutcome, HopProblem, LegRates,
+    PbRequest, PolicyOptions, Readings, SharingPolicy,
 };
+use swarmplan::problem::Role;
 
 const TOL: f64 = 1e-6;
 
@@ -215,10 +216,7 @@ fn out_of_range_consumer_swaps_next_to_the_support_drone_and_pays_that_slots_rat
     // The same transfer without the swap is out of range (3 m > 1.2 m).
     let mut unswapped = pb.clone();
     unswapped.transfers[0].consumer_slot = 0;
-    let codes: Vec<_> = check_hop(&p, &unswapped)
-        .iter()
-        .map(|v| v.code)
-        .collect();
+    let codes: Vec<_> = check_hop(&p, &unswapped).iter().map(|v| v.code).collect();
     assert!(codes.contains(&"C3006"), "{codes:?}");
     // Without sharing nobody moves: d0 = 120 - 100 = 20, d1 = 300 - 80 = 220.
     let none = simulate(&p, SharingPolicy::None).unwrap();
@@ -405,9 +403,8 @@ fn checker_rejects_corrupted_schedules() {
     let p = needy_and_healthy();
     let fb = simulate(&p, SharingPolicy::Fb).unwrap();
     passes(&p, &fb);
-    let codes = |o: &HopOutcome| -> Vec<&'static str> {
-        check_hop(&p, o).iter().map(|v| v.code).collect()
-    };
+    let codes =
+        |o: &HopOutcome| -> Vec<&'static str> { check_hop(&p, o).iter().map(|v| v.code).collect() };
     // One support drone giving to d0 on [0, 5] and to d1 from t = 4: overlap.
     let mut overlap = fb.clone();
     overlap.transfers[1].start_min = 4.0;
@@ -433,7 +430,7 @@ fn checker_rejects_corrupted_schedules() {
     assert!(codes(&onto).contains(&"C3007"));
 }
 
-/// A random small segment from a seed.
+/// A random small hop from a seed.
 fn random_problem(seed: u64) -> HopProblem {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let deliveries = rng.random_range(1..=4);
@@ -759,7 +756,7 @@ fn problem_round_trips_through_json_with_slots_as_pairs() {
 }
 
 #[test]
-fn pb_compares_the_energy_it_can_deliver_in_the_segment_with_the_budget() {
+fn pb_compares_the_energy_it_can_deliver_in_the_hop_with_the_budget() {
     // As `two_drones` with the support drone at 250 mAh: budget 250 - 5 * 10 - 100 = 100 mAh.
     // d0's request re = 150 exceeds it, but only 4 * (10 - 3) = 28 mAh fit before tt: served.
     let mut p = two_drones();

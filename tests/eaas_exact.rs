@@ -10,9 +10,10 @@ use swarmplan::eaas::milp::{
     solve_milp, ExactOutcome, ExactStatus, MilpOptions, Objective, Reorder,
 };
 use swarmplan::eaas::{
-    sharing_budget_mah, simulate, DroneState, LegRates, Role, HopProblem, SharingPolicy, Transfer,
+    sharing_budget_mah, simulate, DroneState, HopProblem, LegRates, SharingPolicy, Transfer,
 };
 use swarmplan::node_time;
+use swarmplan::problem::Role;
 use swarmplan::solver::MilpBackend;
 
 const TOL: f64 = 1e-6;
@@ -278,13 +279,7 @@ fn grid_cuts_legs_into_equal_periods_at_most_period_min_long() {
 
 /// One support drone (id 2) between two delivery drones, all within range, slot-independent
 /// rates, one leg of `periods` minutes.
-fn tiny(
-    batteries: [f64; 3],
-    rates: [f64; 3],
-    rho: f64,
-    delta: f64,
-    periods: usize,
-) -> HopProblem {
+fn tiny(batteries: [f64; 3], rates: [f64; 3], rho: f64, delta: f64, periods: usize) -> HopProblem {
     HopProblem {
         legs: vec![LegRates {
             duration_min: periods as f64,

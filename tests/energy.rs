@@ -5,13 +5,13 @@ use nalgebra::Vector2;
 use proptest::prelude::*;
 use swarmplan::energy::{
     consumption_rates_mah_per_min, payload_factor, rate_matrix_mah_per_min, slot_factors,
-    wind_factor, Wind,
+    wind_factor,
 };
-use swarmplan::formation::{slots_m, FormationKind};
-use swarmplan::precompose::{Drone, Role, Swarm};
+use swarmplan::formation::slots_m;
+
 use swarmplan::problem::io::read_toml;
 use swarmplan::problem::profile::validate_profile;
-use swarmplan::problem::Profile;
+use swarmplan::problem::{Drone, FormationKind, Profile, Role, Swarm, Wind};
 
 fn profile(name: &str) -> Profile {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))

@@ -8,9 +8,9 @@ use swarmplan::compose::{Context, PlanOptions, RequestReport, RouteMethod};
 use swarmplan::eaas::exact_hop::ExactSettings;
 use swarmplan::eaas::milp::ExactStatus;
 use swarmplan::eaas::SharingPolicy;
-use swarmplan::network::SkywayGraph;
 use swarmplan::precompose::Positioning;
 use swarmplan::problem::io::{read_json, read_toml};
+use swarmplan::problem::SkywayGraph;
 use swarmplan::problem::{Network, Profile, Request, RequestSet};
 use swarmplan::solver::MilpBackend;
 

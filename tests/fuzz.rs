@@ -14,10 +14,10 @@ use std::sync::OnceLock;
 use swarmplan::eaas::hop_file::parse_hop_file;
 use swarmplan::eaas::{simulate, SharingPolicy};
 use swarmplan::error::{Error, Result};
-use swarmplan::network::SkywayGraph;
 use swarmplan::problem::io::{parse_json, parse_toml};
 use swarmplan::problem::profile::validate_profile;
 use swarmplan::problem::validate::{validate_network, validate_request_set};
+use swarmplan::problem::SkywayGraph;
 use swarmplan::problem::{Network, Profile, RequestSet};
 
 /// Cases per property unless `PROPTEST_CASES` says otherwise.
@@ -132,7 +132,7 @@ fn invalid_if_any(vs: Vec<swarmplan::Violation>) -> Result<()> {
 }
 
 /// The network path: parse, validate, build the graph, then plan with the paper profile the
-/// first shipped request and a request along segment `pick` (modulo the segments), where a
+/// first shipped request and a request along edge `pick` (modulo the edges), where a
 /// mutated number most likely matters.
 fn network_along(text: &str, pick: usize) -> std::result::Result<(), TestCaseError> {
     let parsed: Result<Network> = parse_json(text, "network");

@@ -10,7 +10,8 @@ use std::path::PathBuf;
 use swarmplan::eaas::milp::{
     lp_text, solve_milp, write_lp, ExactStatus, MilpOptions, Objective, Reorder,
 };
-use swarmplan::eaas::{Role, HopProblem};
+use swarmplan::eaas::HopProblem;
+use swarmplan::problem::Role;
 #[cfg(feature = "highs")]
 use swarmplan::solver::MilpBackend;
 

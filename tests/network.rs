@@ -5,10 +5,10 @@ use proptest::prelude::*;
 use std::collections::VecDeque;
 use std::path::PathBuf;
 use swarmplan::generate::{generate_network, generate_requests, NetworkParams, RequestParams};
-use swarmplan::network::SkywayGraph;
 use swarmplan::problem::io::read_json;
 use swarmplan::problem::validate::{validate_network, validate_request_set};
 use swarmplan::problem::Network;
+use swarmplan::problem::SkywayGraph;
 
 fn instance(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -302,7 +302,7 @@ fn shipped_195_node_instances_validate() {
 #[test]
 fn sparse_195_is_paper_195_stretched_to_1000_m_blocks() {
     // Both come from seed 195 with spacing 500 m and 1000 m: the generator scales every position
-    // draw with the spacing, so the node ids, pads and segments are the same and every
+    // draw with the spacing, so the node ids, pads and edges are the same and every
     // coordinate is doubled (to the 0.1 m rounding of the files).
     let a: Network = read_json(&instance("paper-195/network.json")).unwrap();
     let b: Network = read_json(&instance("sparse-195/network.json")).unwrap();

@@ -2,16 +2,16 @@
 //! Table 2), positioning; and profile validation.
 
 use proptest::prelude::*;
-use swarmplan::energy::{slot_factors, Wind};
-use swarmplan::formation::FormationKind;
+use swarmplan::energy::slot_factors;
 use swarmplan::precompose::{
-    averaged_wind, build_swarm, select_formation, support_count, Positioning, Role,
+    averaged_wind, build_swarm, select_formation, support_count, Positioning,
 };
 use swarmplan::problem::io::{parse_toml, read_toml};
 use swarmplan::problem::profile::{
     validate_profile, FailureModel, FailureTerms, FailureWeights, RedundancyLevel,
 };
-use swarmplan::problem::{Network, Node, Profile, RequestSet, Edge};
+use swarmplan::problem::FormationKind;
+use swarmplan::problem::{Edge, Network, Node, Profile, RequestSet, Role, Wind};
 
 fn shipped_profile(name: &str) -> Profile {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -327,7 +327,7 @@ fn test_dijkstra_m(net: &Network, source: usize) -> Vec<f64> {
 fn every_row_of_table_2_is_reached_on_the_first_200_paper_195_requests_under_redundancy_levels() {
     // P recomputed here from the formula of instances/profiles/redundancy-levels.toml
     // (weighted sum of per-unit terms): P = 100 (0.3152 D_pr + 0.04348 d / 500 m/min
-    // + 0.1099 / 4 + 0.0007599 W), W the mean segment wind speed, d by the Dijkstra above.
+    // + 0.1099 / 4 + 0.0007599 W), W the mean edge wind speed, d by the Dijkstra above.
     // The expected counts [11, 55, 83, 37, 14] of 200 come from an independent Python script
     // (own JSON reading and Dijkstra); the closest P to a row boundary is 0.049 points away.
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
@@ -339,10 +339,9 @@ fn every_row_of_table_2_is_reached_on_the_first_200_paper_195_requests_under_red
     let set: RequestSet =
         swarmplan::problem::io::read_json(&root.join("instances/paper-195/requests.json"))
             .expect("requests parse");
-    let w_mps =
-        net.edges.iter().map(|s| s.wind_speed_mps).sum::<f64>() / net.edges.len() as f64;
+    let w_mps = net.edges.iter().map(|s| s.wind_speed_mps).sum::<f64>() / net.edges.len() as f64;
     assert!((w_mps - 5.262).abs() < 5e-4, "{w_mps}");
-    let graph = swarmplan::network::SkywayGraph::new(&net).unwrap();
+    let graph = swarmplan::problem::SkywayGraph::new(&net).unwrap();
     let context = swarmplan::compose::Context::new(&net, &graph, &p);
     let at = |id: &str| net.nodes.iter().position(|x| x.id == id).unwrap();
     let mut counts = [0usize; 5];

@@ -3,9 +3,9 @@
 
 use std::path::PathBuf;
 use swarmplan::error::Error;
-use swarmplan::network::SkywayGraph;
 use swarmplan::problem::io::{parse_json, read_json};
 use swarmplan::problem::validate::{validate_network, validate_request, validate_request_set};
+use swarmplan::problem::SkywayGraph;
 use swarmplan::problem::{Network, Request, RequestSet};
 
 fn tiny(name: &str) -> PathBuf {
@@ -183,11 +183,8 @@ fn malformed_json_and_unknown_fields_are_coded_errors() {
         Ok(_) => panic!("unknown field accepted"),
     }
     // A well-formed but empty network: no nodes (E1002); no pads cannot be judged without nodes.
-    let empty: Network = parse_json(
-        r#"{ "schema_version": 1, "nodes": [], "edges": [] }"#,
-        "e",
-    )
-    .unwrap();
+    let empty: Network =
+        parse_json(r#"{ "schema_version": 1, "nodes": [], "edges": [] }"#, "e").unwrap();
     assert_eq!(
         codes_and_fields(&validate_network(&empty)),
         pairs(&[("E1002", "nodes")])
@@ -197,7 +194,7 @@ fn malformed_json_and_unknown_fields_are_coded_errors() {
 #[test]
 fn file_readers_name_the_file_in_every_field() {
     let bad = tiny("invalid-network.json");
-    match swarmplan::network::read_network(&bad) {
+    match swarmplan::problem::read_network(&bad) {
         Err(Error::Invalid(v)) => {
             assert_eq!(v.len(), 11);
             assert!(v
@@ -207,7 +204,7 @@ fn file_readers_name_the_file_in_every_field() {
         }
         other => panic!("expected 11 violations, got {other:?}"),
     }
-    let (network, g) = swarmplan::network::read_network(&tiny("line4.json")).unwrap();
+    let (network, g) = swarmplan::problem::read_network(&tiny("line4.json")).unwrap();
     assert_eq!(network.nodes.len(), 4);
     let ok = swarmplan::problem::validate::read_request_set(&tiny("line4-requests.json"), &g, 1.4)
         .unwrap();

@@ -1,4 +1,4 @@
-//! Re-verifies a segment schedule ([`crate::eaas::HopOutcome`]) from the raw
+//! Re-verifies a hop schedule ([`crate::eaas::HopOutcome`]) from the raw
 //! [`HopProblem`], re-integrating every battery itself. It calls nothing in `crate::eaas` but
 //! the types.
 //!
@@ -10,8 +10,9 @@
 //! sharing minus `delta`, and is at or above `delta` whenever it shares; the outcome's feasibility,
 //! first failure, final and lowest batteries and shared total match the re-integration.
 
-use crate::eaas::{Role, HopOutcome, HopProblem, Transfer};
+use crate::eaas::{HopOutcome, HopProblem, Transfer};
 use crate::error::Violation;
+use crate::problem::Role;
 
 const T_TOL: f64 = 1e-7;
 
@@ -24,14 +25,14 @@ fn v(code: &'static str, field: String, cause: String) -> Violation {
         code,
         field,
         cause,
-        "the schedule breaks the segment model; report it with the instance",
+        "the schedule breaks the hop model; report it with the instance",
     )
 }
 
 /// Checks `outcome` against `problem`.
 ///
 /// # Arguments
-/// * `problem` - the raw segment problem (assumed valid, see [`crate::eaas::validate`]).
+/// * `problem` - the raw hop problem (assumed valid, see [`crate::eaas::validate`]).
 /// * `outcome` - a schedule and its reported batteries.
 ///
 /// # Returns

@@ -1,5 +1,5 @@
 //! Re-verifies a composed [`Plan`] from the raw instance ([`Network`], [`Profile`], [`Request`],
-//! [`Swarm`]), without the composition code paths: segments are looked up in `network.edges`,
+//! [`Swarm`]), without the composition code paths: edges are looked up in `network.edges`,
 //! lengths and headings recomputed from the node coordinates, the rate matrices taken from the
 //! energy model (the physics, [`energy::rate_matrix_mah_per_min`]), every hop's sharing schedule
 //! re-integrated by [`check_hop`] and every stop's pad assignment re-added.
@@ -9,11 +9,11 @@
 //!   paper's baseline `none` the swarm has no support drone (P5034);
 //! * hops chain from the source, and, when the plan succeeds, end at the destination; a hop that
 //!   ends anywhere but the destination of a successful plan stops there (P5004-P5008);
-//! * every consecutive pair of path nodes is a segment of the network, the hop's length is the sum
-//!   of the segment lengths (the file's `distance_m`, else Euclidean) and `tt = distance / v_g`
-//!   (P5009-P5013), and the hop's per-segment list follows the path and adds up to `tt` (P5033);
+//! * every consecutive pair of path nodes is an edge of the network, the hop's length is the sum
+//!   of the edge lengths (the file's `distance_m`, else Euclidean) and `tt = distance / v_g`
+//!   (P5009-P5013), and the hop's per-leg list follows the path and adds up to `tt` (P5033);
 //! * every hop departs with every battery full (at the source and after every stop) (P5014);
-//! * every hop's schedule is feasible and valid for the segment problem rebuilt from the raw data
+//! * every hop's schedule is feasible and valid for the hop problem rebuilt from the raw data
 //!   (P5015 wraps each `C3xxx` of [`check_hop`]; P5016 for transfers without a sharing policy);
 //! * every stop is at a node with pads: `ct_d = (C_d - b_d) / q_v`, the assignment is a partition
 //!   of every drone over at most `k_v` pads whose makespan equals `nt`, and
@@ -25,10 +25,11 @@
 use super::check_hop;
 use crate::compose::{Hop, Plan, Stop};
 use crate::eaas::{self, HopOutcome, HopProblem, SharingPolicy};
-use crate::energy::{self, Wind};
+use crate::energy;
 use crate::error::Violation;
-use crate::precompose::{Role, Swarm};
+use crate::problem::Wind;
 use crate::problem::{Network, Profile, Request};
+use crate::problem::{Role, Swarm};
 use std::collections::HashMap;
 
 /// Largest swarm whose node time is re-proved optimal by exhaustive search (at most
@@ -69,7 +70,7 @@ struct RawLeg {
 /// Every broken rule (codes `P5xxx`); empty when the plan passes.
 ///
 /// # Complexity
-/// `O(N + S)` to index the network, then per hop the segment check of [`check_hop`] plus
+/// `O(N + S)` to index the network, then per hop the schedule check of [`check_hop`] plus
 /// `O(D)` per stop for `D` drones.
 pub fn check_plan(
     network: &Network,
@@ -229,7 +230,7 @@ pub fn check_plan(
     out
 }
 
-/// The segment joining `a` and `b` in either direction, rebuilt as the leg `a -> b`.
+/// The edge joining `a` and `b` in either direction, rebuilt as the leg `a -> b`.
 fn raw_leg(network: &Network, a: usize, b: usize) -> Option<RawLeg> {
     let (na, nb) = (&network.nodes[a], &network.nodes[b]);
     let seg = network
@@ -273,7 +274,7 @@ fn check_plan_hop(
             "P5009",
             format!("{f}.path"),
             format!(
-                "path {:?} does not run from {} to {} over at least one segment",
+                "path {:?} does not run from {} to {} over at least one edge",
                 hop.path, hop.from, hop.to
             ),
         ));
@@ -301,7 +302,7 @@ fn check_plan_hop(
                 "P5011",
                 format!("{f}.path[{i}..={}]", i + 1),
                 format!(
-                    "no segment joins {} and {} in the network",
+                    "no edge joins {} and {} in the network",
                     hop.path[i],
                     hop.path[i + 1]
                 ),
@@ -317,7 +318,7 @@ fn check_plan_hop(
             "P5012",
             format!("{f}.distance_m"),
             format!(
-                "reported {} m, the segments sum to {distance_m} m",
+                "reported {} m, the edges sum to {distance_m} m",
                 hop.distance_m
             ),
         ));
@@ -333,20 +334,20 @@ fn check_plan_hop(
             ),
         ));
     }
-    // The per-segment breakdown follows the path and adds up to the hop.
+    // The per-leg breakdown follows the path and adds up to the hop.
     let pairs_match = hop.legs.len() + 1 == hop.path.len()
         && hop
             .legs
             .iter()
             .zip(hop.path.windows(2))
             .all(|(s, w)| s.from == w[0] && s.to == w[1]);
-    let segment_tt: f64 = hop.legs.iter().map(|s| s.tt_min).sum();
-    if !pairs_match || !close(segment_tt, tt) {
+    let legs_tt: f64 = hop.legs.iter().map(|s| s.tt_min).sum();
+    if !pairs_match || !close(legs_tt, tt) {
         out.push(v(
             "P5033",
             format!("{f}.legs"),
             format!(
-                "the {} legs listed do not follow the path or their tt sum to {segment_tt} min, not {tt} min",
+                "the {} legs listed do not follow the path or their tt sum to {legs_tt} min, not {tt} min",
                 hop.legs.len()
             ),
         ));

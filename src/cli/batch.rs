@@ -131,7 +131,8 @@ pub fn run(args: BatchArgs) -> Result<i32> {
             "give a request file with requests and a --limit of 1 or more",
         ));
     }
-    inputs::validate_requests(&instance, &requests)?;
+    let instance = instance.with_requests(requests)?;
+    let requests = &instance.requests;
     let mut context = Context::new(&instance.network, &instance.graph, &instance.profile);
     context.exact = args.exact.settings()?;
     let combos = combinations(&args);
@@ -139,7 +140,7 @@ pub fn run(args: BatchArgs) -> Result<i32> {
     let mut outcomes = Vec::new();
     for options in combos {
         let start = Instant::now();
-        let reports = plan_all(&context, &requests, &options, args.threads)?;
+        let reports = plan_all(&context, requests, &options, args.threads)?;
         let wall_ms = start.elapsed().as_secs_f64() * 1e3;
         let summary = summarise(options, &reports, wall_ms)?;
         if !args.json {

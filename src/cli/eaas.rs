@@ -24,7 +24,7 @@ use crate::eaas::milp::{
     objective_of, solve_milp, write_lp, ExactOutcome, ExactStatus, MilpOptions,
 };
 use crate::eaas::milp::{Objective, Reorder};
-use crate::eaas::{fluid, simulate_with, PolicyOptions, HopProblem, SharingPolicy, Transfer};
+use crate::eaas::{fluid, simulate_with, HopProblem, PolicyOptions, SharingPolicy, Transfer};
 use crate::error::{Error, Result};
 use crate::precompose::Positioning;
 use crate::solver::{Gap, MilpBackend, ReferenceKind};
@@ -210,7 +210,9 @@ pub fn run(args: EaasArgs) -> Result<i32> {
 fn planned_hop(args: &EaasArgs) -> Result<(HopFile, PolicyOptions)> {
     let instance = args.instance.load()?;
     let id = args.request_id.as_deref().unwrap_or_default();
-    let request = inputs::find_request(&instance, args.requests.as_deref(), id)?;
+    let set = inputs::load_requests(args.requests.as_deref())?;
+    let instance = instance.with_request_from(&set, id)?;
+    let request = instance.requests[0].clone();
     let context = Context::new(&instance.network, &instance.graph, &instance.profile);
     let options = PlanOptions {
         sharing: SharingPolicy::Pb,

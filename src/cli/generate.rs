@@ -4,8 +4,8 @@ use crate::error::Result;
 use crate::generate::network::{DEFAULT_NODES, DEFAULT_SPACING_M, MAX_NODES, MIN_NODES};
 use crate::generate::requests::{DEFAULT_MAX_PACKAGE_KG, DEFAULT_REQUESTS, MAX_REQUESTS};
 use crate::generate::{generate_network, generate_requests, NetworkParams, RequestParams};
-use crate::network::read_network;
 use crate::problem::io::write_json;
+use crate::problem::read_network;
 use std::path::PathBuf;
 
 /// What to generate.
@@ -122,7 +122,7 @@ pub fn run(cmd: GenerateCommand) -> Result<i32> {
             })?;
             write_json(&a.output, &network)?;
             eprintln!(
-                "wrote {} nodes, {} segments (seed {}) to {}",
+                "wrote {} nodes, {} edges (seed {}) to {}",
                 network.nodes.len(),
                 network.edges.len(),
                 a.seed,

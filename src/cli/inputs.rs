@@ -4,8 +4,7 @@
 use crate::eaas::exact_hop::{ExactSettings, DEFAULT_HOP_TIME_LIMIT_S};
 use crate::eaas::milp::{MilpOptions, Reorder};
 use crate::error::{Error, Result, Violation};
-use crate::network::SkywayGraph;
-use crate::problem::{io, validate, Network, Profile, Request, RequestSet};
+use crate::problem::{io, validate, Instance, Network, Profile, RequestSet};
 use crate::solver::MilpBackend;
 use std::path::{Path, PathBuf};
 
@@ -97,16 +96,6 @@ impl ExactArgs {
     }
 }
 
-/// A validated network with its graph, and a validated profile.
-pub struct Instance {
-    /// The network as read.
-    pub network: Network,
-    /// Its graph.
-    pub graph: SkywayGraph,
-    /// The profile.
-    pub profile: Profile,
-}
-
 impl InstanceArgs {
     /// Reads and validates the network and the profile, reporting every violation of both.
     pub fn load(&self) -> Result<Instance> {
@@ -115,17 +104,7 @@ impl InstanceArgs {
             None => io::parse_json(EMBEDDED_NETWORK, "embedded paper-195 network")?,
         };
         let profile = self.read_profile()?;
-        let mut violations = validate::validate_network(&network);
-        violations.extend(crate::problem::profile::validate_profile(&profile));
-        if !violations.is_empty() {
-            return Err(Error::Invalid(violations));
-        }
-        let graph = SkywayGraph::new(&network)?;
-        Ok(Instance {
-            network,
-            graph,
-            profile,
-        })
+        Instance::new(network, profile)
     }
 
     /// Reads and validates the profile alone, for a command that needs no network.
@@ -163,50 +142,6 @@ pub fn load_requests(path: Option<&Path>) -> Result<RequestSet> {
     let violations = validate::validate_request_set_header(&set);
     if violations.is_empty() {
         Ok(set)
-    } else {
-        Err(Error::Invalid(violations))
-    }
-}
-
-/// Finds request `id` in a request file (or the embedded paper-195 requests) and validates it,
-/// reporting its fields under its own index in the file.
-pub fn find_request(instance: &Instance, path: Option<&Path>, id: &str) -> Result<Request> {
-    let set = load_requests(path)?;
-    let Some(index) = set.requests.iter().position(|r| r.id == id) else {
-        return Err(Error::invalid(
-            "E3401",
-            "--request-id",
-            format!("no request with id `{id}` in the request file"),
-            "give an id present in the file's `requests[].id`",
-        ));
-    };
-    let request = set.requests[index].clone();
-    let violations = validate::validate_request(
-        &request,
-        index,
-        &instance.graph,
-        instance.profile.drone.max_payload_kg,
-    );
-    if violations.is_empty() {
-        Ok(request)
-    } else {
-        Err(Error::Invalid(violations))
-    }
-}
-
-/// Validates requests against the instance, reporting every violation at once.
-pub fn validate_requests(instance: &Instance, requests: &[Request]) -> Result<()> {
-    let mut violations = Vec::new();
-    for (i, r) in requests.iter().enumerate() {
-        violations.extend(validate::validate_request(
-            r,
-            i,
-            &instance.graph,
-            instance.profile.drone.max_payload_kg,
-        ));
-    }
-    if violations.is_empty() {
-        Ok(())
     } else {
         Err(Error::Invalid(violations))
     }

@@ -2,10 +2,12 @@
 
 use super::inputs::{self, InstanceArgs};
 use crate::compose::Context;
-use crate::energy::{self, Wind};
+use crate::energy;
 use crate::error::Result;
-use crate::formation::FormationKind;
-use crate::precompose::{Positioning, SupportDecision, Swarm};
+use crate::precompose::{Positioning, SupportDecision};
+use crate::problem::FormationKind;
+use crate::problem::Swarm;
+use crate::problem::Wind;
 use serde::Serialize;
 use std::path::PathBuf;
 
@@ -37,15 +39,15 @@ pub struct InspectArgs {
 pub struct NetworkReport {
     /// Nodes.
     pub nodes: usize,
-    /// Segments.
+    /// Edges.
     pub edges: usize,
     /// Nodes with at least one pad.
     pub pad_nodes: usize,
     /// Pads in all.
     pub pads: u64,
-    /// Total segment length, m.
+    /// Total edge length, m.
     pub total_length_m: f64,
-    /// Mean wind speed over segments, m/s.
+    /// Mean wind speed over edges, m/s.
     pub mean_wind_speed_mps: f64,
     /// Highest wind speed, m/s.
     pub max_wind_speed_mps: f64,
@@ -86,7 +88,13 @@ pub struct InspectReport {
 
 /// Runs the subcommand.
 pub fn run(args: InspectArgs) -> Result<i32> {
-    let inst = args.instance.load()?;
+    let inst = match &args.request_id {
+        None => args.instance.load()?,
+        Some(id) => {
+            let set = inputs::load_requests(args.request_file.as_deref())?;
+            args.instance.load()?.with_request_from(&set, id)?
+        }
+    };
     let net = &inst.network;
     let context = Context::new(net, &inst.graph, &inst.profile);
     let (formation, average_wind) = (context.formation, context.average_wind);
@@ -104,8 +112,8 @@ pub fn run(args: InspectArgs) -> Result<i32> {
     };
     let request = match &args.request_id {
         None => None,
-        Some(id) => {
-            let r = inputs::find_request(&inst, args.request_file.as_deref(), id)?;
+        Some(_) => {
+            let r = inst.requests[0].clone();
             let choice = context.swarm_for(&r, args.positioning, args.support)?;
             let (route_distance_m, support_decision, support_drones, swarm) = (
                 choice.route_distance_m,
@@ -151,7 +159,7 @@ pub fn run(args: InspectArgs) -> Result<i32> {
 fn print_human(report: &InspectReport) -> Result<()> {
     let n = &report.network;
     outln!(
-        "network: {} nodes, {} segments ({:.1} km), {} pads on {} nodes",
+        "network: {} nodes, {} edges ({:.1} km), {} pads on {} nodes",
         n.nodes,
         n.edges,
         n.total_length_m / 1000.0,

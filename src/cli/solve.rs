@@ -53,16 +53,17 @@ pub struct SolveArgs {
 /// Runs the subcommand; exit code 0 when the request is delivered, 1 when it fails.
 pub fn run(args: SolveArgs) -> Result<i32> {
     let instance = args.instance.load()?;
-    let request = match (&args.request_id, &args.from, &args.to, &args.packages) {
+    let instance = match (&args.request_id, &args.from, &args.to, &args.packages) {
         (Some(id), None, None, None) => {
-            inputs::find_request(&instance, args.request_file.as_deref(), id)?
+            let set = inputs::load_requests(args.request_file.as_deref())?;
+            instance.with_request_from(&set, id)?
         }
-        (None, Some(from), Some(to), Some(packages)) => Request {
+        (None, Some(from), Some(to), Some(packages)) => instance.with_requests(vec![Request {
             id: "cli".to_string(),
             source: from.clone(),
             destination: to.clone(),
             packages_kg: inputs::parse_list(packages, "--packages", "E0003")?,
-        },
+        }])?,
         _ => return Err(Error::invalid(
             "E3402",
             "--request-id | --from/--to/--packages",
@@ -70,7 +71,7 @@ pub fn run(args: SolveArgs) -> Result<i32> {
             "pass --request-id ID (with --request-file F), or --from A --to B --packages 1.2,0.8",
         )),
     };
-    inputs::validate_requests(&instance, std::slice::from_ref(&request))?;
+    let request = instance.requests[0].clone();
     let mut context = Context::new(&instance.network, &instance.graph, &instance.profile);
     context.exact = args.exact.settings()?;
     let options = PlanOptions {
@@ -101,7 +102,7 @@ fn print_human(report: &crate::compose::RequestReport) -> Result<()> {
     );
     for hop in &plan.hops {
         outln!(
-            "  fly {} -> {} via {} segment(s): {:.0} m, tt {:.2} min, shared {:.1} mAh in {} transfer(s)",
+            "  fly {} -> {} via {} edge(s): {:.0} m, tt {:.2} min, shared {:.1} mAh in {} transfer(s)",
             hop.from,
             hop.to,
             hop.path.len() - 1,

@@ -1,17 +1,19 @@
-//! Flying one hop: turning a network path into the segment problem of in-flight sharing, and the
+//! Flying one hop: turning a network path into the hop problem of in-flight sharing, and the
 //! node time at a recharging stop.
 
-use super::plan::{Hop, Plan, LegFlown, Stop};
+use super::plan::{Hop, LegFlown, Plan, Stop};
 use crate::eaas::exact_hop::{self, ExactSettings, HopSolve, HopSolveCounts};
 use crate::eaas::milp::Objective;
 use crate::eaas::{self, HopOutcome, HopProblem, SharingPolicy};
-use crate::energy::{self, Wind};
+use crate::energy;
 use crate::error::Result;
-use crate::network::{Route, SkywayGraph};
+use crate::network::Route;
 use crate::node_time::{self, Limits};
-use crate::precompose::{Role, Swarm};
 use crate::problem::profile::Readings;
 use crate::problem::Profile;
+use crate::problem::SkywayGraph;
+use crate::problem::Wind;
+use crate::problem::{Role, Swarm};
 use std::cell::RefCell;
 use std::collections::HashMap;
 

@@ -17,7 +17,7 @@ mod sequential;
 
 pub use flight::{Flight, HopEnd, Planner};
 pub use gaps::{lpt_node_time_gaps, LptGapSummary};
-pub use plan::{Hop, Plan, LegFlown, Stop};
+pub use plan::{Hop, LegFlown, Plan, Stop};
 pub use request::{Context, PlanOptions, RequestReport, SwarmChoice};
 
 use crate::problem::profile::Candidates;
@@ -74,7 +74,7 @@ impl Planner<'_> {
     ///
     /// # Complexity
     /// Sequential/A*: at most one step per recharging node, each step one Dijkstra tree and one
-    /// segment simulation per recharging node. Dijkstra: one Dijkstra on `tt + nt` costs.
+    /// hop simulation per recharging node. Dijkstra: one Dijkstra on `tt + nt` costs.
     /// Floyd–Warshall: O(|V|^3).
     pub fn compose(
         &self,

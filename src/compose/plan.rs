@@ -34,7 +34,7 @@ pub struct Plan {
     pub hop_solves: Option<HopSolveCounts>,
 }
 
-/// One hop: a flight without stopping between two stops, possibly over several segments.
+/// One hop: a flight without stopping between two stops, possibly over several edges.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Hop {
     /// Node id the hop starts at.
@@ -47,7 +47,7 @@ pub struct Hop {
     pub distance_m: f64,
     /// Travel time `tt`, min.
     pub tt_min: f64,
-    /// The network segments flown, in order, each with its own travel time and wind.
+    /// The legs flown (one per network edge), in order, each with its own travel time and wind.
     pub legs: Vec<LegFlown>,
     /// In-flight energy transfers during the hop.
     pub transfers: Vec<Transfer>,
@@ -65,7 +65,7 @@ pub struct Hop {
     pub stop: Option<Stop>,
 }
 
-/// One network segment flown within a hop.
+/// One leg of a hop: a network edge flown in one direction.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct LegFlown {
     /// Node id flown from.
@@ -78,7 +78,7 @@ pub struct LegFlown {
     pub tt_min: f64,
     /// Direction flown, degrees clockwise from north.
     pub heading_deg: f64,
-    /// Wind speed on the segment, m/s.
+    /// Wind speed on the edge, m/s.
     pub wind_speed_mps: f64,
     /// Direction the wind blows from, degrees clockwise from north.
     pub wind_from_deg: f64,

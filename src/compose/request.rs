@@ -4,11 +4,12 @@
 use super::{Plan, Planner, RouteMethod};
 use crate::eaas::exact_hop::ExactSettings;
 use crate::eaas::SharingPolicy;
-use crate::energy::Wind;
 use crate::error::{Error, Result};
-use crate::formation::FormationKind;
-use crate::network::SkywayGraph;
-use crate::precompose::{self, Positioning, SupportDecision, Swarm};
+use crate::precompose::{self, Positioning, SupportDecision};
+use crate::problem::FormationKind;
+use crate::problem::SkywayGraph;
+use crate::problem::Swarm;
+use crate::problem::Wind;
 use crate::problem::{Network, Profile, Request, MAX_SUPPORT_DRONES};
 use serde::Serialize;
 use std::time::Instant;

@@ -1,6 +1,7 @@
 //! The exact and fair sharing policies on a hop of a route: the hop MILP's optimal grid schedule
 //! ([`SharingPolicy::Exact`]) or the fair QP's schedule ([`SharingPolicy::Fair`]) in place of PB
-//! or FB, see `models/eaas.md`, "Exact and fair policies on a route".
+//! or FB, see `models/eaas.md`, "Exact and fair", and `models/compose.md`, "Exact and fair sharing on a
+//! route".
 //!
 //! The objective follows from where the hop ends: at a recharging stop, the node time there
 //! ([`Objective::NodeTime`]); at the destination, or at a node passed without charging, any
@@ -10,7 +11,7 @@
 //! the empty schedule is flown and the fallback is recorded ([`HopSolve::fallback`]).
 
 use super::milp::{solve_milp, ExactStatus, MilpOptions, Objective, Reorder};
-use super::{fluid, simulate_with, PolicyOptions, HopOutcome, HopProblem, SharingPolicy};
+use super::{fluid, simulate_with, HopOutcome, HopProblem, PolicyOptions, SharingPolicy};
 use crate::error::{Error, Result};
 use serde::{Deserialize, Serialize};
 
@@ -177,7 +178,7 @@ impl HopSolveCounts {
 /// * `settings` - grid, re-ordering, backend, time limit.
 ///
 /// # Returns
-/// The flown schedule replayed by the segment evaluation (infeasible when no schedule of the
+/// The flown schedule replayed by the hop evaluation (infeasible when no schedule of the
 /// model flies, or none was found in time and the hop does not fly without sharing either), and
 /// how the solve ended.
 ///

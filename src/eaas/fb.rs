@@ -2,7 +2,7 @@
 //!
 //! Each support drone serves its delivery drones (see [`super::responsible_support`]) round robin
 //! in id order, `lambda` per round, i.e. `lambda / rho` minutes at `rho`, from `ct = 0`, while
-//! `ct < tt` and it has sharing budget left (energy above `delta` at the segment end; the paper's
+//! `ct < tt` and it has sharing budget left (energy above `delta` at the hop end; the paper's
 //! `SD.ae > delta`). The last round is clipped at `tt`; a round also ends early when the consumer
 //! fills up or the budget runs out, and the next round starts at once. A drone that is full (at
 //! capacity, consuming less than `rho` in its transfer slot) is skipped at no cost; with
@@ -14,7 +14,7 @@
 use super::reorder::{busy_drones, choose_consumer_slot};
 use super::simulate::{evaluate, leg_at};
 use super::{
-    responsible_support, sharing_budget_mah, travel_time_min, PolicyOptions, Role, HopProblem,
+    responsible_support, sharing_budget_mah, travel_time_min, HopProblem, PolicyOptions, Role,
     Transfer, ENERGY_TOL_MAH, MAX_PLANNING_STEPS, TIME_TOL_MIN,
 };
 

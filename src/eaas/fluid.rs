@@ -25,7 +25,7 @@
 use super::milp::{objective_of, validate_inputs, ExactOutcome, ExactStatus, Objective, Reorder};
 use super::reorder::{busy_drones, choose_consumer_slot, slot_distance_m};
 use super::simulate::evaluate;
-use super::{sharing_budget_mah, Role, HopProblem, Transfer, TIME_TOL_MIN};
+use super::{sharing_budget_mah, HopProblem, Role, Transfer, TIME_TOL_MIN};
 use crate::error::{Error, Result};
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
@@ -382,7 +382,7 @@ pub fn bound(
 /// `model_objective` = the QP's optimum (mAh^2, a lower bound on the squared-deficit sum of every
 /// continuous-time schedule), `bound` the same; `transfers` = per leg and support drone, its
 /// consumers' amounts `a / rho` back to back from the leg start (delayed past transfers that
-/// would move the same drone, clipped at the leg end), replayed by the segment evaluation in
+/// would move the same drone, clipped at the leg end), replayed by the hop evaluation in
 /// `outcome` (which may be infeasible: the layout is a heuristic); `objective` = the replay's
 /// score under `objective`.
 ///

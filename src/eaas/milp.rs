@@ -27,8 +27,7 @@
 
 use super::simulate::evaluate;
 use super::{
-    reorder, sharing_budget_mah, validate, Role, HopOutcome, HopProblem, Transfer,
-    TIME_TOL_MIN,
+    reorder, sharing_budget_mah, validate, HopOutcome, HopProblem, Role, Transfer, TIME_TOL_MIN,
 };
 use crate::error::{Error, Result, Violation};
 use crate::node_time;
@@ -152,7 +151,7 @@ pub struct ExactOutcome {
     /// The schedule, consecutive periods of the same (support, consumer, slot) within a leg
     /// merged.
     pub transfers: Vec<Transfer>,
-    /// The schedule replayed by the segment evaluation; passes [`crate::check::check_hop`].
+    /// The schedule replayed by the hop evaluation; passes [`crate::check::check_hop`].
     /// `None` without a schedule, or for a `free` schedule whose slot permutation is not a set of
     /// consumer swaps (see [`ExactOutcome::slots`]).
     pub outcome: Option<HopOutcome>,
@@ -841,7 +840,7 @@ fn swaps_only(
 /// # Returns
 /// An [`ExactOutcome`]: status, objective of the replayed schedule and of the model, a bound
 /// (the optimum when proven, else the better of the LP relaxation and the fluid LP), grid step, solve time, the schedule
-/// and its replay through the segment evaluation. Optimal means optimal over full-period grid
+/// and its replay through the hop evaluation. Optimal means optimal over full-period grid
 /// schedules of step [`ExactOutcome::grid_step_min`].
 ///
 /// # Errors
@@ -856,6 +855,7 @@ fn swaps_only(
 /// # Example
 /// ```
 /// use swarmplan::eaas::*;
+/// use swarmplan::problem::Role;
 /// use swarmplan::eaas::milp::{solve_milp, ExactStatus, MilpOptions, Objective};
 /// use nalgebra::Vector2;
 /// // One delivery drone (80 mAh, 10 mAh/min) next to a support drone, 10 minutes.
@@ -1043,6 +1043,7 @@ pub fn lp_text(
 /// # Example
 /// ```
 /// use swarmplan::eaas::*;
+/// use swarmplan::problem::Role;
 /// use swarmplan::eaas::milp::{write_lp, MilpOptions, Objective};
 /// use nalgebra::Vector2;
 /// let p = HopProblem {

@@ -1,4 +1,4 @@
-//! In-flight energy sharing (EaaS) on one segment: the flight between two stops, see
+//! In-flight energy sharing (EaaS) on one hop: the flight between two stops, see
 //! `models/eaas.md`.
 //!
 //! Time runs over `[0, tt]`, `tt` = the sum of the legs' durations. Drone `d` flying in formation
@@ -7,7 +7,7 @@
 //! its own consumption, `c` gains `rho`. The consumer must be within `range_m` of the support drone;
 //! if it is not, fixed re-ordering swaps it, for the duration of the transfer, with the drone in the
 //! slot nearest the support drone ([`reorder`]). A support drone shares only energy it can spare:
-//! its battery at the segment end, after its own consumption, never falls below the reserve `delta`
+//! its battery at the hop end, after its own consumption, never falls below the reserve `delta`
 //! because of sharing.
 //!
 //! Policies: [`SharingPolicy::None`] (baseline), [`SharingPolicy::Pb`] (priority-based, the paper's
@@ -17,6 +17,7 @@
 
 use crate::error::{show, Error, Result, Violation};
 pub use crate::problem::profile::{PbRequest, Readings};
+use crate::problem::Role;
 use nalgebra::Vector2;
 use serde::{Deserialize, Serialize};
 
@@ -35,7 +36,7 @@ pub const TIME_TOL_MIN: f64 = 1e-9;
 /// Energy tolerance, mAh: batteries within this of a bound are on it.
 pub const ENERGY_TOL_MAH: f64 = 1e-6;
 /// Upper bound on the number of planning iterations of PB and FB (each adds at most one transfer);
-/// a guard against pathological inputs, far above what a segment needs.
+/// a guard against pathological inputs, far above what a hop needs.
 pub const MAX_PLANNING_STEPS: usize = 10_000;
 /// Most FB rounds a hop may need (E4015): the support drones times `ceil(tt * rho / lambda)`, the
 /// rounds FB gives while the hop lasts. Each round replays the schedule so far, so the work of a
@@ -46,7 +47,7 @@ pub const MAX_PLANNING_STEPS: usize = 10_000;
 /// profiles need at most 11 rounds per support drone on a 23 min hop.
 pub const MAX_FB_ROUNDS: f64 = 500.0;
 
-/// One segment's sharing problem, in plain numbers (see `models/eaas.md`).
+/// One hop's sharing problem, in plain numbers (see `models/eaas.md`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct HopProblem {
@@ -71,7 +72,7 @@ pub struct HopProblem {
     pub delta_mah: f64,
 }
 
-/// A leg of a segment: constant consumption rates for a duration.
+/// A leg of a hop: constant consumption rates for a duration.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct LegRates {
@@ -81,17 +82,7 @@ pub struct LegRates {
     pub rate_mah_per_min: Vec<Vec<f64>>,
 }
 
-/// Role of a drone in the swarm.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Role {
-    /// Carries one package; may receive energy.
-    Delivery,
-    /// Carries extra batteries; may give energy, never moves in the formation.
-    Support,
-}
-
-/// A drone's battery at the start of the segment.
+/// A drone's battery at the start of the hop.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct DroneState {
@@ -99,11 +90,11 @@ pub struct DroneState {
     pub role: Role,
     /// Battery capacity, mAh.
     pub capacity_mah: f64,
-    /// Battery at the segment start, mAh.
+    /// Battery at the hop start, mAh.
     pub battery_mah: f64,
 }
 
-/// Which sharing policy runs on a segment.
+/// Which sharing policy runs on a hop.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, clap::ValueEnum)]
 #[serde(rename_all = "kebab-case")]
 pub enum SharingPolicy {
@@ -185,9 +176,9 @@ pub struct Transfer {
     pub support: usize,
     /// Receiving delivery drone.
     pub consumer: usize,
-    /// Start, minutes from the segment start.
+    /// Start, minutes from the hop start.
     pub start_min: f64,
-    /// End, minutes from the segment start.
+    /// End, minutes from the hop start.
     pub end_min: f64,
     /// Energy moved, mAh: `rho * (end_min - start_min)`.
     pub energy_mah: f64,
@@ -196,7 +187,7 @@ pub struct Transfer {
     pub consumer_slot: usize,
 }
 
-/// Why a segment is infeasible.
+/// Why a hop is infeasible.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum FailureReason {
@@ -204,19 +195,19 @@ pub enum FailureReason {
     BatteryDepleted,
 }
 
-/// The first failure on a segment.
+/// The first failure on a hop.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct HopFailure {
     /// Failing drone.
     pub drone: usize,
-    /// When it fails, minutes from the segment start.
+    /// When it fails, minutes from the hop start.
     pub time_min: f64,
     /// Why.
     pub reason: FailureReason,
 }
 
-/// Result of flying one segment under a sharing policy.
+/// Result of flying one hop under a sharing policy.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct HopOutcome {
@@ -235,10 +226,10 @@ pub struct HopOutcome {
     pub shared_mah: f64,
 }
 
-/// Flies a segment under a sharing policy, with the default [`PolicyOptions`].
+/// Flies a hop under a sharing policy, with the default [`PolicyOptions`].
 ///
 /// # Arguments
-/// * `problem` - the segment: legs with rates, drones, formation, `rho`, `range_m`, `gamma`,
+/// * `problem` - the hop: legs with rates, drones, formation, `rho`, `range_m`, `gamma`,
 ///   `lambda`, `delta`.
 /// * `policy` - none, PB or FB.
 ///
@@ -258,6 +249,7 @@ pub struct HopOutcome {
 /// # Example
 /// ```
 /// use swarmplan::eaas::*;
+/// use swarmplan::problem::Role;
 /// use nalgebra::Vector2;
 /// let p = HopProblem {
 ///     legs: vec![LegRates { duration_min: 10.0, rate_mah_per_min: vec![vec![10.0, 10.0], vec![5.0, 5.0]] }],
@@ -363,7 +355,7 @@ fn fb_work_bound(problem: &HopProblem) -> Result<()> {
 /// breakpoints batteries are linear.
 ///
 /// # Arguments
-/// * `problem` - the segment.
+/// * `problem` - the hop.
 /// * `transfers` - a schedule, typically [`HopOutcome::transfers`].
 ///
 /// # Returns
@@ -375,10 +367,7 @@ fn fb_work_bound(problem: &HopProblem) -> Result<()> {
 ///
 /// # Complexity
 /// `O(P * D)` plus sorting the transfers.
-pub fn battery_trace(
-    problem: &HopProblem,
-    transfers: &[Transfer],
-) -> Result<Vec<(f64, Vec<f64>)>> {
+pub fn battery_trace(problem: &HopProblem, transfers: &[Transfer]) -> Result<Vec<(f64, Vec<f64>)>> {
     validate(problem)?;
     let n = problem.drones.len();
     let bad: Vec<Violation> = transfers
@@ -438,7 +427,7 @@ pub fn responsible_support(problem: &HopProblem) -> Vec<Option<usize>> {
         .collect()
 }
 
-/// Energy support drone `s` may share on the segment, mAh: its battery at `tt` without sharing
+/// Energy support drone `s` may share on the hop, mAh: its battery at `tt` without sharing
 /// (it never moves, so its own consumption is fixed) minus `delta`, floored at zero.
 pub fn sharing_budget_mah(problem: &HopProblem, s: usize) -> f64 {
     let q = problem.initial_slot[s];

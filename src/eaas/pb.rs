@@ -9,7 +9,7 @@
 //! request its support drone (see [`super::responsible_support`]) can serve is served in full: at
 //! `rho` from `max(st, free)` (`free` = the support drone's last transfer end) for `re / rho`
 //! minutes, clipped at `tt`, provided the energy it will move (`re`, or less when clipped) fits the
-//! support drone's remaining sharing budget (energy above `delta` at the segment end) and a
+//! support drone's remaining sharing budget (energy above `delta` at the hop end) and a
 //! re-ordering slot is available. Then the schedule is
 //! re-evaluated and the requests regenerated (re-ordering changes rates), until no request can be
 //! served. With [`PolicyOptions::pb_wait_for_support`] off, a request with `st < free` is skipped
@@ -19,8 +19,8 @@
 use super::reorder::{busy_drones, choose_consumer_slot};
 use super::simulate::{evaluate, Run};
 use super::{
-    responsible_support, sharing_budget_mah, travel_time_min, PbRequest, PolicyOptions, Role,
-    HopProblem, Transfer, ENERGY_TOL_MAH, MAX_PLANNING_STEPS, TIME_TOL_MIN,
+    responsible_support, sharing_budget_mah, travel_time_min, HopProblem, PbRequest, PolicyOptions,
+    Role, Transfer, ENERGY_TOL_MAH, MAX_PLANNING_STEPS, TIME_TOL_MIN,
 };
 
 /// An energy request `er = (drone, st, re)`.

@@ -8,7 +8,7 @@
 //! slot for the duration of the transfer, then return to their initial slots. Re-ordering costs no
 //! time and no energy (paper).
 
-use super::{Role, HopProblem, Transfer};
+use super::{HopProblem, Role, Transfer};
 
 /// Distance between slots `a` and `b`, metres.
 pub fn slot_distance_m(problem: &HopProblem, a: usize, b: usize) -> f64 {

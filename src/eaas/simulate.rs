@@ -10,8 +10,8 @@
 
 use super::reorder::slot_assignment;
 use super::{
-    sharing_budget_mah, travel_time_min, FailureReason, Role, HopFailure, HopOutcome,
-    HopProblem, Transfer, ENERGY_TOL_MAH, TIME_TOL_MIN,
+    sharing_budget_mah, travel_time_min, FailureReason, HopFailure, HopOutcome, HopProblem, Role,
+    Transfer, ENERGY_TOL_MAH, TIME_TOL_MIN,
 };
 
 /// A realised schedule with its batteries.

@@ -12,28 +12,8 @@
 //! swarm: the wind's velocity minus the swarm's ground velocity (`v` along the heading).
 
 use crate::formation::wake::position_factors;
-use crate::precompose::Swarm;
-use crate::problem::Profile;
+use crate::problem::{Profile, Swarm, Wind};
 use nalgebra::Vector2;
-use serde::{Deserialize, Serialize};
-
-/// Wind: speed and the direction it blows FROM, degrees clockwise from north (meteorological).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Wind {
-    /// Wind speed, m/s.
-    pub speed_mps: f64,
-    /// Direction the wind blows from, degrees clockwise from north.
-    pub from_deg: f64,
-}
-
-impl Wind {
-    /// No wind.
-    pub const CALM: Wind = Wind {
-        speed_mps: 0.0,
-        from_deg: 0.0,
-    };
-}
 
 /// Base rate `r0`: an unloaded drone with its own battery at cruise in still air, mAh/min.
 pub fn base_rate_mah_per_min(profile: &Profile) -> f64 {

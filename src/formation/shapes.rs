@@ -2,7 +2,7 @@
 //! direction flown, `y` to the right, metres. Neighbouring slots are `spacing_m` apart in every
 //! formation; diagonal steps use `a = spacing_m / sqrt(2)` on each axis. See models/formation.md.
 
-use super::FormationKind;
+use crate::problem::FormationKind;
 use nalgebra::Vector2;
 
 /// Slot positions of `kind` for `n` drones with neighbours `spacing_m` apart.

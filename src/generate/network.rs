@@ -3,7 +3,7 @@
 use super::{below, normal, round_to, shuffle, unit};
 use crate::error::{Error, Result};
 use crate::problem::validate::validate_network;
-use crate::problem::{Network, Node, Edge, SCHEMA_VERSION};
+use crate::problem::{Edge, Network, Node, SCHEMA_VERSION};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
@@ -29,7 +29,7 @@ pub const DEFAULT_SPACING_M: f64 = 500.0;
 /// Share of grid edges considered for removal (only removed when both ends keep degree >= 2 and the
 /// network stays connected).
 pub const REMOVE_PROBABILITY: f64 = 0.2;
-/// Share of grid cells that get a diagonal segment (when both ends have degree < 4).
+/// Share of grid cells that get a diagonal edge (when both ends have degree < 4).
 pub const DIAGONAL_PROBABILITY: f64 = 0.15;
 /// Node jitter as a share of the spacing, uniform in `[-J, J]` on each axis.
 pub const JITTER_SHARE: f64 = 0.3;
@@ -37,11 +37,11 @@ pub const JITTER_SHARE: f64 = 0.3;
 pub const PAD_PROBABILITIES: [f64; 5] = [0.40, 0.15, 0.20, 0.15, 0.10];
 /// Mean wind speed of a network is drawn uniformly from this range, m/s.
 pub const MEAN_WIND_RANGE_MPS: (f64, f64) = (3.0, 7.0);
-/// Log-normal spread of a segment's wind speed around the network mean.
+/// Log-normal spread of an edge's wind speed around the network mean.
 pub const WIND_SPEED_LOG_SD: f64 = 0.4;
 /// Edge wind speeds are redrawn until below this cap, m/s (well under the 13.8 m/s limit).
 pub const WIND_SPEED_CAP_MPS: f64 = 13.0;
-/// Standard deviation of a segment's wind direction around the prevailing direction, degrees.
+/// Standard deviation of an edge's wind direction around the prevailing direction, degrees.
 pub const WIND_DIRECTION_SD_DEG: f64 = 25.0;
 
 impl Default for NetworkParams {
@@ -83,7 +83,7 @@ pub fn check_network_params(p: &NetworkParams) -> Vec<crate::Violation> {
 ///    by row from the south-west; node `k` sits at column `k % cols`, row `k / cols`, spacing `s`,
 ///    jittered uniformly by up to `0.3 s` on each axis and shifted by `0.3 s` so that coordinates are
 ///    >= 0 (rounded to 0.1 m). Ids `n000`...
-/// 2. **Streets**: every horizontal and vertical grid neighbour pair is a segment (degree 2–4).
+/// 2. **Streets**: every horizontal and vertical grid neighbour pair is an edge (degree 2–4).
 /// 3. **Thinning**: in shuffled order, each street is removed with probability 0.2 if both ends keep
 ///    degree >= 2 and the network stays connected.
 /// 4. **Avenues**: each grid cell, in shuffled order, gets with probability 0.15 one of its two
@@ -93,7 +93,7 @@ pub fn check_network_params(p: &NetworkParams) -> Vec<crate::Violation> {
 /// 6. **Pads** per node: 0, 1, 2, 3, 4 with probabilities 0.40, 0.15, 0.20, 0.15, 0.10 (mean 1.4);
 ///    if no node got pads, one uniformly chosen node gets 2.
 /// 7. **Wind**: a prevailing from-direction `theta` uniform in [0, 360) and a mean speed `v` uniform
-///    in [3, 7] m/s per network; per segment (sorted by end indices) the from-direction is
+///    in [3, 7] m/s per network; per edge (sorted by end indices) the from-direction is
 ///    `theta + 25 z` degrees (normal noise, wrapped to [0, 360), rounded to 0.1) and the speed
 ///    `v exp(0.4 z' - 0.08)` (log-normal with mean `v`), redrawn until below 13 m/s, rounded to 0.01.
 ///

@@ -2,8 +2,8 @@
 
 use super::{below, unit};
 use crate::error::{Error, Result};
-use crate::network::SkywayGraph;
 use crate::problem::validate::validate_request_set;
+use crate::problem::SkywayGraph;
 use crate::problem::{Request, RequestSet, SCHEMA_VERSION};
 use crate::Violation;
 use rand::SeedableRng;
@@ -113,8 +113,8 @@ pub fn generate_requests(graph: &SkywayGraph, params: &RequestParams) -> Result<
         return Err(Error::invalid(
             "E3903",
             "--network",
-            "no two nodes of the network are joined by segments",
-            "give a network with segments",
+            "no two nodes of the network are joined by edges",
+            "give a network with edges",
         ));
     }
     let mut rng = ChaCha8Rng::seed_from_u64(params.seed);

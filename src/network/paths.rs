@@ -1,29 +1,29 @@
 //! Legs, paths and shortest paths over a [`SkywayGraph`].
 //!
-//! Edge cost here is the segment length `distance_m`; travel time `tt` and node time `nt` are
+//! Edge cost here is the edge length `distance_m`; travel time `tt` and node time `nt` are
 //! priced by the composition code on top of these paths.
 
-use super::SkywayGraph;
+use crate::problem::SkywayGraph;
 use petgraph::algo::{dijkstra, floyd_warshall};
 use petgraph::graph::NodeIndex;
 
-/// One segment flown in one direction.
+/// One edge flown in one direction.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Leg {
     /// Node the leg starts at.
     pub from: usize,
     /// Node the leg ends at.
     pub to: usize,
-    /// Index of the segment flown.
+    /// Index of the edge flown.
     pub edge: usize,
     /// Length in metres.
     pub distance_m: f64,
     /// Direction flown, degrees clockwise from north in `[0, 360)`, from the node coordinates
     /// (`atan2(dx, dy)` with x east and y north).
     pub heading_deg: f64,
-    /// The segment's wind speed, m/s.
+    /// The edge's wind speed, m/s.
     pub wind_speed_mps: f64,
-    /// The segment's wind direction (where it blows from), degrees clockwise from north.
+    /// The edge's wind direction (where it blows from), degrees clockwise from north.
     pub wind_from_deg: f64,
 }
 
@@ -54,7 +54,7 @@ pub fn heading_deg(a: (f64, f64), b: (f64, f64)) -> f64 {
 }
 
 impl SkywayGraph {
-    /// The leg flying from node `from` to adjacent node `to`, `None` if no segment joins them.
+    /// The leg flying from node `from` to adjacent node `to`, `None` if no edge joins them.
     pub fn leg(&self, from: usize, to: usize) -> Option<Leg> {
         let e = self.edge_between(from, to)?;
         let s = &self.edges[e];
@@ -73,7 +73,7 @@ impl SkywayGraph {
     ///
     /// # Returns
     /// `None` if `nodes` is empty, names an index out of range, or two consecutive nodes are not
-    /// joined by a segment. A single node gives a path with no legs and length 0.
+    /// joined by an edge. A single node gives a path with no legs and length 0.
     ///
     /// # Complexity
     /// O(n d) for n nodes of degree at most d.
@@ -154,9 +154,9 @@ impl SkywayGraph {
     ///
     /// # Example
     /// ```
-    /// use swarmplan::network::SkywayGraph;
+    /// use swarmplan::problem::SkywayGraph;
     /// use swarmplan::problem::{io::parse_json, Network};
-    /// // A (0,0) - B (300,400) - C (300,0): A-B 500 m, B-C 400 m, no A-C segment.
+    /// // A (0,0) - B (300,400) - C (300,0): A-B 500 m, B-C 400 m, no A-C edge.
     /// let network: Network = parse_json(r#"{ "schema_version": 1,
     ///   "nodes": [ { "id": "A", "x_m": 0, "y_m": 0, "pads": 1 },
     ///              { "id": "B", "x_m": 300, "y_m": 400, "pads": 0 },

@@ -500,8 +500,8 @@ fn use_partition(m: usize, times: &[f64], positive: usize, integral: bool) -> bo
 }
 
 /// The expected excess of the node time over `sum/k` for `m` pads and drones with charge times
-/// like `p` (random, independent), at resolution `delta` (see `models/node_time.md`, "Where the
-/// slow rows spend their time"). The `m^n / m!` assignments give `choice = log2(m^n / m!)` bits;
+/// like `p` (random, independent), at resolution `delta` (see `models/node_time.md`, "Expected
+/// excess of the optimum over `sum/k`"). The `m^n / m!` assignments give `choice = log2(m^n / m!)` bits;
 /// each of the `m - 1` free pad loads, spread over about `sqrt(2π) σ`, takes
 /// `log2(sqrt(2π) σ / delta)` bits to land within `delta` of its target; about one assignment
 /// has every load within `d` of `sum/k` when `(m d / delta)^(m-1) / (m-1)! = 2^(constraint -

@@ -1,19 +1,21 @@
 //! Formation selection (paper 5.1): the formation of least total consumption under the averaged wind
 //! of the network, kept for the whole trip. See models/precompose.md.
 
-use crate::energy::{slot_factors, Wind};
-use crate::formation::{slots_m, FormationKind};
+use crate::energy::slot_factors;
+use crate::formation::slots_m;
+use crate::problem::FormationKind;
+use crate::problem::Wind;
 use crate::problem::{Network, Profile};
 
-/// Averaged wind of a network: mean speed over all segments, most frequent direction.
+/// Averaged wind of a network: mean speed over all edges, most frequent direction.
 ///
 /// Directions are put in `B = formation.direction_bins` equal bins of width `360 / B` degrees, bin
 /// `k` centred on `k * 360 / B` (bin 0 centred on north), so a direction `phi` falls in bin
 /// `round(phi / (360 / B)) mod B`. The most frequent bin wins; ties go to the lowest bin index. The
-/// averaged wind's direction is that bin's centre. A network without segments has no wind.
+/// averaged wind's direction is that bin's centre. A network without edges has no wind.
 ///
 /// # Complexity
-/// O(segments + B).
+/// O(edges + B).
 pub fn averaged_wind(network: &Network, profile: &Profile) -> Wind {
     let segs = &network.edges;
     if segs.is_empty() {
@@ -81,22 +83,22 @@ pub fn select_formation_for_heading(
 /// Selects the network's formation from its averaged wind.
 ///
 /// Our reading of the paper (models/precompose.md): the paper picks the formation once, on the
-/// averaged wind, before any route is known. The swarm will fly the network's segments in both
+/// averaged wind, before any route is known. The swarm will fly the network's edges in both
 /// directions, so each formation is scored by its total position factor for a swarm of
-/// `formation.select_swarm_size` drones under the averaged wind, summed over every segment flown both
-/// ways and weighted by the segment's length. A network without segments is scored on a leg
+/// `formation.select_swarm_size` drones under the averaged wind, summed over every edge flown both
+/// ways and weighted by the edge's length. A network without edges is scored on a leg
 /// flown into the averaged wind (a head wind). Ties go to the first formation in
 /// [`FormationKind::ALL`].
 ///
 /// # Arguments
-/// * `network` - the skyway network (assumed valid: segment ends exist).
+/// * `network` - the skyway network (assumed valid: edge ends exist).
 /// * `profile` - wake model and swarm size used for the ranking.
 ///
 /// # Returns
 /// The formation and the averaged wind it was chosen for.
 ///
 /// # Complexity
-/// O(segments * 5 * n^2).
+/// O(edges * 5 * n^2).
 pub fn select_formation(network: &Network, profile: &Profile) -> (FormationKind, Wind) {
     let wind = averaged_wind(network, profile);
     let n = profile.formation.select_swarm_size.max(1) as usize;
@@ -105,7 +107,7 @@ pub fn select_formation(network: &Network, profile: &Profile) -> (FormationKind,
         .iter()
         .map(|nd| (nd.id.as_str(), (nd.x_m, nd.y_m)))
         .collect();
-    // (heading, weight) of every segment flown both ways.
+    // (heading, weight) of every edge flown both ways.
     let mut legs: Vec<(f64, f64)> = Vec::new();
     for s in &network.edges {
         let (Some(a), Some(b)) = (pos.get(s.from.as_str()), pos.get(s.to.as_str())) else {

@@ -7,10 +7,13 @@
 //!   (the worst slots), by id.
 //! * energy-aware: support drones take the best slots by id, then the delivery drones in that order.
 
-use super::{Drone, Positioning, Role, Swarm};
-use crate::energy::{slot_factors, Wind};
-use crate::formation::{slots_m, FormationKind};
+use super::Positioning;
+use crate::energy::slot_factors;
+use crate::formation::slots_m;
+use crate::problem::FormationKind;
 use crate::problem::Profile;
+use crate::problem::Wind;
+use crate::problem::{Drone, Role, Swarm};
 use nalgebra::Vector2;
 
 /// Slot indices from best to worst position factor for a leg towards `heading_deg` under `wind`.

@@ -21,9 +21,9 @@
 //! `P` (percent, clamped to [0, 100]) selects the last row of the redundancy table whose `from_pct`
 //! is at most `P`; the row's level (`N+k`, `2N`, `2(N+1)`) gives the count for `N` delivery drones.
 
-use crate::energy::Wind;
 use crate::problem::profile::{FailureModel, FailureTerms, RedundancyLevel};
 use crate::problem::Profile;
+use crate::problem::Wind;
 use serde::Serialize;
 
 /// The outcome of support drone selection.
@@ -121,7 +121,7 @@ pub fn failure_terms(
 /// # Example
 /// The paper's worked example: 3% of the battery per minute of flight, 5 km at 30 km/h, `P_2 = 0.3`.
 /// ```
-/// use swarmplan::energy::Wind;
+/// use swarmplan::problem::Wind;
 /// use swarmplan::precompose::support_count;
 /// use swarmplan::problem::profile::{FailureModel, FailureTerms, FailureWeights};
 /// # let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("instances/profiles/paper.toml");

@@ -2,15 +2,23 @@
 //! `deny_unknown_fields`, a `schema_version`, and units in every field name. Nothing here knows about
 //! solvers.
 
+pub mod graph;
+pub mod instance;
 pub mod io;
 pub mod network;
 pub mod profile;
 pub mod request;
+pub mod swarm;
 pub mod validate;
+pub mod wind;
 
-pub use network::{Network, Node, Edge};
+pub use graph::{read_network, SkywayEdge, SkywayGraph};
+pub use instance::Instance;
+pub use network::{Edge, Network, Node};
 pub use profile::Profile;
 pub use request::{Request, RequestSet};
+pub use swarm::{Drone, FormationKind, Role, Swarm};
+pub use wind::Wind;
 
 /// Most delivery drones (packages) in one request: the exact node time at a stop, an NP-hard
 /// P||Cmax over every drone of the swarm, is fast far beyond the paper's 2-8 packages but takes

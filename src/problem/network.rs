@@ -1,4 +1,4 @@
-//! Skyway network: rooftop nodes (some with recharging pads) joined by line-of-sight segments.
+//! Skyway network: rooftop nodes (some with recharging pads) joined by edges (line-of-sight segments).
 
 use serde::{Deserialize, Serialize};
 
@@ -23,7 +23,7 @@ pub struct Network {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Node {
-    /// Unique id, referenced by segments and requests.
+    /// Unique id, referenced by edges and requests.
     pub id: String,
     /// Easting in metres.
     pub x_m: f64,
@@ -36,7 +36,7 @@ pub struct Node {
     pub pad_charge_rate_mah_per_min: Option<f64>,
 }
 
-/// A segment between two nodes, flown in either direction.
+/// An edge between two nodes, flown in either direction.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Edge {
@@ -47,7 +47,7 @@ pub struct Edge {
     /// Length; the Euclidean distance between the ends when absent.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub distance_m: Option<f64>,
-    /// Wind speed on the segment, m/s; must be below 13.8 m/s (safe flight limit).
+    /// Wind speed on the edge, m/s; must be below 13.8 m/s (safe flight limit).
     pub wind_speed_mps: f64,
     /// Direction the wind blows FROM, degrees clockwise from north (meteorological convention).
     pub wind_from_deg: f64,

@@ -473,7 +473,7 @@ pub struct StatedRange {
 /// Largest number of extra batteries a support drone may carry (E2013).
 pub const MAX_EXTRA_BATTERIES: u32 = 64;
 
-/// Every quantity of a profile with its stated range. With every value in range, a segment of at
+/// Every quantity of a profile with its stated range. With every value in range, an edge of at
 /// most 1e6 m flown at 1 km/h lasts at most 6e4 min, a drone consumes at most about 1e39 mAh/min
 /// (base rate 1e6, payload factor (1 + 1000 / 0.011)^5, wind factor (100.3 / 0.278)^3), and a
 /// charge of at most 65 x 1e6 mAh at 0.1 mAh/min lasts at most 6.5e8 min: every derived number

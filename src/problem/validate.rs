@@ -18,19 +18,19 @@
 //! | E1108 | `nodes[i].pads`                     | at most [`MAX_PADS`] |
 //! | E1201 | `edges[j].from`, `edges[j].to` | names a node id |
 //! | E1202 | `edges[j]`                       | no self-loop |
-//! | E1203 | `edges[j]`                       | no second segment between the same two nodes (either direction) |
+//! | E1203 | `edges[j]`                       | no second edge between the same two nodes (either direction) |
 //! | E1204 | `edges[j].distance_m`            | finite and > 0 (given, or the Euclidean distance when absent) |
 //! | E1205 | `edges[j].wind_speed_mps`        | finite and >= 0 |
 //! | E1206 | `edges[j].wind_speed_mps`        | below [`MAX_WIND_SPEED_MPS`] (13.8 m/s) |
 //! | E1207 | `edges[j].wind_from_deg`         | finite, within [0, 360] |
-//! | E1208 | `edges[j].distance_m`            | at most [`MAX_SEGMENT_M`] (1e6 m; given, or the Euclidean distance) |
+//! | E1208 | `edges[j].distance_m`            | at most [`MAX_EDGE_M`] (1e6 m; given, or the Euclidean distance) |
 //! | E3001 | `schema_version`                    | equals [`SCHEMA_VERSION`] |
 //! | E3002 | `requests`                          | at least one request |
 //! | E3101 | `requests[k].id`                    | not empty |
 //! | E3102 | `requests[k].id`                    | unique within the set |
 //! | E3201 | `requests[k].source`, `.destination` | names a node id of the network |
 //! | E3202 | `requests[k].destination`           | differs from the source |
-//! | E3203 | `requests[k].destination`           | reachable from the source over segments |
+//! | E3203 | `requests[k].destination`           | reachable from the source over edges |
 //! | E3301 | `requests[k].packages_kg`           | at least one package |
 //! | E3302 | `requests[k].packages_kg[p]`        | finite and > 0 |
 //! | E3303 | `requests[k].packages_kg[p]`        | at most the drone's max payload |
@@ -38,17 +38,17 @@
 
 use super::{Network, Request, RequestSet, MAX_DELIVERY_DRONES, SCHEMA_VERSION};
 use crate::error::{show, Violation};
-use crate::network::SkywayGraph;
+use crate::problem::SkywayGraph;
 use std::collections::{HashMap, HashSet};
 
-/// Safe-flight wind limit (m/s): a segment's wind speed must be strictly below it.
+/// Safe-flight wind limit (m/s): an edge's wind speed must be strictly below it.
 pub const MAX_WIND_SPEED_MPS: f64 = 13.8;
 /// Largest coordinate magnitude, m (E1106): 10,000 km from the frame's origin, a quarter of the
 /// Earth's circumference, holds any city's skyway network; differences stay finite.
 pub const MAX_COORDINATE_M: f64 = 1e7;
-/// Longest segment, m (E1208): 1,000 km, far beyond any drone's range (the paper's flies about 11.5
+/// Longest edge, m (E1208): 1,000 km, far beyond any drone's range (the paper's flies about 11.5
 /// km on a battery), so that a travel time stays at most 6e4 min at the slowest 1 km/h.
-pub const MAX_SEGMENT_M: f64 = 1e6;
+pub const MAX_EDGE_M: f64 = 1e6;
 /// Slowest pad charge rate, mAh/min (E1107, and `pads.charge_rate_mah_per_min` of a profile): a
 /// full 4480 mAh charge in 31 days; slower is not a charger.
 pub const MIN_PAD_RATE_MAH_PER_MIN: f64 = 0.1;
@@ -189,8 +189,8 @@ pub fn validate_network(n: &Network) -> Vec<Violation> {
             out.push(Violation::new(
                 "E1202",
                 format!("edges[{j}]"),
-                format!("segment joins node '{}' to itself", seg.from),
-                "remove the segment; a segment joins two different nodes",
+                format!("edge joins node '{}' to itself", seg.from),
+                "remove the edge; an edge joins two different nodes",
             ));
         } else {
             let key = if seg.from <= seg.to {
@@ -203,10 +203,10 @@ pub fn validate_network(n: &Network) -> Vec<Violation> {
                     "E1203",
                     format!("edges[{j}]"),
                     format!(
-                        "edges[{first}] already joins '{}' and '{}' (segments are flown both ways)",
+                        "edges[{first}] already joins '{}' and '{}' (edges are flown both ways)",
                         key.0, key.1
                     ),
-                    "keep one segment per pair of nodes",
+                    "keep one edge per pair of nodes",
                 ));
             } else {
                 pairs.insert(key, j);
@@ -219,7 +219,7 @@ pub fn validate_network(n: &Network) -> Vec<Violation> {
                 format!("distance is {d}"),
                 "give a finite distance above 0 m, or omit it to use the Euclidean distance",
             )),
-            Some(d) if d > MAX_SEGMENT_M => out.push(too_long(j, d, "distance_m is")),
+            Some(d) if d > MAX_EDGE_M => out.push(too_long(j, d, "distance_m is")),
             None => {
                 if let (Some(a), Some(b)) = (from, to) {
                     let d = euclidean_m(a, b);
@@ -233,7 +233,7 @@ pub fn validate_network(n: &Network) -> Vec<Violation> {
                             ),
                             "give distance_m, or distinct finite coordinates to the two nodes",
                         ));
-                    } else if seg.from != seg.to && d > MAX_SEGMENT_M {
+                    } else if seg.from != seg.to && d > MAX_EDGE_M {
                         let what = format!(
                             "distance_m is absent and the Euclidean distance between '{}' and '{}' is",
                             seg.from, seg.to
@@ -257,7 +257,7 @@ pub fn validate_network(n: &Network) -> Vec<Violation> {
                 "E1206",
                 format!("edges[{j}].wind_speed_mps"),
                 format!("wind speed {w} m/s is at or over the safe-flight limit {MAX_WIND_SPEED_MPS} m/s"),
-                "drones cannot fly this segment: lower the wind speed below 13.8 m/s or remove the segment",
+                "drones cannot fly this edge: lower the wind speed below 13.8 m/s or remove the edge",
             ));
         }
         let dir = seg.wind_from_deg;
@@ -273,7 +273,7 @@ pub fn validate_network(n: &Network) -> Vec<Violation> {
     out
 }
 
-/// E1208: a segment longer than [`MAX_SEGMENT_M`]; `what` says where the length comes from.
+/// E1208: an edge longer than [`MAX_EDGE_M`]; `what` says where the length comes from.
 fn too_long(j: usize, d: f64, what: &str) -> Violation {
     Violation::new(
         "E1208",
@@ -282,7 +282,7 @@ fn too_long(j: usize, d: f64, what: &str) -> Violation {
             "{what} {} m, outside the stated range (0, 1e6] m",
             show(d)
         ),
-        "split the segment at intermediate nodes, or check its length and the nodes' coordinates (metres)",
+        "split the edge at intermediate nodes, or check its length and the nodes' coordinates (metres)",
     )
 }
 
@@ -348,10 +348,10 @@ pub fn validate_request(
                 "E3203",
                 format!("{at}.destination"),
                 format!(
-                    "no chain of segments joins source '{}' to destination '{}'",
+                    "no chain of edges joins source '{}' to destination '{}'",
                     r.source, r.destination
                 ),
-                "pick a destination reachable from the source, or add segments to the network",
+                "pick a destination reachable from the source, or add edges to the network",
             ));
         }
     }
@@ -490,7 +490,7 @@ pub fn read_request_set(
     if violations.is_empty() {
         Ok(set)
     } else {
-        Err(crate::network::prefix_fields(
+        Err(super::graph::prefix_fields(
             crate::Error::Invalid(violations),
             path,
         ))
