@@ -3,10 +3,11 @@
 
 use std::path::Path;
 use swarmplan::check::check_plan;
-use swarmplan::compose::{Context, PlanOptions, RequestReport, RouteMethod};
-use swarmplan::eaas::SharingPolicy;
+use swarmplan::compose::{Context, PlanOptions, PlanOutcome, RequestReport, RouteMethod};
+use swarmplan::eaas::{FailureReason, HopFailure, SharingPolicy};
 use swarmplan::precompose::Positioning;
 use swarmplan::problem::io::{read_json, read_toml};
+use swarmplan::problem::profile::Candidates;
 use swarmplan::problem::SkywayGraph;
 use swarmplan::problem::{Network, Profile, Request, RequestSet};
 
@@ -60,7 +61,7 @@ fn every_method_plan_passes_the_checker() {
                         .iter()
                         .map(|h| h.transfers.len())
                         .sum::<usize>();
-                    failed += usize::from(!report.plan.success);
+                    failed += usize::from(!report.plan.delivered());
                     if !v.is_empty() {
                         failures.push(format!("{} {options:?}: {:?}", r.id, v));
                     }
@@ -94,7 +95,7 @@ fn plan_with_stop_and_transfer() -> (Network, Profile, Request, RequestReport) {
     for r in &requests {
         let report = context.plan(r, &options).unwrap();
         let p = &report.plan;
-        if p.success
+        if p.delivered()
             && p.hops.len() >= 2
             && p.hops.iter().any(|h| !h.transfers.is_empty())
             && p.hops
@@ -257,10 +258,85 @@ fn corrupted_plans_are_rejected_with_their_code() {
     let c = check(&p);
     assert!(c.contains(&"P5014") && c.contains(&"P5022"), "{c:?}");
 
-    // A failed plan without a reason.
+    // A delivered plan turned into a dead end at the source, where the swarm is not: the
+    // outcome names the wrong node (P5035), and the last hop now ends without a stop (P5007).
+    // (A failed plan without a reason, or a delivered one with a failure, the retired P5002
+    // and P5003, cannot be written: the outcome is one typed value.)
     let mut p = good.clone();
-    p.success = false;
-    assert!(check(&p).contains(&"P5002"), "failure reason");
+    let first = HopFailure {
+        drone: 0,
+        time_min: 1.0,
+        reason: FailureReason::BatteryDepleted,
+    };
+    p.outcome = PlanOutcome::DeadEnd {
+        node: request.source.clone(),
+        candidates: Candidates::PadNodes,
+        direct: first,
+    };
+    assert_eq!(check(&p), vec!["P5007", "P5035"], "dead end elsewhere");
+    // The same dead end where the last hop ends is consistent with the hops.
+    p.outcome = PlanOutcome::DeadEnd {
+        node: good.hops.last().unwrap().to.clone(),
+        candidates: Candidates::PadNodes,
+        direct: first,
+    };
+    assert_eq!(check(&p), vec!["P5007"], "dead end at the end of the hops");
+    // A hop to the next pad node that does not fly, claimed from a node the swarm is not at.
+    p.outcome = PlanOutcome::HopInfeasible {
+        from: request.source.clone(),
+        to: request.destination.clone(),
+        failure: first,
+    };
+    assert!(check(&p).contains(&"P5035"), "hop infeasible elsewhere");
+    // No route between two nodes the network joins.
+    let mut p = good.clone();
+    p.hops.clear();
+    p.tt_min = 0.0;
+    p.nt_min = 0.0;
+    p.dt_min = 0.0;
+    p.shared_mah = 0.0;
+    p.outcome = PlanOutcome::NoRoute {
+        from: request.source.clone(),
+        to: request.destination.clone(),
+    };
+    assert_eq!(check(&p), vec!["P5036"], "no route on a connected network");
+}
+
+#[test]
+fn plan_outcomes_are_tagged_objects_in_json_and_sentences_in_text() {
+    let dead_end = PlanOutcome::DeadEnd {
+        node: "n012".into(),
+        candidates: Candidates::PadNodes,
+        direct: HopFailure {
+            drone: 2,
+            time_min: 7.5,
+            reason: FailureReason::BatteryDepleted,
+        },
+    };
+    let json = serde_json::to_value(&dead_end).unwrap();
+    assert_eq!(
+        json,
+        serde_json::json!({"kind": "dead-end", "node": "n012", "candidates": "pad-nodes",
+            "direct": {"drone": 2, "time_min": 7.5, "reason": "battery_depleted"}})
+    );
+    assert_eq!(dead_end.kind(), "dead-end");
+    assert_eq!(
+        serde_json::from_value::<PlanOutcome>(json).unwrap(),
+        dead_end
+    );
+    assert_eq!(
+        serde_json::to_value(PlanOutcome::Delivered).unwrap(),
+        serde_json::json!({"kind": "delivered"})
+    );
+    assert!(dead_end.to_string().starts_with("dead end at n012: "));
+    assert!(dead_end.to_string().contains("drone 2 runs out of energy after 7.50 min"));
+    // Unknown kinds and unknown fields are refused.
+    for bad in [
+        r#"{"kind": "lost"}"#,
+        r#"{"kind": "no-route", "from": "a", "to": "b", "why": "x"}"#,
+    ] {
+        assert!(serde_json::from_str::<PlanOutcome>(bad).is_err(), "{bad}");
+    }
 }
 
 #[test]

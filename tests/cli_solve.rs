@@ -72,7 +72,7 @@ fn solve_json_gives_the_hand_computed_delivery_time() {
         assert_eq!(out.status.code(), Some(0), "{route}: {out:?}");
         let r = json(&out);
         let plan = &r["plan"];
-        assert_eq!(plan["success"], true);
+        assert_eq!(plan["outcome"]["kind"], "delivered");
         assert!(close(plan["dt_min"].as_f64().unwrap(), 23.31), "{route}");
         assert!(close(plan["nt_min"].as_f64().unwrap(), 13.31), "{route}");
         assert_eq!(plan["hops"][0]["stop"]["node"], "M");
@@ -112,7 +112,7 @@ fn solve_json_reports_the_hand_computed_sharing() {
     assert!(!plan["hops"][0]["transfers"].as_array().unwrap().is_empty());
     let none = args("none");
     assert_eq!(none.status.code(), Some(1), "{none:?}");
-    assert_eq!(json(&none)["plan"]["success"], false);
+    assert_eq!(json(&none)["plan"]["outcome"]["kind"], "dead-end");
 }
 
 #[test]
@@ -364,8 +364,10 @@ fn literal_switches_algorithm_1_to_adjacent_candidates() {
     literal.push("--literal");
     let lit = solve("flat-routes.json", &literal);
     assert_eq!(lit.status.code(), Some(1), "{lit:?}");
-    let failure = json(&lit)["plan"]["failure"].as_str().unwrap().to_string();
-    assert!(failure.contains("dead end at W"), "{failure}");
+    let outcome = &json(&lit)["plan"]["outcome"];
+    assert_eq!(outcome["kind"], "dead-end", "{outcome}");
+    assert_eq!(outcome["node"], "W", "{outcome}");
+    assert_eq!(outcome["candidates"], "adjacent", "{outcome}");
 }
 
 #[test]

@@ -17,7 +17,7 @@
 
 use std::path::Path;
 use swarmplan::check::check_plan;
-use swarmplan::compose::{Context, PlanOptions, RequestReport, RouteMethod};
+use swarmplan::compose::{Context, PlanOptions, PlanOutcome, RequestReport, RouteMethod};
 use swarmplan::eaas::SharingPolicy;
 use swarmplan::precompose::Positioning;
 use swarmplan::problem::io::{read_json, read_toml};
@@ -115,7 +115,7 @@ fn direct_reach_flies_straight_without_a_stop() {
     for route in RouteMethod::ALL {
         let r = t.plan("A", "B", &[0.21], 0, SharingPolicy::Pb, route);
         let p = &r.plan;
-        assert!(p.success, "{route:?}");
+        assert!(p.delivered(), "{route:?}");
         assert_eq!(p.hops.len(), 1);
         assert!(p.hops[0].stop.is_none());
         assert_eq!(p.hops[0].path, ["A", "B"]);
@@ -142,11 +142,11 @@ fn reach_only_thanks_to_sharing_fails_without_and_succeeds_with_pb() {
         SharingPolicy::None,
         RouteMethod::Sequential,
     );
-    assert!(!none.plan.success);
+    assert!(!none.plan.delivered());
     assert!(
-        none.plan.failure.as_deref().unwrap().contains("dead end"),
+        matches!(none.plan.outcome, PlanOutcome::DeadEnd { .. }),
         "{:?}",
-        none.plan.failure
+        none.plan.outcome
     );
     assert!(none.plan.hops.is_empty());
 
@@ -169,7 +169,7 @@ fn reach_only_thanks_to_sharing_fails_without_and_succeeds_with_pb() {
         RouteMethod::Sequential,
     );
     let p = &pb.plan;
-    assert!(p.success, "{:?}", p.failure);
+    assert!(p.delivered(), "{:?}", p.outcome);
     assert_eq!(p.hops.len(), 1);
     assert_eq!(p.hops[0].path, ["A", "B", "C", "D"]);
     assert_close(p.dt_min, 8.0, "dt");
@@ -203,7 +203,7 @@ fn a_stop_with_fewer_pads_than_drones_takes_the_optimal_makespan() {
     for route in RouteMethod::ALL {
         let r = t.plan("A", "B", &[0.21, 0.21, 0.44], 0, SharingPolicy::None, route);
         let p = &r.plan;
-        assert!(p.success, "{route:?}: {:?}", p.failure);
+        assert!(p.delivered(), "{route:?}: {:?}", p.outcome);
         assert_eq!(p.stops(), ["M"], "{route:?}");
         let stop = p.hops[0].stop.as_ref().unwrap();
         assert_eq!(stop.pads, 2);
@@ -240,10 +240,16 @@ fn a_dead_end_fails_with_a_reason_and_never_loops() {
     for route in [RouteMethod::Sequential, RouteMethod::Astar] {
         let r = t.plan("A", "B", &[0.21], 0, SharingPolicy::None, route);
         let p = &r.plan;
-        assert!(!p.success);
+        assert!(!p.delivered());
         assert_eq!(p.stops(), ["M1", "M2"], "{route:?}");
-        let why = p.failure.as_deref().unwrap();
-        assert!(why.contains("dead end at M2"), "{why}");
+        let PlanOutcome::DeadEnd { node, direct, .. } = &p.outcome else {
+            panic!("{:?}", p.outcome);
+        };
+        assert_eq!(node, "M2");
+        assert!(p.outcome.to_string().contains("dead end at M2"), "{}", p.outcome);
+        // Flying on from M2 full, the drone is empty after 1000 / 133.1 = 7.513 min.
+        assert_eq!(direct.drone, 0);
+        assert_close(direct.time_min, 1000.0 / 133.1, "direct failure");
         assert_close(p.dt_min, 18.648, "dt flown");
     }
     // The fixed route A, M1, M2, B (the only one): the farthest reachable pad node from A is M1,
@@ -251,10 +257,15 @@ fn a_dead_end_fails_with_a_reason_and_never_loops() {
     for route in [RouteMethod::Dijkstra, RouteMethod::FloydWarshall] {
         let r = t.plan("A", "B", &[0.21], 0, SharingPolicy::None, route);
         let p = &r.plan;
-        assert!(!p.success);
+        assert!(!p.delivered());
         assert_eq!(p.stops(), ["M1", "M2"], "{route:?}");
-        let why = p.failure.as_deref().unwrap();
-        assert!(why.contains("cannot reach B"), "{why}");
+        let PlanOutcome::HopInfeasible { from, to, failure } = &p.outcome else {
+            panic!("{:?}", p.outcome);
+        };
+        assert_eq!((from.as_str(), to.as_str()), ("M2", "B"));
+        assert!(p.outcome.to_string().contains("cannot reach B"), "{}", p.outcome);
+        assert_eq!(failure.drone, 0);
+        assert_close(failure.time_min, 1000.0 / 133.1, "hop failure");
         assert_close(p.dt_min, 18.648, "dt flown");
     }
 }
@@ -280,8 +291,8 @@ fn pb_serves_the_needy_drone_where_fb_spreads_by_id_and_fails() {
         SharingPolicy::Fb,
         RouteMethod::Sequential,
     );
-    assert!(!fb.plan.success);
-    assert!(fb.plan.failure.as_deref().unwrap().contains("dead end"));
+    assert!(!fb.plan.delivered());
+    assert!(matches!(fb.plan.outcome, PlanOutcome::DeadEnd { .. }));
 
     let pb = t.plan(
         "A",
@@ -292,7 +303,7 @@ fn pb_serves_the_needy_drone_where_fb_spreads_by_id_and_fails() {
         RouteMethod::Sequential,
     );
     let p = &pb.plan;
-    assert!(p.success, "{:?}", p.failure);
+    assert!(p.delivered(), "{:?}", p.outcome);
     assert_close(p.dt_min, 6.5, "dt");
     let h = &p.hops[0];
     assert_eq!(h.transfers.len(), 1);
@@ -320,7 +331,7 @@ fn each_route_method_takes_its_own_route() {
     // 13.5198 (R and P2 too far): stop at P1. From P1: T too far, P2 8.8578: stop at P2, then T
     // (3.8). dt = 4.662 + 13.5198 + 8.8578 + 3.8 = 30.8396.
     let seq = plan(RouteMethod::Sequential);
-    assert!(seq.plan.success);
+    assert!(seq.plan.delivered());
     assert_eq!(seq.plan.stops(), ["W", "P1", "P2"]);
     assert_eq!(path_of(&seq), ["S", "W", "S", "P1", "P2", "T"]);
     assert_close(seq.plan.dt_min, 30.8396, "sequential dt");
@@ -329,7 +340,7 @@ fn each_route_method_takes_its_own_route() {
     // R 13.986 + 6 = 19.986: stop at P1; from P1, P2 8.8578 + 3.8: stop at P2; then T.
     // dt = 2 * 8.8578 + 3.8 = 21.5156.
     let astar = plan(RouteMethod::Astar);
-    assert!(astar.plan.success);
+    assert!(astar.plan.delivered());
     assert_eq!(astar.plan.stops(), ["P1", "P2"]);
     assert_eq!(path_of(&astar), ["S", "P1", "P2", "T"]);
     assert_close(astar.plan.dt_min, 21.5156, "astar dt");
@@ -339,7 +350,7 @@ fn each_route_method_takes_its_own_route() {
     // 19.986: route S, R, T. Flown: T is 12 min away, R 6: stop at R (nt 7.986), then 6 to T.
     // dt = 19.986.
     let dijkstra = plan(RouteMethod::Dijkstra);
-    assert!(dijkstra.plan.success);
+    assert!(dijkstra.plan.delivered());
     assert_eq!(dijkstra.plan.stops(), ["R"]);
     assert_eq!(path_of(&dijkstra), ["S", "R", "T"]);
     assert_close(dijkstra.plan.dt_min, 19.986, "dijkstra dt");
@@ -347,7 +358,7 @@ fn each_route_method_takes_its_own_route() {
     // Floyd–Warshall minimises the same edge cost c(u, v) as Dijkstra, so its route costs the
     // same; here the cheapest route is unique, so it is the same route with the same dt.
     let fw = plan(RouteMethod::FloydWarshall);
-    assert!(fw.plan.success);
+    assert!(fw.plan.delivered());
     assert_eq!(path_of(&fw), ["S", "R", "T"]);
     assert_close(fw.plan.dt_min, 19.986, "floyd-warshall dt");
 }
@@ -364,20 +375,18 @@ fn algorithm_1_over_adjacent_nodes_passes_nodes_without_pads_and_never_revisits(
     // Sequential from S: neighbours W 4.662, P1 8.8578, R 13.986: stop at W. W's only neighbour,
     // S, is visited, and T (6700 m via S) is out of reach: dead end after 4.662 min.
     let seq = plan("S", RouteMethod::Sequential);
-    assert!(!seq.plan.success);
-    assert!(seq
-        .plan
-        .failure
-        .as_deref()
-        .unwrap()
-        .contains("dead end at W"));
+    assert!(!seq.plan.delivered());
+    assert!(matches!(
+        &seq.plan.outcome,
+        PlanOutcome::DeadEnd { node, candidates: Candidates::Adjacent, .. } if node == "W"
+    ));
     assert_eq!(seq.plan.stops(), ["W"]);
     assert_close(seq.plan.dt_min, 4.662, "sequential dt");
 
     // A* adds dist(v, T) / 500: W 18.062, P1 16.4578, R 19.986: stop at P1, then P2 (its only
     // unvisited neighbour), then T: dt = 2 x 8.8578 + 3.8 = 21.5156, as over pad nodes.
     let astar = plan("S", RouteMethod::Astar);
-    assert!(astar.plan.success);
+    assert!(astar.plan.delivered());
     assert_eq!(path_of(&astar), ["S", "P1", "P2", "T"]);
     assert_close(astar.plan.dt_min, 21.5156, "astar dt");
 
@@ -386,7 +395,7 @@ fn algorithm_1_over_adjacent_nodes_passes_nodes_without_pads_and_never_revisits(
     // not: P1 with arrival 1000 - 133.1 x 5.8 = 228.02 mAh, nt = 7.7198. Then P2 (nt 5.0578)
     // and T. dt = 5.8 + 7.7198 + 3.8 + 5.0578 + 3.8 = 26.1776.
     let passing = plan("W", RouteMethod::Sequential);
-    assert!(passing.plan.success);
+    assert!(passing.plan.delivered());
     assert_eq!(passing.plan.stops(), ["P1", "P2"]);
     assert_eq!(passing.plan.hops[0].path, ["W", "S", "P1"]);
     assert_close(passing.plan.dt_min, 26.1776, "dt through S");

@@ -100,7 +100,7 @@ fn exact_and_fair_routes_reach_the_half_total_charge_bound_where_pb_overshares()
                 settings
             });
             let p = &r.plan;
-            assert!(p.success, "{options:?}: {:?}", p.failure);
+            assert!(p.delivered(), "{options:?}: {:?}", p.outcome);
             assert_eq!(p.stops(), ["M"], "{options:?}");
             // The fair QP is solved to clarabel's tolerance: its layout may move a few
             // hundredths of a mAh that the exact optimum does not.

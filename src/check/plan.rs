@@ -4,11 +4,16 @@
 //! energy model (the physics, [`energy::rate_matrix_mah_per_min`]), every hop's sharing schedule
 //! re-integrated by [`check_hop`] and every stop's pad assignment re-added.
 //!
-//! Rules (see `models/compose.md`), codes `P5001`-`P5034`:
-//! * the plan answers the request; a failed plan gives a reason (P5001-P5003); under the
-//!   paper's baseline `none` the swarm has no support drone (P5034);
-//! * hops chain from the source, and, when the plan succeeds, end at the destination; a hop that
-//!   ends anywhere but the destination of a successful plan stops there (P5004-P5008);
+//! One function per rule, named after its code. Rules (see `models/compose.md`), codes
+//! `P5001`-`P5040`:
+//! * the plan answers the request (P5001); under the paper's baseline `none` the swarm has no
+//!   support drone (P5034);
+//! * the swarm is well formed (P5037), its delivery drones carry the request's packages (P5038),
+//!   its drones are the profile's (P5039) and its slots the formation's (P5040);
+//! * hops chain from the source, and, when the plan is delivered, end at the destination; a hop
+//!   that ends anywhere but the destination of a delivered plan stops there (P5004-P5008);
+//! * a failed plan's outcome names where the swarm is (P5035), and claims no route only between
+//!   nodes the network does not connect (P5036);
 //! * every consecutive pair of path nodes is an edge of the network, the hop's length is the sum
 //!   of the edge lengths (the file's `distance_m`, else Euclidean) and `tt = distance / v_g`
 //!   (P5009-P5013), and the hop's per-leg list follows the path and adds up to `tt` (P5033);
@@ -21,15 +26,19 @@
 //!   drones, `nt` is also compared with the optimal makespan found by exhaustive search (P5028);
 //! * totals: `tt = sum tt`, `nt = sum nt`, `dt = tt + nt`, shared energy = sum of the transfers
 //!   (P5030-P5032).
+//!
+//! Codes P5002 and P5003 (a failed plan without a reason, a delivered one with a failure) are
+//! retired: a plan's [`PlanOutcome`] cannot say both.
 
 use super::check_hop;
-use crate::compose::{Hop, Plan, Stop};
+use crate::compose::{Hop, Plan, PlanOutcome, Stop};
 use crate::eaas::{self, HopOutcome, HopProblem, SharingPolicy};
 use crate::energy;
 use crate::error::Violation;
-use crate::problem::Wind;
-use crate::problem::{Network, Profile, Request};
-use crate::problem::{Role, Swarm};
+use crate::formation;
+use crate::problem::profile::Candidates;
+use crate::problem::{Network, Node, Profile, Request};
+use crate::problem::{Role, Swarm, Wind};
 use std::collections::HashMap;
 
 /// Largest swarm whose node time is re-proved optimal by exhaustive search (at most
@@ -47,6 +56,21 @@ fn v(code: &'static str, field: impl Into<String>, cause: impl Into<String>) -> 
         cause,
         "the plan breaks the composition model; report it with the instance and the request",
     )
+}
+
+/// The raw instance every rule reads, indexed once.
+struct Raw<'a> {
+    network: &'a Network,
+    profile: &'a Profile,
+    request: &'a Request,
+    swarm: &'a Swarm,
+    sharing: SharingPolicy,
+    /// Node id -> index in `network.nodes`.
+    index: HashMap<&'a str, usize>,
+    /// Ground speed `v_g`, m/min.
+    speed_m_per_min: f64,
+    /// Every drone's capacity, mAh: its battery when full.
+    full: Vec<f64>,
 }
 
 /// One directed leg rebuilt from the raw network.
@@ -67,7 +91,8 @@ struct RawLeg {
 /// * `plan` - the plan to verify.
 ///
 /// # Returns
-/// Every broken rule (codes `P5xxx`); empty when the plan passes.
+/// Every broken rule (codes `P5xxx`); empty when the plan passes. A malformed plan or swarm (a
+/// plan read from a file) gives violations, never a panic.
 ///
 /// # Complexity
 /// `O(N + S)` to index the network, then per hop the schedule check of [`check_hop`] plus
@@ -80,154 +105,519 @@ pub fn check_plan(
     sharing: SharingPolicy,
     plan: &Plan,
 ) -> Vec<Violation> {
+    let raw = Raw {
+        network,
+        profile,
+        request,
+        swarm,
+        sharing,
+        index: network
+            .nodes
+            .iter()
+            .enumerate()
+            .map(|(i, n)| (n.id.as_str(), i))
+            .collect(),
+        speed_m_per_min: profile.drone.speed_kmh * 1000.0 / 60.0,
+        full: swarm.drones.iter().map(|d| d.capacity_mah).collect(),
+    };
     let mut out = Vec::new();
-    let index: HashMap<&str, usize> = network
-        .nodes
-        .iter()
-        .enumerate()
-        .map(|(i, n)| (n.id.as_str(), i))
-        .collect();
-    let speed_m_per_min = profile.drone.speed_kmh * 1000.0 / 60.0;
-    let full: Vec<f64> = swarm.drones.iter().map(|d| d.capacity_mah).collect();
-
-    if plan.source != request.source || plan.destination != request.destination {
-        out.push(v(
-            "P5001",
-            "source, destination",
-            format!(
-                "plan goes {} -> {}, the request {} -> {}",
-                plan.source, plan.destination, request.source, request.destination
-            ),
-        ));
-    }
-    let supports = swarm
-        .drones
-        .iter()
-        .filter(|d| d.role == Role::Support)
-        .count();
-    if !sharing.flies_support() && supports > 0 {
-        out.push(v(
-            "P5034",
-            "swarm",
-            format!(
-                "{supports} support drone(s) under sharing policy none, the paper's baseline \
-                 without support drones"
-            ),
-        ));
-    }
-    if !plan.success && plan.failure.is_none() {
-        out.push(v("P5002", "failure", "a failed plan gives no reason"));
-    }
-    if plan.success && plan.failure.is_some() {
-        out.push(v("P5003", "failure", "a successful plan gives a failure"));
+    out.extend(p5001_plan_answers_the_request(&raw, plan));
+    out.extend(p5034_baseline_flies_no_support_drone(&raw));
+    let shape = p5037_swarm_is_well_formed(swarm);
+    let swarm_ok = shape.is_empty();
+    out.extend(shape);
+    out.extend(p5038_delivery_drones_carry_the_packages(&raw));
+    out.extend(p5039_drones_are_the_profiles(&raw));
+    if swarm_ok {
+        out.extend(p5040_slots_are_the_formations(&raw));
     }
 
     // The chain of hops.
     let mut at = request.source.as_str();
     for (k, hop) in plan.hops.iter().enumerate() {
         let f = format!("hops[{k}]");
-        if hop.from != at {
-            out.push(v(
-                "P5004",
-                format!("{f}.from"),
-                format!("hop starts at {}, the swarm is at {at}", hop.from),
-            ));
-        }
-        let last = k + 1 == plan.hops.len();
-        let ends_plan = plan.success && last;
-        if ends_plan && hop.to != request.destination {
-            out.push(v(
-                "P5005",
-                format!("{f}.to"),
-                format!(
-                    "the last hop ends at {}, not at the destination {}",
-                    hop.to, request.destination
-                ),
-            ));
-        }
-        if ends_plan && hop.stop.is_some() {
-            out.push(v(
-                "P5006",
-                format!("{f}.stop"),
-                "the destination is not a recharging stop",
-            ));
-        }
-        if !ends_plan && hop.stop.is_none() {
-            out.push(v(
-                "P5007",
-                format!("{f}.stop"),
-                format!("the swarm ends a hop at {} without recharging", hop.to),
-            ));
-        }
+        let ends_plan = plan.delivered() && k + 1 == plan.hops.len();
+        out.extend(p5004_hop_starts_where_the_swarm_is(&f, hop, at));
+        out.extend(p5005_last_hop_ends_at_the_destination(&raw, &f, hop, ends_plan));
+        out.extend(p5006_no_stop_at_the_destination(&f, hop, ends_plan));
+        out.extend(p5007_other_hops_end_in_a_stop(&f, hop, ends_plan));
         at = hop.to.as_str();
-        check_plan_hop(
-            &mut out,
-            &f,
-            hop,
-            &index,
-            network,
-            profile,
-            swarm,
-            sharing,
-            speed_m_per_min,
-            &full,
-        );
+        check_flight(&mut out, &raw, &f, hop, swarm_ok);
         if let Some(stop) = &hop.stop {
-            check_stop(&mut out, &f, hop, stop, &index, network, profile, swarm);
+            check_stop(&mut out, &raw, &f, hop, stop);
         }
     }
-    if plan.success && plan.hops.is_empty() && request.source != request.destination {
+    out.extend(p5008_a_delivery_flies(&raw, plan));
+    out.extend(p5035_failure_names_where_the_swarm_is(&raw, plan));
+    out.extend(p5036_no_route_only_between_unconnected_nodes(&raw, plan));
+
+    // Totals.
+    out.extend(p5030_totals_are_the_sums(plan));
+    out.extend(p5031_dt_is_tt_plus_nt(plan));
+    out.extend(p5032_shared_is_the_transfers(plan));
+    out
+}
+
+// ---- The plan and the request.
+
+/// P5001: the plan goes from the request's source to its destination.
+fn p5001_plan_answers_the_request(raw: &Raw, plan: &Plan) -> Option<Violation> {
+    let r = raw.request;
+    (plan.source != r.source || plan.destination != r.destination).then(|| {
+        v(
+            "P5001",
+            "source, destination",
+            format!(
+                "plan goes {} -> {}, the request {} -> {}",
+                plan.source, plan.destination, r.source, r.destination
+            ),
+        )
+    })
+}
+
+/// P5034: under the paper's baseline `none` the swarm has no support drone.
+fn p5034_baseline_flies_no_support_drone(raw: &Raw) -> Option<Violation> {
+    let supports = raw.swarm.support_count();
+    (!raw.sharing.flies_support() && supports > 0).then(|| {
+        v(
+            "P5034",
+            "swarm",
+            format!(
+                "{supports} support drone(s) under sharing policy none, the paper's baseline \
+                 without support drones"
+            ),
+        )
+    })
+}
+
+// ---- The swarm.
+
+/// P5037: drone ids are their indices, there is one slot per drone and the initial slots are a
+/// permutation of the slots. The hop schedules are re-checked only on a well-formed swarm.
+fn p5037_swarm_is_well_formed(swarm: &Swarm) -> Vec<Violation> {
+    let mut out = Vec::new();
+    let n = swarm.drones.len();
+    if let Some((i, d)) = swarm.drones.iter().enumerate().find(|(i, d)| d.id != *i) {
         out.push(v(
+            "P5037",
+            format!("swarm.drones[{i}].id"),
+            format!("drone {i} has id {}: ids must be the drones' indices", d.id),
+        ));
+    }
+    if swarm.slots_m.len() != n {
+        out.push(v(
+            "P5037",
+            "swarm.slots_m",
+            format!("{} slots for {n} drones", swarm.slots_m.len()),
+        ));
+    }
+    let mut seen = vec![false; n];
+    let permutation = swarm.initial_slot.len() == n
+        && swarm
+            .initial_slot
+            .iter()
+            .all(|&q| q < n && !std::mem::replace(&mut seen[q], true));
+    if !permutation {
+        out.push(v(
+            "P5037",
+            "swarm.initial_slot",
+            format!(
+                "{:?} is not a permutation of the {n} slots",
+                swarm.initial_slot
+            ),
+        ));
+    }
+    out
+}
+
+/// P5038: delivery drones come first, one per package of the request in its order, each
+/// carrying its package; the other drones are support drones.
+fn p5038_delivery_drones_carry_the_packages(raw: &Raw) -> Option<Violation> {
+    let packages = &raw.request.packages_kg;
+    let drones = &raw.swarm.drones;
+    let delivery = drones.iter().take_while(|d| d.role == Role::Delivery).count();
+    let rest_support = drones[delivery..].iter().all(|d| d.role == Role::Support);
+    let carried = drones
+        .iter()
+        .zip(packages)
+        .all(|(d, &p)| close(d.payload_kg, p));
+    (delivery != packages.len() || !rest_support || !carried).then(|| {
+        v(
+            "P5038",
+            "swarm.drones",
+            format!(
+                "delivery drones carry {:?} kg, the request's packages are {packages:?} kg \
+                 (delivery drones first, one per package in order, then support drones)",
+                drones
+                    .iter()
+                    .filter(|d| d.role == Role::Delivery)
+                    .map(|d| d.payload_kg)
+                    .collect::<Vec<_>>()
+            ),
+        )
+    })
+}
+
+/// P5039: every drone has the profile's capacity (one battery for a delivery drone,
+/// `1 + extra_batteries` for a support drone), and a support drone carries the extra batteries.
+fn p5039_drones_are_the_profiles(raw: &Raw) -> Vec<Violation> {
+    let p = raw.profile;
+    raw.swarm
+        .drones
+        .iter()
+        .enumerate()
+        .filter_map(|(i, d)| {
+            let (capacity, payload) = match d.role {
+                Role::Delivery => (p.drone.battery_mah, d.payload_kg),
+                Role::Support => (p.support_capacity_mah(), p.support_payload_kg()),
+            };
+            (!close(d.capacity_mah, capacity) || !close(d.payload_kg, payload)).then(|| {
+                v(
+                    "P5039",
+                    format!("swarm.drones[{i}]"),
+                    format!(
+                        "{:?} drone with {} mAh and {} kg, the profile gives {capacity} mAh and \
+                         {payload} kg",
+                        d.role, d.capacity_mah, d.payload_kg
+                    ),
+                )
+            })
+        })
+        .collect()
+}
+
+/// P5040: the slots are those of the swarm's formation at the profile's spacing.
+fn p5040_slots_are_the_formations(raw: &Raw) -> Option<Violation> {
+    let swarm = raw.swarm;
+    let want = formation::slots_m(
+        swarm.formation,
+        swarm.drones.len(),
+        raw.profile.formation.spacing_m,
+    );
+    let same = want
+        .iter()
+        .zip(&swarm.slots_m)
+        .all(|(a, b)| close(a.x, b.x) && close(a.y, b.y));
+    (!same).then(|| {
+        v(
+            "P5040",
+            "swarm.slots_m",
+            format!(
+                "not the slots of a {:?} formation of {} drones at {} m spacing",
+                swarm.formation,
+                swarm.drones.len(),
+                raw.profile.formation.spacing_m
+            ),
+        )
+    })
+}
+
+// ---- The chain of hops.
+
+/// P5004: a hop starts where the swarm is: the source, or where the previous hop ended.
+fn p5004_hop_starts_where_the_swarm_is(f: &str, hop: &Hop, at: &str) -> Option<Violation> {
+    (hop.from != at).then(|| {
+        v(
+            "P5004",
+            format!("{f}.from"),
+            format!("hop starts at {}, the swarm is at {at}", hop.from),
+        )
+    })
+}
+
+/// P5005: the last hop of a delivered plan ends at the destination.
+fn p5005_last_hop_ends_at_the_destination(
+    raw: &Raw,
+    f: &str,
+    hop: &Hop,
+    ends_plan: bool,
+) -> Option<Violation> {
+    let destination = &raw.request.destination;
+    (ends_plan && hop.to != *destination).then(|| {
+        v(
+            "P5005",
+            format!("{f}.to"),
+            format!(
+                "the last hop ends at {}, not at the destination {destination}",
+                hop.to
+            ),
+        )
+    })
+}
+
+/// P5006: the swarm does not recharge at the destination.
+fn p5006_no_stop_at_the_destination(f: &str, hop: &Hop, ends_plan: bool) -> Option<Violation> {
+    (ends_plan && hop.stop.is_some()).then(|| {
+        v(
+            "P5006",
+            format!("{f}.stop"),
+            "the destination is not a recharging stop",
+        )
+    })
+}
+
+/// P5007: every hop but the last of a delivered plan ends in a recharging stop.
+fn p5007_other_hops_end_in_a_stop(f: &str, hop: &Hop, ends_plan: bool) -> Option<Violation> {
+    (!ends_plan && hop.stop.is_none()).then(|| {
+        v(
+            "P5007",
+            format!("{f}.stop"),
+            format!("the swarm ends a hop at {} without recharging", hop.to),
+        )
+    })
+}
+
+/// P5008: a delivered plan between two different nodes flies at least one hop.
+fn p5008_a_delivery_flies(raw: &Raw, plan: &Plan) -> Option<Violation> {
+    let r = raw.request;
+    (plan.delivered() && plan.hops.is_empty() && r.source != r.destination).then(|| {
+        v(
             "P5008",
             "hops",
             "a successful plan between two different nodes flies no hop",
-        ));
-    }
+        )
+    })
+}
 
-    // Totals.
-    let tt: f64 = plan.hops.iter().map(|h| h.tt_min).sum();
-    let nt: f64 = plan
+/// P5035: a failed plan's outcome names nodes of the network and where the swarm is: the end
+/// of the last hop flown (or the source). Algorithm 1 over adjacent nodes may fail at a node it
+/// passed without charging, after the last hop recorded; there only the node's existence is
+/// checked. A plan that fails for want of a route names the destination.
+fn p5035_failure_names_where_the_swarm_is(raw: &Raw, plan: &Plan) -> Option<Violation> {
+    let at = plan
         .hops
-        .iter()
-        .filter_map(|h| h.stop.as_ref().map(|s| s.nt_min))
-        .sum();
-    let shared: f64 = plan
-        .hops
-        .iter()
-        .flat_map(|h| h.transfers.iter().map(|x| x.energy_mah))
-        .sum();
-    if !close(plan.tt_min, tt) || !close(plan.nt_min, nt) {
-        out.push(v(
+        .last()
+        .map_or(raw.request.source.as_str(), |h| h.to.as_str());
+    let known = |id: &str| raw.index.contains_key(id);
+    let cause = match &plan.outcome {
+        PlanOutcome::Delivered => return None,
+        PlanOutcome::NoRoute { from, to } => {
+            if !known(from) || *to != raw.request.destination {
+                format!(
+                    "no route from {from} to {to}, but the swarm heads for {} from a node of \
+                     the network",
+                    raw.request.destination
+                )
+            } else {
+                return None;
+            }
+        }
+        PlanOutcome::DeadEnd {
+            node, candidates, ..
+        } => {
+            let fine = match candidates {
+                Candidates::PadNodes => node == at,
+                Candidates::Adjacent => known(node),
+            };
+            if fine {
+                return None;
+            }
+            format!("dead end at {node}, but the swarm is at {at}")
+        }
+        PlanOutcome::HopInfeasible { from, to, .. } => {
+            if from == at && known(to) {
+                return None;
+            }
+            format!("cannot reach {to} from {from}, but the swarm is at {at}")
+        }
+    };
+    Some(v("P5035", "outcome", cause))
+}
+
+/// P5036: a plan fails for want of a route only between nodes no path of the network joins.
+fn p5036_no_route_only_between_unconnected_nodes(raw: &Raw, plan: &Plan) -> Option<Violation> {
+    let PlanOutcome::NoRoute { from, to } = &plan.outcome else {
+        return None;
+    };
+    let (&a, &b) = (raw.index.get(from.as_str())?, raw.index.get(to.as_str())?);
+    let n = raw.network.nodes.len();
+    let mut adjacent = vec![Vec::new(); n];
+    for e in &raw.network.edges {
+        if let (Some(&x), Some(&y)) = (raw.index.get(e.from.as_str()), raw.index.get(e.to.as_str()))
+        {
+            adjacent[x].push(y);
+            adjacent[y].push(x);
+        }
+    }
+    let mut seen = vec![false; n];
+    let mut stack = vec![a];
+    seen[a] = true;
+    while let Some(x) = stack.pop() {
+        for &y in &adjacent[x] {
+            if !std::mem::replace(&mut seen[y], true) {
+                stack.push(y);
+            }
+        }
+    }
+    seen[b].then(|| {
+        v(
+            "P5036",
+            "outcome",
+            format!("no route from {from} to {to}, but the network joins them"),
+        )
+    })
+}
+
+// ---- Totals.
+
+/// P5030: the plan's `tt` and `nt` are the sums over its hops and stops.
+fn p5030_totals_are_the_sums(plan: &Plan) -> Option<Violation> {
+    let (tt, nt) = (sum_tt(plan), sum_nt(plan));
+    (!close(plan.tt_min, tt) || !close(plan.nt_min, nt)).then(|| {
+        v(
             "P5030",
             "tt_min, nt_min",
             format!(
                 "reported tt {} and nt {}, the hops sum to tt {tt} and nt {nt}",
                 plan.tt_min, plan.nt_min
             ),
-        ));
-    }
-    if !close(plan.dt_min, tt + nt) {
-        out.push(v(
+        )
+    })
+}
+
+/// P5031: `dt = sum tt + sum nt`.
+fn p5031_dt_is_tt_plus_nt(plan: &Plan) -> Option<Violation> {
+    let dt = sum_tt(plan) + sum_nt(plan);
+    (!close(plan.dt_min, dt)).then(|| {
+        v(
             "P5031",
             "dt_min",
-            format!(
-                "reported dt {}, but sum tt + sum nt = {}",
-                plan.dt_min,
-                tt + nt
-            ),
-        ));
-    }
-    if !close(plan.shared_mah, shared) {
-        out.push(v(
+            format!("reported dt {}, but sum tt + sum nt = {dt}", plan.dt_min),
+        )
+    })
+}
+
+/// P5032: the energy shared is the sum of the transfers.
+fn p5032_shared_is_the_transfers(plan: &Plan) -> Option<Violation> {
+    let shared: f64 = plan
+        .hops
+        .iter()
+        .flat_map(|h| h.transfers.iter().map(|x| x.energy_mah))
+        .sum();
+    (!close(plan.shared_mah, shared)).then(|| {
+        v(
             "P5032",
             "shared_mah",
             format!(
                 "reported {} mAh, the transfers sum to {shared} mAh",
                 plan.shared_mah
             ),
-        ));
+        )
+    })
+}
+
+fn sum_tt(plan: &Plan) -> f64 {
+    plan.hops.iter().map(|h| h.tt_min).sum()
+}
+
+fn sum_nt(plan: &Plan) -> f64 {
+    plan.hops
+        .iter()
+        .filter_map(|h| h.stop.as_ref().map(|s| s.nt_min))
+        .sum()
+}
+
+// ---- Each hop's flight.
+
+/// The rules of one hop's flight, in order; a rule whose failure leaves the rest undefined (a
+/// path that is not one, an unknown node, a missing edge, batteries of the wrong size) ends the
+/// hop's checks. The schedule is re-checked only on a well-formed swarm (`swarm_ok`).
+fn check_flight(out: &mut Vec<Violation>, raw: &Raw, f: &str, hop: &Hop, swarm_ok: bool) {
+    if let Some(x) = p5009_path_runs_between_the_hop_ends(f, hop) {
+        out.push(x);
+        return;
     }
-    out
+    let nodes = match p5010_path_nodes_exist(raw, f, hop) {
+        Ok(nodes) => nodes,
+        Err(x) => {
+            out.push(x);
+            return;
+        }
+    };
+    let legs = match p5011_path_follows_edges(raw, f, hop, &nodes) {
+        Ok(legs) => legs,
+        Err(xs) => {
+            out.extend(xs);
+            return;
+        }
+    };
+    let distance_m: f64 = legs.iter().map(|l| l.distance_m).sum();
+    out.extend(p5012_distance_is_the_edges(f, hop, distance_m));
+    out.extend(p5013_tt_is_distance_over_speed(raw, f, hop, distance_m));
+    out.extend(p5033_legs_follow_the_path(raw, f, hop, distance_m));
+    out.extend(p5014_departs_full(raw, f, hop));
+    let n = raw.swarm.drones.len();
+    if hop.departure_battery_mah.len() != n || hop.arrival_battery_mah.len() != n {
+        return;
+    }
+    out.extend(p5016_no_transfer_without_sharing(raw, f, hop));
+    if swarm_ok {
+        out.extend(p5015_schedule_passes_the_hop_checker(raw, f, hop, &legs));
+    }
+}
+
+/// P5009: the path runs from the hop's start to its end over at least one edge.
+fn p5009_path_runs_between_the_hop_ends(f: &str, hop: &Hop) -> Option<Violation> {
+    let ok = hop.path.first() == Some(&hop.from)
+        && hop.path.last() == Some(&hop.to)
+        && hop.path.len() >= 2;
+    (!ok).then(|| {
+        v(
+            "P5009",
+            format!("{f}.path"),
+            format!(
+                "path {:?} does not run from {} to {} over at least one edge",
+                hop.path, hop.from, hop.to
+            ),
+        )
+    })
+}
+
+/// P5010: every node of the path is a node of the network; their indices.
+fn p5010_path_nodes_exist(raw: &Raw, f: &str, hop: &Hop) -> Result<Vec<usize>, Violation> {
+    hop.path
+        .iter()
+        .enumerate()
+        .map(|(i, id)| {
+            raw.index.get(id.as_str()).copied().ok_or_else(|| {
+                v(
+                    "P5010",
+                    format!("{f}.path[{i}]"),
+                    format!("`{id}` is not a node of the network"),
+                )
+            })
+        })
+        .collect()
+}
+
+/// P5011: every consecutive pair of path nodes is an edge of the network; the legs flown.
+fn p5011_path_follows_edges(
+    raw: &Raw,
+    f: &str,
+    hop: &Hop,
+    nodes: &[usize],
+) -> Result<Vec<RawLeg>, Vec<Violation>> {
+    let mut legs = Vec::with_capacity(nodes.len().saturating_sub(1));
+    let mut missing = Vec::new();
+    for (i, w) in nodes.windows(2).enumerate() {
+        match raw_leg(raw.network, w[0], w[1]) {
+            Some(l) => legs.push(l),
+            None => missing.push(v(
+                "P5011",
+                format!("{f}.path[{i}..={}]", i + 1),
+                format!(
+                    "no edge joins {} and {} in the network",
+                    hop.path[i],
+                    hop.path[i + 1]
+                ),
+            )),
+        }
+    }
+    if missing.is_empty() {
+        Ok(legs)
+    } else {
+        Err(missing)
+    }
 }
 
 /// The edge joining `a` and `b` in either direction, rebuilt as the leg `a -> b`.
@@ -255,86 +645,49 @@ fn raw_leg(network: &Network, a: usize, b: usize) -> Option<RawLeg> {
     })
 }
 
-#[allow(clippy::too_many_arguments)]
-fn check_plan_hop(
-    out: &mut Vec<Violation>,
-    f: &str,
-    hop: &Hop,
-    index: &HashMap<&str, usize>,
-    network: &Network,
-    profile: &Profile,
-    swarm: &Swarm,
-    sharing: SharingPolicy,
-    speed_m_per_min: f64,
-    full: &[f64],
-) {
-    if hop.path.first() != Some(&hop.from) || hop.path.last() != Some(&hop.to) || hop.path.len() < 2
-    {
-        out.push(v(
-            "P5009",
-            format!("{f}.path"),
-            format!(
-                "path {:?} does not run from {} to {} over at least one edge",
-                hop.path, hop.from, hop.to
-            ),
-        ));
-        return;
-    }
-    let mut nodes = Vec::with_capacity(hop.path.len());
-    for (i, id) in hop.path.iter().enumerate() {
-        match index.get(id.as_str()) {
-            Some(&n) => nodes.push(n),
-            None => {
-                out.push(v(
-                    "P5010",
-                    format!("{f}.path[{i}]"),
-                    format!("`{id}` is not a node of the network"),
-                ));
-                return;
-            }
-        }
-    }
-    let mut legs = Vec::with_capacity(nodes.len() - 1);
-    for (i, w) in nodes.windows(2).enumerate() {
-        match raw_leg(network, w[0], w[1]) {
-            Some(l) => legs.push(l),
-            None => out.push(v(
-                "P5011",
-                format!("{f}.path[{i}..={}]", i + 1),
-                format!(
-                    "no edge joins {} and {} in the network",
-                    hop.path[i],
-                    hop.path[i + 1]
-                ),
-            )),
-        }
-    }
-    if legs.len() + 1 != nodes.len() {
-        return;
-    }
-    let distance_m: f64 = legs.iter().map(|l| l.distance_m).sum();
-    if !close(hop.distance_m, distance_m) {
-        out.push(v(
+/// P5012: the hop's length is the sum of its edges' lengths.
+fn p5012_distance_is_the_edges(f: &str, hop: &Hop, distance_m: f64) -> Option<Violation> {
+    (!close(hop.distance_m, distance_m)).then(|| {
+        v(
             "P5012",
             format!("{f}.distance_m"),
             format!(
                 "reported {} m, the edges sum to {distance_m} m",
                 hop.distance_m
             ),
-        ));
-    }
-    let tt = distance_m / speed_m_per_min;
-    if !close(hop.tt_min, tt) {
-        out.push(v(
+        )
+    })
+}
+
+/// P5013: `tt = distance / v_g`.
+fn p5013_tt_is_distance_over_speed(
+    raw: &Raw,
+    f: &str,
+    hop: &Hop,
+    distance_m: f64,
+) -> Option<Violation> {
+    let speed = raw.speed_m_per_min;
+    let tt = distance_m / speed;
+    (!close(hop.tt_min, tt)).then(|| {
+        v(
             "P5013",
             format!("{f}.tt_min"),
             format!(
-                "reported {} min, distance / speed = {distance_m} / {speed_m_per_min} = {tt} min",
+                "reported {} min, distance / speed = {distance_m} / {speed} = {tt} min",
                 hop.tt_min
             ),
-        ));
-    }
-    // The per-leg breakdown follows the path and adds up to the hop.
+        )
+    })
+}
+
+/// P5033: the per-leg breakdown follows the path and its travel times add up to the hop's.
+fn p5033_legs_follow_the_path(
+    raw: &Raw,
+    f: &str,
+    hop: &Hop,
+    distance_m: f64,
+) -> Option<Violation> {
+    let tt = distance_m / raw.speed_m_per_min;
     let pairs_match = hop.legs.len() + 1 == hop.path.len()
         && hop
             .legs
@@ -342,53 +695,72 @@ fn check_plan_hop(
             .zip(hop.path.windows(2))
             .all(|(s, w)| s.from == w[0] && s.to == w[1]);
     let legs_tt: f64 = hop.legs.iter().map(|s| s.tt_min).sum();
-    if !pairs_match || !close(legs_tt, tt) {
-        out.push(v(
+    (!pairs_match || !close(legs_tt, tt)).then(|| {
+        v(
             "P5033",
             format!("{f}.legs"),
             format!(
                 "the {} legs listed do not follow the path or their tt sum to {legs_tt} min, not {tt} min",
                 hop.legs.len()
             ),
-        ));
-    }
-    let n = swarm.drones.len();
+        )
+    })
+}
+
+/// P5014: the hop departs with every battery full, and lists one departure and one arrival
+/// battery per drone.
+fn p5014_departs_full(raw: &Raw, f: &str, hop: &Hop) -> Option<Violation> {
+    let n = raw.swarm.drones.len();
     let sizes_ok = hop.departure_battery_mah.len() == n && hop.arrival_battery_mah.len() == n;
-    if !sizes_ok
-        || !hop
+    let full = sizes_ok
+        && hop
             .departure_battery_mah
             .iter()
-            .zip(full)
-            .all(|(&b, &c)| close(b, c))
-    {
-        out.push(v(
+            .zip(&raw.full)
+            .all(|(&b, &c)| close(b, c));
+    (!full).then(|| {
+        v(
             "P5014",
             format!("{f}.departure_battery_mah"),
             format!(
-                "departs with {:?} mAh, not every battery full ({full:?} mAh)",
-                hop.departure_battery_mah
+                "departs with {:?} mAh, not every battery full ({:?} mAh)",
+                hop.departure_battery_mah, raw.full
             ),
-        ));
-    }
-    if !sizes_ok {
-        return;
-    }
-    if !sharing.shares() && !hop.transfers.is_empty() {
-        out.push(v(
+        )
+    })
+}
+
+/// P5016: no transfer under a policy that does not share.
+fn p5016_no_transfer_without_sharing(raw: &Raw, f: &str, hop: &Hop) -> Option<Violation> {
+    (!raw.sharing.shares() && !hop.transfers.is_empty()).then(|| {
+        v(
             "P5016",
             format!("{f}.transfers"),
             format!(
-                "{} transfer(s) under sharing policy {sharing:?}, which does not share",
-                hop.transfers.len()
+                "{} transfer(s) under sharing policy {:?}, which does not share",
+                hop.transfers.len(),
+                raw.sharing
             ),
-        ));
-    }
+        )
+    })
+}
+
+/// P5015: the hop's schedule, with its arrival batteries, passes [`check_hop`] on the hop
+/// problem rebuilt from the raw network, the profile and the energy model; each `C3xxx` is
+/// reported under P5015 (C3017, lowest batteries, excepted: a plan does not record them).
+fn p5015_schedule_passes_the_hop_checker(
+    raw: &Raw,
+    f: &str,
+    hop: &Hop,
+    legs: &[RawLeg],
+) -> Vec<Violation> {
+    let (profile, swarm) = (raw.profile, raw.swarm);
     let s = &profile.sharing;
     let problem = HopProblem {
         legs: legs
             .iter()
             .map(|l| eaas::LegRates {
-                duration_min: l.distance_m / speed_m_per_min,
+                duration_min: l.distance_m / raw.speed_m_per_min,
                 rate_mah_per_min: energy::rate_matrix_mah_per_min(
                     profile,
                     swarm,
@@ -425,62 +797,137 @@ fn check_plan_hop(
         min_battery_mah: hop.arrival_battery_mah.clone(),
         shared_mah: hop.shared_mah,
     };
-    for x in check_hop(&problem, &outcome) {
-        if x.code == "C3017" {
-            continue;
-        }
-        out.push(v(
-            "P5015",
-            format!("{f}: {}", x.field),
-            format!("[{}] {}", x.code, x.cause),
-        ));
-    }
+    check_hop(&problem, &outcome)
+        .into_iter()
+        .filter(|x| x.code != "C3017")
+        .map(|x| {
+            v(
+                "P5015",
+                format!("{f}: {}", x.field),
+                format!("[{}] {}", x.code, x.cause),
+            )
+        })
+        .collect()
 }
 
-#[allow(clippy::too_many_arguments)]
-fn check_stop(
-    out: &mut Vec<Violation>,
-    f: &str,
-    hop: &Hop,
-    stop: &Stop,
-    index: &HashMap<&str, usize>,
-    network: &Network,
-    profile: &Profile,
-    swarm: &Swarm,
-) {
+// ---- Each stop.
+
+/// The rules of one recharging stop, in order; an unknown node, a node without pads or arrival
+/// batteries of the wrong size end the stop's checks.
+fn check_stop(out: &mut Vec<Violation>, raw: &Raw, f: &str, hop: &Hop, stop: &Stop) {
     let f = format!("{f}.stop");
-    if stop.node != hop.to {
-        out.push(v(
+    out.extend(p5020_stop_is_at_the_hop_end(&f, hop, stop));
+    let node = match p5020_stop_node_is_in_the_network(raw, &f, stop) {
+        Ok(node) => node,
+        Err(x) => {
+            out.push(x);
+            return;
+        }
+    };
+    out.extend(p5021_pads_are_the_nodes(&f, stop, node));
+    if node.pads == 0 {
+        return;
+    }
+    let ct = charge_times_min(raw, hop, node);
+    out.extend(p5022_charge_times_follow_the_arrival(
+        raw,
+        &f,
+        hop,
+        stop,
+        node,
+        ct.as_deref(),
+    ));
+    let Some(ct) = ct else {
+        return;
+    };
+    let n = raw.swarm.drones.len();
+    out.extend(p5023_pads_used_exist(&f, stop, node));
+    out.extend(p5024_assigned_drones_exist(&f, stop, n));
+    out.extend(p5025_assignment_is_a_partition(&f, stop, n));
+    out.extend(p5026_nt_is_the_makespan(&f, stop, &ct));
+    if n <= OPTIMALITY_CHECK_DRONES {
+        out.extend(p5028_nt_is_optimal(&f, stop, &ct, node.pads as usize));
+    }
+    out.extend(p5027_nt_above_the_lower_bound(&f, stop, &ct, node.pads));
+}
+
+/// P5020: the stop is at the node the hop ends at.
+fn p5020_stop_is_at_the_hop_end(f: &str, hop: &Hop, stop: &Stop) -> Option<Violation> {
+    (stop.node != hop.to).then(|| {
+        v(
             "P5020",
             format!("{f}.node"),
             format!("stop at {} but the hop ends at {}", stop.node, hop.to),
-        ));
-    }
-    let Some(&node) = index.get(stop.node.as_str()) else {
-        out.push(v(
+        )
+    })
+}
+
+/// P5020: the stop's node is a node of the network; that node.
+fn p5020_stop_node_is_in_the_network<'a>(
+    raw: &Raw<'a>,
+    f: &str,
+    stop: &Stop,
+) -> Result<&'a Node, Violation> {
+    match raw.index.get(stop.node.as_str()) {
+        Some(&i) => Ok(&raw.network.nodes[i]),
+        None => Err(v(
             "P5020",
             format!("{f}.node"),
             format!("`{}` is not a node of the network", stop.node),
-        ));
-        return;
-    };
-    let raw = &network.nodes[node];
-    if raw.pads == 0 || stop.pads != raw.pads {
-        out.push(v(
+        )),
+    }
+}
+
+/// P5021: the stop's node has pads, as many as the stop says.
+fn p5021_pads_are_the_nodes(f: &str, stop: &Stop, node: &Node) -> Option<Violation> {
+    (node.pads == 0 || stop.pads != node.pads).then(|| {
+        v(
             "P5021",
             format!("{f}.pads"),
             format!(
                 "node {} has {} pad(s), the stop says {}",
-                raw.id, raw.pads, stop.pads
+                node.id, node.pads, stop.pads
             ),
-        ));
+        )
+    })
+}
+
+/// Pad charging rate at `node`, mAh/min: the node's own, else the profile's.
+fn pad_rate_mah_per_min(raw: &Raw, node: &Node) -> f64 {
+    node.pad_charge_rate_mah_per_min
+        .unwrap_or(raw.profile.pads.charge_rate_mah_per_min)
+}
+
+/// Every drone's charge time at `node`, `ct_d = (C_d - b_d) / q_v`, min, from the hop's arrival
+/// batteries; `None` when they are not one per drone.
+fn charge_times_min(raw: &Raw, hop: &Hop, node: &Node) -> Option<Vec<f64>> {
+    if hop.arrival_battery_mah.len() != raw.swarm.drones.len() {
+        return None;
     }
-    if raw.pads == 0 {
-        return;
-    }
-    let n = swarm.drones.len();
-    if hop.arrival_battery_mah.len() != n {
-        out.push(v(
+    let rate = pad_rate_mah_per_min(raw, node);
+    Some(
+        raw.swarm
+            .drones
+            .iter()
+            .zip(&hop.arrival_battery_mah)
+            .map(|(d, &b)| (d.capacity_mah - b).max(0.0) / rate)
+            .collect(),
+    )
+}
+
+/// P5022: the charge times are `(C_d - b_d) / q_v` of the arrival batteries `b_d` (`ct` the
+/// re-computed ones, `None` when the arrival batteries are not one per drone).
+fn p5022_charge_times_follow_the_arrival(
+    raw: &Raw,
+    f: &str,
+    hop: &Hop,
+    stop: &Stop,
+    node: &Node,
+    ct: Option<&[f64]>,
+) -> Option<Violation> {
+    let n = raw.swarm.drones.len();
+    let Some(ct) = ct else {
+        return Some(v(
             "P5022",
             format!("{f}.charge_times_min"),
             format!(
@@ -488,108 +935,128 @@ fn check_stop(
                 hop.arrival_battery_mah.len()
             ),
         ));
-        return;
-    }
-    let rate = raw
-        .pad_charge_rate_mah_per_min
-        .unwrap_or(profile.pads.charge_rate_mah_per_min);
-    let ct: Vec<f64> = swarm
-        .drones
-        .iter()
-        .zip(&hop.arrival_battery_mah)
-        .map(|(d, &b)| (d.capacity_mah - b).max(0.0) / rate)
-        .collect();
-    if stop.charge_times_min.len() != n
-        || !stop
+    };
+    let same = stop.charge_times_min.len() == n
+        && stop
             .charge_times_min
             .iter()
-            .zip(&ct)
-            .all(|(&a, &b)| close(a, b))
-    {
-        out.push(v(
+            .zip(ct)
+            .all(|(&a, &b)| close(a, b));
+    (!same).then(|| {
+        v(
             "P5022",
             format!("{f}.charge_times_min"),
             format!(
-                "reported {:?} min, (capacity - arrival) / {rate} gives {ct:?} min",
-                stop.charge_times_min
+                "reported {:?} min, (capacity - arrival) / {} gives {ct:?} min",
+                stop.charge_times_min,
+                pad_rate_mah_per_min(raw, node)
             ),
-        ));
-    }
-    if stop.assignment.len() > raw.pads as usize {
-        out.push(v(
+        )
+    })
+}
+
+/// P5023: the assignment uses at most the node's pads.
+fn p5023_pads_used_exist(f: &str, stop: &Stop, node: &Node) -> Option<Violation> {
+    (stop.assignment.len() > node.pads as usize).then(|| {
+        v(
             "P5023",
             format!("{f}.assignment"),
             format!(
                 "{} pads used, the node has {}",
                 stop.assignment.len(),
-                raw.pads
+                node.pads
             ),
-        ));
-    }
+        )
+    })
+}
+
+/// P5024: every drone charged is a drone of the swarm.
+fn p5024_assigned_drones_exist(f: &str, stop: &Stop, n: usize) -> Vec<Violation> {
+    stop.assignment
+        .iter()
+        .flatten()
+        .filter(|&&d| d >= n)
+        .map(|d| {
+            v(
+                "P5024",
+                format!("{f}.assignment"),
+                format!("drone {d} does not exist (swarm of {n})"),
+            )
+        })
+        .collect()
+}
+
+/// P5025: every drone is charged exactly once.
+fn p5025_assignment_is_a_partition(f: &str, stop: &Stop, n: usize) -> Option<Violation> {
     let mut seen = vec![0usize; n];
-    for pad in &stop.assignment {
-        for &d in pad {
-            if d < n {
-                seen[d] += 1;
-            } else {
-                out.push(v(
-                    "P5024",
-                    format!("{f}.assignment"),
-                    format!("drone {d} does not exist (swarm of {n})"),
-                ));
-            }
-        }
+    for &d in stop.assignment.iter().flatten().filter(|&&d| d < n) {
+        seen[d] += 1;
     }
-    if let Some(d) = seen.iter().position(|&c| c != 1) {
-        out.push(v(
-            "P5025",
-            format!("{f}.assignment"),
-            format!(
-                "drone {d} charged {} time(s): not a partition of the drones",
-                seen[d]
-            ),
-        ));
-    }
+    let d = seen.iter().position(|&c| c != 1)?;
+    Some(v(
+        "P5025",
+        format!("{f}.assignment"),
+        format!(
+            "drone {d} charged {} time(s): not a partition of the drones",
+            seen[d]
+        ),
+    ))
+}
+
+/// P5026: `nt` is the assignment's makespan: the longest sum of charge times on one pad.
+fn p5026_nt_is_the_makespan(f: &str, stop: &Stop, ct: &[f64]) -> Option<Violation> {
+    let n = ct.len();
     let makespan = stop
         .assignment
         .iter()
         .map(|pad| pad.iter().filter(|&&d| d < n).map(|&d| ct[d]).sum::<f64>())
         .fold(0.0, f64::max);
-    if !close(makespan, stop.nt_min) {
-        out.push(v(
+    (!close(makespan, stop.nt_min)).then(|| {
+        v(
             "P5026",
             format!("{f}.nt_min"),
             format!(
                 "nt {} min, but the assignment's makespan is {makespan} min",
                 stop.nt_min
             ),
-        ));
-    }
-    if n <= OPTIMALITY_CHECK_DRONES {
-        let best = optimal_makespan_min(&ct, raw.pads as usize);
-        if stop.nt_min > best + 1e-6 * (1.0 + best) {
-            out.push(v(
-                "P5028",
-                format!("{f}.nt_min"),
-                format!(
-                    "nt {} min, but an assignment with makespan {best} min exists",
-                    stop.nt_min
-                ),
-            ));
-        }
-    }
+        )
+    })
+}
+
+/// P5028: `nt` is the optimal makespan, found by exhaustive search (small swarms only).
+fn p5028_nt_is_optimal(f: &str, stop: &Stop, ct: &[f64], pads: usize) -> Option<Violation> {
+    let best = optimal_makespan_min(ct, pads);
+    (stop.nt_min > best + 1e-6 * (1.0 + best)).then(|| {
+        v(
+            "P5028",
+            format!("{f}.nt_min"),
+            format!(
+                "nt {} min, but an assignment with makespan {best} min exists",
+                stop.nt_min
+            ),
+        )
+    })
+}
+
+/// P5027: `nt >= max(max ct, sum ct / k_v)`.
+fn p5027_nt_above_the_lower_bound(
+    f: &str,
+    stop: &Stop,
+    ct: &[f64],
+    pads: u32,
+) -> Option<Violation> {
     let max_ct = ct.iter().copied().fold(0.0, f64::max);
-    let bound = max_ct.max(ct.iter().sum::<f64>() / raw.pads as f64);
-    if stop.nt_min < bound - 1e-6 * (1.0 + bound) {
-        out.push(v(
+    let bound = max_ct.max(ct.iter().sum::<f64>() / pads as f64);
+    (stop.nt_min < bound - 1e-6 * (1.0 + bound)).then(|| {
+        v(
             "P5027",
             format!("{f}.nt_min"),
             format!(
                 "nt {} min below the lower bound max(max ct, sum ct / pads) = {bound} min",
                 stop.nt_min
             ),
-        ));
-    }
+        )
+    })
 }
 
 /// Optimal makespan of `ct` on `pads` identical pads by exhaustive search: each drone in turn goes

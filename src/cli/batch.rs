@@ -11,6 +11,7 @@ use crate::error::{Error, Result};
 use crate::precompose::Positioning;
 use crate::problem::{io, Request};
 use serde::Serialize;
+use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -70,6 +71,9 @@ pub struct Summary {
     pub succeeded: usize,
     /// Requests planned (the denominator).
     pub requests: usize,
+    /// Requests not delivered, by the kind of their outcome (`dead-end`, `hop-infeasible`,
+    /// `no-route`).
+    pub failed_by_kind: BTreeMap<String, usize>,
     /// Mean delivery time of the delivered requests, min.
     pub mean_dt_min: f64,
     /// Mean total node time of the delivered requests, min.
@@ -97,13 +101,15 @@ pub struct Outcome {
     pub request_id: String,
     /// Delivered?
     pub success: bool,
+    /// The kind of the plan's outcome: `delivered`, `no-route`, `dead-end`, `hop-infeasible`.
+    pub outcome: String,
     /// Delivery time, min.
     pub dt_min: f64,
     /// Node time, min.
     pub nt_min: f64,
     /// Stop node ids.
     pub stops: Vec<String>,
-    /// Failure reason.
+    /// Why the request failed, as a sentence (`solve --json` gives the outcome's data).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub failure: Option<String>,
 }
@@ -158,12 +164,13 @@ pub fn run(args: BatchArgs) -> Result<i32> {
         if args.per_request.is_some() {
             outcomes.extend(reports.iter().map(|r| Outcome {
                 options,
-                request_id: r.request_id.clone(),
-                success: r.plan.success,
+                request_id: r.request.id.clone(),
+                success: r.plan.delivered(),
+                outcome: r.plan.outcome.kind(),
                 dt_min: r.plan.dt_min,
                 nt_min: r.plan.nt_min,
                 stops: r.plan.stops().into_iter().map(String::from).collect(),
-                failure: r.plan.failure.clone(),
+                failure: (!r.plan.delivered()).then(|| r.plan.outcome.to_string()),
             }));
         }
         summaries.push(summary);
@@ -280,12 +287,17 @@ fn total(values: impl Iterator<Item = f64>) -> f64 {
 }
 
 fn summarise(options: PlanOptions, reports: &[RequestReport], wall_ms: f64) -> Result<Summary> {
-    let delivered: Vec<&RequestReport> = reports.iter().filter(|r| r.plan.success).collect();
+    let delivered: Vec<&RequestReport> = reports.iter().filter(|r| r.plan.delivered()).collect();
+    let mut failed_by_kind = BTreeMap::new();
+    for r in reports.iter().filter(|r| !r.plan.delivered()) {
+        *failed_by_kind.entry(r.plan.outcome.kind()).or_insert(0) += 1;
+    }
     let k = delivered.len().max(1) as f64;
     Ok(Summary {
         options,
         succeeded: delivered.len(),
         requests: reports.len(),
+        failed_by_kind,
         mean_dt_min: total(delivered.iter().map(|r| r.plan.dt_min)) / k,
         mean_nt_min: total(delivered.iter().map(|r| r.plan.nt_min)) / k,
         mean_stops: total(delivered.iter().map(|r| r.plan.stops().len() as f64)) / k,

@@ -1,7 +1,7 @@
 //! `swarmplan solve`: plan one request and print the plan.
 
 use super::inputs::{self, ExactArgs, InstanceArgs};
-use crate::compose::{Context, PlanOptions, RouteMethod};
+use crate::compose::{Context, PlanOptions, RequestReport, RouteMethod};
 use crate::eaas::SharingPolicy;
 use crate::error::{Error, Result};
 use crate::precompose::Positioning;
@@ -86,14 +86,14 @@ pub fn run(args: SolveArgs) -> Result<i32> {
     } else {
         print_human(&report)?;
     }
-    Ok(if report.plan.success { 0 } else { 1 })
+    Ok(if report.plan.delivered() { 0 } else { 1 })
 }
 
-fn print_human(report: &crate::compose::RequestReport) -> Result<()> {
+fn print_human(report: &RequestReport) -> Result<()> {
     let plan = &report.plan;
     outln!(
         "request {}: {} -> {}, formation {:?}, {} delivery + {} support drones",
-        report.request_id,
+        report.request.id,
         plan.source,
         plan.destination,
         report.formation,
@@ -141,7 +141,7 @@ fn print_human(report: &crate::compose::RequestReport) -> Result<()> {
             c.fallbacks
         );
     }
-    if plan.success {
+    if plan.delivered() {
         outln!(
             "delivered: dt {:.2} min = tt {:.2} + nt {:.2}; {} stop(s); {:.2} ms",
             plan.dt_min,
@@ -151,10 +151,7 @@ fn print_human(report: &crate::compose::RequestReport) -> Result<()> {
             report.execution_ms
         );
     } else {
-        outln!(
-            "failed: {}",
-            plan.failure.as_deref().unwrap_or("unknown reason")
-        );
+        outln!("failed: {}", plan.outcome);
     }
     Ok(())
 }

@@ -2,10 +2,11 @@
 //! best neighboring node, min(tt + ct) ... S travels to neighboring node" (`[readings] candidates =
 //! "adjacent"`, see models/compose.md).
 
-use super::plan::Plan;
+use super::plan::{Plan, PlanOutcome};
 use super::{HopEnd, Planner};
 use crate::eaas::SharingPolicy;
 use crate::error::Result;
+use crate::problem::profile::Candidates;
 
 impl Planner<'_> {
     /// Algorithm 1 over adjacent nodes. From the current node: fly to the destination along the
@@ -38,11 +39,10 @@ impl Planner<'_> {
         loop {
             let current = *hop_nodes.last().expect("a hop has a start");
             let Some(direct) = graph.shortest_path(current, destination) else {
-                return Ok(plan.fail(format!(
-                    "destination {} is not connected to {}",
-                    graph.id_of(destination),
-                    graph.id_of(current)
-                )));
+                return Ok(plan.fail(PlanOutcome::NoRoute {
+                    from: graph.id_of(current).to_string(),
+                    to: graph.id_of(destination).to_string(),
+                }));
             };
             let extended: Vec<usize> = hop_nodes
                 .iter()
@@ -57,12 +57,14 @@ impl Planner<'_> {
             if self.sharing().shares() {
                 policies.push(self.sharing());
             }
+            let mut direct_failure = None;
             for policy in policies {
                 let flight = self.fly(&path, &full, policy, HopEnd::NoStop)?;
                 if flight.outcome.feasible {
                     plan.push(self.hop(&path, &full, flight, None));
                     return Ok(plan.finish());
                 }
+                direct_failure = flight.outcome.failure;
             }
             // Lines 12-16: the best neighbour not yet visited.
             let mut best = None;
@@ -102,11 +104,11 @@ impl Planner<'_> {
                 }
             }
             let Some((v, nodes, path, flight, stop)) = best else {
-                return Ok(plan.fail(format!(
-                    "dead end at {}: neither the destination nor any neighbour not yet visited is \
-                     reachable without stopping",
-                    graph.id_of(current)
-                )));
+                return Ok(plan.fail(PlanOutcome::DeadEnd {
+                    node: graph.id_of(current).to_string(),
+                    candidates: Candidates::Adjacent,
+                    direct: direct_failure.expect("an infeasible hop reports its first failure"),
+                }));
             };
             visited[v] = true;
             if v == destination {

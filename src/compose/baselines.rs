@@ -1,7 +1,7 @@
 //! Fixed-route baselines: Dijkstra and Floyd–Warshall on edge cost `tt + nt`, then flown with
 //! recharging only where the swarm must.
 
-use super::plan::Plan;
+use super::plan::{Plan, PlanOutcome};
 use super::{HopEnd, Planner};
 use crate::eaas::SharingPolicy;
 use crate::error::Result;
@@ -87,11 +87,10 @@ impl Planner<'_> {
             return Ok(plan.finish());
         }
         let Some(route) = self.baseline_route(source, destination, floyd_warshall)? else {
-            return Ok(plan.fail(format!(
-                "no route from {} to {}",
-                graph.id_of(source),
-                graph.id_of(destination)
-            )));
+            return Ok(plan.fail(PlanOutcome::NoRoute {
+                from: graph.id_of(source).to_string(),
+                to: graph.id_of(destination).to_string(),
+            }));
         };
         let last = route.len() - 1;
         let mut at = 0;
@@ -99,6 +98,8 @@ impl Planner<'_> {
         while at < last {
             // The farthest pad node (or the destination) on the route reachable without stopping.
             let mut reached = None;
+            // The first failure of the first hop that does not fly.
+            let mut failure = None;
             for j in at + 1..=last {
                 if j != last && graph.pads(route[j]) == 0 {
                     continue;
@@ -109,6 +110,7 @@ impl Planner<'_> {
                 // Reachability only: the hop's schedule is optimised once j is chosen.
                 let flight = self.fly(&path, &battery, self.sharing(), HopEnd::NoStop)?;
                 if !flight.outcome.feasible {
+                    failure = flight.outcome.failure;
                     break;
                 }
                 reached = Some((j, path, flight));
@@ -117,11 +119,11 @@ impl Planner<'_> {
                 let next = (at + 1..=last)
                     .find(|&j| j == last || graph.pads(route[j]) > 0)
                     .expect("the destination is on the route");
-                return Ok(plan.fail(format!(
-                    "cannot reach {} (next pad node or destination on the fixed route) from {}",
-                    graph.id_of(route[next]),
-                    graph.id_of(route[at])
-                )));
+                return Ok(plan.fail(PlanOutcome::HopInfeasible {
+                    from: graph.id_of(route[at]).to_string(),
+                    to: graph.id_of(route[next]).to_string(),
+                    failure: failure.expect("an infeasible hop reports its first failure"),
+                }));
             };
             if j == last {
                 plan.push(self.hop(&path, &battery, flight, None));

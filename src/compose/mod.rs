@@ -4,8 +4,8 @@
 //!
 //! Every method produces a [`Plan`]: the hops flown between stops, the in-flight sharing schedule of
 //! each hop, the node time and pad assignment at every recharging stop, and the delivery time
-//! `dt = sum tt + sum nt`. A request the swarm cannot complete is a failed plan with its reason,
-//! never an error.
+//! `dt = sum tt + sum nt`. A request the swarm cannot complete is a failed plan with its typed
+//! outcome ([`PlanOutcome`]), never an error.
 
 mod adjacent;
 mod baselines;
@@ -17,14 +17,14 @@ mod sequential;
 
 pub use flight::{Flight, HopEnd, Planner};
 pub use gaps::{lpt_node_time_gaps, LptGapSummary};
-pub use plan::{Hop, LegFlown, Plan, Stop};
+pub use plan::{Hop, LegFlown, Plan, PlanOutcome, Stop};
 pub use request::{Context, PlanOptions, RequestReport, SwarmChoice};
 
 use crate::problem::profile::Candidates;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// How the route is composed.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, clap::ValueEnum)]
 #[serde(rename_all = "kebab-case")]
 pub enum RouteMethod {
     /// Algorithm 1: go straight to the destination if possible (without, then with sharing), else
@@ -67,7 +67,7 @@ impl Planner<'_> {
     /// * `method`: the route method.
     ///
     /// # Returns
-    /// A [`Plan`]; `plan.success` is false with `plan.failure` set when the swarm cannot deliver.
+    /// A [`Plan`]; `plan.outcome` says why when the swarm cannot deliver ([`PlanOutcome`]).
     ///
     /// # Errors
     /// Only for malformed internal problems (a bug or inconsistent input that escaped validation).

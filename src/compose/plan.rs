@@ -1,22 +1,22 @@
 //! The output of route composition.
 
 use crate::eaas::exact_hop::{HopSolve, HopSolveCounts};
-use crate::eaas::Transfer;
+use crate::eaas::{HopFailure, Transfer};
+use crate::problem::profile::Candidates;
 use crate::solver::SolveStatus;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
+use std::fmt;
 
 /// A composed delivery plan for one request.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Plan {
     /// Source node id.
     pub source: String,
     /// Destination node id.
     pub destination: String,
-    /// Whether the swarm reaches the destination.
-    pub success: bool,
-    /// Why it does not, when it does not.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub failure: Option<String>,
+    /// Whether the swarm reaches the destination, and if not, why: see [`PlanOutcome`].
+    pub outcome: PlanOutcome,
     /// Hops flown, each from one stop (or the source) to the next stop (or the destination).
     pub hops: Vec<Hop>,
     /// Total travel time, min: sum of the hops' `tt`.
@@ -34,8 +34,108 @@ pub struct Plan {
     pub hop_solves: Option<HopSolveCounts>,
 }
 
+/// How a plan ends: delivered, or the kind of failure with its data. In JSON a tagged object,
+/// `{"kind": "dead-end", "node": "n012", ...}`; [`fmt::Display`] gives a sentence.
+///
+/// A failed plan keeps the hops flown before the failure (every one of them flyable), so its
+/// `dt` is that of the part flown.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "kebab-case", deny_unknown_fields)]
+pub enum PlanOutcome {
+    /// The swarm reaches the destination.
+    Delivered,
+    /// No path of the network joins the node the swarm is at to the destination.
+    NoRoute {
+        /// Node id the swarm is at (the source, for a route never started).
+        from: String,
+        /// The destination.
+        to: String,
+    },
+    /// Algorithm 1 (`sequential`, `astar`): at `node` the swarm can reach neither the destination
+    /// nor any candidate stop without stopping.
+    DeadEnd {
+        /// Node id the swarm is at.
+        node: String,
+        /// Which candidates were exhausted: recharging nodes not yet stopped at (`pad-nodes`),
+        /// or neighbours not yet visited (`adjacent`).
+        candidates: Candidates,
+        /// The first failure of the direct flight from `node` to the destination (with sharing,
+        /// when the policy shares).
+        direct: HopFailure,
+    },
+    /// Fixed route (`dijkstra`, `floyd-warshall`): the next pad node or the destination on the
+    /// route cannot be reached from `from` without stopping.
+    HopInfeasible {
+        /// Node id the swarm is at.
+        from: String,
+        /// The next pad node, or the destination, on the route.
+        to: String,
+        /// The hop's first failure: the failing drone and when.
+        failure: HopFailure,
+    },
+}
+
+impl PlanOutcome {
+    /// The kind as written in JSON (its `kind` tag): `delivered`, `no-route`, `dead-end`,
+    /// `hop-infeasible`.
+    pub fn kind(&self) -> String {
+        match serde_json::to_value(self) {
+            Ok(serde_json::Value::Object(map)) => match map.get("kind") {
+                Some(serde_json::Value::String(kind)) => kind.clone(),
+                _ => String::new(),
+            },
+            _ => String::new(),
+        }
+    }
+
+    /// Whether the swarm reaches the destination.
+    pub fn is_delivered(&self) -> bool {
+        *self == PlanOutcome::Delivered
+    }
+}
+
+impl fmt::Display for PlanOutcome {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let first = |x: &HopFailure| {
+            format!(
+                "drone {} runs out of energy after {:.2} min",
+                x.drone, x.time_min
+            )
+        };
+        match self {
+            PlanOutcome::Delivered => write!(f, "delivered"),
+            PlanOutcome::NoRoute { from, to } => {
+                write!(f, "no route from {from} to {to}: the network does not connect them")
+            }
+            PlanOutcome::DeadEnd {
+                node,
+                candidates,
+                direct,
+            } => {
+                let what = match candidates {
+                    Candidates::PadNodes => "recharging node not yet stopped at",
+                    Candidates::Adjacent => "neighbour not yet visited",
+                };
+                write!(
+                    f,
+                    "dead end at {node}: neither the destination nor any {what} is reachable \
+                     without stopping (flying straight to the destination, {})",
+                    first(direct)
+                )
+            }
+            PlanOutcome::HopInfeasible { from, to, failure } => write!(
+                f,
+                "cannot reach {to} (next pad node or destination on the fixed route) from {from}: \
+                 {}",
+                first(failure)
+            ),
+        }
+    }
+}
+
 /// One hop: a flight without stopping between two stops, possibly over several edges.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Hop {
     /// Node id the hop starts at.
     pub from: String,
@@ -66,7 +166,8 @@ pub struct Hop {
 }
 
 /// One leg of a hop: a network edge flown in one direction.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct LegFlown {
     /// Node id flown from.
     pub from: String,
@@ -85,7 +186,8 @@ pub struct LegFlown {
 }
 
 /// A recharging stop: every drone charges to full on one of the node's pads.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Stop {
     /// Node id.
     pub node: String,
@@ -106,8 +208,8 @@ impl Plan {
         Plan {
             source,
             destination,
-            success: false,
-            failure: None,
+            // Replaced by `finish` or `fail` before the plan leaves the composer.
+            outcome: PlanOutcome::Delivered,
             hops: Vec::new(),
             tt_min: 0.0,
             nt_min: 0.0,
@@ -128,14 +230,18 @@ impl Plan {
     }
 
     pub(crate) fn finish(mut self) -> Plan {
-        self.success = true;
+        self.outcome = PlanOutcome::Delivered;
         self
     }
 
-    pub(crate) fn fail(mut self, reason: String) -> Plan {
-        self.success = false;
-        self.failure = Some(reason);
+    pub(crate) fn fail(mut self, outcome: PlanOutcome) -> Plan {
+        self.outcome = outcome;
         self
+    }
+
+    /// Whether the swarm reaches the destination.
+    pub fn delivered(&self) -> bool {
+        self.outcome.is_delivered()
     }
 
     /// Node ids where the swarm stopped to recharge, in order.

@@ -10,12 +10,13 @@ use crate::problem::FormationKind;
 use crate::problem::SkywayGraph;
 use crate::problem::Swarm;
 use crate::problem::Wind;
-use crate::problem::{Network, Profile, Request, MAX_SUPPORT_DRONES};
-use serde::Serialize;
+use crate::problem::{Network, Profile, Request, MAX_SUPPORT_DRONES, SCHEMA_VERSION};
+use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
 /// The method combination a request is planned with.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct PlanOptions {
     /// In-flight sharing policy on every hop.
     pub sharing: SharingPolicy,
@@ -40,11 +41,14 @@ pub struct Context<'a> {
     pub exact: ExactSettings,
 }
 
-/// The planned request.
-#[derive(Debug, Clone, Serialize)]
+/// The planned request: the document `solve --json` prints and `check --plan` reads back.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct RequestReport {
-    /// Request id.
-    pub request_id: String,
+    /// Version of the document's schema, [`SCHEMA_VERSION`].
+    pub schema_version: u32,
+    /// The request planned.
+    pub request: Request,
     /// The method combination.
     pub options: PlanOptions,
     /// The fixed formation.
@@ -170,7 +174,8 @@ impl<'a> Context<'a> {
         let plan = planner.compose(choice.source, choice.destination, options.route)?;
         let execution_ms = start.elapsed().as_secs_f64() * 1e3;
         Ok(RequestReport {
-            request_id: request.id.clone(),
+            schema_version: SCHEMA_VERSION,
+            request: request.clone(),
             options: *options,
             formation: self.formation,
             support_decision: choice.support_decision,

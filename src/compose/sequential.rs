@@ -1,11 +1,12 @@
 //! Algorithm 1 of the paper (sequential composition) and its A*-style variant.
 
-use super::plan::Plan;
+use super::plan::{Plan, PlanOutcome};
 use super::{Flight, HopEnd, Planner, Stop};
 use crate::eaas::milp::Objective;
 use crate::eaas::{fluid, milp::ExactStatus, SharingPolicy};
 use crate::error::Result;
 use crate::network::Route;
+use crate::problem::profile::Candidates;
 
 /// Relative tolerance, on minutes, of pruning a candidate by its lower bound: a bound computed
 /// in floating point may sit slightly above the true value, so a candidate is pruned only when
@@ -78,11 +79,10 @@ impl Planner<'_> {
         let mut battery = self.full_battery_mah();
         loop {
             let Some(direct) = graph.shortest_path(current, destination) else {
-                return Ok(plan.fail(format!(
-                    "destination {} is not connected to {}",
-                    graph.id_of(destination),
-                    graph.id_of(current)
-                )));
+                return Ok(plan.fail(PlanOutcome::NoRoute {
+                    from: graph.id_of(current).to_string(),
+                    to: graph.id_of(destination).to_string(),
+                }));
             };
             // Lines 5-7: every drone reaches the destination on its own battery.
             let flight = self.fly(&direct, &battery, SharingPolicy::None, HopEnd::NoStop)?;
@@ -90,6 +90,7 @@ impl Planner<'_> {
                 plan.push(self.hop(&direct, &battery, flight, None));
                 return Ok(plan.finish());
             }
+            let mut direct_failure = flight.outcome.failure;
             // Lines 8-10: in-flight sharing makes the direct flight possible.
             if self.sharing().shares() {
                 let flight = self.fly(&direct, &battery, self.sharing(), HopEnd::NoStop)?;
@@ -97,6 +98,7 @@ impl Planner<'_> {
                     plan.push(self.hop(&direct, &battery, flight, None));
                     return Ok(plan.finish());
                 }
+                direct_failure = flight.outcome.failure;
             }
             // Lines 12-16: the best recharging node reachable without stopping.
             let min_rates = min_rates.get_or_insert_with(|| self.min_rates_mah_per_min());
@@ -157,11 +159,11 @@ impl Planner<'_> {
                 }
             }
             let Some((v, path, flight, stop)) = best else {
-                return Ok(plan.fail(format!(
-                    "dead end at {}: neither the destination nor any recharging node not yet \
-                     stopped at is reachable without stopping",
-                    graph.id_of(current)
-                )));
+                return Ok(plan.fail(PlanOutcome::DeadEnd {
+                    node: graph.id_of(current).to_string(),
+                    candidates: Candidates::PadNodes,
+                    direct: direct_failure.expect("an infeasible hop reports its first failure"),
+                }));
             };
             plan.push(self.hop(&path, &battery, flight, Some(stop)));
             stopped[v] = true;

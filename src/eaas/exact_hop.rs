@@ -70,7 +70,8 @@ pub enum Fallback {
 }
 
 /// How the exact or fair solve of one hop ended.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct HopSolve {
     /// `exact` (the MILP) or `fair` (the QP).
     pub policy: SharingPolicy,
@@ -104,7 +105,8 @@ pub struct HopSolve {
 
 /// Counts of the hop solves made while composing one route (every candidate hop, not only the
 /// hops flown).
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct HopSolveCounts {
     /// Hop solves made.
     pub solves: usize,

@@ -90,7 +90,7 @@ pub enum Objective {
 }
 
 /// Outcome of an exact hop solve.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum ExactStatus {
     /// Proven optimal (over the model's schedules: grid schedules for the MILP).

@@ -24,10 +24,11 @@
 use crate::problem::profile::{FailureModel, FailureTerms, RedundancyLevel};
 use crate::problem::Profile;
 use crate::problem::Wind;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// The outcome of support drone selection.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct SupportDecision {
     /// Which form of Eq. 2 was used.
     pub model: FailureModel,

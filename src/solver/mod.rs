@@ -5,7 +5,7 @@
 //! an incumbent after a limit, infeasible) is data; `Err` is for bad input and broken backends.
 //! [`lp_file`] writes a good_lp model in CPLEX LP format instead of solving it.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 pub mod lp_file;
 
@@ -76,7 +76,7 @@ impl MilpBackend {
 }
 
 /// Outcome of a solve.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum SolveStatus {
     /// Proven optimal.
