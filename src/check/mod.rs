@@ -1,10 +1,14 @@
 //! Independent checkers: re-verify a plan from the raw problem, without the planners' code paths
 //! (only the input and output types are shared).
 //!
-//! Codes `C3xxx` concern hop schedules ([`hop`]), codes `P5xxx` whole plans ([`plan`]).
+//! Codes `C3xxx` concern hop schedules ([`hop`]), codes `P5xxx` whole plans ([`plan`]) and plan
+//! documents read from a file ([`report`], read by [`plan_file`], whose errors are `E6xxx`).
 
 pub mod hop;
 pub mod plan;
+pub mod plan_file;
+pub mod report;
 
 pub use hop::check_hop;
 pub use plan::check_plan;
+pub use report::check_report;

@@ -14,6 +14,7 @@ macro_rules! outln {
 }
 
 pub mod batch;
+pub mod check;
 pub mod eaas;
 pub mod generate;
 pub mod inputs;
@@ -46,6 +47,8 @@ pub enum Command {
     Batch(batch::BatchArgs),
     /// One hop of a request: sharing heuristics against the exact MILP, fluid bound and fair QP.
     Eaas(eaas::EaasArgs),
+    /// Re-verify a plan written by `solve --json` with the independent checker.
+    Check(check::CheckArgs),
 }
 
 /// Parses the process arguments, runs the subcommand, prints errors, returns the exit code.
@@ -71,6 +74,7 @@ pub fn main() -> i32 {
         Command::Solve(args) => solve::run(args),
         Command::Batch(args) => batch::run(args),
         Command::Eaas(args) => eaas::run(args),
+        Command::Check(args) => check::run(args),
     };
     match result {
         Ok(code) => code,

@@ -48,6 +48,10 @@ pub struct SolveArgs {
     /// Print the full report as JSON.
     #[arg(long)]
     pub json: bool,
+    /// Re-verify the plan as printed with the independent checker (as `swarmplan check` does);
+    /// violations go to stderr, and the exit code is 1 when there is one.
+    #[arg(long)]
+    pub check: bool,
 }
 
 /// Runs the subcommand; exit code 0 when the request is delivered, 1 when it fails.
@@ -86,7 +90,30 @@ pub fn run(args: SolveArgs) -> Result<i32> {
     } else {
         print_human(&report)?;
     }
-    Ok(if report.plan.delivered() { 0 } else { 1 })
+    let valid = !args.check || check_as_printed(&instance, &report)?;
+    Ok(if report.plan.delivered() && valid { 0 } else { 1 })
+}
+
+/// `--check`: the report written as JSON, read back and re-verified by
+/// [`crate::check::check_report`]; the verdict and every violation go to stderr.
+fn check_as_printed(instance: &crate::problem::Instance, report: &RequestReport) -> Result<bool> {
+    let text = serde_json::to_string(report).expect("serialising plain data cannot fail");
+    let read = crate::check::plan_file::parse_plan_file(&text, "the plan printed")?;
+    let violations = crate::check::check_report(
+        &instance.network,
+        &instance.profile,
+        &instance.requests,
+        &read,
+    );
+    if violations.is_empty() {
+        eprintln!("check: the plan passes the independent checker");
+    } else {
+        eprintln!("check: {} violation(s)", violations.len());
+        for x in &violations {
+            eprintln!("  {x}");
+        }
+    }
+    Ok(violations.is_empty())
 }
 
 fn print_human(report: &RequestReport) -> Result<()> {

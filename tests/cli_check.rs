@@ -1,0 +1,371 @@
+//! `swarmplan check`: plans written by `solve --json` pass; the same plans with one number
+//! changed (a battery, a pad assignment, a time, a node id) are rejected with exit code 1 and
+//! the code of the rule that number breaks; malformed plan files exit 2 with their code.
+//!
+//! The expected codes come from the rules in src/check/plan.rs, worked out by hand below, not
+//! from running the checker.
+
+use serde_json::Value;
+use std::path::PathBuf;
+use std::process::{Command, Output, Stdio};
+
+fn swarmplan(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_swarmplan"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+fn repo(path: &str) -> String {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join(path)
+        .to_str()
+        .unwrap()
+        .to_string()
+}
+
+fn tmp(name: &str) -> String {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli_check");
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name).to_str().unwrap().to_string()
+}
+
+fn write(name: &str, text: &str) -> String {
+    let path = tmp(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+fn stdout_json(out: &Output) -> Value {
+    serde_json::from_slice(&out.stdout).unwrap_or_else(|e| panic!("{e}: {out:?}"))
+}
+
+/// The tiny flat-stop instance (instances/tiny/README.md): A - M - B, 2500 m each, M with 2
+/// pads, and a request file with the request `stop`: drones of 0.21, 0.21, 0.44 kg.
+struct Tiny {
+    network: String,
+    profile: String,
+    requests: String,
+}
+
+fn tiny() -> Tiny {
+    Tiny {
+        network: repo("instances/tiny/flat-stop.json"),
+        profile: repo("instances/tiny/flat.toml"),
+        requests: write(
+            "flat-stop-requests.json",
+            r#"{"schema_version": 1, "requests": [
+                {"id": "stop", "source": "A", "destination": "B", "packages_kg": [0.21, 0.21, 0.44]}]}"#,
+        ),
+    }
+}
+
+impl Tiny {
+    fn args<'a>(&'a self, command: &'a str) -> Vec<&'a str> {
+        vec![
+            command,
+            "--network",
+            &self.network,
+            "--profile",
+            &self.profile,
+            "--requests",
+            &self.requests,
+        ]
+    }
+
+    /// The plan of `stop` under the paper's baseline (no sharing, no support drone), by
+    /// `solve --json`.
+    fn plan(&self) -> Value {
+        let out = swarmplan(&[
+            "solve",
+            "--network",
+            &self.network,
+            "--profile",
+            &self.profile,
+            "--request-file",
+            &self.requests,
+            "--request-id",
+            "stop",
+            "--sharing",
+            "none",
+            "--json",
+        ]);
+        assert_eq!(out.status.code(), Some(0), "{out:?}");
+        stdout_json(&out)
+    }
+
+    /// `check --json` of `plan`: the exit code and the violation codes.
+    fn check(&self, name: &str, plan: &Value) -> (Option<i32>, Vec<String>) {
+        let path = write(name, &serde_json::to_string_pretty(plan).unwrap());
+        let mut args = self.args("check");
+        args.extend(["--plan", &path, "--json"]);
+        check_output(&swarmplan(&args))
+    }
+}
+
+fn check_output(out: &Output) -> (Option<i32>, Vec<String>) {
+    let list = stdout_json(out);
+    let codes = list
+        .as_array()
+        .unwrap_or_else(|| panic!("a JSON list: {out:?}"))
+        .iter()
+        .map(|x| x["code"].as_str().unwrap().to_string())
+        .collect();
+    (out.status.code(), codes)
+}
+
+fn f64_at(v: &Value) -> f64 {
+    v.as_f64().unwrap()
+}
+
+#[test]
+fn a_tiny_plan_passes_and_each_changed_number_breaks_its_rule() {
+    let t = tiny();
+    let good = t.plan();
+    // The plan (tests/compose.rs): A -> M, stop at M on 2 pads (ct 6.655, 6.655, 8.64 min, pads
+    // {0, 1} | {2}, nt 13.31), M -> B.
+    assert_eq!(good["plan"]["outcome"]["kind"], "delivered");
+    assert_eq!(good["schema_version"], 1);
+    assert_eq!(good["plan"]["hops"][0]["stop"]["node"], "M");
+    assert_eq!(t.check("good.json", &good), (Some(0), vec![]));
+
+    // A battery: drone 2 arrives at M with 10 mAh more than the flight leaves it. The
+    // re-integrated arrival differs (P5015 wrapping C3016), and so do the charge times at M
+    // (P5022). nt is unchanged: drone 2 charges alone on the pad that is not the longest
+    // (8.54 < 13.31), and {0, 1} | {2} stays optimal.
+    let mut p = good.clone();
+    let b = &mut p["plan"]["hops"][0]["arrival_battery_mah"][2];
+    *b = Value::from(f64_at(b) + 10.0);
+    assert_eq!(
+        t.check("battery.json", &p),
+        (Some(1), vec!["P5015".into(), "P5022".into()])
+    );
+
+    // A pad assignment: drone 2 replaced by drone 0 on its pad. Drone 0 charges twice and
+    // drone 2 never (P5025); the makespan is still 6.655 + 6.655 = 13.31 = nt.
+    let mut p = good.clone();
+    let pads = p["plan"]["hops"][0]["stop"]["assignment"]
+        .as_array_mut()
+        .unwrap();
+    let alone = pads.iter().position(|pad| pad == &serde_json::json!([2]));
+    pads[alone.expect("drone 2 charges alone")] = serde_json::json!([0]);
+    assert_eq!(t.check("pads.json", &p), (Some(1), vec!["P5025".into()]));
+
+    // A time: the second hop one minute longer than 2500 m / 500 m/min = 5 min (P5013), and
+    // the plan's tt and dt no longer its hops' sums (P5030, P5031).
+    let mut p = good.clone();
+    let tt = &mut p["plan"]["hops"][1]["tt_min"];
+    *tt = Value::from(f64_at(tt) + 1.0);
+    assert_eq!(
+        t.check("time.json", &p),
+        (
+            Some(1),
+            vec!["P5013".into(), "P5030".into(), "P5031".into()]
+        )
+    );
+
+    // A node id: the stop moved to A, where the hop does not end (P5020) and which has no
+    // pads (P5021).
+    let mut p = good.clone();
+    p["plan"]["hops"][0]["stop"]["node"] = "A".into();
+    assert_eq!(
+        t.check("node.json", &p),
+        (Some(1), vec!["P5020".into(), "P5021".into()])
+    );
+
+    // The request: a package changed (P5042); the plan is then checked against the file's
+    // request, which it fits.
+    let mut p = good.clone();
+    p["request"]["packages_kg"][0] = 0.3.into();
+    assert_eq!(t.check("request.json", &p), (Some(1), vec!["P5042".into()]));
+    // A request id the file does not have (P5041).
+    let mut p = good.clone();
+    p["request"]["id"] = "elsewhere".into();
+    assert_eq!(
+        t.check("request_id.json", &p),
+        (Some(1), vec!["P5041".into()])
+    );
+    // A support drone claimed that the swarm does not fly (P5043).
+    let mut p = good.clone();
+    p["support_drones"] = 1.into();
+    assert_eq!(t.check("support.json", &p), (Some(1), vec!["P5043".into()]));
+}
+
+#[test]
+fn a_paper_195_plan_with_stops_and_a_transfer_passes_and_each_changed_number_breaks_its_rule() {
+    // r00023 under PB, Algorithm 1: n095 -> n110 (stop) -> n124 (stop) -> n158, 7 delivery
+    // drones and 1 support drone, one transfer on the last hop (support 7 to drone 4, which
+    // swaps slots). 8 drones: the node time is also proved optimal by exhaustive search.
+    let solve = swarmplan(&["solve", "--request-id", "r00023", "--json"]);
+    assert_eq!(solve.status.code(), Some(0), "{solve:?}");
+    let good = stdout_json(&solve);
+    let plan = &good["plan"];
+    assert_eq!(plan["hops"].as_array().unwrap().len(), 3);
+    assert_eq!(plan["hops"][2]["transfers"].as_array().unwrap().len(), 1);
+    let check = |name: &str, p: &Value| {
+        let path = write(name, &serde_json::to_string(p).unwrap());
+        check_output(&swarmplan(&["check", "--plan", &path, "--json"]))
+    };
+    assert_eq!(check("r00023.json", &good), (Some(0), vec![]));
+
+    // A time: the transfer starts a minute earlier. Its energy is no longer rho x duration
+    // (C3005) and the re-integrated arrival batteries differ from the reported ones (C3016),
+    // each wrapped in P5015. The energy field and the hop's and plan's shared totals still
+    // agree with each other (no C3018, no P5032).
+    let mut p = good.clone();
+    let start = &mut p["plan"]["hops"][2]["transfers"][0]["start_min"];
+    *start = Value::from(f64_at(start) - 1.0);
+    let path = write("r00023_time.json", &serde_json::to_string(&p).unwrap());
+    let out = swarmplan(&["check", "--plan", &path, "--json"]);
+    assert_eq!(
+        check_output(&out),
+        (Some(1), vec!["P5015".into(), "P5015".into()])
+    );
+    let causes: Vec<String> = stdout_json(&out)
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x["cause"].as_str().unwrap().to_string())
+        .collect();
+    assert!(causes[0].starts_with("[C3005]"), "{causes:?}");
+    assert!(causes[1].starts_with("[C3016]"), "{causes:?}");
+
+    // A battery: drone 1 arrives at n124 with 50 mAh less. The re-integration disagrees
+    // (P5015) and so do the charge times (P5022). Drone 1 shares its pad with drone 4 (3.25 +
+    // 6.59 = 9.84 min, below nt = 11.09): its charge time grows by 50 / 74.67 (the `paper` pad
+    // rate) = 0.67 min, to 10.51 < nt, so the makespan stays nt; a larger charge time cannot
+    // lower the optimum below nt, and the bound sum ct / 4 = 10.54 stays below nt.
+    let mut p = good.clone();
+    let stop = &p["plan"]["hops"][1]["stop"];
+    assert_eq!(stop["assignment"][1], serde_json::json!([1, 4]), "{stop}");
+    let b = &mut p["plan"]["hops"][1]["arrival_battery_mah"][1];
+    *b = Value::from(f64_at(b) - 50.0);
+    assert_eq!(
+        check("r00023_battery.json", &p),
+        (Some(1), vec!["P5015".into(), "P5022".into()])
+    );
+
+    // A pad assignment: drones 7 and 1 swap pads at n110: {0, 1} | {7, 2} | ... puts 10.48 +
+    // 9.08 = 19.56 min on one pad, not nt = 14.32 (P5026); the plan is not better than the
+    // optimum, so no P5028.
+    let mut p = good.clone();
+    let pads = &mut p["plan"]["hops"][0]["stop"]["assignment"];
+    assert_eq!(pads[0], serde_json::json!([0, 7]));
+    assert_eq!(pads[1], serde_json::json!([1, 2]));
+    pads[0][1] = 1.into();
+    pads[1][0] = 7.into();
+    assert_eq!(check("r00023_pads.json", &p), (Some(1), vec!["P5026".into()]));
+
+    // A node id: the second hop claims to start at n109, where the swarm is not (P5004), and
+    // its path no longer starts at its start (P5009).
+    let mut p = good.clone();
+    p["plan"]["hops"][1]["from"] = "n109".into();
+    assert_eq!(
+        check("r00023_node.json", &p),
+        (Some(1), vec!["P5004".into(), "P5009".into()])
+    );
+
+    // The human output names the plan and lists the violations with their codes.
+    let path = write("r00023_node.json", &serde_json::to_string(&p).unwrap());
+    let out = swarmplan(&["check", "--plan", &path]);
+    assert_eq!(out.status.code(), Some(1));
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("plan of request r00023"), "{text}");
+    assert!(text.contains("2 violation(s)"), "{text}");
+    assert!(text.contains("[P5004] hops[1].from"), "{text}");
+}
+
+#[test]
+fn malformed_plan_files_exit_2_with_their_code() {
+    let t = tiny();
+    let good = serde_json::to_string_pretty(&t.plan()).unwrap();
+    let check = |name: &str, text: &str| {
+        let path = write(name, text);
+        let mut args = t.args("check");
+        args.extend(["--plan", &path]);
+        swarmplan(&args)
+    };
+    let coded = |out: &Output, code: &str| {
+        assert_eq!(out.status.code(), Some(2), "{out:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(&format!("[{code}]")), "{code}: {err}");
+        assert!(out.stdout.is_empty(), "{out:?}");
+    };
+    // Not JSON: cut in the middle.
+    coded(&check("cut.json", &good[..good.len() / 2]), "E6001");
+    coded(&check("text.json", "plan"), "E6001");
+    // Another schema version, or none.
+    coded(
+        &check(
+            "version.json",
+            &good.replacen("\"schema_version\": 1", "\"schema_version\": 2", 1),
+        ),
+        "E6002",
+    );
+    coded(&check("no_version.json", "{}"), "E6002");
+    // JSON, but not a plan document: an unknown field, a mistyped one, an unknown outcome.
+    coded(
+        &check(
+            "unknown.json",
+            &good.replacen("\"schema_version\": 1", "\"schema_version\": 1, \"note\": 0", 1),
+        ),
+        "E6003",
+    );
+    coded(
+        &check(
+            "mistyped.json",
+            &good.replacen("\"dt_min\": ", "\"dt_min\": \"soon\", \"x\": ", 1),
+        ),
+        "E6003",
+    );
+    coded(
+        &check(
+            "kind.json",
+            &good.replacen("\"kind\": \"delivered\"", "\"kind\": \"arrived\"", 1),
+        ),
+        "E6003",
+    );
+    coded(&check("list.json", "[1, 2]"), "E6003");
+    // A file that is not there.
+    let mut args = t.args("check");
+    let missing = tmp("missing.json");
+    args.extend(["--plan", &missing]);
+    coded(&swarmplan(&args), "E0008");
+}
+
+#[test]
+fn solve_json_piped_into_check_passes_and_solve_check_checks_what_it_prints() {
+    let solve = Command::new(env!("CARGO_BIN_EXE_swarmplan"))
+        .args(["solve", "--request-id", "r00007", "--route", "astar", "--json"])
+        .stdout(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let check = Command::new(env!("CARGO_BIN_EXE_swarmplan"))
+        .args(["check", "--plan", "-"])
+        .stdin(solve.stdout.unwrap())
+        .output()
+        .unwrap();
+    assert_eq!(check.status.code(), Some(0), "{check:?}");
+    assert!(String::from_utf8_lossy(&check.stdout).contains(": valid"));
+
+    let t = tiny();
+    let out = swarmplan(&[
+        "solve",
+        "--network",
+        &t.network,
+        "--profile",
+        &t.profile,
+        "--request-file",
+        &t.requests,
+        "--request-id",
+        "stop",
+        "--sharing",
+        "pb",
+        "--support",
+        "1",
+        "--check",
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{out:?}");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("passes the independent checker"), "{err}");
+}
