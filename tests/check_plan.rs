@@ -329,7 +329,9 @@ fn plan_outcomes_are_tagged_objects_in_json_and_sentences_in_text() {
         serde_json::json!({"kind": "delivered"})
     );
     assert!(dead_end.to_string().starts_with("dead end at n012: "));
-    assert!(dead_end.to_string().contains("drone 2 runs out of energy after 7.50 min"));
+    assert!(dead_end
+        .to_string()
+        .contains("drone 2 runs out of energy after 7.50 min"));
     // Unknown kinds and unknown fields are refused.
     for bad in [
         r#"{"kind": "lost"}"#,

@@ -254,7 +254,10 @@ fn a_paper_195_plan_with_stops_and_a_transfer_passes_and_each_changed_number_bre
     assert_eq!(pads[1], serde_json::json!([1, 2]));
     pads[0][1] = 1.into();
     pads[1][0] = 7.into();
-    assert_eq!(check("r00023_pads.json", &p), (Some(1), vec!["P5026".into()]));
+    assert_eq!(
+        check("r00023_pads.json", &p),
+        (Some(1), vec!["P5026".into()])
+    );
 
     // A node id: the second hop claims to start at n109, where the swarm is not (P5004), and
     // its path no longer starts at its start (P5009).
@@ -307,7 +310,11 @@ fn malformed_plan_files_exit_2_with_their_code() {
     coded(
         &check(
             "unknown.json",
-            &good.replacen("\"schema_version\": 1", "\"schema_version\": 1, \"note\": 0", 1),
+            &good.replacen(
+                "\"schema_version\": 1",
+                "\"schema_version\": 1, \"note\": 0",
+                1,
+            ),
         ),
         "E6003",
     );
@@ -336,7 +343,14 @@ fn malformed_plan_files_exit_2_with_their_code() {
 #[test]
 fn solve_json_piped_into_check_passes_and_solve_check_checks_what_it_prints() {
     let solve = Command::new(env!("CARGO_BIN_EXE_swarmplan"))
-        .args(["solve", "--request-id", "r00007", "--route", "astar", "--json"])
+        .args([
+            "solve",
+            "--request-id",
+            "r00007",
+            "--route",
+            "astar",
+            "--json",
+        ])
         .stdout(Stdio::piped())
         .spawn()
         .unwrap();

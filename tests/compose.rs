@@ -246,7 +246,11 @@ fn a_dead_end_fails_with_a_reason_and_never_loops() {
             panic!("{:?}", p.outcome);
         };
         assert_eq!(node, "M2");
-        assert!(p.outcome.to_string().contains("dead end at M2"), "{}", p.outcome);
+        assert!(
+            p.outcome.to_string().contains("dead end at M2"),
+            "{}",
+            p.outcome
+        );
         // Flying on from M2 full, the drone is empty after 1000 / 133.1 = 7.513 min.
         assert_eq!(direct.drone, 0);
         assert_close(direct.time_min, 1000.0 / 133.1, "direct failure");
@@ -263,7 +267,11 @@ fn a_dead_end_fails_with_a_reason_and_never_loops() {
             panic!("{:?}", p.outcome);
         };
         assert_eq!((from.as_str(), to.as_str()), ("M2", "B"));
-        assert!(p.outcome.to_string().contains("cannot reach B"), "{}", p.outcome);
+        assert!(
+            p.outcome.to_string().contains("cannot reach B"),
+            "{}",
+            p.outcome
+        );
         assert_eq!(failure.drone, 0);
         assert_close(failure.time_min, 1000.0 / 133.1, "hop failure");
         assert_close(p.dt_min, 18.648, "dt flown");

@@ -131,11 +131,7 @@ impl<'a> HopView<'a> {
 
 /// C3001: the transfer names drones and a slot that exist. The other rules need them: the check
 /// stops at the first transfer that breaks it.
-fn c3001_transfer_names_existing_drones(
-    hop: &HopView,
-    f: &str,
-    x: &Transfer,
-) -> Option<Violation> {
+fn c3001_transfer_names_existing_drones(hop: &HopView, f: &str, x: &Transfer) -> Option<Violation> {
     let n = hop.n;
     (x.support >= n || x.consumer >= n || x.consumer_slot >= n).then(|| {
         v(

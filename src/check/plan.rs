@@ -138,7 +138,9 @@ pub fn check_plan(
         let f = format!("hops[{k}]");
         let ends_plan = plan.delivered() && k + 1 == plan.hops.len();
         out.extend(p5004_hop_starts_where_the_swarm_is(&f, hop, at));
-        out.extend(p5005_last_hop_ends_at_the_destination(&raw, &f, hop, ends_plan));
+        out.extend(p5005_last_hop_ends_at_the_destination(
+            &raw, &f, hop, ends_plan,
+        ));
         out.extend(p5006_no_stop_at_the_destination(&f, hop, ends_plan));
         out.extend(p5007_other_hops_end_in_a_stop(&f, hop, ends_plan));
         at = hop.to.as_str();
@@ -235,7 +237,10 @@ fn p5037_swarm_is_well_formed(swarm: &Swarm) -> Vec<Violation> {
 fn p5038_delivery_drones_carry_the_packages(raw: &Raw) -> Option<Violation> {
     let packages = &raw.request.packages_kg;
     let drones = &raw.swarm.drones;
-    let delivery = drones.iter().take_while(|d| d.role == Role::Delivery).count();
+    let delivery = drones
+        .iter()
+        .take_while(|d| d.role == Role::Delivery)
+        .count();
     let rest_support = drones[delivery..].iter().all(|d| d.role == Role::Support);
     let carried = drones
         .iter()
@@ -681,12 +686,7 @@ fn p5013_tt_is_distance_over_speed(
 }
 
 /// P5033: the per-leg breakdown follows the path and its travel times add up to the hop's.
-fn p5033_legs_follow_the_path(
-    raw: &Raw,
-    f: &str,
-    hop: &Hop,
-    distance_m: f64,
-) -> Option<Violation> {
+fn p5033_legs_follow_the_path(raw: &Raw, f: &str, hop: &Hop, distance_m: f64) -> Option<Violation> {
     let tt = distance_m / raw.speed_m_per_min;
     let pairs_match = hop.legs.len() + 1 == hop.path.len()
         && hop

@@ -29,12 +29,7 @@ pub fn run(args: CheckArgs) -> Result<i32> {
     let instance = args.instance.load()?;
     let set = inputs::load_requests(args.requests.as_deref())?;
     let report = read_plan(&args.plan)?;
-    let violations = check_report(
-        &instance.network,
-        &instance.profile,
-        &set.requests,
-        &report,
-    );
+    let violations = check_report(&instance.network, &instance.profile, &set.requests, &report);
     if args.json {
         super::print_json(&violations)?;
     } else {

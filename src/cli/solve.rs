@@ -91,7 +91,11 @@ pub fn run(args: SolveArgs) -> Result<i32> {
         print_human(&report)?;
     }
     let valid = !args.check || check_as_printed(&instance, &report)?;
-    Ok(if report.plan.delivered() && valid { 0 } else { 1 })
+    Ok(if report.plan.delivered() && valid {
+        0
+    } else {
+        1
+    })
 }
 
 /// `--check`: the report written as JSON, read back and re-verified by

@@ -105,7 +105,10 @@ impl fmt::Display for PlanOutcome {
         match self {
             PlanOutcome::Delivered => write!(f, "delivered"),
             PlanOutcome::NoRoute { from, to } => {
-                write!(f, "no route from {from} to {to}: the network does not connect them")
+                write!(
+                    f,
+                    "no route from {from} to {to}: the network does not connect them"
+                )
             }
             PlanOutcome::DeadEnd {
                 node,
