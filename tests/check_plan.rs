@@ -2,7 +2,8 @@
 //! plans are rejected with the expected code.
 
 use std::path::Path;
-use swarmplan::check::check_plan;
+use swarmplan::check::plan_file::parse_plan_file;
+use swarmplan::check::{check_plan, check_report};
 use swarmplan::compose::{Context, PlanOptions, PlanOutcome, RequestReport, RouteMethod};
 use swarmplan::eaas::{FailureReason, HopFailure, SharingPolicy};
 use swarmplan::precompose::Positioning;
@@ -390,4 +391,98 @@ fn a_valid_but_poor_pad_assignment_is_rejected_as_not_optimal() {
     p.nt_min += extra;
     p.dt_min += extra;
     assert_eq!(check(&p), vec!["P5028"]);
+}
+
+/// Plans every request of `requests` with every combination of `sharing`, both positionings and
+/// every route; each plan is written as the JSON of `solve --json`, read back with the plan
+/// reader, compared with the original and checked by `check_report`. Returns the plans made and
+/// a line per failure.
+fn read_back_and_check(
+    network: &Network,
+    graph: &SkywayGraph,
+    profile: &Profile,
+    requests: &[Request],
+    sharing: &[SharingPolicy],
+) -> (usize, Vec<String>) {
+    let context = Context::new(network, graph, profile);
+    let mut failures = Vec::new();
+    let mut plans = 0;
+    for &sharing in sharing {
+        for positioning in POSITIONING {
+            for route in RouteMethod::ALL {
+                let options = PlanOptions {
+                    sharing,
+                    positioning,
+                    route,
+                    support: None,
+                };
+                for r in requests {
+                    let report = context.plan(r, &options).unwrap();
+                    let text = serde_json::to_string_pretty(&report).unwrap();
+                    let read = parse_plan_file(&text, &r.id).unwrap();
+                    plans += 1;
+                    if read != report {
+                        failures.push(format!("{} {options:?}: not read back unchanged", r.id));
+                    }
+                    let v = check_report(network, profile, requests, &read);
+                    if !v.is_empty() {
+                        failures.push(format!("{} {options:?}: {v:?}", r.id));
+                    }
+                }
+            }
+        }
+    }
+    (plans, failures)
+}
+
+/// The small version of `cargo run --release --example check_all`: every sharing policy,
+/// positioning and route, each plan read back from its JSON and re-verified as `swarmplan
+/// check` does. The simulated policies on paper-195 requests (r00023 has two stops and a
+/// transfer), and every policy, exact and fair included, on the tiny flat-line requests (one
+/// of which only sharing delivers) and flat-stop (a stop on 2 pads).
+#[test]
+fn every_method_plan_read_back_from_json_passes_the_checker() {
+    let (network, graph, profile, requests) = paper_195();
+    let chosen: Vec<Request> = ["r00000", "r00007", "r00023"]
+        .iter()
+        .map(|id| requests.iter().find(|r| r.id == *id).unwrap().clone())
+        .collect();
+    let simulated = [
+        SharingPolicy::None,
+        SharingPolicy::IdleSupport,
+        SharingPolicy::Pb,
+        SharingPolicy::Fb,
+    ];
+    let (plans, failures) = read_back_and_check(&network, &graph, &profile, &chosen, &simulated);
+    assert_eq!(plans, 3 * 4 * 8);
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("instances/tiny");
+    let flat: Profile = read_toml(&dir.join("flat.toml")).unwrap();
+    let every = [
+        SharingPolicy::None,
+        SharingPolicy::IdleSupport,
+        SharingPolicy::Pb,
+        SharingPolicy::Fb,
+        SharingPolicy::Exact,
+        SharingPolicy::Fair,
+    ];
+    let line: Network = read_json(&dir.join("flat-line.json")).unwrap();
+    let set: RequestSet = read_json(&dir.join("flat-requests.json")).unwrap();
+    let line_graph = SkywayGraph::new(&line).unwrap();
+    let (plans, failures) = read_back_and_check(&line, &line_graph, &flat, &set.requests, &every);
+    assert_eq!(plans, 3 * 6 * 8);
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+
+    let stop: Network = read_json(&dir.join("flat-stop.json")).unwrap();
+    let stop_graph = SkywayGraph::new(&stop).unwrap();
+    let request = Request {
+        id: "stop".into(),
+        source: "A".into(),
+        destination: "B".into(),
+        packages_kg: vec![0.21, 0.21, 0.44],
+    };
+    let (plans, failures) = read_back_and_check(&stop, &stop_graph, &flat, &[request], &every);
+    assert_eq!(plans, 6 * 8);
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
