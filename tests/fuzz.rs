@@ -1,8 +1,8 @@
 //! Fuzzing in the default test run (issue 14): every input parser (network, profile, requests,
-//! hop file) and the command line, over arbitrary bytes and over mutations of valid files, never
-//! panics and gives either a value or coded errors. A parsed value goes on through validation
-//! (and, for a valid hop, through the none, PB and FB policies), so the numbers past the parser
-//! are fuzzed too.
+//! hop file, plan file) and the command line, over arbitrary bytes and over mutations of valid
+//! files, never panics and gives either a value or coded errors. A parsed value goes on through
+//! validation (and, for a valid hop, through the none, PB and FB policies; for a plan, through
+//! the checker), so the numbers past the parser are fuzzed too.
 //!
 //! Each property tries `FUZZ_CASES` cases by default (a few seconds in release); set
 //! `PROPTEST_CASES=20000` for a longer run.
@@ -11,6 +11,8 @@ use proptest::prelude::*;
 use proptest::test_runner::TestCaseError;
 use std::path::PathBuf;
 use std::sync::OnceLock;
+use swarmplan::check::check_report;
+use swarmplan::check::plan_file::parse_plan_file;
 use swarmplan::eaas::hop_file::parse_hop_file;
 use swarmplan::eaas::{simulate, SharingPolicy};
 use swarmplan::error::{Error, Result};
@@ -555,4 +557,67 @@ fn token() -> impl Strategy<Value = String> {
         8 => proptest::sample::select(TOKENS).prop_map(str::to_string),
         1 => "[ -~]{0,12}",
     ]
+}
+
+/// A plan document as `swarmplan solve --json` prints it: request r00023 under PB, Algorithm 1
+/// (two stops, a transfer with a slot swap), with the request set it comes from.
+struct PlanSeed {
+    text: String,
+    requests: Vec<swarmplan::problem::Request>,
+}
+
+fn plan_seed() -> &'static PlanSeed {
+    static SEED: OnceLock<PlanSeed> = OnceLock::new();
+    SEED.get_or_init(|| {
+        use swarmplan::compose::{Context, PlanOptions, RouteMethod};
+        let s = seeds();
+        let set: RequestSet = parse_json(&s.requests, "requests").unwrap();
+        let request = set.requests.iter().find(|r| r.id == "r00023").unwrap();
+        let options = PlanOptions {
+            sharing: SharingPolicy::Pb,
+            positioning: swarmplan::precompose::Positioning::LocationAware,
+            route: RouteMethod::Sequential,
+            support: None,
+        };
+        let report = Context::new(&s.paper_195, &s.graph, &s.paper)
+            .plan(request, &options)
+            .unwrap();
+        PlanSeed {
+            text: serde_json::to_string_pretty(&report).unwrap(),
+            requests: set.requests,
+        }
+    })
+}
+
+/// The plan path of `swarmplan check`: read the document (a value or coded errors), then check
+/// it against paper-195 (violations are data, never a panic).
+fn plan_file(text: &str) -> std::result::Result<(), TestCaseError> {
+    let parsed = parse_plan_file(text, "plan");
+    coded("plan file", &parsed)?;
+    if let Ok(report) = parsed {
+        let s = seeds();
+        let violations = check_report(&s.paper_195, &s.paper, &plan_seed().requests, &report);
+        for v in violations {
+            prop_assert!(v.code.starts_with('P'), "{v}");
+        }
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(config())]
+
+    #[test]
+    fn mutated_plan_files_give_coded_errors_or_a_check_result(
+        ms in proptest::collection::vec(mutation(), 1..6)
+    ) {
+        on_text(&mutate(&plan_seed().text, &ms), plan_file)?;
+    }
+
+    #[test]
+    fn arbitrary_bytes_as_a_plan_file_give_coded_errors(
+        bytes in proptest::collection::vec(any::<u8>(), 0..400)
+    ) {
+        on_text(&bytes, plan_file)?;
+    }
 }
