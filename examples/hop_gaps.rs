@@ -36,7 +36,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 use swarmplan::cli::inputs::{load_requests, InstanceArgs};
-use swarmplan::compose::{Context, PlanOptions, Planner, RouteMethod};
+use swarmplan::compose::{Context, PlanOptions, PlanOutcome, Planner, RouteMethod};
 use swarmplan::eaas::milp::{solve_milp, ExactStatus, MilpOptions, Objective, Reorder};
 use swarmplan::eaas::{fluid, simulate_with, HopProblem, PolicyOptions, SharingPolicy};
 use swarmplan::error::Result;
@@ -288,7 +288,7 @@ fn request_rows(
         };
         let report = context.plan(request, &options)?;
         rows.plans[p] += 1;
-        rows.delivered[p] += usize::from(report.plan.success);
+        rows.delivered[p] += usize::from(report.plan.delivered());
         let planner = Planner::new(graph, &instance.profile, &report.swarm, policy);
         let full = planner.full_battery_mah();
         let Some(destination) = graph.index_of(&request.destination) else {
@@ -355,13 +355,7 @@ fn request_rows(
                 fluid_bound: lp.bound,
             });
         }
-        if !report.plan.success
-            && report
-                .plan
-                .failure
-                .as_deref()
-                .is_some_and(|f| f.starts_with("dead end"))
-        {
+        if matches!(report.plan.outcome, PlanOutcome::DeadEnd { .. }) {
             let last = report
                 .plan
                 .hops

@@ -342,7 +342,7 @@ fn malformed_plan_files_exit_2_with_their_code() {
 
 #[test]
 fn solve_json_piped_into_check_passes_and_solve_check_checks_what_it_prints() {
-    let solve = Command::new(env!("CARGO_BIN_EXE_swarmplan"))
+    let mut solve = Command::new(env!("CARGO_BIN_EXE_swarmplan"))
         .args([
             "solve",
             "--request-id",
@@ -356,9 +356,10 @@ fn solve_json_piped_into_check_passes_and_solve_check_checks_what_it_prints() {
         .unwrap();
     let check = Command::new(env!("CARGO_BIN_EXE_swarmplan"))
         .args(["check", "--plan", "-"])
-        .stdin(solve.stdout.unwrap())
+        .stdin(solve.stdout.take().unwrap())
         .output()
         .unwrap();
+    assert_eq!(solve.wait().unwrap().code(), Some(0));
     assert_eq!(check.status.code(), Some(0), "{check:?}");
     assert!(String::from_utf8_lossy(&check.stdout).contains(": valid"));
 
