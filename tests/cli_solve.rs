@@ -216,6 +216,14 @@ fn batch_gives_the_same_numbers_with_one_or_two_threads() {
     assert_eq!(s1.as_array().unwrap().len(), 4);
     for s in s1.as_array().unwrap() {
         assert_eq!(s["requests"], 20);
+        // Failures counted by kind add up to the requests not delivered.
+        let failed: u64 = s["failed_by_kind"]
+            .as_object()
+            .unwrap()
+            .values()
+            .map(|n| n.as_u64().unwrap())
+            .sum();
+        assert_eq!(failed + s["succeeded"].as_u64().unwrap(), 20, "{s}");
     }
     assert_eq!(s1, s2);
     assert_eq!(p1, p2, "per-request outcomes identical byte for byte");
@@ -325,6 +333,14 @@ fn sharing_delivers_every_request_the_swarm_delivers_without_it_on_sparse_195() 
             .as_bool()
             .unwrap()
     };
+    // Each row carries its outcome's kind; on the fixed route a failure is a hop that does not
+    // fly, with its reason as a sentence.
+    for r in rows.as_array().unwrap() {
+        let kind = r["outcome"].as_str().unwrap();
+        assert_eq!(kind == "delivered", r["success"] == true, "{r}");
+        assert!(["delivered", "hop-infeasible"].contains(&kind), "{r}");
+        assert_eq!(r["failure"].is_string(), kind != "delivered", "{r}");
+    }
     let ids: Vec<String> = (0..60).map(|i| format!("r{i:05}")).collect();
     let idle: Vec<&String> = ids
         .iter()
