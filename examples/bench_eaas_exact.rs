@@ -135,7 +135,7 @@ fn main() {
                 }
                 println!(
                     "| {nd} | {ns} | {periods} | {} | {:.1} | {}/{}/{}/{} | {:.2} | {:.2} |",
-                    reorder.name(),
+                    reorder,
                     median(ms),
                     counts[0],
                     counts[1],

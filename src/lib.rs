@@ -21,6 +21,22 @@
 #![warn(missing_docs)]
 #![forbid(unsafe_code)]
 
+/// `Display` for choice enums: the name the clap derive gives each value (kebab-case), which is
+/// also its serde name (`tests/choice_names.rs` checks that the two agree), so the names of
+/// methods, policies and backends have one source and no hand-written table.
+macro_rules! display_as_value_name {
+    ($($t:ty),+ $(,)?) => {$(
+        impl std::fmt::Display for $t {
+            fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                match clap::ValueEnum::to_possible_value(self) {
+                    Some(v) => f.write_str(v.get_name()),
+                    None => Ok(()),
+                }
+            }
+        }
+    )+};
+}
+
 pub mod check;
 pub mod cli;
 pub mod compose;

@@ -254,7 +254,7 @@ fn lp_file_states_the_hop_and_has_the_size_of_the_model() {
             format!("hop line {}", header(&lp, "hop")),
         );
         check(
-            header(&lp, "reorder") == k.reorder.name(),
+            header(&lp, "reorder") == k.reorder.to_string(),
             "reorder line".into(),
         );
         check(
@@ -478,14 +478,14 @@ fn highs_reads_the_lp_file_and_finds_the_known_optimum() {
     for k in table() {
         for reorder in [k.reorder, Reorder::Free] {
             let opt = options(reorder, k.period_min);
-            let path = temp_path(&format!("{}-{}.lp", k.name, reorder.name()));
+            let path = temp_path(&format!("{}-{}.lp", k.name, reorder.to_string()));
             write_lp(&k.problem, &k.objective, &opt, &k.name, &path).unwrap();
             let (status, value) = solve_file(&path);
             if status != highs_sys::MODEL_STATUS_OPTIMAL {
                 failing.push(format!(
                     "{} {}: HiGHS status {status}",
                     k.name,
-                    reorder.name()
+                    reorder.to_string()
                 ));
                 continue;
             }
@@ -500,7 +500,7 @@ fn highs_reads_the_lp_file_and_finds_the_known_optimum() {
                     failing.push(format!(
                         "{} {} on {}: file {value}, solve_milp {:?} {model}",
                         k.name,
-                        reorder.name(),
+                        reorder.to_string(),
                         backend.name(),
                         o.status
                     ));

@@ -49,6 +49,8 @@ pub enum HopMethod {
     Fair,
 }
 
+display_as_value_name!(HopMethod);
+
 /// Arguments of `swarmplan eaas`.
 #[derive(Debug, clap::Args)]
 pub struct EaasArgs {
@@ -406,7 +408,7 @@ fn print_human(r: &EaasReport) -> Result<()> {
         r.problem.legs.len(),
         r.problem.drones.len(),
         r.objective,
-        r.reorder.name()
+        r.reorder.to_string()
     );
     for row in &r.rows {
         let num = |x: Option<f64>| x.map_or("-".to_string(), |v| format!("{v:.4}"));

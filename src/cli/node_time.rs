@@ -111,7 +111,7 @@ fn print_human(s: &NodeTimeSolution, times: &[f64], backend: MilpBackend) -> Res
     let method = if s.method == NodeTimeMethod::Milp {
         format!("milp on {}", backend.name())
     } else {
-        s.method.name().to_string()
+        s.method.to_string().to_string()
     };
     outln!(
         "node time: {} min ({status}; method {method})",

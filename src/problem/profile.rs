@@ -82,6 +82,8 @@ pub enum Candidates {
     Adjacent,
 }
 
+display_as_value_name!(PbRequest, Candidates);
+
 impl Default for Readings {
     fn default() -> Self {
         Readings {
