@@ -478,7 +478,7 @@ fn counts_beyond_their_stated_bounds_are_coded_errors() {
 #[test]
 fn exact_sharing_solves_each_hop_and_bad_settings_exit_2() {
     let args = [&FLAT_STOP_REQUEST_ARGS[..], &["--support", "1"]].concat();
-    let mut exact: Vec<&str> = args.to_vec();
+    let mut exact: Vec<&str> = args.clone();
     exact.extend(["--sharing", "exact", "--json"]);
     let out = solve("flat-stop.json", &exact);
     assert_eq!(out.status.code(), Some(0), "{out:?}");
@@ -491,7 +491,7 @@ fn exact_sharing_solves_each_hop_and_bad_settings_exit_2() {
     // The direct hop (no schedule flies it) and the hop to M.
     assert_eq!(plan["hop_solves"]["solves"], 2, "{plan}");
     assert_eq!(plan["hop_solves"]["infeasible"], 1, "{plan}");
-    let mut pb: Vec<&str> = args.to_vec();
+    let mut pb: Vec<&str> = args.clone();
     pb.extend(["--sharing", "pb", "--json"]);
     let plan = json(&solve("flat-stop.json", &pb))["plan"].clone();
     assert!(close(plan["dt_min"].as_f64().unwrap(), 27.28), "{plan}");
@@ -501,7 +501,7 @@ fn exact_sharing_solves_each_hop_and_bad_settings_exit_2() {
         ("--hop-time-limit", "0", "E4105"),
         ("--period-min", "-1", "E4101"),
     ] {
-        let mut bad: Vec<&str> = args.to_vec();
+        let mut bad: Vec<&str> = args.clone();
         bad.extend(["--sharing", "exact", flag, value]);
         let out = solve("flat-stop.json", &bad);
         let err = String::from_utf8_lossy(&out.stderr);

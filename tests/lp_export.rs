@@ -415,6 +415,7 @@ fn lp_export_rejects_a_bad_grid_with_its_code() {
 #[test]
 fn highs_reads_the_lp_file_and_finds_the_known_optimum() {
     use std::ffi::CString;
+    #[allow(unsafe_code)]
     fn solve_file(path: &std::path::Path) -> (highs_sys::HighsInt, f64) {
         let file = CString::new(path.to_str().unwrap()).unwrap();
         let key = |s: &str| CString::new(s).unwrap();

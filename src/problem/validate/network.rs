@@ -249,7 +249,7 @@ fn e1107_pad_rate_in_range(i: usize, node: &Node, out: &mut Vec<Violation>) {
                     show(rate)
                 ),
                 "give a rate within [0.1, 1e6] mAh/min, or omit it to use the profile's rate",
-            ))
+            ));
         }
         _ => {}
     }

@@ -60,7 +60,7 @@ pub fn validate_request_set(
     max_payload_kg: f64,
 ) -> Vec<Violation> {
     set_rules(set, |k, r, out| {
-        out.extend(validate_request(r, k, graph, max_payload_kg))
+        out.extend(validate_request(r, k, graph, max_payload_kg));
     })
 }
 
