@@ -18,7 +18,7 @@
 //! Layout: [`problem`] holds the input types and their validation and knows nothing of solvers;
 //! [`solver`] the backend choice and solve status shared by every exact method. Each model the code
 //! builds is written up in `models/` under the name of the module that builds it.
-#![warn(missing_docs)]
+// Lints are set in Cargo.toml's `[lints]` table; the library also forbids unsafe code outright.
 #![forbid(unsafe_code)]
 
 /// `Display` for choice enums: the name the clap derive gives each value (kebab-case), which is

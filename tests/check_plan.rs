@@ -1,23 +1,14 @@
 //! The independent plan checker (`check::check_plan`): every method's plans pass it, and corrupted
 //! plans are rejected with the expected code.
 
-use std::path::Path;
+mod common;
+
+use common::{flat_instance, flat_stop_request, paper_195};
 use swarmplan::check::check_plan;
 use swarmplan::compose::{Context, PlanOptions, RequestReport, RouteMethod};
 use swarmplan::eaas::SharingPolicy;
 use swarmplan::precompose::Positioning;
-use swarmplan::problem::io::{read_json, read_toml};
-use swarmplan::problem::SkywayGraph;
-use swarmplan::problem::{Network, Profile, Request, RequestSet};
-
-fn paper_195() -> (Network, SkywayGraph, Profile, Vec<Request>) {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let network: Network = read_json(&root.join("instances/paper-195/network.json")).unwrap();
-    let graph = SkywayGraph::new(&network).unwrap();
-    let profile: Profile = read_toml(&root.join("instances/profiles/paper.toml")).unwrap();
-    let set: RequestSet = read_json(&root.join("instances/paper-195/requests.json")).unwrap();
-    (network, graph, profile, set.requests)
-}
+use swarmplan::problem::{Network, Profile, Request};
 
 fn codes(v: &[swarmplan::Violation]) -> Vec<&'static str> {
     v.iter().map(|x| x.code).collect()
@@ -269,16 +260,8 @@ fn a_valid_but_poor_pad_assignment_is_rejected_as_not_optimal() {
     // 6.655, 8.64 min on 2 pads. {0, 2} | {1} is a partition with makespan 6.655 + 8.64 =
     // 15.295 >= the bound max(8.64, 21.95 / 2) = 10.975, so only the optimality check (optimum
     // 13.31 = {0, 1} | {2}) rejects it.
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("instances/tiny");
-    let network: Network = read_json(&dir.join("flat-stop.json")).unwrap();
-    let graph = SkywayGraph::new(&network).unwrap();
-    let profile: Profile = read_toml(&dir.join("flat.toml")).unwrap();
-    let request = Request {
-        id: "stop".into(),
-        source: "A".into(),
-        destination: "B".into(),
-        packages_kg: vec![0.21, 0.21, 0.44],
-    };
+    let (network, graph, profile) = flat_instance("flat-stop.json");
+    let request = flat_stop_request("stop");
     let options = PlanOptions {
         sharing: SharingPolicy::None,
         positioning: Positioning::LocationAware,
