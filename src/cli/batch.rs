@@ -24,7 +24,7 @@ pub struct BatchArgs {
     #[command(flatten)]
     pub exact: ExactArgs,
     /// Request set (JSON) [default: the shipped paper-195 requests].
-    #[arg(long, value_name = "FILE")]
+    #[arg(long, alias = "request-file", value_name = "FILE")]
     pub requests: Option<PathBuf>,
     /// Plan only the first N requests.
     #[arg(long, value_name = "N")]
@@ -67,7 +67,7 @@ pub struct Summary {
     /// The combination.
     pub options: PlanOptions,
     /// Requests delivered.
-    pub succeeded: usize,
+    pub delivered: usize,
     /// Requests planned (the denominator).
     pub requests: usize,
     /// Mean delivery time of the delivered requests, min.
@@ -149,7 +149,7 @@ pub fn run(args: BatchArgs) -> Result<i32> {
                 label(&options.sharing),
                 label(&options.positioning),
                 options.route.name(),
-                summary.succeeded,
+                summary.delivered,
                 summary.requests,
                 summary.mean_dt_min,
                 summary.wall_ms
@@ -182,7 +182,7 @@ pub fn run(args: BatchArgs) -> Result<i32> {
                 label(&s.options.sharing),
                 label(&s.options.positioning),
                 s.options.route.name(),
-                s.succeeded,
+                s.delivered,
                 s.requests,
                 s.mean_dt_min,
                 s.mean_nt_min,
@@ -284,7 +284,7 @@ fn summarise(options: PlanOptions, reports: &[RequestReport], wall_ms: f64) -> R
     let k = delivered.len().max(1) as f64;
     Ok(Summary {
         options,
-        succeeded: delivered.len(),
+        delivered: delivered.len(),
         requests: reports.len(),
         mean_dt_min: total(delivered.iter().map(|r| r.plan.dt_min)) / k,
         mean_nt_min: total(delivered.iter().map(|r| r.plan.nt_min)) / k,

@@ -18,8 +18,8 @@ pub struct SolveArgs {
     #[command(flatten)]
     pub exact: ExactArgs,
     /// Request set (JSON) holding the request [default: the shipped paper-195 requests].
-    #[arg(long, value_name = "FILE")]
-    pub request_file: Option<PathBuf>,
+    #[arg(long, alias = "request-file", value_name = "FILE")]
+    pub requests: Option<PathBuf>,
     /// Id of the request in the request set.
     #[arg(long, value_name = "ID", conflicts_with_all = ["from", "to", "packages"])]
     pub request_id: Option<String>,
@@ -55,7 +55,7 @@ pub fn run(args: SolveArgs) -> Result<i32> {
     let instance = args.instance.load()?;
     let instance = match (&args.request_id, &args.from, &args.to, &args.packages) {
         (Some(id), None, None, None) => {
-            let set = inputs::load_requests(args.request_file.as_deref())?;
+            let set = inputs::load_requests(args.requests.as_deref())?;
             instance.with_request_from(&set, id)?
         }
         (None, Some(from), Some(to), Some(packages)) => instance.with_requests(vec![Request {
@@ -68,7 +68,7 @@ pub fn run(args: SolveArgs) -> Result<i32> {
             "E3402",
             "--request-id | --from/--to/--packages",
             "no request given",
-            "pass --request-id ID (with --request-file F), or --from A --to B --packages 1.2,0.8",
+            "pass --request-id ID (with --requests F), or --from A --to B --packages 1.2,0.8",
         )),
     };
     let request = instance.requests[0].clone();

@@ -1,0 +1,110 @@
+//! The command line as a newcomer meets it (issue 13, item 8): one flag name for one thing, one
+//! word for a delivered request, no progress drawing when stderr is not a terminal, rounded human
+//! output beside full-precision CSV and JSON, a missing backend or missing files explained at
+//! once, and `generate` that does not overwrite a file unasked.
+
+use serde_json::Value;
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn swarmplan(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_swarmplan"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+fn tiny(name: &str) -> String {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("instances/tiny")
+        .join(name)
+        .to_str()
+        .unwrap()
+        .to_string()
+}
+
+fn stdout(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stdout).to_string()
+}
+
+fn json(out: &Output) -> Value {
+    serde_json::from_slice(&out.stdout).unwrap_or_else(|e| panic!("{e}: {out:?}"))
+}
+
+#[test]
+fn every_subcommand_reads_the_request_set_from_requests_and_the_old_spelling_still_works() {
+    let (net, profile, requests) = (
+        tiny("flat-line.json"),
+        tiny("flat.toml"),
+        tiny("flat-requests.json"),
+    );
+    let base = ["--network", &net, "--profile", &profile];
+    let runs: [(&str, &[&str]); 4] = [
+        ("solve", &["--request-id", "pb-fb", "--json"]),
+        ("inspect", &["--request-id", "pb-fb", "--json"]),
+        ("eaas", &["--request-id", "pb-fb", "--methods", "pb,fb", "--json"]),
+        ("batch", &["--json"]),
+    ];
+    for (command, extra) in runs {
+        let mut outputs = Vec::new();
+        for flag in ["--requests", "--request-file"] {
+            let mut args = vec![command];
+            args.extend_from_slice(&base);
+            args.extend_from_slice(&[flag, &requests]);
+            args.extend_from_slice(extra);
+            let out = swarmplan(&args);
+            assert_eq!(out.status.code(), Some(0), "{command} {flag}: {out:?}");
+            let mut v = json(&out);
+            strip_times(&mut v);
+            outputs.push(v);
+        }
+        assert_eq!(outputs[0], outputs[1], "{command}: both spellings, one result");
+        // The help names the one spelling; the old one is a hidden alias.
+        let help = stdout(&swarmplan(&[command, "--help"]));
+        assert!(help.contains("--requests <FILE>"), "{command}: {help}");
+        assert!(!help.contains("request-file"), "{command}: {help}");
+    }
+}
+
+/// Removes every wall-clock figure (`*_ms`), the only numbers that are not reproducible.
+fn strip_times(v: &mut Value) {
+    match v {
+        Value::Object(map) => {
+            map.retain(|k, _| !k.ends_with("_ms"));
+            map.values_mut().for_each(strip_times);
+        }
+        Value::Array(items) => items.iter_mut().for_each(strip_times),
+        _ => {}
+    }
+}
+
+#[test]
+fn batch_json_and_csv_both_say_delivered() {
+    let (net, profile, requests) = (
+        tiny("flat-line.json"),
+        tiny("flat.toml"),
+        tiny("flat-requests.json"),
+    );
+    let args = [
+        "batch",
+        "--network",
+        &net,
+        "--profile",
+        &profile,
+        "--requests",
+        &requests,
+    ];
+    let out = swarmplan(&[&args[..], &["--json"]].concat());
+    assert_eq!(out.status.code(), Some(0), "{out:?}");
+    let summary = &json(&out)[0];
+    assert!(summary.get("succeeded").is_none(), "{summary}");
+    let delivered = summary["delivered"].as_u64().expect("a delivered count");
+    let out = swarmplan(&args);
+    assert_eq!(out.status.code(), Some(0), "{out:?}");
+    let text = stdout(&out);
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let row: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let column = header.iter().position(|&h| h == "delivered").unwrap();
+    assert_eq!(row[column], delivered.to_string());
+}
