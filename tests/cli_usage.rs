@@ -27,6 +27,10 @@ fn stdout(out: &Output) -> String {
     String::from_utf8_lossy(&out.stdout).to_string()
 }
 
+fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).to_string()
+}
+
 fn json(out: &Output) -> Value {
     serde_json::from_slice(&out.stdout).unwrap_or_else(|e| panic!("{e}: {out:?}"))
 }
@@ -42,7 +46,10 @@ fn every_subcommand_reads_the_request_set_from_requests_and_the_old_spelling_sti
     let runs: [(&str, &[&str]); 4] = [
         ("solve", &["--request-id", "pb-fb", "--json"]),
         ("inspect", &["--request-id", "pb-fb", "--json"]),
-        ("eaas", &["--request-id", "pb-fb", "--methods", "pb,fb", "--json"]),
+        (
+            "eaas",
+            &["--request-id", "pb-fb", "--methods", "pb,fb", "--json"],
+        ),
         ("batch", &["--json"]),
     ];
     for (command, extra) in runs {
@@ -58,7 +65,10 @@ fn every_subcommand_reads_the_request_set_from_requests_and_the_old_spelling_sti
             strip_times(&mut v);
             outputs.push(v);
         }
-        assert_eq!(outputs[0], outputs[1], "{command}: both spellings, one result");
+        assert_eq!(
+            outputs[0], outputs[1],
+            "{command}: both spellings, one result"
+        );
         // The help names the one spelling; the old one is a hidden alias.
         let help = stdout(&swarmplan(&[command, "--help"]));
         assert!(help.contains("--requests <FILE>"), "{command}: {help}");
@@ -107,4 +117,47 @@ fn batch_json_and_csv_both_say_delivered() {
     let row: Vec<&str> = lines.next().unwrap().split(',').collect();
     let column = header.iter().position(|&h| h == "delivered").unwrap();
     assert_eq!(row[column], delivered.to_string());
+}
+
+#[test]
+fn progress_is_not_drawn_when_stderr_is_not_a_terminal() {
+    // Every command that shows a bar or a spinner on a terminal, with stderr captured: stderr
+    // holds exactly the messages it held before progress existed, with no carriage return or
+    // escape sequence.
+    let (net, profile, requests) = (
+        tiny("flat-line.json"),
+        tiny("flat.toml"),
+        tiny("flat-requests.json"),
+    );
+    let instance = [
+        "--network",
+        &net,
+        "--profile",
+        &profile,
+        "--requests",
+        &requests,
+    ];
+    let batch = swarmplan(&[&["batch"], &instance[..], &["--sharing", "pb,fb"]].concat());
+    assert_eq!(batch.status.code(), Some(0), "{batch:?}");
+    let err = stderr(&batch);
+    let lines: Vec<&str> = err.lines().collect();
+    assert_eq!(lines.len(), 2, "one line per combination: {err}");
+    assert!(lines.iter().all(|l| l.starts_with("sharing ")), "{err}");
+    assert!(!err.contains('\r') && !err.contains('\u{1b}'), "{err:?}");
+    let quiet = [
+        [&["batch"], &instance[..], &["--sharing", "exact", "--json"]].concat(),
+        [
+            &["solve"],
+            &instance[..],
+            &["--request-id", "pb-fb", "--sharing", "exact"],
+        ]
+        .concat(),
+        [&["eaas"], &instance[..], &["--request-id", "pb-fb"]].concat(),
+        vec!["node-time", "--pads", "3", "--times", "60,50,40,30,20"],
+    ];
+    for args in quiet {
+        let out = swarmplan(&args);
+        assert_eq!(out.status.code(), Some(0), "{args:?}: {out:?}");
+        assert_eq!(stderr(&out), "", "{args:?}");
+    }
 }

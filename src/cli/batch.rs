@@ -10,6 +10,7 @@ use crate::eaas::SharingPolicy;
 use crate::error::{Error, Result};
 use crate::precompose::Positioning;
 use crate::problem::{io, Request};
+use indicatif::ProgressBar;
 use serde::Serialize;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -138,13 +139,20 @@ pub fn run(args: BatchArgs) -> Result<i32> {
     let combos = combinations(&args);
     let mut summaries = Vec::new();
     let mut outcomes = Vec::new();
+    let bar = super::progress::bar((combos.len() * requests.len()) as u64, "requests");
     for options in combos {
+        bar.set_message(format!(
+            "{} {} {}",
+            label(&options.sharing),
+            label(&options.positioning),
+            options.route.name()
+        ));
         let start = Instant::now();
-        let reports = plan_all(&context, requests, &options, args.threads)?;
+        let reports = plan_all(&context, requests, &options, args.threads, &bar)?;
         let wall_ms = start.elapsed().as_secs_f64() * 1e3;
         let summary = summarise(options, &reports, wall_ms)?;
         if !args.json {
-            eprintln!(
+            bar.suspend(|| eprintln!(
                 "sharing {:<4} positioning {:<14} route {:<14} delivered {}/{} mean dt {:.2} min, {:.0} ms",
                 label(&options.sharing),
                 label(&options.positioning),
@@ -153,7 +161,7 @@ pub fn run(args: BatchArgs) -> Result<i32> {
                 summary.requests,
                 summary.mean_dt_min,
                 summary.wall_ms
-            );
+            ));
         }
         if args.per_request.is_some() {
             outcomes.extend(reports.iter().map(|r| Outcome {
@@ -168,6 +176,7 @@ pub fn run(args: BatchArgs) -> Result<i32> {
         }
         summaries.push(summary);
     }
+    bar.finish_and_clear();
     if let Some(path) = &args.per_request {
         io::write_json(path, &outcomes)?;
     }
@@ -239,28 +248,28 @@ fn combinations(args: &BatchArgs) -> Vec<PlanOptions> {
 }
 
 /// Plans every request; with several threads each takes a contiguous block, and the reports come
-/// back in request order, so the numbers do not depend on the thread count.
+/// back in request order, so the numbers do not depend on the thread count. `bar` counts the
+/// requests planned.
 fn plan_all(
     context: &Context,
     requests: &[Request],
     options: &PlanOptions,
     threads: usize,
+    bar: &ProgressBar,
 ) -> Result<Vec<RequestReport>> {
+    let plan = |r: &Request| {
+        let report = context.plan(r, options);
+        bar.inc(1);
+        report
+    };
     if threads <= 1 || requests.len() < 2 {
-        return requests.iter().map(|r| context.plan(r, options)).collect();
+        return requests.iter().map(plan).collect();
     }
     let chunk = requests.len().div_ceil(threads);
     let results: Vec<Result<Vec<RequestReport>>> = std::thread::scope(|scope| {
         let handles: Vec<_> = requests
             .chunks(chunk)
-            .map(|block| {
-                scope.spawn(move || {
-                    block
-                        .iter()
-                        .map(|r| context.plan(r, options))
-                        .collect::<Result<Vec<_>>>()
-                })
-            })
+            .map(|block| scope.spawn(move || block.iter().map(plan).collect::<Result<Vec<_>>>()))
             .collect();
         handles
             .into_iter()

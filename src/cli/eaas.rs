@@ -324,7 +324,14 @@ fn rows(
     readings: &PolicyOptions,
 ) -> Result<Vec<MethodRow>> {
     let mut rows = Vec::new();
+    // The exact models may each run up to --time-limit; the heuristics take milliseconds.
+    let slow = |m: &HopMethod| matches!(m, HopMethod::Milp | HopMethod::Fluid | HopMethod::Fair);
+    let bar = match args.methods.iter().any(slow) {
+        true => super::progress::bar(args.methods.len() as u64, "methods"),
+        false => indicatif::ProgressBar::hidden(),
+    };
     for &m in &args.methods {
+        bar.set_message(format!("{m:?}").to_lowercase());
         let start = std::time::Instant::now();
         let row = match m {
             HopMethod::None | HopMethod::Pb | HopMethod::Fb => {
@@ -369,7 +376,9 @@ fn rows(
             ),
         };
         rows.push(row);
+        bar.inc(1);
     }
+    bar.finish_and_clear();
     let reference = rows
         .iter()
         .find_map(|r| match (r.method, r.status, r.objective) {

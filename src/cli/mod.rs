@@ -19,6 +19,7 @@ pub mod generate;
 pub mod inputs;
 pub mod inspect;
 pub mod node_time;
+pub mod progress;
 pub mod solve;
 
 /// swarmplan: plan swarm-based drone deliveries with in-flight energy sharing.

@@ -93,7 +93,14 @@ pub fn run(args: NodeTimeArgs) -> Result<i32> {
         time_limit_s: Some(args.time_limit),
         node_limit: None,
     };
+    let spinner = (args.method != NodeTimeMethod::Lpt).then(|| {
+        super::progress::spinner(format!(
+            "node time of {} drones on {pads} pads",
+            times.len()
+        ))
+    });
     let solution = node_time::solve(args.method, args.backend, pads, &times, &limits)?;
+    drop(spinner);
     if args.json {
         crate::cli::print_json(&solution)?;
     } else {

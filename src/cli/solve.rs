@@ -64,12 +64,14 @@ pub fn run(args: SolveArgs) -> Result<i32> {
             destination: to.clone(),
             packages_kg: inputs::parse_list(packages, "--packages", "E0003")?,
         }])?,
-        _ => return Err(Error::invalid(
-            "E3402",
-            "--request-id | --from/--to/--packages",
-            "no request given",
-            "pass --request-id ID (with --requests F), or --from A --to B --packages 1.2,0.8",
-        )),
+        _ => {
+            return Err(Error::invalid(
+                "E3402",
+                "--request-id | --from/--to/--packages",
+                "no request given",
+                "pass --request-id ID (with --requests F), or --from A --to B --packages 1.2,0.8",
+            ))
+        }
     };
     let request = instance.requests[0].clone();
     let mut context = Context::new(&instance.network, &instance.graph, &instance.profile);
@@ -80,7 +82,13 @@ pub fn run(args: SolveArgs) -> Result<i32> {
         route: args.route,
         support: args.support,
     };
+    // A hop solve can take up to --hop-time-limit, and a route makes many.
+    let spinner = args
+        .sharing
+        .is_exact()
+        .then(|| super::progress::spinner(format!("planning request {}", request.id)));
     let report = context.plan(&request, &options)?;
+    drop(spinner);
     if args.json {
         super::print_json(&report)?;
     } else {
