@@ -161,3 +161,50 @@ fn progress_is_not_drawn_when_stderr_is_not_a_terminal() {
         assert_eq!(stderr(&out), "", "{args:?}");
     }
 }
+
+#[test]
+fn human_output_is_rounded_while_csv_and_json_keep_every_digit() {
+    // flat-line, PB: dt 4, 6.5 and 8 min, a mean of 6.166666666666667 min.
+    let (net, profile, requests) = (
+        tiny("flat-line.json"),
+        tiny("flat.toml"),
+        tiny("flat-requests.json"),
+    );
+    let args = [
+        "batch",
+        "--network",
+        &net,
+        "--profile",
+        &profile,
+        "--requests",
+        &requests,
+    ];
+    let from_json = json(&swarmplan(&[&args[..], &["--json"]].concat()))[0].clone();
+    let out = swarmplan(&args);
+    assert_eq!(out.status.code(), Some(0), "{out:?}");
+    let text = stdout(&out);
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let row: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let csv = |name: &str| row[header.iter().position(|&h| h == name).unwrap()];
+    // The CSV holds the JSON's number, digit for digit.
+    for name in ["mean_dt_min", "mean_nt_min", "mean_stops"] {
+        let value: f64 = csv(name).parse().unwrap();
+        assert_eq!(value, from_json[name].as_f64().unwrap(), "{name}");
+    }
+    assert_eq!(csv("mean_dt_min"), "6.166666666666667");
+    // The line for people on stderr rounds it.
+    assert!(
+        stderr(&out).contains("mean dt 6.17 min"),
+        "{}",
+        stderr(&out)
+    );
+    // node-time: 0.1 + 0.2 min is 0.30000000000000004 in JSON, 0.3 for people.
+    let nt = ["node-time", "--pads", "1", "--times", "0.1,0.2"];
+    let v = json(&swarmplan(&[&nt[..], &["--json"]].concat()));
+    assert_eq!(v["makespan_min"].as_f64().unwrap(), 0.1 + 0.2);
+    let text = stdout(&swarmplan(&nt));
+    assert!(text.contains("node time: 0.3 min (optimal"), "{text}");
+    assert!(text.contains("pad 0: load 0.3 min"), "{text}");
+    assert!(!text.contains("0000"), "{text}");
+}

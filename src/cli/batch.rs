@@ -183,11 +183,12 @@ pub fn run(args: BatchArgs) -> Result<i32> {
     if args.json {
         super::print_json(&summaries)?;
     } else {
+        // Data, as the JSON: every float with all its digits (the lines on stderr are rounded).
         outln!("sharing,positioning,route,delivered,requests,mean_dt_min,mean_nt_min,mean_stops,stops,lpt_optimal,lpt_mean_gap,lpt_max_gap,hop_solves,hop_solves_unproven,wall_ms");
         for s in &summaries {
             let hops = s.hop_solves.unwrap_or_default();
             outln!(
-                "{},{},{},{},{},{:.3},{:.3},{:.3},{},{},{:.6},{:.6},{},{},{:.0}",
+                "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
                 label(&s.options.sharing),
                 label(&s.options.positioning),
                 s.options.route.name(),

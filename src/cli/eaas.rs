@@ -407,14 +407,24 @@ fn rows(
 }
 
 fn print_human(r: &EaasReport) -> Result<()> {
+    let objective = match r.objective {
+        Objective::NodeTime {
+            pads,
+            pad_rate_mah_per_min,
+        } => format!(
+            "node time on {pads} pad(s) at {} mAh/min",
+            super::human::round(pad_rate_mah_per_min, 2)
+        ),
+        Objective::MaxMinArrival => "lowest delivery arrival battery".to_string(),
+        Objective::Feasible => "any flying schedule".to_string(),
+    };
     outln!(
-        "request {} hop {}: {} ({} leg(s), {} drones), objective {:?}, reorder {}",
+        "request {} hop {}: {} ({} leg(s), {} drones), objective {objective}, reorder {}",
         r.request_id,
         r.hop,
         r.path.join(" -> "),
         r.problem.legs.len(),
         r.problem.drones.len(),
-        r.objective,
         r.reorder.name()
     );
     for row in &r.rows {
@@ -433,7 +443,10 @@ fn print_human(r: &EaasReport) -> Result<()> {
             num(row.bound),
             gap,
             row.grid_step_min
-                .map_or(String::new(), |h| format!("grid {h} min, ")),
+                .map_or(String::new(), |h| format!(
+                    "grid {} min, ",
+                    super::human::round(h, 4)
+                )),
             row.solve_ms,
             row.transfers.len()
         );

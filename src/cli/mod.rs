@@ -16,6 +16,7 @@ macro_rules! outln {
 pub mod batch;
 pub mod eaas;
 pub mod generate;
+pub mod human;
 pub mod inputs;
 pub mod inspect;
 pub mod node_time;
