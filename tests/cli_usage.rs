@@ -35,6 +35,16 @@ fn json(out: &Output) -> Value {
     serde_json::from_slice(&out.stdout).unwrap_or_else(|e| panic!("{e}: {out:?}"))
 }
 
+/// Asserts exit code 2 and that stderr names `code` and every one of `words`.
+fn assert_exit_2_with(out: &Output, code: &str, words: &[&str]) {
+    let err = stderr(out);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains(&format!("[{code}]")), "no {code} in: {err}");
+    for w in words {
+        assert!(err.contains(w), "no `{w}` in: {err}");
+    }
+}
+
 #[test]
 fn every_subcommand_reads_the_request_set_from_requests_and_the_old_spelling_still_works() {
     let (net, profile, requests) = (
@@ -207,4 +217,44 @@ fn human_output_is_rounded_while_csv_and_json_keep_every_digit() {
     assert!(text.contains("node time: 0.3 min (optimal"), "{text}");
     assert!(text.contains("pad 0: load 0.3 min"), "{text}");
     assert!(!text.contains("0000"), "{text}");
+}
+
+#[test]
+#[cfg(not(feature = "highs"))]
+fn highs_in_a_build_without_it_says_how_to_build_it() {
+    let runs: [&[&str]; 3] = [
+        &[
+            "node-time",
+            "--pads",
+            "2",
+            "--times",
+            "1,2",
+            "--method",
+            "milp",
+        ],
+        &["solve", "--request-id", "r00001", "--sharing", "exact"],
+        &["eaas", "--request-id", "r00001", "--methods", "milp"],
+    ];
+    for args in runs {
+        let out = swarmplan(&[args, &["--backend", "highs"]].concat());
+        assert_exit_2_with(
+            &out,
+            "E0012",
+            &["--features highs", "cmake", "libclang", "apt-get install"],
+        );
+    }
+    // A name swarmplan does not know stays a plain usage error listing the known names.
+    let out = swarmplan(&[
+        "node-time",
+        "--pads",
+        "2",
+        "--times",
+        "1,2",
+        "--backend",
+        "glpk",
+    ]);
+    assert_exit_2_with(&out, "E0007", &["microlp", "highs"]);
+    // The help names highs and how to get it.
+    let help = stdout(&swarmplan(&["node-time", "--help"]));
+    assert!(help.contains("--features highs"), "{help}");
 }

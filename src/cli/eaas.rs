@@ -88,7 +88,11 @@ pub struct EaasArgs {
     )]
     pub methods: Vec<HopMethod>,
     /// MILP backend.
-    #[arg(long, value_enum, default_value_t = MilpBackend::default())]
+    #[arg(
+        long,
+        value_parser = crate::solver::backend_value_parser(),
+        default_value_t = MilpBackend::default()
+    )]
     pub backend: MilpBackend,
     /// Time limit of each solve, seconds.
     #[arg(long, default_value_t = 60.0, allow_negative_numbers = true)]

@@ -32,7 +32,11 @@ pub struct InstanceArgs {
 #[derive(Debug, Clone, clap::Args)]
 pub struct ExactArgs {
     /// Exact policy: MILP backend of every hop solve.
-    #[arg(long, value_enum, default_value_t = MilpBackend::default())]
+    #[arg(
+        long,
+        value_parser = crate::solver::backend_value_parser(),
+        default_value_t = MilpBackend::default()
+    )]
     pub backend: MilpBackend,
     /// Exact and fair policies: time limit of each hop solve, seconds.
     #[arg(long = "hop-time-limit", default_value_t = DEFAULT_HOP_TIME_LIMIT_S, allow_negative_numbers = true)]

@@ -35,7 +35,11 @@ pub struct NodeTimeArgs {
     #[arg(long, value_enum, default_value_t = NodeTimeMethod::Exact)]
     pub method: NodeTimeMethod,
     /// MILP backend (with --method milp).
-    #[arg(long, value_enum, default_value_t = MilpBackend::default())]
+    #[arg(
+        long,
+        value_parser = crate::solver::backend_value_parser(),
+        default_value_t = MilpBackend::default()
+    )]
     pub backend: MilpBackend,
     /// Time limit in seconds, at most 1e6; a stopped solve reports its incumbent as `feasible`
     /// with its lower bound.
