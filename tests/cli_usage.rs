@@ -23,6 +23,12 @@ fn tiny(name: &str) -> String {
         .to_string()
 }
 
+fn tmp(name: &str) -> PathBuf {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli_usage");
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
 fn stdout(out: &Output) -> String {
     String::from_utf8_lossy(&out.stdout).to_string()
 }
@@ -257,4 +263,51 @@ fn highs_in_a_build_without_it_says_how_to_build_it() {
     // The help names highs and how to get it.
     let help = stdout(&swarmplan(&["node-time", "--help"]));
     assert!(help.contains("--features highs"), "{help}");
+}
+
+#[test]
+fn every_missing_input_file_is_reported_at_once() {
+    let dir = tmp("missing");
+    let (net, profile, requests, hop) = (
+        dir.join("net.json"),
+        dir.join("profile.toml"),
+        dir.join("requests.json"),
+        dir.join("hop.json"),
+    );
+    let (net, profile, requests, hop) = (
+        net.to_str().unwrap(),
+        profile.to_str().unwrap(),
+        requests.to_str().unwrap(),
+        hop.to_str().unwrap(),
+    );
+    let files = [
+        "--network",
+        net,
+        "--profile",
+        profile,
+        "--requests",
+        requests,
+    ];
+    let runs = [
+        [&["solve"], &files[..], &["--request-id", "r1"]].concat(),
+        [&["inspect"], &files[..], &["--request-id", "r1"]].concat(),
+        [&["eaas"], &files[..], &["--request-id", "r1"]].concat(),
+        [&["batch"], &files[..]].concat(),
+    ];
+    for args in runs {
+        let out = swarmplan(&args);
+        assert_exit_2_with(&out, "E0008", &[net, profile, requests]);
+        assert!(stderr(&out).contains("3 problem(s)"), "{}", stderr(&out));
+    }
+    let out = swarmplan(&["eaas", "--hop-file", hop, "--profile", profile]);
+    assert_exit_2_with(&out, "E0008", &[hop, profile]);
+    // A broken file and a missing one: both, not only the first.
+    let out = swarmplan(&[
+        "batch",
+        "--network",
+        &tiny("invalid-network.json"),
+        "--requests",
+        requests,
+    ]);
+    assert_exit_2_with(&out, "E0008", &["E1101", "E1207", requests]);
 }

@@ -1,7 +1,7 @@
 //! `swarmplan batch`: plan every request of a request set with one or more method combinations and
 //! report success counts (with their denominator), delivery and node times, and run time.
 
-use super::inputs::{self, ExactArgs, InstanceArgs};
+use super::inputs::{ExactArgs, InstanceArgs};
 use crate::compose::{
     lpt_node_time_gaps, Context, LptGapSummary, PlanOptions, RequestReport, RouteMethod,
 };
@@ -119,8 +119,8 @@ pub fn run(args: BatchArgs) -> Result<i32> {
             "give --threads 1 or more",
         ));
     }
-    let instance = args.instance.load()?;
-    let mut requests = inputs::load_requests(args.requests.as_deref())?.requests;
+    let (instance, set) = args.instance.load_with_requests(args.requests.as_deref())?;
+    let mut requests = set.requests;
     if let Some(n) = args.limit {
         requests.truncate(n);
     }

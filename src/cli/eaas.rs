@@ -165,8 +165,8 @@ pub struct EaasReport {
 pub fn run(args: EaasArgs) -> Result<i32> {
     let (hop, readings) = match &args.hop_file {
         Some(path) => {
-            let profile = args.instance.load_profile()?;
-            (read_hop_file(path)?, PolicyOptions::from(&profile.readings))
+            let (profile, hop) = inputs::both(args.instance.load_profile(), read_hop_file(path))?;
+            (hop, PolicyOptions::from(&profile.readings))
         }
         None => planned_hop(&args)?,
     };
@@ -212,9 +212,8 @@ pub fn run(args: EaasArgs) -> Result<i32> {
 /// Plans the request as `swarmplan solve` does and takes hop `--hop` of the plan; the readings
 /// of PB and FB come from the profile.
 fn planned_hop(args: &EaasArgs) -> Result<(HopFile, PolicyOptions)> {
-    let instance = args.instance.load()?;
     let id = args.request_id.as_deref().unwrap_or_default();
-    let set = inputs::load_requests(args.requests.as_deref())?;
+    let (instance, set) = args.instance.load_with_requests(args.requests.as_deref())?;
     let instance = instance.with_request_from(&set, id)?;
     let request = instance.requests[0].clone();
     let context = Context::new(&instance.network, &instance.graph, &instance.profile);

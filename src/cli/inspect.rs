@@ -1,6 +1,6 @@
 //! `swarmplan inspect`: describe a network and, for a request, the swarm it would fly.
 
-use super::inputs::{self, InstanceArgs};
+use super::inputs::InstanceArgs;
 use crate::compose::Context;
 use crate::energy;
 use crate::error::Result;
@@ -91,8 +91,8 @@ pub fn run(args: InspectArgs) -> Result<i32> {
     let inst = match &args.request_id {
         None => args.instance.load()?,
         Some(id) => {
-            let set = inputs::load_requests(args.requests.as_deref())?;
-            args.instance.load()?.with_request_from(&set, id)?
+            let (instance, set) = args.instance.load_with_requests(args.requests.as_deref())?;
+            instance.with_request_from(&set, id)?
         }
     };
     let net = &inst.network;

@@ -52,10 +52,15 @@ pub struct SolveArgs {
 
 /// Runs the subcommand; exit code 0 when the request is delivered, 1 when it fails.
 pub fn run(args: SolveArgs) -> Result<i32> {
-    let instance = args.instance.load()?;
+    // Every input file read before any problem is reported: all their problems at once.
+    let set = args
+        .request_id
+        .is_some()
+        .then(|| inputs::load_requests(args.requests.as_deref()));
+    let (instance, set) = inputs::both(args.instance.load(), set.transpose())?;
     let instance = match (&args.request_id, &args.from, &args.to, &args.packages) {
         (Some(id), None, None, None) => {
-            let set = inputs::load_requests(args.requests.as_deref())?;
+            let set = set.expect("read above, with --request-id");
             instance.with_request_from(&set, id)?
         }
         (None, Some(from), Some(to), Some(packages)) => instance.with_requests(vec![Request {
