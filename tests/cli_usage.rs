@@ -311,3 +311,36 @@ fn every_missing_input_file_is_reported_at_once() {
     ]);
     assert_exit_2_with(&out, "E0008", &["E1101", "E1207", requests]);
 }
+
+#[test]
+fn generate_does_not_overwrite_a_file_without_force() {
+    let out_file = tmp("generated-network.json");
+    let out = out_file.to_str().unwrap();
+    std::fs::write(&out_file, "keep me").unwrap();
+    let network = [
+        "generate", "network", "--nodes", "20", "--seed", "1", "-o", out,
+    ];
+    assert_exit_2_with(&swarmplan(&network), "E0013", &[out, "--force"]);
+    assert_eq!(std::fs::read_to_string(&out_file).unwrap(), "keep me");
+    let forced = swarmplan(&[&network[..], &["--force"]].concat());
+    assert_eq!(forced.status.code(), Some(0), "{forced:?}");
+    let written = std::fs::read_to_string(&out_file).unwrap();
+    assert!(written.contains("\"nodes\""), "{written}");
+    // generate requests: the existing file and a missing network, both reported.
+    let requests = [
+        "generate",
+        "requests",
+        "--network",
+        "no-such-network.json",
+        "--seed",
+        "1",
+        "-o",
+        out,
+    ];
+    assert_exit_2_with(
+        &swarmplan(&requests),
+        "E0013",
+        &["E0008", "no-such-network.json"],
+    );
+    assert_eq!(std::fs::read_to_string(&out_file).unwrap(), written);
+}
