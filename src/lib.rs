@@ -29,7 +29,7 @@ macro_rules! display_as_value_name {
         impl std::fmt::Display for $t {
             fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
                 match clap::ValueEnum::to_possible_value(self) {
-                    Some(v) => f.write_str(v.get_name()),
+                    Some(v) => f.pad(v.get_name()),
                     None => Ok(()),
                 }
             }

@@ -17,6 +17,10 @@ fn generate_writes_valid_identical_files_for_the_same_seed() {
         tmp("r1.json"),
         tmp("r2.json"),
     );
+    // Left by an earlier run: generate does not overwrite a file without --force.
+    for f in [&n1, &n2, &r1, &r2, &tmp("n3.json")] {
+        let _ = std::fs::remove_file(f);
+    }
     for n in [&n1, &n2] {
         let out = swarmplan(&[
             "generate",

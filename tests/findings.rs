@@ -56,7 +56,7 @@ fn batch(extra: &[&str]) -> BTreeMap<String, (u64, u64)> {
             o["positioning"].as_str().unwrap(),
             o["route"].as_str().unwrap()
         );
-        let delivered = row["succeeded"].as_u64().unwrap();
+        let delivered = row["delivered"].as_u64().unwrap();
         let requests = row["requests"].as_u64().unwrap();
         counts.insert(key, (delivered, requests));
     }
