@@ -90,3 +90,21 @@ pub use profile::{profile_ranges, validate_profile, StatedRange, MAX_EXTRA_BATTE
 pub use requests::{
     read_request_set, validate_request, validate_request_set, validate_request_set_header,
 };
+
+use crate::error::Violation;
+use crate::problem::SCHEMA_VERSION;
+
+/// The schema-version rule of a JSON file (E1001 for a network, E3001 for a request set): the
+/// file's `schema_version` is the one this build reads.
+fn json_schema_version(code: &'static str, found: u32, out: &mut Vec<Violation>) {
+    if found != SCHEMA_VERSION {
+        out.push(Violation::new(
+            code,
+            "schema_version",
+            format!("schema_version is {found}, this build reads {SCHEMA_VERSION}"),
+            format!(
+                "set schema_version to {SCHEMA_VERSION} after checking the file against README.md"
+            ),
+        ));
+    }
+}

@@ -1,7 +1,7 @@
 //! Network rules (E1xxx), one function per rule code; the table of codes is in [`super`].
 
 use crate::error::{show, Violation};
-use crate::problem::{Edge, Network, Node, SCHEMA_VERSION};
+use crate::problem::{Edge, Network, Node};
 use std::collections::HashMap;
 
 /// Safe-flight wind limit (m/s): an edge's wind speed must be strictly below it.
@@ -137,19 +137,7 @@ fn positive_length(d: f64) -> bool {
 
 /// E1001: the file's schema version is the one this build reads.
 fn e1001_schema_version(n: &Network, out: &mut Vec<Violation>) {
-    if n.schema_version != SCHEMA_VERSION {
-        out.push(Violation::new(
-            "E1001",
-            "schema_version",
-            format!(
-                "schema_version is {}, this build reads {SCHEMA_VERSION}",
-                n.schema_version
-            ),
-            format!(
-                "set schema_version to {SCHEMA_VERSION} after checking the file against README.md"
-            ),
-        ));
-    }
+    super::json_schema_version("E1001", n.schema_version, out);
 }
 
 /// E1002: the network has at least one node.

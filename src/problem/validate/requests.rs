@@ -1,7 +1,7 @@
 //! Request rules (E3xxx), one function per rule code; the table of codes is in [`super`].
 
 use crate::error::Violation;
-use crate::problem::{Request, RequestSet, SkywayGraph, MAX_DELIVERY_DRONES, SCHEMA_VERSION};
+use crate::problem::{Request, RequestSet, SkywayGraph, MAX_DELIVERY_DRONES};
 use std::collections::HashMap;
 
 /// Checks one request (E32xx, E33xx and E3101) against a validated network.
@@ -139,19 +139,7 @@ fn first_request_of_ids(set: &RequestSet) -> HashMap<&str, usize> {
 
 /// E3001: the file's schema version is the one this build reads.
 fn e3001_schema_version(set: &RequestSet, out: &mut Vec<Violation>) {
-    if set.schema_version != SCHEMA_VERSION {
-        out.push(Violation::new(
-            "E3001",
-            "schema_version",
-            format!(
-                "schema_version is {}, this build reads {SCHEMA_VERSION}",
-                set.schema_version
-            ),
-            format!(
-                "set schema_version to {SCHEMA_VERSION} after checking the file against README.md"
-            ),
-        ));
-    }
+    super::json_schema_version("E3001", set.schema_version, out);
 }
 
 /// E3002: the set has at least one request.
