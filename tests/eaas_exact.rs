@@ -78,12 +78,7 @@ fn known_optima_table_is_reproduced_by_the_milp_on_every_backend() {
             if !ok {
                 failing.push(format!(
                     "{} on {}: {:?} objective {:?} model {:?}, expected {}",
-                    k.name,
-                    backend.name(),
-                    o.status,
-                    o.objective,
-                    o.model_objective,
-                    k.optimum
+                    k.name, backend, o.status, o.objective, o.model_objective, k.optimum
                 ));
             }
         }

@@ -464,7 +464,7 @@ fn highs_reads_the_lp_file_and_finds_the_known_optimum() {
                         "{} {} on {}: file {value}, solve_milp {:?} {model}",
                         k.name,
                         reorder.to_string(),
-                        backend.name(),
+                        backend.to_string(),
                         o.status
                     ));
                 }

@@ -205,7 +205,7 @@ fn milp_equals_exact_on_every_backend() {
             assert!(
                 (m.makespan_min - e.makespan_min).abs() <= 1e-6 * e.makespan_min.max(1.0),
                 "{} case {case}: k={k} times={times:?}: milp {} exact {}",
-                backend.name(),
+                backend,
                 m.makespan_min,
                 e.makespan_min
             );
@@ -263,10 +263,7 @@ fn known_optima_table_is_reproduced_by_exact_and_milp() {
                 if (m.makespan_min - inst.optimum_min).abs() > 1e-6 * inst.optimum_min.max(1.0) {
                     failures.push(format!(
                         "{}: milp on {} {}, table {}",
-                        inst.name,
-                        backend.name(),
-                        m.makespan_min,
-                        inst.optimum_min
+                        inst.name, backend, m.makespan_min, inst.optimum_min
                     ));
                 }
             }

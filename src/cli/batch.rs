@@ -143,9 +143,7 @@ pub fn run(args: BatchArgs) -> Result<i32> {
     for options in combos {
         bar.set_message(format!(
             "{} {} {}",
-            options.sharing,
-            options.positioning,
-            options.route
+            options.sharing, options.positioning, options.route
         ));
         let start = Instant::now();
         let reports = plan_all(&context, requests, &options, args.threads, &bar)?;

@@ -121,7 +121,7 @@ fn print_human(s: &NodeTimeSolution, times: &[f64], backend: MilpBackend) -> Res
         SolveStatus::Infeasible => "infeasible",
     };
     let method = if s.method == NodeTimeMethod::Milp {
-        format!("milp on {}", backend.name())
+        format!("milp on {}", backend)
     } else {
         s.method.to_string().to_string()
     };

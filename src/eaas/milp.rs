@@ -917,7 +917,7 @@ pub fn solve_milp(
         }
         if !replay.feasible {
             return Err(Error::Backend {
-                backend: options.backend.name().to_string(),
+                backend: options.backend.to_string(),
                 message: format!(
                     "E4106: the schedule returned does not fly (first failure {:?}); \
                      report it with the instance",

@@ -61,25 +61,9 @@ impl MilpBackend {
             MilpBackend::Highs,
         ]
     }
-
-    /// The backend's name as used on the command line.
-    pub fn name(self) -> &'static str {
-        match self {
-            #[cfg(feature = "microlp")]
-            MilpBackend::Microlp => "microlp",
-            #[cfg(feature = "highs")]
-            MilpBackend::Highs => "highs",
-            #[cfg(not(any(feature = "microlp", feature = "highs")))]
-            MilpBackend::NoBackend => "none",
-        }
-    }
 }
 
-impl std::fmt::Display for MilpBackend {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.name())
-    }
-}
+display_as_value_name!(MilpBackend);
 
 /// Every MILP backend swarmplan knows, built into this build or not: its name on the command
 /// line and how to get a build with it.
@@ -98,7 +82,7 @@ const KNOWN_BACKENDS: [(&str, &str); 2] = [
 /// `E0012`: `name` is a backend swarmplan knows but this build was made without; `None` for a
 /// backend of this build or a name swarmplan does not know.
 pub fn backend_not_built(name: &str) -> Option<String> {
-    if MilpBackend::all().iter().any(|b| b.name() == name) {
+    if MilpBackend::all().iter().any(|b| b.to_string() == name) {
         return None;
     }
     KNOWN_BACKENDS
