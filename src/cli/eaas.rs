@@ -331,9 +331,10 @@ fn rows(
     let mut rows = Vec::new();
     // The exact models may each run up to --time-limit; the heuristics take milliseconds.
     let slow = |m: &HopMethod| matches!(m, HopMethod::Milp | HopMethod::Fluid | HopMethod::Fair);
-    let bar = match args.methods.iter().any(slow) {
-        true => super::progress::bar(args.methods.len() as u64, "methods"),
-        false => indicatif::ProgressBar::hidden(),
+    let bar = if args.methods.iter().any(slow) {
+        super::progress::bar(args.methods.len() as u64, "methods")
+    } else {
+        indicatif::ProgressBar::hidden()
     };
     for &m in &args.methods {
         bar.set_message(format!("{m:?}").to_lowercase());
