@@ -74,7 +74,7 @@ fn main() {
         None => MilpBackend::default(),
         Some(name) => *MilpBackend::all()
             .iter()
-            .find(|b| b.name() == name)
+            .find(|b| b.to_string() == name)
             .unwrap_or_else(|| panic!("backend {name} is not in this build")),
     };
     let mut sizes: Vec<(usize, usize, usize)> = args
@@ -98,7 +98,7 @@ fn main() {
     };
     println!(
         "backend {}, time limit {time_limit_s} s per solve, 3 hops per row",
-        backend.name()
+        backend
     );
     println!("| D | S | periods | reorder | milp median ms | statuses (opt/feas/infeas/none) | fluid median ms | fair QP median ms |");
     println!("|---|---|---|---|---|---|---|---|");
@@ -135,7 +135,7 @@ fn main() {
                 }
                 println!(
                     "| {nd} | {ns} | {periods} | {} | {:.1} | {}/{}/{}/{} | {:.2} | {:.2} |",
-                    reorder.name(),
+                    reorder,
                     median(ms),
                     counts[0],
                     counts[1],

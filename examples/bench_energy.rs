@@ -70,7 +70,7 @@ fn main() {
     println!(
         "select_formation, 200 edges: {:.2} ms -> {} for {:.2} m/s from {} deg",
         t.elapsed().as_secs_f64() * 1e3,
-        kind.name(),
+        kind,
         wind.speed_mps,
         wind.from_deg
     );

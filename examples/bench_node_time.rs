@@ -220,14 +220,14 @@ fn main() {
                     }
                     Err(err) => {
                         ms.push(10_000.0);
-                        eprintln!("milp {} n={n} k={k}: {err}", backend.name());
+                        eprintln!("milp {} n={n} k={k}: {err}", backend);
                     }
                 }
             }
             let max = ms.iter().copied().fold(0.0, f64::max);
             println!(
                 "{:<8} {n:>4} {k:>3} {:>15.2} {max:>12.2} {optimal:>9}/{reps_milp} {:>16.4} {agree:>4}/{reps_milp}",
-                backend.name(),
+                backend.to_string(),
                 median(&mut ms),
                 median(&mut ems)
             );

@@ -133,9 +133,9 @@ fn run(args: &Args) -> swarmplan::error::Result<bool> {
                 )?;
                 println!(
                     "{},{},{},{},{},{},{},{},{},{:.1}",
-                    name(&sharing),
-                    name(&positioning),
-                    name(&route),
+                    sharing,
+                    positioning,
+                    route,
                     tally.plans,
                     tally.delivered,
                     counts(&tally.failed_by_kind),
@@ -238,12 +238,4 @@ fn counts<K: std::fmt::Display>(map: &BTreeMap<K, usize>) -> String {
         .map(|(k, n)| format!("{k}={n}"))
         .collect::<Vec<_>>()
         .join(";")
-}
-
-/// The serde name of a unit enum value (`pb`, `location-aware`, ...).
-fn name<T: serde::Serialize>(value: &T) -> String {
-    match serde_json::to_value(value) {
-        Ok(serde_json::Value::String(s)) => s,
-        _ => String::new(),
-    }
 }

@@ -444,7 +444,7 @@ fn print_table(
         requests.len(),
         available,
         args.period_min,
-        backend.name(),
+        backend,
         args.time_limit,
         args.threads.max(1),
         elapsed_s

@@ -18,8 +18,24 @@
 //! Layout: [`problem`] holds the input types and their validation and knows nothing of solvers;
 //! [`solver`] the backend choice and solve status shared by every exact method. Each model the code
 //! builds is written up in `models/` under the name of the module that builds it.
-#![warn(missing_docs)]
+// Lints are set in Cargo.toml's `[lints]` table; the library also forbids unsafe code outright.
 #![forbid(unsafe_code)]
+
+/// `Display` for choice enums: the name the clap derive gives each value (kebab-case), which is
+/// also its serde name (`tests/choice_names.rs` checks that the two agree), so the names of
+/// methods, policies and backends have one source and no hand-written table.
+macro_rules! display_as_value_name {
+    ($($t:ty),+ $(,)?) => {$(
+        impl std::fmt::Display for $t {
+            fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                match clap::ValueEnum::to_possible_value(self) {
+                    Some(v) => f.pad(v.get_name()),
+                    None => Ok(()),
+                }
+            }
+        }
+    )+};
+}
 
 pub mod check;
 pub mod cli;

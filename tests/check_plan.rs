@@ -1,25 +1,18 @@
 //! The independent plan checker (`check::check_plan`): every method's plans pass it, and corrupted
 //! plans are rejected with the expected code.
 
-use std::path::Path;
+mod common;
+
+use common::{flat_instance, flat_stop_request, paper_195, repo_path};
 use swarmplan::check::plan_file::parse_plan_file;
 use swarmplan::check::{check_plan, check_report};
 use swarmplan::compose::{Context, PlanOptions, PlanOutcome, RequestReport, RouteMethod};
 use swarmplan::eaas::{FailureReason, HopFailure, SharingPolicy};
 use swarmplan::precompose::Positioning;
-use swarmplan::problem::io::{read_json, read_toml};
+use swarmplan::problem::io::read_json;
 use swarmplan::problem::profile::Candidates;
 use swarmplan::problem::SkywayGraph;
 use swarmplan::problem::{Network, Profile, Request, RequestSet};
-
-fn paper_195() -> (Network, SkywayGraph, Profile, Vec<Request>) {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let network: Network = read_json(&root.join("instances/paper-195/network.json")).unwrap();
-    let graph = SkywayGraph::new(&network).unwrap();
-    let profile: Profile = read_toml(&root.join("instances/profiles/paper.toml")).unwrap();
-    let set: RequestSet = read_json(&root.join("instances/paper-195/requests.json")).unwrap();
-    (network, graph, profile, set.requests)
-}
 
 fn codes(v: &[swarmplan::Violation]) -> Vec<&'static str> {
     v.iter().map(|x| x.code).collect()
@@ -348,16 +341,8 @@ fn a_valid_but_poor_pad_assignment_is_rejected_as_not_optimal() {
     // 6.655, 8.64 min on 2 pads. {0, 2} | {1} is a partition with makespan 6.655 + 8.64 =
     // 15.295 >= the bound max(8.64, 21.95 / 2) = 10.975, so only the optimality check (optimum
     // 13.31 = {0, 1} | {2}) rejects it.
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("instances/tiny");
-    let network: Network = read_json(&dir.join("flat-stop.json")).unwrap();
-    let graph = SkywayGraph::new(&network).unwrap();
-    let profile: Profile = read_toml(&dir.join("flat.toml")).unwrap();
-    let request = Request {
-        id: "stop".into(),
-        source: "A".into(),
-        destination: "B".into(),
-        packages_kg: vec![0.21, 0.21, 0.44],
-    };
+    let (network, graph, profile) = flat_instance("flat-stop.json");
+    let request = flat_stop_request("stop");
     let options = PlanOptions {
         sharing: SharingPolicy::None,
         positioning: Positioning::LocationAware,
@@ -457,8 +442,6 @@ fn every_method_plan_read_back_from_json_passes_the_checker() {
     assert_eq!(plans, 3 * 4 * 8);
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("instances/tiny");
-    let flat: Profile = read_toml(&dir.join("flat.toml")).unwrap();
     let every = [
         SharingPolicy::None,
         SharingPolicy::IdleSupport,
@@ -467,21 +450,14 @@ fn every_method_plan_read_back_from_json_passes_the_checker() {
         SharingPolicy::Exact,
         SharingPolicy::Fair,
     ];
-    let line: Network = read_json(&dir.join("flat-line.json")).unwrap();
-    let set: RequestSet = read_json(&dir.join("flat-requests.json")).unwrap();
-    let line_graph = SkywayGraph::new(&line).unwrap();
+    let (line, line_graph, flat) = flat_instance("flat-line.json");
+    let set: RequestSet = read_json(&repo_path("instances/tiny/flat-requests.json")).unwrap();
     let (plans, failures) = read_back_and_check(&line, &line_graph, &flat, &set.requests, &every);
     assert_eq!(plans, 3 * 6 * 8);
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 
-    let stop: Network = read_json(&dir.join("flat-stop.json")).unwrap();
-    let stop_graph = SkywayGraph::new(&stop).unwrap();
-    let request = Request {
-        id: "stop".into(),
-        source: "A".into(),
-        destination: "B".into(),
-        packages_kg: vec![0.21, 0.21, 0.44],
-    };
+    let (stop, stop_graph, flat) = flat_instance("flat-stop.json");
+    let request = flat_stop_request("stop");
     let (plans, failures) = read_back_and_check(&stop, &stop_graph, &flat, &[request], &every);
     assert_eq!(plans, 6 * 8);
     assert!(failures.is_empty(), "{}", failures.join("\n"));

@@ -2,15 +2,10 @@
 //! bound <= MILP optimum <= PB when PB flies on the shipped paper-195 instance), labelled gaps,
 //! and coded errors for bad input.
 
-use serde_json::Value;
-use std::process::{Command, Output};
+mod common;
 
-fn swarmplan(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_swarmplan"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
+use common::{eaas_r00001, swarmplan, tmp};
+use serde_json::Value;
 
 fn row<'a>(report: &'a Value, method: &str) -> &'a Value {
     report["rows"]
@@ -23,18 +18,11 @@ fn row<'a>(report: &'a Value, method: &str) -> &'a Value {
 
 #[test]
 fn eaas_orders_bound_optimum_and_heuristic_and_labels_the_gaps() {
-    let out = swarmplan(&[
-        "eaas",
-        "--request-id",
-        "r00001",
-        "--hop",
+    let out = eaas_r00001(
         "0",
-        "--methods",
         "pb,fb,milp,fluid,fair",
-        "--time-limit",
-        "20",
-        "--json",
-    ]);
+        &["--time-limit", "20", "--json"],
+    );
     assert_eq!(out.status.code(), Some(0), "{out:?}");
     let r: Value = serde_json::from_slice(&out.stdout).unwrap();
     let milp = row(&r, "milp");
@@ -73,12 +61,6 @@ fn eaas_rejects_a_hop_beyond_the_plan_and_a_bad_grid_with_codes() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("E4101"));
 }
 
-fn temp_path(name: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("swarmplan-cli-eaas-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
-}
-
 /// A report without its wall-clock times, the only field that differs between two runs.
 fn without_times(v: &Value) -> Value {
     match v {
@@ -98,8 +80,8 @@ fn a_written_hop_file_gives_the_report_of_the_request() {
     // r00001's plan (paper-195, paper profile): hop 6 flies n165 -> n164 -> n163 and ends on
     // 4 pads, hop 9 ends at the destination, which has none.
     for (hop, ends_on_pads) in [("6", true), ("9", false)] {
-        let file = temp_path(&format!("r00001-{hop}.json"));
-        let lp = temp_path(&format!("r00001-{hop}.lp"));
+        let file = tmp(&format!("r00001-{hop}.json"));
+        let lp = tmp(&format!("r00001-{hop}.lp"));
         let file_arg = file.to_str().unwrap();
         let common = ["--methods", "pb,milp", "--time-limit", "20", "--json"];
         let mut args = vec!["eaas", "--request-id", "r00001", "--hop", hop];
@@ -138,22 +120,12 @@ fn a_written_hop_file_gives_the_report_of_the_request() {
 
 #[test]
 fn a_bad_hop_file_is_reported_with_its_codes_and_exit_2() {
-    let good = temp_path("good.json");
-    let out = swarmplan(&[
-        "eaas",
-        "--request-id",
-        "r00001",
-        "--hop",
-        "6",
-        "--methods",
-        "pb",
-        "--write-hop",
-        good.to_str().unwrap(),
-    ]);
+    let good = tmp("good.json");
+    let out = eaas_r00001("6", "pb", &["--write-hop", good.to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(0), "{out:?}");
     let hop: Value = serde_json::from_str(&std::fs::read_to_string(&good).unwrap()).unwrap();
     let run = |name: &str, file: &Value| {
-        let path = temp_path(name);
+        let path = tmp(name);
         std::fs::write(&path, file.to_string()).unwrap();
         let out = swarmplan(&["eaas", "--hop-file", path.to_str().unwrap()]);
         assert_eq!(out.status.code(), Some(2), "{name}: {out:?}");
@@ -176,7 +148,7 @@ fn a_bad_hop_file_is_reported_with_its_codes_and_exit_2() {
     for code in ["E4115", "E4003", "hop.initial_slot", "E4103", "end.pads"] {
         assert!(err.contains(code), "{code}: {err}");
     }
-    let path = temp_path("not-json.json");
+    let path = tmp("not-json.json");
     std::fs::write(&path, "{\"schema_version\": 1,").unwrap();
     let out = swarmplan(&["eaas", "--hop-file", path.to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(2));
@@ -196,7 +168,7 @@ fn a_bad_hop_file_is_reported_with_its_codes_and_exit_2() {
 fn a_hop_into_a_destination_with_pads_is_scored_by_arrival_battery_not_node_time() {
     // r00000 (paper-195) flies n179 -> n049 without stopping; n049 has 2 pads, but the swarm
     // delivers there and does not recharge, so the hop has no node time.
-    let file = temp_path("r00000-0.json");
+    let file = tmp("r00000-0.json");
     let out = swarmplan(&[
         "eaas",
         "--request-id",

@@ -1,20 +1,9 @@
 //! `swarmplan generate`: writes valid files, same seed gives the same bytes, bad input exits 2.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
 
-fn swarmplan(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_swarmplan"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
-
-fn tmp(name: &str) -> PathBuf {
-    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli_generate");
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
-}
+use common::{repo_path, swarmplan, tmp};
+use std::path::Path;
 
 fn s(p: &Path) -> &str {
     p.to_str().unwrap()
@@ -28,6 +17,10 @@ fn generate_writes_valid_identical_files_for_the_same_seed() {
         tmp("r1.json"),
         tmp("r2.json"),
     );
+    // Left by an earlier run: generate does not overwrite a file without --force.
+    for f in [&n1, &n2, &r1, &r2, &tmp("n3.json")] {
+        let _ = std::fs::remove_file(f);
+    }
     for n in [&n1, &n2] {
         let out = swarmplan(&[
             "generate",
@@ -121,7 +114,7 @@ fn bad_numbers_and_bad_files_exit_2_with_codes() {
         ],
         "E1902",
     );
-    let line4 = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("instances/tiny/line4.json");
+    let line4 = repo_path("instances/tiny/line4.json");
     let line4 = s(&line4);
     assert_exit_2_with(
         &[
@@ -153,8 +146,7 @@ fn bad_numbers_and_bad_files_exit_2_with_codes() {
         ],
         "E3902",
     );
-    let invalid =
-        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("instances/tiny/invalid-network.json");
+    let invalid = repo_path("instances/tiny/invalid-network.json");
     let out = swarmplan(&[
         "generate",
         "requests",

@@ -2,39 +2,10 @@
 //! profile in its stated range, FB's work bound, and codes on unreadable files, non-UTF-8 files
 //! and command-line usage errors. Each reproducer exits 2 with its code, fast.
 
-use std::path::PathBuf;
-use std::process::{Command, Output};
+mod common;
 
-fn swarmplan(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_swarmplan"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
-
-fn repo(path: &str) -> String {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join(path)
-        .to_str()
-        .unwrap()
-        .to_string()
-}
-
-fn tmp(name: &str) -> PathBuf {
-    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli_hardening");
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
-}
-
-fn write(name: &str, text: &[u8]) -> String {
-    let path = tmp(name);
-    std::fs::write(&path, text).unwrap();
-    path.to_str().unwrap().to_string()
-}
-
-fn stderr(out: &Output) -> String {
-    String::from_utf8_lossy(&out.stderr).to_string()
-}
+use common::{repo_arg, repo_path, stderr, swarmplan, tmp, write_tmp, FLAT_STOP_REQUEST_ARGS};
+use std::process::Output;
 
 /// Asserts exit code 2 and that stderr names `code` and every one of `words`.
 fn assert_exit_2_with(out: &Output, code: &str, words: &[&str]) {
@@ -48,39 +19,28 @@ fn assert_exit_2_with(out: &Output, code: &str, words: &[&str]) {
 
 /// flat-stop (A - M - B, 2500 m each, pads at M) with one node or edge field replaced.
 fn flat_stop_with(name: &str, from: &str, to: &str) -> String {
-    let text = std::fs::read_to_string(repo("instances/tiny/flat-stop.json")).unwrap();
+    let text = std::fs::read_to_string(repo_path("instances/tiny/flat-stop.json")).unwrap();
     assert!(text.contains(from), "{from}");
-    write(name, text.replacen(from, to, 1).as_bytes())
+    write_tmp(name, text.replacen(from, to, 1).as_bytes())
 }
 
 /// The flat profile with one line replaced.
 fn flat_profile_with(name: &str, from: &str, to: &str) -> String {
-    let text = std::fs::read_to_string(repo("instances/tiny/flat.toml")).unwrap();
+    let text = std::fs::read_to_string(repo_path("instances/tiny/flat.toml")).unwrap();
     assert!(text.contains(from), "{from}");
-    write(name, text.replacen(from, to, 1).as_bytes())
+    write_tmp(name, text.replacen(from, to, 1).as_bytes())
 }
 
 fn solve_a_to_b(network: &str, profile: &str, extra: &[&str]) -> Output {
-    let mut args = vec![
-        "solve",
-        "--network",
-        network,
-        "--profile",
-        profile,
-        "--from",
-        "A",
-        "--to",
-        "B",
-        "--packages",
-        "0.21,0.21,0.44",
-    ];
+    let mut args = vec!["solve", "--network", network, "--profile", profile];
+    args.extend(FLAT_STOP_REQUEST_ARGS);
     args.extend_from_slice(extra);
     swarmplan(&args)
 }
 
 #[test]
 fn network_quantities_beyond_their_stated_ranges_exit_2_with_codes() {
-    let profile = repo("instances/tiny/flat.toml");
+    let profile = repo_arg("instances/tiny/flat.toml");
     let edge = r#"{ "from": "A", "to": "M", "wind_speed_mps""#;
     let cases: [(&str, String, &str, &[&str]); 7] = [
         (
@@ -151,7 +111,7 @@ fn network_quantities_beyond_their_stated_ranges_exit_2_with_codes() {
 
 #[test]
 fn profile_quantities_beyond_their_stated_ranges_exit_2_with_e2013() {
-    let network = repo("instances/tiny/flat-stop.json");
+    let network = repo_arg("instances/tiny/flat-stop.json");
     let cases = [
         // Was E4007 on legs[2] from inside the planner.
         ("speed_kmh = 30.0", "speed_kmh = 1e-300", "drone.speed_kmh"),
@@ -192,7 +152,7 @@ fn profile_quantities_beyond_their_stated_ranges_exit_2_with_e2013() {
 fn fb_with_a_tiny_lambda_ends_with_e4015_instead_of_running_for_minutes() {
     // lambda = 1 mAh at rho = 120 mAh/min: a round of 0.5 s, 600 rounds per support drone on a
     // 5-minute hop; 4 support drones ask for 2,400 rounds, over the bound of 500.
-    let network = repo("instances/tiny/flat-stop.json");
+    let network = repo_arg("instances/tiny/flat-stop.json");
     let profile = flat_profile_with("lambda1.toml", "lambda_mah = 1200.0", "lambda_mah = 1.0");
     let out = solve_a_to_b(&network, &profile, &["--sharing", "fb", "--support", "4"]);
     assert_exit_2_with(
@@ -212,7 +172,7 @@ fn unreadable_and_non_utf8_files_exit_2_with_e0008_and_e0009() {
     let dir = tmp("a-directory");
     std::fs::create_dir_all(&dir).unwrap();
     let dir = dir.to_str().unwrap();
-    let latin1 = write(
+    let latin1 = write_tmp(
         "latin1.json",
         b"{\"schema_version\": 1, \"name\": \"caf\xe9\"}",
     );

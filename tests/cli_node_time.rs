@@ -1,12 +1,13 @@
 //! `swarmplan node-time` end to end: the paper's example and bad input (exit code 2).
 
+mod common;
+
+use common::tmp;
 use std::process::Command;
 
+/// Exit code, standard output and standard error of the binary run with `args`.
 fn swarmplan(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_swarmplan"))
-        .args(args)
-        .output()
-        .expect("the binary runs");
+    let out = common::swarmplan(args);
     (
         out.status.code().unwrap_or(-1),
         String::from_utf8_lossy(&out.stdout).into_owned(),
@@ -49,9 +50,7 @@ fn paper_example_prints_200_70_and_60_minutes_as_json() {
 
 #[test]
 fn file_input_and_human_output_give_the_same_node_time() {
-    let dir = std::env::temp_dir().join(format!("swarmplan-nt-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join("stop.json");
+    let path = tmp("stop.json");
     std::fs::write(
         &path,
         r#"{"pads": 3, "charge_times_min": [60, 50, 40, 30, 20]}"#,
@@ -64,9 +63,7 @@ fn file_input_and_human_output_give_the_same_node_time() {
 
 #[test]
 fn bad_input_exits_2_with_a_coded_message() {
-    let dir = std::env::temp_dir().join(format!("swarmplan-nt-bad-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let malformed = dir.join("bad.json");
+    let malformed = tmp("bad.json");
     std::fs::write(&malformed, r#"{"pads": 3, "charge_times_min": [60, 50"#).unwrap();
     let malformed = malformed.to_str().unwrap().to_string();
     let cases: Vec<(Vec<&str>, Vec<&str>)> = vec![

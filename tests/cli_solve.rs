@@ -3,38 +3,18 @@
 //! codes 0 / 1 / 2, coded messages for bad input, and batch results independent of the thread
 //! count.
 
-use serde_json::Value;
-use std::path::PathBuf;
-use std::process::{Command, Output};
+mod common;
 
-fn swarmplan(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_swarmplan"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
+use common::{close, repo_arg, repo_path, swarmplan, tmp, FLAT_STOP_REQUEST_ARGS};
+use serde_json::Value;
+use std::process::Output;
 
 fn tiny(name: &str) -> String {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("instances/tiny")
-        .join(name)
-        .to_str()
-        .unwrap()
-        .to_string()
-}
-
-fn tmp(name: &str) -> PathBuf {
-    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli_solve");
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
+    repo_arg(&format!("instances/tiny/{name}"))
 }
 
 fn json(out: &Output) -> Value {
     serde_json::from_slice(&out.stdout).unwrap_or_else(|e| panic!("{e}: {out:?}"))
-}
-
-fn close(a: f64, b: f64) -> bool {
-    (a - b).abs() <= 1e-6 * (1.0 + b.abs())
 }
 
 /// `solve` on a flat instance with the given extra arguments.
@@ -54,20 +34,18 @@ fn solve_json_gives_the_hand_computed_delivery_time() {
         let out = solve(
             "flat-stop.json",
             &[
-                "--from",
-                "A",
-                "--to",
-                "B",
-                "--packages",
-                "0.21,0.21,0.44",
-                "--support",
-                "0",
-                "--sharing",
-                "none",
-                "--route",
-                route,
-                "--json",
-            ],
+                &FLAT_STOP_REQUEST_ARGS[..],
+                &[
+                    "--support",
+                    "0",
+                    "--sharing",
+                    "none",
+                    "--route",
+                    route,
+                    "--json",
+                ],
+            ]
+            .concat(),
         );
         assert_eq!(out.status.code(), Some(0), "{route}: {out:?}");
         let r = json(&out);
@@ -223,7 +201,7 @@ fn batch_gives_the_same_numbers_with_one_or_two_threads() {
             .values()
             .map(|n| n.as_u64().unwrap())
             .sum();
-        assert_eq!(failed + s["succeeded"].as_u64().unwrap(), 20, "{s}");
+        assert_eq!(failed + s["delivered"].as_u64().unwrap(), 20, "{s}");
     }
     assert_eq!(s1, s2);
     assert_eq!(p1, p2, "per-request outcomes identical byte for byte");
@@ -252,7 +230,7 @@ fn inspect_json_reports_formation_support_count_and_positions() {
             &net,
             "--profile",
             &profile,
-            "--request-file",
+            "--requests",
             &requests,
             "--request-id",
             "pb-fb",
@@ -305,7 +283,7 @@ fn sharing_delivers_every_request_the_swarm_delivers_without_it_on_sparse_195() 
     // n061 -> n058: -746 mAh); 12 of the first 300 requests delivered by the swarm with idle
     // support drones failed under FB and 4 under PB. A route flown without stopping with sharing
     // is flown at least as far, so every such request must stay delivered.
-    let net = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("instances/sparse-195/network.json");
+    let net = repo_path("instances/sparse-195/network.json");
     let per = tmp("sparse_per_request.json");
     let out = swarmplan(&[
         "batch",
@@ -413,7 +391,7 @@ fn request_files_with_a_wrong_schema_or_repeated_ids_are_refused_and_fields_keep
                 "solve",
                 "--network",
                 &net,
-                "--request-file",
+                "--requests",
                 &f,
                 "--request-id",
                 "r1",
@@ -434,7 +412,7 @@ fn request_files_with_a_wrong_schema_or_repeated_ids_are_refused_and_fields_keep
         "solve",
         "--network",
         &net,
-        "--request-file",
+        "--requests",
         &f,
         "--request-id",
         "r2",
@@ -458,10 +436,7 @@ fn counts_beyond_their_stated_bounds_are_coded_errors() {
     assert_eq!(out.status.code(), Some(2), "{err}");
     assert!(err.contains("[E0006] --support"), "{err}");
 
-    let paper = std::fs::read_to_string(
-        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("instances/profiles/paper.toml"),
-    )
-    .unwrap();
+    let paper = std::fs::read_to_string(repo_path("instances/profiles/paper.toml")).unwrap();
     for (from, to, code, field) in [
         (
             "select_swarm_size = 5 ",
@@ -520,17 +495,8 @@ fn counts_beyond_their_stated_bounds_are_coded_errors() {
 /// errors with exit 2.
 #[test]
 fn exact_sharing_solves_each_hop_and_bad_settings_exit_2() {
-    let args = [
-        "--from",
-        "A",
-        "--to",
-        "B",
-        "--packages",
-        "0.21,0.21,0.44",
-        "--support",
-        "1",
-    ];
-    let mut exact: Vec<&str> = args.to_vec();
+    let args = [&FLAT_STOP_REQUEST_ARGS[..], &["--support", "1"]].concat();
+    let mut exact: Vec<&str> = args.clone();
     exact.extend(["--sharing", "exact", "--json"]);
     let out = solve("flat-stop.json", &exact);
     assert_eq!(out.status.code(), Some(0), "{out:?}");
@@ -543,7 +509,7 @@ fn exact_sharing_solves_each_hop_and_bad_settings_exit_2() {
     // The direct hop (no schedule flies it) and the hop to M.
     assert_eq!(plan["hop_solves"]["solves"], 2, "{plan}");
     assert_eq!(plan["hop_solves"]["infeasible"], 1, "{plan}");
-    let mut pb: Vec<&str> = args.to_vec();
+    let mut pb: Vec<&str> = args.clone();
     pb.extend(["--sharing", "pb", "--json"]);
     let plan = json(&solve("flat-stop.json", &pb))["plan"].clone();
     assert!(close(plan["dt_min"].as_f64().unwrap(), 27.28), "{plan}");
@@ -553,7 +519,7 @@ fn exact_sharing_solves_each_hop_and_bad_settings_exit_2() {
         ("--hop-time-limit", "0", "E4105"),
         ("--period-min", "-1", "E4101"),
     ] {
-        let mut bad: Vec<&str> = args.to_vec();
+        let mut bad: Vec<&str> = args.clone();
         bad.extend(["--sharing", "exact", flag, value]);
         let out = solve("flat-stop.json", &bad);
         let err = String::from_utf8_lossy(&out.stderr);

@@ -15,24 +15,16 @@
 //!
 //! Every plan is also re-verified by the independent checker.
 
-use std::path::Path;
+mod common;
+
+use common::{assert_close, flat_instance};
 use swarmplan::check::check_plan;
 use swarmplan::compose::{Context, PlanOptions, PlanOutcome, RequestReport, RouteMethod};
 use swarmplan::eaas::SharingPolicy;
 use swarmplan::precompose::Positioning;
-use swarmplan::problem::io::{read_json, read_toml};
 use swarmplan::problem::profile::Candidates;
 use swarmplan::problem::SkywayGraph;
 use swarmplan::problem::{Network, Profile, Request};
-
-const TOL: f64 = 1e-6;
-
-fn assert_close(got: f64, expected: f64, what: &str) {
-    assert!(
-        (got - expected).abs() <= TOL * (1.0 + expected.abs()),
-        "{what}: got {got}, expected {expected}"
-    );
-}
 
 struct Tiny {
     network: Network,
@@ -41,10 +33,7 @@ struct Tiny {
 }
 
 fn tiny(file: &str) -> Tiny {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("instances/tiny");
-    let network: Network = read_json(&dir.join(file)).unwrap();
-    let graph = SkywayGraph::new(&network).unwrap();
-    let profile: Profile = read_toml(&dir.join("flat.toml")).unwrap();
+    let (network, graph, profile) = flat_instance(file);
     assert!(swarmplan::problem::profile::validate_profile(&profile).is_empty());
     Tiny {
         network,

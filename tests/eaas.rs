@@ -1,50 +1,19 @@
 //! Edge sharing model: hand-computed cases for none, PB and FB, fixed re-ordering, the support
 //! reserve, piecewise legs, and the independent checker.
 
+mod common;
+
+use common::{assert_close, close, drone, line, uniform_leg};
 use nalgebra::Vector2;
 use proptest::prelude::*;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use swarmplan::check::check_hop;
 use swarmplan::eaas::{
-    battery_trace, simulate, simulate_with, DroneState, HopOutcome, HopProblem, LegRates,
-    PbRequest, PolicyOptions, Readings, SharingPolicy,
+    battery_trace, simulate, simulate_with, HopOutcome, HopProblem, LegRates, PbRequest,
+    PolicyOptions, Readings, SharingPolicy,
 };
 use swarmplan::problem::Role;
-
-const TOL: f64 = 1e-6;
-
-fn close(a: f64, b: f64) -> bool {
-    (a - b).abs() <= TOL * (1.0 + b.abs())
-}
-
-fn assert_close(a: f64, b: f64, what: &str) {
-    assert!(close(a, b), "{what}: got {a}, expected {b}");
-}
-
-fn drone(role: Role, capacity_mah: f64, battery_mah: f64) -> DroneState {
-    DroneState {
-        role,
-        capacity_mah,
-        battery_mah,
-    }
-}
-
-/// One leg; `rates[d]` is drone d's rate in every slot.
-fn uniform_leg(duration_min: f64, rates: &[f64]) -> LegRates {
-    LegRates {
-        duration_min,
-        rate_mah_per_min: rates.iter().map(|&r| vec![r; rates.len()]).collect(),
-    }
-}
-
-/// Slots on the x axis at the given abscissae, drone d in slot d.
-fn line(xs: &[f64]) -> (Vec<Vector2<f64>>, Vec<usize>) {
-    (
-        xs.iter().map(|&x| Vector2::new(x, 0.0)).collect(),
-        (0..xs.len()).collect(),
-    )
-}
 
 fn passes(p: &HopProblem, o: &HopOutcome) {
     let v = check_hop(p, o);

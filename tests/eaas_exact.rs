@@ -2,9 +2,11 @@
 //! computation (`instances/eaas/known_optima.json`), from brute force over every grid schedule,
 //! or from the order the models' feasible sets are in; never from the code under test.
 
+mod common;
+
+use common::{close, drone, known_optima, uniform_leg, Known};
 use nalgebra::Vector2;
 use proptest::prelude::*;
-use serde::Deserialize;
 use swarmplan::check::check_hop;
 use swarmplan::eaas::milp::{
     solve_milp, ExactOutcome, ExactStatus, MilpOptions, Objective, Reorder,
@@ -16,42 +18,8 @@ use swarmplan::node_time;
 use swarmplan::problem::Role;
 use swarmplan::solver::MilpBackend;
 
-const TOL: f64 = 1e-6;
-
-fn close(a: f64, b: f64) -> bool {
-    (a - b).abs() <= TOL * (1.0 + b.abs())
-}
-
-#[derive(Deserialize)]
-struct Table {
-    schema_version: u32,
-    instances: Vec<Known>,
-}
-
-#[derive(Deserialize)]
-#[allow(dead_code)]
-struct Known {
-    name: String,
-    description: String,
-    problem: HopProblem,
-    objective: Objective,
-    reorder: Reorder,
-    period_min: f64,
-    optimum: f64,
-    source: String,
-}
-
-fn table() -> Table {
-    let text = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/instances/eaas/known_optima.json"
-    ))
-    .unwrap();
-    serde_json::from_str(&text).unwrap()
-}
-
 fn known(name: &str) -> Known {
-    table()
+    known_optima()
         .instances
         .into_iter()
         .find(|k| k.name == name)
@@ -91,7 +59,7 @@ fn brute_node_time(p: &HopProblem, pads: usize, pad_rate: f64, fin: &[f64]) -> f
 
 #[test]
 fn known_optima_table_is_reproduced_by_the_milp_on_every_backend() {
-    let t = table();
+    let t = known_optima();
     assert_eq!(t.schema_version, 1);
     let mut failing = Vec::new();
     for backend in MilpBackend::all() {
@@ -110,12 +78,7 @@ fn known_optima_table_is_reproduced_by_the_milp_on_every_backend() {
             if !ok {
                 failing.push(format!(
                     "{} on {}: {:?} objective {:?} model {:?}, expected {}",
-                    k.name,
-                    backend.name(),
-                    o.status,
-                    o.objective,
-                    o.model_objective,
-                    k.optimum
+                    k.name, backend, o.status, o.objective, o.model_objective, k.optimum
                 ));
             }
         }
@@ -281,26 +244,11 @@ fn grid_cuts_legs_into_equal_periods_at_most_period_min_long() {
 /// rates, one leg of `periods` minutes.
 fn tiny(batteries: [f64; 3], rates: [f64; 3], rho: f64, delta: f64, periods: usize) -> HopProblem {
     HopProblem {
-        legs: vec![LegRates {
-            duration_min: periods as f64,
-            rate_mah_per_min: rates.iter().map(|&r| vec![r; 3]).collect(),
-        }],
+        legs: vec![uniform_leg(periods as f64, &rates)],
         drones: vec![
-            DroneState {
-                role: Role::Delivery,
-                capacity_mah: 100.0,
-                battery_mah: batteries[0],
-            },
-            DroneState {
-                role: Role::Delivery,
-                capacity_mah: 100.0,
-                battery_mah: batteries[1],
-            },
-            DroneState {
-                role: Role::Support,
-                capacity_mah: 200.0,
-                battery_mah: batteries[2],
-            },
+            drone(Role::Delivery, 100.0, batteries[0]),
+            drone(Role::Delivery, 100.0, batteries[1]),
+            drone(Role::Support, 200.0, batteries[2]),
         ],
         slots_m: vec![
             Vector2::new(-1.0, 0.0),

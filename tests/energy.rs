@@ -1,6 +1,9 @@
 //! Energy model and formations: hand-computed rates and the paper's qualitative findings
 //! (section 5.1, after Alkouz et al. 2020).
 
+mod common;
+
+use common::shipped_profile;
 use nalgebra::Vector2;
 use proptest::prelude::*;
 use swarmplan::energy::{
@@ -9,19 +12,11 @@ use swarmplan::energy::{
 };
 use swarmplan::formation::slots_m;
 
-use swarmplan::problem::io::read_toml;
 use swarmplan::problem::profile::validate_profile;
 use swarmplan::problem::{Drone, FormationKind, Profile, Role, Swarm, Wind};
 
-fn profile(name: &str) -> Profile {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("instances/profiles")
-        .join(format!("{name}.toml"));
-    read_toml(&path).expect("shipped profile parses")
-}
-
 fn paper() -> Profile {
-    profile("paper")
+    shipped_profile("paper")
 }
 
 /// Sum over the drones of the position factors of `kind` with `n` drones on a leg flown north.
@@ -60,7 +55,7 @@ fn single_drone_swarm(payload_kg: f64) -> Swarm {
 #[test]
 fn shipped_profiles_validate() {
     for name in ["paper", "fast-sharing"] {
-        let v = validate_profile(&profile(name));
+        let v = validate_profile(&shipped_profile(name));
         assert!(v.is_empty(), "{name}: {v:?}");
     }
 }

@@ -2,30 +2,18 @@
 //! delivery times, the candidate pruning of Algorithm 1 against solving every candidate, and the
 //! independent plan checker on every plan.
 
-use std::path::Path;
+mod common;
+
+use common::{assert_close, flat_instance, flat_stop_request, paper_195, TOL};
 use swarmplan::check::check_plan;
 use swarmplan::compose::{Context, PlanOptions, RequestReport, RouteMethod};
 use swarmplan::eaas::exact_hop::ExactSettings;
 use swarmplan::eaas::milp::ExactStatus;
 use swarmplan::eaas::SharingPolicy;
 use swarmplan::precompose::Positioning;
-use swarmplan::problem::io::{read_json, read_toml};
 use swarmplan::problem::SkywayGraph;
-use swarmplan::problem::{Network, Profile, Request, RequestSet};
+use swarmplan::problem::{Network, Profile, Request};
 use swarmplan::solver::MilpBackend;
-
-const TOL: f64 = 1e-6;
-
-fn assert_close(got: f64, expected: f64, what: &str) {
-    assert!(
-        (got - expected).abs() <= TOL * (1.0 + expected.abs()),
-        "{what}: got {got}, expected {expected}"
-    );
-}
-
-fn root() -> &'static Path {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-}
 
 /// Plans `request` and asserts the independent checker accepts the plan.
 fn plan_checked(
@@ -68,16 +56,8 @@ fn plan_checked(
 /// So dt = 5 + 15.295 + 5 = 25.295 under exact (on every backend) and fair, 27.28 under PB.
 #[test]
 fn exact_and_fair_routes_reach_the_half_total_charge_bound_where_pb_overshares() {
-    let dir = root().join("instances/tiny");
-    let network: Network = read_json(&dir.join("flat-stop.json")).unwrap();
-    let graph = SkywayGraph::new(&network).unwrap();
-    let profile: Profile = read_toml(&dir.join("flat.toml")).unwrap();
-    let request = Request {
-        id: "flat-stop".into(),
-        source: "A".into(),
-        destination: "B".into(),
-        packages_kg: vec![0.21, 0.21, 0.44],
-    };
+    let (network, graph, profile) = flat_instance("flat-stop.json");
+    let request = flat_stop_request("flat-stop");
     let expected = [
         (SharingPolicy::Pb, 27.28),
         (SharingPolicy::Exact, 25.295),
@@ -131,14 +111,11 @@ fn exact_and_fair_routes_reach_the_half_total_charge_bound_where_pb_overshares()
 /// the same delivery time, on a paper-195 request that stops several times.
 #[test]
 fn pruned_candidate_search_picks_what_solving_every_candidate_picks() {
-    let network: Network = read_json(&root().join("instances/paper-195/network.json")).unwrap();
-    let graph = SkywayGraph::new(&network).unwrap();
-    let set: RequestSet = read_json(&root().join("instances/paper-195/requests.json")).unwrap();
+    let (network, graph, profile, requests) = paper_195();
     let mut stops = 0;
-    let profile: Profile = read_toml(&root().join("instances/profiles/paper.toml")).unwrap();
     // r00001 stops 4 to 8 times under these methods; solving every candidate takes 394 to 719
     // hop solves (a few seconds), against 9 to 17 with pruning.
-    let request = set.requests.iter().find(|r| r.id == "r00001").unwrap();
+    let request = requests.iter().find(|r| r.id == "r00001").unwrap();
     for route in [RouteMethod::Sequential, RouteMethod::Astar] {
         for sharing in [SharingPolicy::Exact, SharingPolicy::Fair] {
             let options = PlanOptions {

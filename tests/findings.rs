@@ -18,24 +18,17 @@
 //! times are compared over different delivered sets and execution times are wall-clock, so neither
 //! is asserted).
 
+mod common;
+
+use common::{repo_arg, swarmplan};
 use serde_json::Value;
 use std::collections::BTreeMap;
-use std::path::PathBuf;
-use std::process::Command;
-
-fn path(rel: &str) -> String {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join(rel)
-        .to_str()
-        .unwrap()
-        .to_string()
-}
 
 /// Delivered counts of one `batch --json` run, keyed by "sharing/positioning/route".
 fn batch(extra: &[&str]) -> BTreeMap<String, (u64, u64)> {
     let (net, profile) = (
-        path("instances/findings-195/network.json"),
-        path("instances/profiles/paper-findings.toml"),
+        repo_arg("instances/findings-195/network.json"),
+        repo_arg("instances/profiles/paper-findings.toml"),
     );
     let mut args = vec![
         "batch",
@@ -50,10 +43,7 @@ fn batch(extra: &[&str]) -> BTreeMap<String, (u64, u64)> {
         "--json",
     ];
     args.extend_from_slice(extra);
-    let out = Command::new(env!("CARGO_BIN_EXE_swarmplan"))
-        .args(&args)
-        .output()
-        .expect("the binary runs");
+    let out = swarmplan(&args);
     assert!(out.status.success(), "{out:?}");
     let rows: Value =
         serde_json::from_slice(&out.stdout).unwrap_or_else(|e| panic!("{e}: {out:?}"));
@@ -66,7 +56,7 @@ fn batch(extra: &[&str]) -> BTreeMap<String, (u64, u64)> {
             o["positioning"].as_str().unwrap(),
             o["route"].as_str().unwrap()
         );
-        let delivered = row["succeeded"].as_u64().unwrap();
+        let delivered = row["delivered"].as_u64().unwrap();
         let requests = row["requests"].as_u64().unwrap();
         counts.insert(key, (delivered, requests));
     }

@@ -7,9 +7,11 @@
 //! Each property tries `FUZZ_CASES` cases by default (a few seconds in release); set
 //! `PROPTEST_CASES=20000` for a longer run.
 
+mod common;
+
+use common::{eaas_r00001, repo_path, tmp};
 use proptest::prelude::*;
 use proptest::test_runner::TestCaseError;
-use std::path::PathBuf;
 use std::sync::OnceLock;
 use swarmplan::check::check_report;
 use swarmplan::check::plan_file::parse_plan_file;
@@ -37,10 +39,6 @@ fn config() -> ProptestConfig {
     }
 }
 
-fn repo(path: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(path)
-}
-
 /// The valid files mutations start from.
 struct Seeds {
     network: String,
@@ -61,31 +59,17 @@ struct Seeds {
 fn seeds() -> &'static Seeds {
     static SEEDS: OnceLock<Seeds> = OnceLock::new();
     SEEDS.get_or_init(|| {
-        let network = std::fs::read_to_string(repo("instances/paper-195/network.json")).unwrap();
-        let profile = std::fs::read_to_string(repo("instances/profiles/paper.toml")).unwrap();
-        let all = std::fs::read_to_string(repo("instances/paper-195/requests.json")).unwrap();
+        let network =
+            std::fs::read_to_string(repo_path("instances/paper-195/network.json")).unwrap();
+        let profile = std::fs::read_to_string(repo_path("instances/profiles/paper.toml")).unwrap();
+        let all = std::fs::read_to_string(repo_path("instances/paper-195/requests.json")).unwrap();
         let mut set: RequestSet = parse_json(&all, "requests").unwrap();
         set.requests.truncate(30);
         let first_request = set.requests[0].clone();
         let paper: Profile = parse_toml(&profile, "paper").unwrap();
         let requests = serde_json::to_string_pretty(&set).unwrap();
-        let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("fuzz");
-        std::fs::create_dir_all(&dir).unwrap();
-        let hop_path = dir.join("hop.json");
-        let out = std::process::Command::new(env!("CARGO_BIN_EXE_swarmplan"))
-            .args([
-                "eaas",
-                "--request-id",
-                "r00001",
-                "--hop",
-                "0",
-                "--methods",
-                "pb",
-            ])
-            .arg("--write-hop")
-            .arg(&hop_path)
-            .output()
-            .unwrap();
+        let hop_path = tmp("hop.json");
+        let out = eaas_r00001("0", "pb", &["--write-hop", hop_path.to_str().unwrap()]);
         assert_eq!(out.status.code(), Some(0), "{out:?}");
         let hop = std::fs::read_to_string(&hop_path).unwrap();
         let paper_195: Network = parse_json(&network, "network").unwrap();
@@ -442,9 +426,7 @@ proptest! {
     fn arbitrary_bytes_in_a_file_are_read_or_coded(
         bytes in proptest::collection::vec(any::<u8>(), 0..64)
     ) {
-        let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("fuzz");
-        std::fs::create_dir_all(&dir).unwrap();
-        let path = dir.join("bytes.bin");
+        let path = tmp("bytes.bin");
         std::fs::write(&path, &bytes).unwrap();
         let r = swarmplan::problem::io::read_text(&path);
         coded("read_text", &r)?;

@@ -4,9 +4,10 @@
 //! reader here, not by the code under test), and with the `highs` feature the file read back and
 //! solved by HiGHS to the known optimum.
 
-use serde::Deserialize;
+mod common;
+
+use common::{close, known_optima, tmp, Known, TOL};
 use std::collections::HashMap;
-use std::path::PathBuf;
 use swarmplan::eaas::milp::{
     lp_text, solve_milp, write_lp, ExactStatus, MilpOptions, Objective, Reorder,
 };
@@ -15,39 +16,6 @@ use swarmplan::problem::Role;
 #[cfg(feature = "highs")]
 use swarmplan::solver::MilpBackend;
 
-const TOL: f64 = 1e-6;
-
-fn close(a: f64, b: f64) -> bool {
-    (a - b).abs() <= TOL * (1.0 + b.abs())
-}
-
-#[derive(Deserialize)]
-struct Table {
-    instances: Vec<Known>,
-}
-
-#[derive(Deserialize)]
-#[allow(dead_code)]
-struct Known {
-    name: String,
-    description: String,
-    problem: HopProblem,
-    objective: Objective,
-    reorder: Reorder,
-    period_min: f64,
-    optimum: f64,
-    source: String,
-}
-
-fn table() -> Vec<Known> {
-    let text = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/instances/eaas/known_optima.json"
-    ))
-    .unwrap();
-    serde_json::from_str::<Table>(&text).unwrap().instances
-}
-
 fn options(reorder: Reorder, period_min: f64) -> MilpOptions {
     MilpOptions {
         period_min,
@@ -55,12 +23,6 @@ fn options(reorder: Reorder, period_min: f64) -> MilpOptions {
         time_limit_s: 60.0,
         ..MilpOptions::default()
     }
-}
-
-fn temp_path(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("swarmplan-lp-export-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
 }
 
 /// Terms `coefficient name` of a linear expression.
@@ -201,8 +163,8 @@ fn expected_moves(p: &HopProblem, reorder: Reorder) -> Vec<Move> {
 #[test]
 fn lp_file_states_the_hop_and_has_the_size_of_the_model() {
     let mut failing = Vec::new();
-    for k in table() {
-        let path = temp_path(&format!("{}.lp", k.name));
+    for k in known_optima().instances {
+        let path = tmp(&format!("{}.lp", k.name));
         let about = format!("known optimum {}", k.name);
         let size = write_lp(
             &k.problem,
@@ -254,7 +216,7 @@ fn lp_file_states_the_hop_and_has_the_size_of_the_model() {
             format!("hop line {}", header(&lp, "hop")),
         );
         check(
-            header(&lp, "reorder") == k.reorder.name(),
+            header(&lp, "reorder") == k.reorder.to_string(),
             "reorder line".into(),
         );
         check(
@@ -393,7 +355,7 @@ fn point_of(k: &Known, lp: &Lp, transfers: &[swarmplan::eaas::Transfer]) -> Hash
 fn the_milp_optimum_is_a_point_of_the_lp_file_with_the_same_objective() {
     // Max-min and feasibility hops: their variables are all fixed by the schedule.
     let mut checked = 0;
-    for k in table() {
+    for k in known_optima().instances {
         if matches!(k.objective, Objective::NodeTime { .. }) {
             continue;
         }
@@ -438,7 +400,7 @@ fn the_milp_optimum_is_a_point_of_the_lp_file_with_the_same_objective() {
 
 #[test]
 fn lp_export_rejects_a_bad_grid_with_its_code() {
-    let k = &table()[0];
+    let k = &known_optima().instances[0];
     let err = lp_text(&k.problem, &k.objective, &options(k.reorder, 0.0), "x").unwrap_err();
     assert!(err.to_string().contains("E4101"), "{err}");
     let mut still = k.problem.clone();
@@ -453,6 +415,7 @@ fn lp_export_rejects_a_bad_grid_with_its_code() {
 #[test]
 fn highs_reads_the_lp_file_and_finds_the_known_optimum() {
     use std::ffi::CString;
+    #[allow(unsafe_code)]
     fn solve_file(path: &std::path::Path) -> (highs_sys::HighsInt, f64) {
         let file = CString::new(path.to_str().unwrap()).unwrap();
         let key = |s: &str| CString::new(s).unwrap();
@@ -475,17 +438,17 @@ fn highs_reads_the_lp_file_and_finds_the_known_optimum() {
         }
     }
     let mut failing = Vec::new();
-    for k in table() {
+    for k in known_optima().instances {
         for reorder in [k.reorder, Reorder::Free] {
             let opt = options(reorder, k.period_min);
-            let path = temp_path(&format!("{}-{}.lp", k.name, reorder.name()));
+            let path = tmp(&format!("{}-{}.lp", k.name, reorder));
             write_lp(&k.problem, &k.objective, &opt, &k.name, &path).unwrap();
             let (status, value) = solve_file(&path);
             if status != highs_sys::MODEL_STATUS_OPTIMAL {
                 failing.push(format!(
                     "{} {}: HiGHS status {status}",
                     k.name,
-                    reorder.name()
+                    reorder.to_string()
                 ));
                 continue;
             }
@@ -500,8 +463,8 @@ fn highs_reads_the_lp_file_and_finds_the_known_optimum() {
                     failing.push(format!(
                         "{} {} on {}: file {value}, solve_milp {:?} {model}",
                         k.name,
-                        reorder.name(),
-                        backend.name(),
+                        reorder.to_string(),
+                        backend.to_string(),
                         o.status
                     ));
                 }
@@ -510,21 +473,18 @@ fn highs_reads_the_lp_file_and_finds_the_known_optimum() {
     }
     // A hop of the shipped instance (r00001's last hop: 11 legs, 16 periods of uneven length,
     // max-min): the file's optimum is the bound (the model objective) of `eaas --methods milp`.
-    let path = temp_path("r00001-9.lp");
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_swarmplan"))
-        .args([
-            "eaas",
-            "--request-id",
-            "r00001",
-            "--hop",
-            "9",
-            "--methods",
-            "milp",
+    let path = tmp("r00001-9.lp");
+    let out = common::eaas_r00001(
+        "9",
+        "milp",
+        &[
             "--json",
-        ])
-        .args(["--backend", "highs", "--write-lp", path.to_str().unwrap()])
-        .output()
-        .unwrap();
+            "--backend",
+            "highs",
+            "--write-lp",
+            path.to_str().unwrap(),
+        ],
+    );
     assert_eq!(out.status.code(), Some(0), "{out:?}");
     let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let milp = &report["rows"][0];

@@ -1,6 +1,9 @@
 //! Skyway graph on the hand-made instances of instances/tiny (facts computed in its README), and the
 //! generator's stated properties.
 
+mod common;
+
+use common::repo_path;
 use proptest::prelude::*;
 use std::collections::VecDeque;
 use std::path::PathBuf;
@@ -11,9 +14,7 @@ use swarmplan::problem::Network;
 use swarmplan::problem::SkywayGraph;
 
 fn instance(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("instances")
-        .join(name)
+    repo_path("instances").join(name)
 }
 
 fn tiny(name: &str) -> SkywayGraph {

@@ -1,6 +1,9 @@
 //! Node time (P||Cmax): the paper's example, exact against brute force, LPT's guarantee, MILP on
 //! every backend, the known-optima table, validation.
 
+mod common;
+
+use common::repo_path;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::Deserialize;
@@ -202,7 +205,7 @@ fn milp_equals_exact_on_every_backend() {
             assert!(
                 (m.makespan_min - e.makespan_min).abs() <= 1e-6 * e.makespan_min.max(1.0),
                 "{} case {case}: k={k} times={times:?}: milp {} exact {}",
-                backend.name(),
+                backend,
                 m.makespan_min,
                 e.makespan_min
             );
@@ -235,10 +238,7 @@ struct KnownOptimum {
 
 #[test]
 fn known_optima_table_is_reproduced_by_exact_and_milp() {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/instances/node_time/known_optima.json"
-    );
+    let path = repo_path("instances/node_time/known_optima.json");
     let table: KnownOptima = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
     assert!(table.instances.len() >= 5);
     let limits = Limits {
@@ -263,10 +263,7 @@ fn known_optima_table_is_reproduced_by_exact_and_milp() {
                 if (m.makespan_min - inst.optimum_min).abs() > 1e-6 * inst.optimum_min.max(1.0) {
                     failures.push(format!(
                         "{}: milp on {} {}, table {}",
-                        inst.name,
-                        backend.name(),
-                        m.makespan_min,
-                        inst.optimum_min
+                        inst.name, backend, m.makespan_min, inst.optimum_min
                     ));
                 }
             }

@@ -1,23 +1,20 @@
 //! Pre-composition (paper 5.1): averaged wind, formation selection, support count (Eq. 1, Eq. 2,
 //! Table 2), positioning; and profile validation.
 
+mod common;
+
+use common::{repo_path, shipped_profile};
 use proptest::prelude::*;
 use swarmplan::energy::slot_factors;
 use swarmplan::precompose::{
     averaged_wind, build_swarm, select_formation, support_count, Positioning,
 };
-use swarmplan::problem::io::{parse_toml, read_toml};
+use swarmplan::problem::io::parse_toml;
 use swarmplan::problem::profile::{
     validate_profile, FailureModel, FailureTerms, FailureWeights, RedundancyLevel,
 };
 use swarmplan::problem::FormationKind;
 use swarmplan::problem::{Edge, Network, Node, Profile, RequestSet, Role, Wind};
-
-fn shipped_profile(name: &str) -> Profile {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join(format!("instances/profiles/{name}.toml"));
-    read_toml(&path).expect("shipped profile parses")
-}
 
 fn paper() -> Profile {
     shipped_profile("paper")
@@ -282,12 +279,9 @@ fn per_unit_weights_may_exceed_1_but_not_be_negative_and_normalised_ones_stay_in
     let codes: Vec<(&str, &str)> = v.iter().map(|x| (x.code, x.field.as_str())).collect();
     assert_eq!(codes, [("E2021", "failure.weights")]);
     // An unknown reading of the terms is a TOML error with its code.
-    let text = std::fs::read_to_string(
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("instances/profiles/redundancy-levels.toml"),
-    )
-    .unwrap()
-    .replace("terms = \"per-unit\"", "terms = \"per-minute\"");
+    let text = std::fs::read_to_string(repo_path("instances/profiles/redundancy-levels.toml"))
+        .unwrap()
+        .replace("terms = \"per-unit\"", "terms = \"per-minute\"");
     let err = parse_toml::<Profile>(&text, "bad.toml").unwrap_err();
     assert_eq!(err.exit_code(), 2);
     assert!(err.to_string().contains("E0002"), "{err}");
@@ -330,14 +324,13 @@ fn every_row_of_table_2_is_reached_on_the_first_200_paper_195_requests_under_red
     // + 0.1099 / 4 + 0.0007599 W), W the mean edge wind speed, d by the Dijkstra above.
     // The expected counts [11, 55, 83, 37, 14] of 200 come from an independent Python script
     // (own JSON reading and Dijkstra); the closest P to a row boundary is 0.049 points away.
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
     let p = shipped_profile("redundancy-levels");
     assert!(validate_profile(&p).is_empty());
     let net: Network =
-        swarmplan::problem::io::read_json(&root.join("instances/paper-195/network.json"))
+        swarmplan::problem::io::read_json(&repo_path("instances/paper-195/network.json"))
             .expect("network parses");
     let set: RequestSet =
-        swarmplan::problem::io::read_json(&root.join("instances/paper-195/requests.json"))
+        swarmplan::problem::io::read_json(&repo_path("instances/paper-195/requests.json"))
             .expect("requests parse");
     let w_mps = net.edges.iter().map(|s| s.wind_speed_mps).sum::<f64>() / net.edges.len() as f64;
     assert!((w_mps - 5.262).abs() < 5e-4, "{w_mps}");
@@ -509,11 +502,9 @@ fn redundancy_levels_parse_from_the_paper_notation_and_bad_ones_are_coded_errors
         Ok(RedundancyLevel::TwoNPlusOne)
     );
     assert_eq!(RedundancyLevel::TwoNPlusOne.support_drones(3), 5);
-    let text = std::fs::read_to_string(
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("instances/profiles/paper.toml"),
-    )
-    .unwrap()
-    .replace("level = \"n+3\"", "level = \"n-3\"");
+    let text = std::fs::read_to_string(repo_path("instances/profiles/paper.toml"))
+        .unwrap()
+        .replace("level = \"n+3\"", "level = \"n-3\"");
     let err = parse_toml::<Profile>(&text, "bad.toml").unwrap_err();
     assert_eq!(err.exit_code(), 2);
     assert!(err.to_string().contains("E0002"), "{err}");

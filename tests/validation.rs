@@ -1,6 +1,9 @@
 //! Validation reports every violation at once, each with its code and field. Expected lists are the
 //! ones written out by hand in instances/tiny/README.md.
 
+mod common;
+
+use common::repo_path;
 use std::path::PathBuf;
 use swarmplan::error::Error;
 use swarmplan::problem::io::{parse_json, read_json};
@@ -9,9 +12,7 @@ use swarmplan::problem::SkywayGraph;
 use swarmplan::problem::{Network, Request, RequestSet};
 
 fn tiny(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("instances/tiny")
-        .join(name)
+    repo_path("instances/tiny").join(name)
 }
 
 fn codes_and_fields(v: &[swarmplan::Violation]) -> Vec<(&'static str, String)> {
@@ -223,7 +224,7 @@ fn file_readers_name_the_file_in_every_field() {
 
 /// The shipped profiles, each as a TOML table.
 fn shipped_profiles() -> Vec<(String, toml::Table)> {
-    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("instances/profiles");
+    let dir = repo_path("instances/profiles");
     let mut out = Vec::new();
     for entry in std::fs::read_dir(dir).unwrap() {
         let path = entry.unwrap().path();

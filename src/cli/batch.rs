@@ -1,7 +1,7 @@
 //! `swarmplan batch`: plan every request of a request set with one or more method combinations and
 //! report success counts (with their denominator), delivery and node times, and run time.
 
-use super::inputs::{self, ExactArgs, InstanceArgs};
+use super::inputs::{ExactArgs, InstanceArgs};
 use crate::compose::{
     lpt_node_time_gaps, Context, LptGapSummary, PlanOptions, RequestReport, RouteMethod,
 };
@@ -10,6 +10,7 @@ use crate::eaas::SharingPolicy;
 use crate::error::{Error, Result};
 use crate::precompose::Positioning;
 use crate::problem::{io, Request};
+use indicatif::ProgressBar;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -25,7 +26,7 @@ pub struct BatchArgs {
     #[command(flatten)]
     pub exact: ExactArgs,
     /// Request set (JSON) [default: the shipped paper-195 requests].
-    #[arg(long, value_name = "FILE")]
+    #[arg(long, alias = "request-file", value_name = "FILE")]
     pub requests: Option<PathBuf>,
     /// Plan only the first N requests.
     #[arg(long, value_name = "N")]
@@ -68,7 +69,7 @@ pub struct Summary {
     /// The combination.
     pub options: PlanOptions,
     /// Requests delivered.
-    pub succeeded: usize,
+    pub delivered: usize,
     /// Requests planned (the denominator).
     pub requests: usize,
     /// Requests not delivered, by the kind of their outcome (`dead-end`, `hop-infeasible`,
@@ -124,8 +125,8 @@ pub fn run(args: BatchArgs) -> Result<i32> {
             "give --threads 1 or more",
         ));
     }
-    let instance = args.instance.load()?;
-    let mut requests = inputs::load_requests(args.requests.as_deref())?.requests;
+    let (instance, set) = args.instance.load_with_requests(args.requests.as_deref())?;
+    let mut requests = set.requests;
     if let Some(n) = args.limit {
         requests.truncate(n);
     }
@@ -144,22 +145,27 @@ pub fn run(args: BatchArgs) -> Result<i32> {
     let combos = combinations(&args);
     let mut summaries = Vec::new();
     let mut outcomes = Vec::new();
+    let bar = super::progress::bar((combos.len() * requests.len()) as u64, "requests");
     for options in combos {
+        bar.set_message(format!(
+            "{} {} {}",
+            options.sharing, options.positioning, options.route
+        ));
         let start = Instant::now();
-        let reports = plan_all(&context, requests, &options, args.threads)?;
+        let reports = plan_all(&context, requests, &options, args.threads, &bar)?;
         let wall_ms = start.elapsed().as_secs_f64() * 1e3;
         let summary = summarise(options, &reports, wall_ms)?;
         if !args.json {
-            eprintln!(
+            bar.suspend(|| eprintln!(
                 "sharing {:<4} positioning {:<14} route {:<14} delivered {}/{} mean dt {:.2} min, {:.0} ms",
-                label(&options.sharing),
-                label(&options.positioning),
-                options.route.name(),
-                summary.succeeded,
+                options.sharing,
+                options.positioning,
+                options.route,
+                summary.delivered,
                 summary.requests,
                 summary.mean_dt_min,
                 summary.wall_ms
-            );
+            ));
         }
         if args.per_request.is_some() {
             outcomes.extend(reports.iter().map(|r| Outcome {
@@ -175,21 +181,23 @@ pub fn run(args: BatchArgs) -> Result<i32> {
         }
         summaries.push(summary);
     }
+    bar.finish_and_clear();
     if let Some(path) = &args.per_request {
         io::write_json(path, &outcomes)?;
     }
     if args.json {
         super::print_json(&summaries)?;
     } else {
+        // Data, as the JSON: every float with all its digits (the lines on stderr are rounded).
         outln!("sharing,positioning,route,delivered,requests,mean_dt_min,mean_nt_min,mean_stops,stops,lpt_optimal,lpt_mean_gap,lpt_max_gap,hop_solves,hop_solves_unproven,wall_ms");
         for s in &summaries {
             let hops = s.hop_solves.unwrap_or_default();
             outln!(
-                "{},{},{},{},{},{:.3},{:.3},{:.3},{},{},{:.6},{:.6},{},{},{:.0}",
-                label(&s.options.sharing),
-                label(&s.options.positioning),
-                s.options.route.name(),
-                s.succeeded,
+                "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+                s.options.sharing,
+                s.options.positioning,
+                s.options.route,
+                s.delivered,
                 s.requests,
                 s.mean_dt_min,
                 s.mean_nt_min,
@@ -208,13 +216,6 @@ pub fn run(args: BatchArgs) -> Result<i32> {
 }
 
 /// The serde name of a unit enum value (`pb`, `location-aware`, ...).
-fn label<T: Serialize>(value: &T) -> String {
-    match serde_json::to_value(value) {
-        Ok(serde_json::Value::String(s)) => s,
-        _ => String::new(),
-    }
-}
-
 fn combinations(args: &BatchArgs) -> Vec<PlanOptions> {
     let (sharing, positioning, route) = if args.all {
         (
@@ -246,28 +247,28 @@ fn combinations(args: &BatchArgs) -> Vec<PlanOptions> {
 }
 
 /// Plans every request; with several threads each takes a contiguous block, and the reports come
-/// back in request order, so the numbers do not depend on the thread count.
+/// back in request order, so the numbers do not depend on the thread count. `bar` counts the
+/// requests planned.
 fn plan_all(
     context: &Context,
     requests: &[Request],
     options: &PlanOptions,
     threads: usize,
+    bar: &ProgressBar,
 ) -> Result<Vec<RequestReport>> {
+    let plan = |r: &Request| {
+        let report = context.plan(r, options);
+        bar.inc(1);
+        report
+    };
     if threads <= 1 || requests.len() < 2 {
-        return requests.iter().map(|r| context.plan(r, options)).collect();
+        return requests.iter().map(plan).collect();
     }
     let chunk = requests.len().div_ceil(threads);
     let results: Vec<Result<Vec<RequestReport>>> = std::thread::scope(|scope| {
         let handles: Vec<_> = requests
             .chunks(chunk)
-            .map(|block| {
-                scope.spawn(move || {
-                    block
-                        .iter()
-                        .map(|r| context.plan(r, options))
-                        .collect::<Result<Vec<_>>>()
-                })
-            })
+            .map(|block| scope.spawn(move || block.iter().map(plan).collect::<Result<Vec<_>>>()))
             .collect();
         handles
             .into_iter()
@@ -295,7 +296,7 @@ fn summarise(options: PlanOptions, reports: &[RequestReport], wall_ms: f64) -> R
     let k = delivered.len().max(1) as f64;
     Ok(Summary {
         options,
-        succeeded: delivered.len(),
+        delivered: delivered.len(),
         requests: reports.len(),
         failed_by_kind,
         mean_dt_min: total(delivered.iter().map(|r| r.plan.dt_min)) / k,

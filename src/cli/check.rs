@@ -73,9 +73,9 @@ fn print_human(report: &RequestReport, violations: &[Violation]) -> Result<()> {
         report.request.id,
         report.plan.source,
         report.plan.destination,
-        label(&o.sharing),
-        label(&o.positioning),
-        label(&o.route),
+        o.sharing,
+        o.positioning,
+        o.route,
         report.plan.outcome.kind()
     );
     if violations.is_empty() {
@@ -87,12 +87,4 @@ fn print_human(report: &RequestReport, violations: &[Violation]) -> Result<()> {
         outln!("  {x}");
     }
     Ok(())
-}
-
-/// The serde name of a unit enum value (`pb`, `location-aware`, ...).
-fn label<T: serde::Serialize>(value: &T) -> String {
-    match serde_json::to_value(value) {
-        Ok(serde_json::Value::String(s)) => s,
-        _ => String::new(),
-    }
 }

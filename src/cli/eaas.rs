@@ -49,6 +49,8 @@ pub enum HopMethod {
     Fair,
 }
 
+display_as_value_name!(HopMethod);
+
 /// Arguments of `swarmplan eaas`.
 #[derive(Debug, clap::Args)]
 pub struct EaasArgs {
@@ -88,7 +90,11 @@ pub struct EaasArgs {
     )]
     pub methods: Vec<HopMethod>,
     /// MILP backend.
-    #[arg(long, value_enum, default_value_t = MilpBackend::default())]
+    #[arg(
+        long,
+        value_parser = crate::solver::backend_value_parser(),
+        default_value_t = MilpBackend::default()
+    )]
     pub backend: MilpBackend,
     /// Time limit of each solve, seconds.
     #[arg(long, default_value_t = 60.0, allow_negative_numbers = true)]
@@ -161,8 +167,8 @@ pub struct EaasReport {
 pub fn run(args: EaasArgs) -> Result<i32> {
     let (hop, readings) = match &args.hop_file {
         Some(path) => {
-            let profile = args.instance.load_profile()?;
-            (read_hop_file(path)?, PolicyOptions::from(&profile.readings))
+            let (profile, hop) = inputs::both(args.instance.load_profile(), read_hop_file(path))?;
+            (hop, PolicyOptions::from(&profile.readings))
         }
         None => planned_hop(&args)?,
     };
@@ -208,9 +214,8 @@ pub fn run(args: EaasArgs) -> Result<i32> {
 /// Plans the request as `swarmplan solve` does and takes hop `--hop` of the plan; the readings
 /// of PB and FB come from the profile.
 fn planned_hop(args: &EaasArgs) -> Result<(HopFile, PolicyOptions)> {
-    let instance = args.instance.load()?;
     let id = args.request_id.as_deref().unwrap_or_default();
-    let set = inputs::load_requests(args.requests.as_deref())?;
+    let (instance, set) = args.instance.load_with_requests(args.requests.as_deref())?;
     let instance = instance.with_request_from(&set, id)?;
     let request = instance.requests[0].clone();
     let context = Context::new(&instance.network, &instance.graph, &instance.profile);
@@ -324,7 +329,15 @@ fn rows(
     readings: &PolicyOptions,
 ) -> Result<Vec<MethodRow>> {
     let mut rows = Vec::new();
+    // The exact models may each run up to --time-limit; the heuristics take milliseconds.
+    let slow = |m: &HopMethod| matches!(m, HopMethod::Milp | HopMethod::Fluid | HopMethod::Fair);
+    let bar = if args.methods.iter().any(slow) {
+        super::progress::bar(args.methods.len() as u64, "methods")
+    } else {
+        indicatif::ProgressBar::hidden()
+    };
     for &m in &args.methods {
+        bar.set_message(format!("{m:?}").to_lowercase());
         let start = std::time::Instant::now();
         let row = match m {
             HopMethod::None | HopMethod::Pb | HopMethod::Fb => {
@@ -369,7 +382,9 @@ fn rows(
             ),
         };
         rows.push(row);
+        bar.inc(1);
     }
+    bar.finish_and_clear();
     let reference = rows
         .iter()
         .find_map(|r| match (r.method, r.status, r.objective) {
@@ -398,15 +413,25 @@ fn rows(
 }
 
 fn print_human(r: &EaasReport) -> Result<()> {
+    let objective = match r.objective {
+        Objective::NodeTime {
+            pads,
+            pad_rate_mah_per_min,
+        } => format!(
+            "node time on {pads} pad(s) at {} mAh/min",
+            super::human::round(pad_rate_mah_per_min, 2)
+        ),
+        Objective::MaxMinArrival => "lowest delivery arrival battery".to_string(),
+        Objective::Feasible => "any flying schedule".to_string(),
+    };
     outln!(
-        "request {} hop {}: {} ({} leg(s), {} drones), objective {:?}, reorder {}",
+        "request {} hop {}: {} ({} leg(s), {} drones), objective {objective}, reorder {}",
         r.request_id,
         r.hop,
         r.path.join(" -> "),
         r.problem.legs.len(),
         r.problem.drones.len(),
-        r.objective,
-        r.reorder.name()
+        r.reorder
     );
     for row in &r.rows {
         let num = |x: Option<f64>| x.map_or("-".to_string(), |v| format!("{v:.4}"));
@@ -424,7 +449,10 @@ fn print_human(r: &EaasReport) -> Result<()> {
             num(row.bound),
             gap,
             row.grid_step_min
-                .map_or(String::new(), |h| format!("grid {h} min, ")),
+                .map_or(String::new(), |h| format!(
+                    "grid {} min, ",
+                    super::human::round(h, 4)
+                )),
             row.solve_ms,
             row.transfers.len()
         );

@@ -1,12 +1,13 @@
 //! `swarmplan generate network|requests`: write a seeded synthetic network or request set.
 
-use crate::error::Result;
+use super::inputs::both;
+use crate::error::{Error, Result};
 use crate::generate::network::{DEFAULT_NODES, DEFAULT_SPACING_M, MAX_NODES, MIN_NODES};
 use crate::generate::requests::{DEFAULT_MAX_PACKAGE_KG, DEFAULT_REQUESTS, MAX_REQUESTS};
 use crate::generate::{generate_network, generate_requests, NetworkParams, RequestParams};
 use crate::problem::io::write_json;
 use crate::problem::read_network;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// What to generate.
 #[derive(Debug, clap::Subcommand)]
@@ -32,6 +33,9 @@ pub struct NetworkArgs {
     /// Output JSON file.
     #[arg(short = 'o', long = "output")]
     pub output: PathBuf,
+    /// Overwrite the output file if it exists.
+    #[arg(long)]
+    pub force: bool,
 }
 
 /// Arguments of `generate requests`.
@@ -52,6 +56,9 @@ pub struct RequestsArgs {
     /// Output JSON file.
     #[arg(short = 'o', long = "output")]
     pub output: PathBuf,
+    /// Overwrite the output file if it exists.
+    #[arg(long)]
+    pub force: bool,
 }
 
 fn parse_nodes(s: &str) -> std::result::Result<usize, String> {
@@ -111,10 +118,12 @@ fn parse_max_package(s: &str) -> std::result::Result<f64, String> {
 ///
 /// # Errors
 /// [`crate::Error::Invalid`] for parameters out of range or an invalid network file (exit code 2);
-/// E0008, E0009 when a file cannot be read; [`crate::Error::Io`] (E0010) when one cannot be written.
+/// E0008, E0009 when a file cannot be read; E0013 when the output file exists and `--force` is not
+/// given; [`crate::Error::Io`] (E0010) when one cannot be written.
 pub fn run(cmd: GenerateCommand) -> Result<i32> {
     match cmd {
         GenerateCommand::Network(a) => {
+            may_write(&a.output, a.force)?;
             let network = generate_network(&NetworkParams {
                 nodes: a.nodes,
                 seed: a.seed,
@@ -130,7 +139,7 @@ pub fn run(cmd: GenerateCommand) -> Result<i32> {
             );
         }
         GenerateCommand::Requests(a) => {
-            let (_, graph) = read_network(&a.network)?;
+            let (_, (_, graph)) = both(may_write(&a.output, a.force), read_network(&a.network))?;
             let set = generate_requests(
                 &graph,
                 &RequestParams {
@@ -149,4 +158,17 @@ pub fn run(cmd: GenerateCommand) -> Result<i32> {
         }
     }
     Ok(0)
+}
+
+/// `E0013`: `output` exists and `--force` was not given; generate never overwrites a file unasked.
+fn may_write(output: &Path, force: bool) -> Result<()> {
+    if force || !output.exists() {
+        return Ok(());
+    }
+    Err(Error::invalid(
+        "E0013",
+        output.display().to_string(),
+        "the output file exists; generate does not overwrite a file unasked",
+        "pass --force to overwrite it, or give another file after -o",
+    ))
 }

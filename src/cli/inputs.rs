@@ -32,7 +32,11 @@ pub struct InstanceArgs {
 #[derive(Debug, Clone, clap::Args)]
 pub struct ExactArgs {
     /// Exact policy: MILP backend of every hop solve.
-    #[arg(long, value_enum, default_value_t = MilpBackend::default())]
+    #[arg(
+        long,
+        value_parser = crate::solver::backend_value_parser(),
+        default_value_t = MilpBackend::default()
+    )]
     pub backend: MilpBackend,
     /// Exact and fair policies: time limit of each hop solve, seconds.
     #[arg(long = "hop-time-limit", default_value_t = DEFAULT_HOP_TIME_LIMIT_S, allow_negative_numbers = true)]
@@ -97,14 +101,21 @@ impl ExactArgs {
 }
 
 impl InstanceArgs {
-    /// Reads and validates the network and the profile, reporting every violation of both.
+    /// Reads and validates the network and the profile, reporting every violation of both: a
+    /// file that cannot be read or parsed does not hide a problem of the other.
     pub fn load(&self) -> Result<Instance> {
-        let network: Network = match &self.network {
-            Some(p) => io::read_json(p)?,
-            None => io::parse_json(EMBEDDED_NETWORK, "embedded paper-195 network")?,
+        let network: Result<Network> = match &self.network {
+            Some(p) => io::read_json(p),
+            None => io::parse_json(EMBEDDED_NETWORK, "embedded paper-195 network"),
         };
-        let profile = self.read_profile()?;
+        let (network, profile) = both(network, self.read_profile())?;
         Instance::new(network, profile)
+    }
+
+    /// [`InstanceArgs::load`] and [`load_requests`] together, reporting the violations of the
+    /// network, the profile and the request set at once.
+    pub fn load_with_requests(&self, requests: Option<&Path>) -> Result<(Instance, RequestSet)> {
+        both(self.load(), load_requests(requests))
     }
 
     /// Reads and validates the profile alone, for a command that needs no network.
@@ -144,6 +155,19 @@ pub fn load_requests(path: Option<&Path>) -> Result<RequestSet> {
         Ok(set)
     } else {
         Err(Error::Invalid(violations))
+    }
+}
+
+/// Both results, or every violation of both ([`Error::Invalid`] lists joined, first `a`'s);
+/// another error of either is returned alone, `a`'s first.
+pub fn both<A, B>(a: Result<A>, b: Result<B>) -> Result<(A, B)> {
+    match (a, b) {
+        (Ok(a), Ok(b)) => Ok((a, b)),
+        (Err(Error::Invalid(mut first)), Err(Error::Invalid(second))) => {
+            first.extend(second);
+            Err(Error::Invalid(first))
+        }
+        (Err(e), _) | (_, Err(e)) => Err(e),
     }
 }
 

@@ -1,6 +1,6 @@
 //! `swarmplan inspect`: describe a network and, for a request, the swarm it would fly.
 
-use super::inputs::{self, InstanceArgs};
+use super::inputs::InstanceArgs;
 use crate::compose::Context;
 use crate::energy;
 use crate::error::Result;
@@ -18,8 +18,8 @@ pub struct InspectArgs {
     #[command(flatten)]
     pub instance: InstanceArgs,
     /// Request set (JSON) [default: the shipped paper-195 requests].
-    #[arg(long, value_name = "FILE")]
-    pub request_file: Option<PathBuf>,
+    #[arg(long, alias = "request-file", value_name = "FILE")]
+    pub requests: Option<PathBuf>,
     /// Id of a request to describe the swarm of.
     #[arg(long, value_name = "ID")]
     pub request_id: Option<String>,
@@ -91,8 +91,8 @@ pub fn run(args: InspectArgs) -> Result<i32> {
     let inst = match &args.request_id {
         None => args.instance.load()?,
         Some(id) => {
-            let set = inputs::load_requests(args.request_file.as_deref())?;
-            args.instance.load()?.with_request_from(&set, id)?
+            let (instance, set) = args.instance.load_with_requests(args.requests.as_deref())?;
+            instance.with_request_from(&set, id)?
         }
     };
     let net = &inst.network;

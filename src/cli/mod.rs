@@ -17,9 +17,11 @@ pub mod batch;
 pub mod check;
 pub mod eaas;
 pub mod generate;
+pub mod human;
 pub mod inputs;
 pub mod inspect;
 pub mod node_time;
+pub mod progress;
 pub mod solve;
 
 /// swarmplan: plan swarm-based drone deliveries with in-flight energy sharing.

@@ -6,6 +6,7 @@
 //! ```
 //! where `stop.json` is `{"pads": 3, "charge_times_min": [60, 50, 40, 30, 20]}`.
 
+use super::human::round;
 use crate::error::{Error, Result};
 use crate::node_time::{self, Limits, NodeTimeMethod, NodeTimeSolution};
 use crate::problem::io::read_json;
@@ -34,7 +35,11 @@ pub struct NodeTimeArgs {
     #[arg(long, value_enum, default_value_t = NodeTimeMethod::Exact)]
     pub method: NodeTimeMethod,
     /// MILP backend (with --method milp).
-    #[arg(long, value_enum, default_value_t = MilpBackend::default())]
+    #[arg(
+        long,
+        value_parser = crate::solver::backend_value_parser(),
+        default_value_t = MilpBackend::default()
+    )]
     pub backend: MilpBackend,
     /// Time limit in seconds, at most 1e6; a stopped solve reports its incumbent as `feasible`
     /// with its lower bound.
@@ -93,7 +98,14 @@ pub fn run(args: NodeTimeArgs) -> Result<i32> {
         time_limit_s: Some(args.time_limit),
         node_limit: None,
     };
+    let spinner = (args.method != NodeTimeMethod::Lpt).then(|| {
+        super::progress::spinner(format!(
+            "node time of {} drones on {pads} pads",
+            times.len()
+        ))
+    });
     let solution = node_time::solve(args.method, args.backend, pads, &times, &limits)?;
+    drop(spinner);
     if args.json {
         crate::cli::print_json(&solution)?;
     } else {
@@ -109,22 +121,28 @@ fn print_human(s: &NodeTimeSolution, times: &[f64], backend: MilpBackend) -> Res
         SolveStatus::Infeasible => "infeasible",
     };
     let method = if s.method == NodeTimeMethod::Milp {
-        format!("milp on {}", backend.name())
+        format!("milp on {}", backend)
     } else {
-        s.method.name().to_string()
+        s.method.to_string().to_string()
     };
+    // Minutes to two places (0.6 s), as `solve` prints them; --json keeps every digit.
+    let min = |x: f64| round(x, 2);
     outln!(
         "node time: {} min ({status}; method {method})",
-        s.makespan_min
+        min(s.makespan_min)
     );
-    outln!("lower bound: {} min", s.lower_bound_min);
+    outln!("lower bound: {} min", min(s.lower_bound_min));
     for (i, pad) in s.assignment.iter().enumerate() {
         let load: f64 = pad.iter().map(|&j| times[j]).sum();
         let drones: Vec<String> = pad
             .iter()
-            .map(|&j| format!("{j} ({} min)", times[j]))
+            .map(|&j| format!("{j} ({} min)", min(times[j])))
             .collect();
-        outln!("pad {i}: load {load} min: drones {}", drones.join(", "));
+        outln!(
+            "pad {i}: load {} min: drones {}",
+            min(load),
+            drones.join(", ")
+        );
     }
     outln!("solve time: {:.3} ms", s.solve_ms);
     Ok(())

@@ -18,8 +18,8 @@ pub struct SolveArgs {
     #[command(flatten)]
     pub exact: ExactArgs,
     /// Request set (JSON) holding the request [default: the shipped paper-195 requests].
-    #[arg(long, value_name = "FILE")]
-    pub request_file: Option<PathBuf>,
+    #[arg(long, alias = "request-file", value_name = "FILE")]
+    pub requests: Option<PathBuf>,
     /// Id of the request in the request set.
     #[arg(long, value_name = "ID", conflicts_with_all = ["from", "to", "packages"])]
     pub request_id: Option<String>,
@@ -56,10 +56,15 @@ pub struct SolveArgs {
 
 /// Runs the subcommand; exit code 0 when the request is delivered, 1 when it fails.
 pub fn run(args: SolveArgs) -> Result<i32> {
-    let instance = args.instance.load()?;
+    // Every input file read before any problem is reported: all their problems at once.
+    let set = args
+        .request_id
+        .is_some()
+        .then(|| inputs::load_requests(args.requests.as_deref()));
+    let (instance, set) = inputs::both(args.instance.load(), set.transpose())?;
     let instance = match (&args.request_id, &args.from, &args.to, &args.packages) {
         (Some(id), None, None, None) => {
-            let set = inputs::load_requests(args.request_file.as_deref())?;
+            let set = set.expect("read above, with --request-id");
             instance.with_request_from(&set, id)?
         }
         (None, Some(from), Some(to), Some(packages)) => instance.with_requests(vec![Request {
@@ -68,12 +73,14 @@ pub fn run(args: SolveArgs) -> Result<i32> {
             destination: to.clone(),
             packages_kg: inputs::parse_list(packages, "--packages", "E0003")?,
         }])?,
-        _ => return Err(Error::invalid(
-            "E3402",
-            "--request-id | --from/--to/--packages",
-            "no request given",
-            "pass --request-id ID (with --request-file F), or --from A --to B --packages 1.2,0.8",
-        )),
+        _ => {
+            return Err(Error::invalid(
+                "E3402",
+                "--request-id | --from/--to/--packages",
+                "no request given",
+                "pass --request-id ID (with --requests F), or --from A --to B --packages 1.2,0.8",
+            ))
+        }
     };
     let request = instance.requests[0].clone();
     let mut context = Context::new(&instance.network, &instance.graph, &instance.profile);
@@ -84,7 +91,13 @@ pub fn run(args: SolveArgs) -> Result<i32> {
         route: args.route,
         support: args.support,
     };
+    // A hop solve can take up to --hop-time-limit, and a route makes many.
+    let spinner = args
+        .sharing
+        .is_exact()
+        .then(|| super::progress::spinner(format!("planning request {}", request.id)));
     let report = context.plan(&request, &options)?;
+    drop(spinner);
     if args.json {
         super::print_json(&report)?;
     } else {

@@ -3,7 +3,7 @@
 //! "adjacent"`, see models/compose.md).
 
 use super::plan::{Plan, PlanOutcome};
-use super::{HopEnd, Planner};
+use super::{HopEnd, LookAhead, Planner};
 use crate::eaas::SharingPolicy;
 use crate::error::Result;
 use crate::problem::profile::Candidates;
@@ -12,7 +12,7 @@ impl Planner<'_> {
     /// Algorithm 1 over adjacent nodes. From the current node: fly to the destination along the
     /// shortest path if the swarm can without stopping (without, then with sharing, lines 5-10);
     /// else move to the best neighbour `v` in the skyway network not yet visited, least
-    /// `tt(u, v) + nt(v)` (plus the remaining shortest-path travel time with `astar`). A
+    /// `tt(u, v) + nt(v)` (plus the remaining shortest-path travel time with [`LookAhead::RemainingTravelTime`]). A
     /// neighbour with pads is a stop: the swarm recharges there (`nt(v)` the exact node time) and
     /// the next hop starts full. A neighbour without pads is passed without charging (`nt = 0`):
     /// the hop goes on, and every flight test re-flies the hop from its last stop so the sharing
@@ -22,7 +22,7 @@ impl Planner<'_> {
         &self,
         source: usize,
         destination: usize,
-        astar: bool,
+        look_ahead: LookAhead,
     ) -> Result<Plan> {
         let graph = self.graph();
         let speed = self.speed_m_per_min();
@@ -94,7 +94,7 @@ impl Planner<'_> {
                 };
                 let tt_min = graph.leg(current, v).map_or(0.0, |l| l.distance_m) / speed;
                 let mut cost = tt_min + stop.as_ref().map_or(0.0, |s| s.nt_min);
-                if astar {
+                if look_ahead == LookAhead::RemainingTravelTime {
                     cost += to_destination_m[v] / speed;
                 }
                 // Strict improvement keeps the lowest node index among equal costs.

@@ -2,7 +2,7 @@
 //! recharging only where the swarm must.
 
 use super::plan::{Plan, PlanOutcome};
-use super::{HopEnd, Planner};
+use super::{FixedRoute, HopEnd, Planner};
 use crate::eaas::SharingPolicy;
 use crate::error::Result;
 use petgraph::graph::{DiGraph, NodeIndex};
@@ -38,7 +38,7 @@ impl Planner<'_> {
         &self,
         source: usize,
         destination: usize,
-        floyd_warshall: bool,
+        algorithm: FixedRoute,
     ) -> Result<Option<Vec<usize>>> {
         let n = self.graph().node_count();
         let mut digraph: DiGraph<(), f64> = DiGraph::with_capacity(n, 0);
@@ -49,7 +49,7 @@ impl Planner<'_> {
             digraph.add_edge(NodeIndex::new(u), NodeIndex::new(v), cost);
         }
         let (s, t) = (NodeIndex::new(source), NodeIndex::new(destination));
-        if !floyd_warshall {
+        if algorithm == FixedRoute::Dijkstra {
             let found = petgraph::algo::astar(&digraph, s, |x| x == t, |e| *e.weight(), |_| 0.0);
             return Ok(found.map(|(_, nodes)| nodes.into_iter().map(|x| x.index()).collect()));
         }
@@ -79,14 +79,14 @@ impl Planner<'_> {
         &self,
         source: usize,
         destination: usize,
-        floyd_warshall: bool,
+        algorithm: FixedRoute,
     ) -> Result<Plan> {
         let graph = self.graph();
         let mut plan = self.empty_plan(source, destination);
         if source == destination {
             return Ok(plan.finish());
         }
-        let Some(route) = self.baseline_route(source, destination, floyd_warshall)? else {
+        let Some(route) = self.baseline_route(source, destination, algorithm)? else {
             return Ok(plan.fail(PlanOutcome::NoRoute {
                 from: graph.id_of(source).to_string(),
                 to: graph.id_of(destination).to_string(),

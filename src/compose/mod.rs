@@ -39,6 +39,30 @@ pub enum RouteMethod {
     FloydWarshall,
 }
 
+display_as_value_name!(RouteMethod);
+
+/// Algorithm 1's cost of a candidate stop: `tt + nt`, or with A* also the remaining
+/// shortest-path travel time to the destination.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum LookAhead {
+    /// `tt + nt` (Algorithm 1).
+    None,
+    /// `tt + nt` plus the remaining shortest-path travel time (A*).
+    RemainingTravelTime,
+}
+
+/// How a fixed baseline route is found on edge cost `tt + nt`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, clap::ValueEnum)]
+#[serde(rename_all = "kebab-case")]
+pub enum FixedRoute {
+    /// One-pair shortest path (Dijkstra).
+    Dijkstra,
+    /// All-pairs shortest paths (Floyd–Warshall), read for the one pair.
+    FloydWarshall,
+}
+
+display_as_value_name!(FixedRoute);
+
 impl RouteMethod {
     /// Every method, in a fixed order.
     pub const ALL: [RouteMethod; 4] = [
@@ -47,16 +71,6 @@ impl RouteMethod {
         RouteMethod::Dijkstra,
         RouteMethod::FloydWarshall,
     ];
-
-    /// The method's command-line name.
-    pub fn name(self) -> &'static str {
-        match self {
-            RouteMethod::Sequential => "sequential",
-            RouteMethod::Astar => "astar",
-            RouteMethod::Dijkstra => "dijkstra",
-            RouteMethod::FloydWarshall => "floyd-warshall",
-        }
-    }
 }
 
 impl Planner<'_> {
@@ -85,13 +99,24 @@ impl Planner<'_> {
         let adjacent = self.readings().candidates == Candidates::Adjacent;
         self.reset_hop_solves();
         let mut plan = match method {
-            RouteMethod::Sequential | RouteMethod::Astar if adjacent => {
-                self.compose_adjacent(source, destination, method == RouteMethod::Astar)
+            RouteMethod::Sequential if adjacent => {
+                self.compose_adjacent(source, destination, LookAhead::None)
             }
-            RouteMethod::Sequential => self.compose_sequential(source, destination, false),
-            RouteMethod::Astar => self.compose_sequential(source, destination, true),
-            RouteMethod::Dijkstra => self.compose_fixed_route(source, destination, false),
-            RouteMethod::FloydWarshall => self.compose_fixed_route(source, destination, true),
+            RouteMethod::Astar if adjacent => {
+                self.compose_adjacent(source, destination, LookAhead::RemainingTravelTime)
+            }
+            RouteMethod::Sequential => {
+                self.compose_sequential(source, destination, LookAhead::None)
+            }
+            RouteMethod::Astar => {
+                self.compose_sequential(source, destination, LookAhead::RemainingTravelTime)
+            }
+            RouteMethod::Dijkstra => {
+                self.compose_fixed_route(source, destination, FixedRoute::Dijkstra)
+            }
+            RouteMethod::FloydWarshall => {
+                self.compose_fixed_route(source, destination, FixedRoute::FloydWarshall)
+            }
         }?;
         if self.sharing().is_exact() {
             plan.hop_solves = Some(self.hop_solves());

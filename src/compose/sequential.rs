@@ -1,7 +1,7 @@
 //! Algorithm 1 of the paper (sequential composition) and its A*-style variant.
 
 use super::plan::{Plan, PlanOutcome};
-use super::{Flight, HopEnd, Planner, Stop};
+use super::{Flight, HopEnd, LookAhead, Planner, Stop};
 use crate::eaas::milp::Objective;
 use crate::eaas::{fluid, milp::ExactStatus, SharingPolicy};
 use crate::error::Result;
@@ -56,14 +56,14 @@ impl Planner<'_> {
     /// Algorithm 1. From the current node: fly straight to the destination if every drone can
     /// without sharing; else straight with sharing if that makes it; else fly (with sharing) to the
     /// recharging node, not yet stopped at, reachable without stopping, with the least `tt + nt`
-    /// (plus, with `astar`, the remaining shortest-path travel time to the destination), recharge
+    /// (plus, with [`LookAhead::RemainingTravelTime`], the remaining shortest-path travel time to the destination), recharge
     /// there, and repeat. Stopped-at nodes are never candidates again, so the loop ends after at
     /// most one step per recharging node: a request with no candidate left fails (dead end).
     pub(crate) fn compose_sequential(
         &self,
         source: usize,
         destination: usize,
-        astar: bool,
+        look_ahead: LookAhead,
     ) -> Result<Plan> {
         let graph = self.graph();
         let speed = self.speed_m_per_min();
@@ -122,7 +122,7 @@ impl Planner<'_> {
                 }) else {
                     continue;
                 };
-                let look_ahead_min = if astar {
+                let look_ahead_min = if look_ahead == LookAhead::RemainingTravelTime {
                     to_destination_m[v] / speed
                 } else {
                     0.0

@@ -59,16 +59,7 @@ pub enum Reorder {
     None,
 }
 
-impl Reorder {
-    /// The mode's name as used on the command line.
-    pub fn name(self) -> &'static str {
-        match self {
-            Reorder::Paper => "paper",
-            Reorder::Free => "free",
-            Reorder::None => "none",
-        }
-    }
-}
+display_as_value_name!(Reorder);
 
 /// What an exact hop model optimises.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -926,7 +917,7 @@ pub fn solve_milp(
         }
         if !replay.feasible {
             return Err(Error::Backend {
-                backend: options.backend.name().to_string(),
+                backend: options.backend.to_string(),
                 message: format!(
                     "E4106: the schedule returned does not fly (first failure {:?}); \
                      report it with the instance",
@@ -1115,7 +1106,7 @@ fn lp_header(
         format!("objective: {goal}"),
         "objective constant: 0 (the optimum of this file is the MILP's model objective)"
             .to_string(),
-        format!("reorder: {}", options.reorder.name()),
+        format!("reorder: {}", options.reorder.to_string()),
         format!(
             "grid: period_min = {}, grid_step_min = {}, periods = {}",
             options.period_min,

@@ -113,6 +113,8 @@ pub enum SharingPolicy {
     Fair,
 }
 
+display_as_value_name!(SharingPolicy);
+
 impl SharingPolicy {
     /// Whether the policy moves energy in flight (PB, FB, exact, fair); `none` and `idle-support`
     /// do not.

@@ -74,17 +74,7 @@ pub enum NodeTimeMethod {
     Brute,
 }
 
-impl NodeTimeMethod {
-    /// The method's name as used on the command line and in JSON.
-    pub fn name(self) -> &'static str {
-        match self {
-            NodeTimeMethod::Exact => "exact",
-            NodeTimeMethod::Milp => "milp",
-            NodeTimeMethod::Lpt => "lpt",
-            NodeTimeMethod::Brute => "brute",
-        }
-    }
-}
+display_as_value_name!(NodeTimeMethod);
 
 /// Limits of a solve; the default has none.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]

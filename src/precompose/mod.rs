@@ -22,3 +22,5 @@ pub enum Positioning {
     /// Support drones in the best slots; then delivery drones by payload, heaviest first.
     EnergyAware,
 }
+
+display_as_value_name!(Positioning);

@@ -41,6 +41,8 @@ pub enum FormationKind {
     Diamond,
 }
 
+display_as_value_name!(FormationKind);
+
 impl FormationKind {
     /// Every formation in a fixed order (also the tie-break order of formation selection).
     pub const ALL: [FormationKind; 5] = [
@@ -50,17 +52,6 @@ impl FormationKind {
         FormationKind::Vee,
         FormationKind::Diamond,
     ];
-
-    /// The formation's name as used in files and on the command line.
-    pub fn name(self) -> &'static str {
-        match self {
-            FormationKind::Column => "column",
-            FormationKind::Front => "front",
-            FormationKind::Echelon => "echelon",
-            FormationKind::Vee => "vee",
-            FormationKind::Diamond => "diamond",
-        }
-    }
 }
 
 /// One drone of a swarm.

@@ -61,18 +61,72 @@ impl MilpBackend {
             MilpBackend::Highs,
         ]
     }
+}
 
-    /// The backend's name as used on the command line.
-    pub fn name(self) -> &'static str {
-        match self {
-            #[cfg(feature = "microlp")]
-            MilpBackend::Microlp => "microlp",
-            #[cfg(feature = "highs")]
-            MilpBackend::Highs => "highs",
-            #[cfg(not(any(feature = "microlp", feature = "highs")))]
-            MilpBackend::NoBackend => "none",
+display_as_value_name!(MilpBackend);
+
+/// Every MILP backend swarmplan knows, built into this build or not: its name on the command
+/// line and how to get a build with it.
+const KNOWN_BACKENDS: [(&str, &str); 2] = [
+    (
+        "microlp",
+        "rebuild with the default features: cargo build --release",
+    ),
+    (
+        "highs",
+        "rebuild with the feature highs: cargo build --release --features highs (building HiGHS \
+         needs cmake and libclang: apt-get install cmake libclang-dev)",
+    ),
+];
+
+/// `E0012`: `name` is a backend swarmplan knows but this build was made without; `None` for a
+/// backend of this build or a name swarmplan does not know.
+pub fn backend_not_built(name: &str) -> Option<String> {
+    if MilpBackend::all().iter().any(|b| b.to_string() == name) {
+        return None;
+    }
+    KNOWN_BACKENDS
+        .iter()
+        .find(|(known, _)| *known == name)
+        .map(|(_, how)| {
+            format!(
+                "[E0012] --backend {name}: this build of swarmplan has no {name} backend; {how}"
+            )
+        })
+}
+
+/// The value parser of `--backend`: a backend of this build, E0012 with the way to build it for
+/// a backend this build lacks (`highs` without the feature), and clap's own error (E0007) for any
+/// other name. The help lists every known backend, each one missing marked as such.
+///
+/// # Example
+/// ```
+/// use clap::Parser;
+/// let e = swarmplan::cli::Cli::try_parse_from(["swarmplan", "node-time", "--backend", "glpk",
+///     "--pads", "1", "--times", "1"]).unwrap_err();
+/// assert!(swarmplan::cli::coded_usage_error(&e).unwrap().contains("[E0007]"));
+/// ```
+pub fn backend_value_parser() -> impl clap::builder::TypedValueParser<Value = MilpBackend> {
+    use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
+    use clap::ValueEnum;
+    let mut values: Vec<PossibleValue> = MilpBackend::value_variants()
+        .iter()
+        .filter_map(|b| b.to_possible_value())
+        .collect();
+    for (name, _) in KNOWN_BACKENDS {
+        if !values.iter().any(|v| v.get_name() == name) {
+            values.push(
+                PossibleValue::new(name)
+                    .help(format!("not in this build (cargo build --features {name})")),
+            );
         }
     }
+    PossibleValuesParser::new(values).try_map(|name: String| {
+        if let Some(message) = backend_not_built(&name) {
+            return Err(message);
+        }
+        MilpBackend::from_str(&name, false)
+    })
 }
 
 /// Outcome of a solve.

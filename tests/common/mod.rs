@@ -1,0 +1,184 @@
+//! Fixtures shared by the integration tests: the binary, paths into the repository and into a
+//! temporary folder per test binary, the shipped instances, float tolerances, the known optima of
+//! the hop models and small hop builders. Each test binary uses a subset of them.
+#![allow(dead_code)]
+
+use nalgebra::Vector2;
+use serde::Deserialize;
+use std::path::PathBuf;
+use std::process::{Command, Output};
+use swarmplan::eaas::milp::{Objective, Reorder};
+use swarmplan::eaas::{DroneState, HopProblem, LegRates};
+use swarmplan::problem::io::{read_json, read_toml};
+use swarmplan::problem::{Network, Profile, Request, RequestSet, Role, SkywayGraph};
+
+// ---------------------------------------------------------------------------------------------
+// The binary and files.
+
+/// Runs the `swarmplan` binary with `args` and waits for it.
+pub fn swarmplan(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_swarmplan"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+/// `swarmplan eaas` on hop `hop` of request r00001 of the shipped paper-195 instance (the
+/// default instance of `eaas`) with `methods`, then `extra`.
+pub fn eaas_r00001(hop: &str, methods: &str, extra: &[&str]) -> Output {
+    let mut args = vec![
+        "eaas",
+        "--request-id",
+        "r00001",
+        "--hop",
+        hop,
+        "--methods",
+        methods,
+    ];
+    args.extend_from_slice(extra);
+    swarmplan(&args)
+}
+
+/// Its standard error as text.
+pub fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).to_string()
+}
+
+/// A path into the repository, such as `instances/tiny/line4.json`.
+pub fn repo_path(rel: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(rel)
+}
+
+/// [`repo_path`] as a command-line argument.
+pub fn repo_arg(rel: &str) -> String {
+    repo_path(rel).to_str().unwrap().to_string()
+}
+
+/// A path for a file named `name` in this test binary's own temporary folder (made if missing).
+pub fn tmp(name: &str) -> PathBuf {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(env!("CARGO_CRATE_NAME"));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+/// Writes `bytes` to [`tmp`]`(name)` and returns its path as a command-line argument.
+pub fn write_tmp(name: &str, bytes: &[u8]) -> String {
+    let path = tmp(name);
+    std::fs::write(&path, bytes).unwrap();
+    path.to_str().unwrap().to_string()
+}
+
+// ---------------------------------------------------------------------------------------------
+// Shipped instances.
+
+/// A shipped profile, `instances/profiles/<name>.toml`.
+pub fn shipped_profile(name: &str) -> Profile {
+    read_toml(&repo_path(&format!("instances/profiles/{name}.toml")))
+        .expect("shipped profile parses")
+}
+
+/// The paper-195 network, its graph, the paper profile and the shipped requests.
+pub fn paper_195() -> (Network, SkywayGraph, Profile, Vec<Request>) {
+    let network: Network = read_json(&repo_path("instances/paper-195/network.json")).unwrap();
+    let graph = SkywayGraph::new(&network).unwrap();
+    let profile = shipped_profile("paper");
+    let set: RequestSet = read_json(&repo_path("instances/paper-195/requests.json")).unwrap();
+    (network, graph, profile, set.requests)
+}
+
+/// A tiny network `instances/tiny/<file>`, its graph, and the flat profile of the tiny instances.
+pub fn flat_instance(file: &str) -> (Network, SkywayGraph, Profile) {
+    let dir = repo_path("instances/tiny");
+    let network: Network = read_json(&dir.join(file)).unwrap();
+    let graph = SkywayGraph::new(&network).unwrap();
+    let profile: Profile = read_toml(&dir.join("flat.toml")).unwrap();
+    (network, graph, profile)
+}
+
+/// The request of flat-stop (instances/tiny/README.md): A to B with packages of 0.21, 0.21 and
+/// 0.44 kg.
+pub fn flat_stop_request(id: &str) -> Request {
+    Request {
+        id: id.into(),
+        source: "A".into(),
+        destination: "B".into(),
+        packages_kg: vec![0.21, 0.21, 0.44],
+    }
+}
+
+/// [`flat_stop_request`] on the command line.
+pub const FLAT_STOP_REQUEST_ARGS: [&str; 6] =
+    ["--from", "A", "--to", "B", "--packages", "0.21,0.21,0.44"];
+
+// ---------------------------------------------------------------------------------------------
+// Tolerances.
+
+/// Relative tolerance of computed against expected values.
+pub const TOL: f64 = 1e-6;
+
+/// `a` equals `b` within [`TOL`] relative to `b` (absolute below 1).
+pub fn close(a: f64, b: f64) -> bool {
+    (a - b).abs() <= TOL * (1.0 + b.abs())
+}
+
+/// Asserts [`close`]`(got, expected)`, naming `what`.
+pub fn assert_close(got: f64, expected: f64, what: &str) {
+    assert!(
+        close(got, expected),
+        "{what}: got {got}, expected {expected}"
+    );
+}
+
+// ---------------------------------------------------------------------------------------------
+// Hops.
+
+/// The known optima of the hop models, `instances/eaas/known_optima.json`.
+#[derive(Deserialize)]
+pub struct KnownOptima {
+    pub schema_version: u32,
+    pub instances: Vec<Known>,
+}
+
+/// One hop of the table, its optimum and where that number comes from.
+#[derive(Deserialize)]
+pub struct Known {
+    pub name: String,
+    pub description: String,
+    pub problem: HopProblem,
+    pub objective: Objective,
+    pub reorder: Reorder,
+    pub period_min: f64,
+    pub optimum: f64,
+    pub source: String,
+}
+
+/// Reads `instances/eaas/known_optima.json`.
+pub fn known_optima() -> KnownOptima {
+    let text = std::fs::read_to_string(repo_path("instances/eaas/known_optima.json")).unwrap();
+    serde_json::from_str(&text).unwrap()
+}
+
+/// A drone of a hop.
+pub fn drone(role: Role, capacity_mah: f64, battery_mah: f64) -> DroneState {
+    DroneState {
+        role,
+        capacity_mah,
+        battery_mah,
+    }
+}
+
+/// One leg; `rates[d]` is drone d's rate in every slot.
+pub fn uniform_leg(duration_min: f64, rates: &[f64]) -> LegRates {
+    LegRates {
+        duration_min,
+        rate_mah_per_min: rates.iter().map(|&r| vec![r; rates.len()]).collect(),
+    }
+}
+
+/// Slots on the x axis at the given abscissae, drone d in slot d.
+pub fn line(xs: &[f64]) -> (Vec<Vector2<f64>>, Vec<usize>) {
+    (
+        xs.iter().map(|&x| Vector2::new(x, 0.0)).collect(),
+        (0..xs.len()).collect(),
+    )
+}
