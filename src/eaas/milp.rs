@@ -286,7 +286,7 @@ fn validate_time_limit(time_limit_s: f64) -> Result<()> {
 /// battery, or 0.
 ///
 /// # Errors
-/// Those of [`node_time::exact`] (none for valid inputs).
+/// Those of [`node_time::exact()`] (none for valid inputs).
 pub fn objective_of(
     problem: &HopProblem,
     objective: &Objective,

@@ -28,7 +28,7 @@ pub enum MilpBackend {
 }
 
 impl Default for MilpBackend {
-    /// The first backend of [`MilpBackend::all`]; [`MilpBackend::NoBackend`] in a build without one.
+    /// The first backend of [`MilpBackend::all`]; `MilpBackend::NoBackend` in a build without one.
     fn default() -> Self {
         #[cfg(feature = "microlp")]
         return MilpBackend::Microlp;
