@@ -81,8 +81,9 @@ display_as_value_name!(NodeTimeMethod);
 pub struct Limits {
     /// Wall-clock limit in seconds; `None` for no limit.
     pub time_limit_s: Option<f64>,
-    /// Limit on branch-and-bound nodes (placements of one drone on one pad) of [`exact()`];
-    /// `None` for no limit. Other methods ignore it.
+    /// Limit on the search nodes of [`exact()`], counted over all its phases (placements,
+    /// completion queries and their work; `models/node_time.md`, "Limits"); `None` for no limit.
+    /// Other methods ignore it.
     pub node_limit: Option<u64>,
 }
 
