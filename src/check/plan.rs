@@ -23,7 +23,8 @@
 //! * every stop is at a node with pads: `ct_d = (C_d - b_d) / q_v`, the assignment is a partition
 //!   of every drone over at most `k_v` pads whose makespan equals `nt`, and
 //!   `nt >= max(max ct, sum ct / k_v)` (P5020-P5027); with at most [`OPTIMALITY_CHECK_DRONES`]
-//!   drones, `nt` is also compared with the optimal makespan found by exhaustive search (P5028);
+//!   drones, the `nt` of a stop whose status is `optimal` is also compared with the optimal
+//!   makespan found by exhaustive search (P5028; a node limit may leave a `feasible` incumbent);
 //! * totals: `tt = sum tt`, `nt = sum nt`, `dt = tt + nt`, shared energy = sum of the transfers
 //!   (P5030-P5032).
 //!
@@ -39,6 +40,7 @@ use crate::formation;
 use crate::problem::profile::Candidates;
 use crate::problem::{Network, Node, Profile, Request};
 use crate::problem::{Role, Swarm, Wind};
+use crate::solver::SolveStatus;
 use std::collections::HashMap;
 
 /// Largest swarm whose node time is re-proved optimal by exhaustive search (at most
@@ -845,7 +847,7 @@ fn check_stop(out: &mut Vec<Violation>, raw: &Raw, f: &str, hop: &Hop, stop: &St
     out.extend(p5024_assigned_drones_exist(&f, stop, n));
     out.extend(p5025_assignment_is_a_partition(&f, stop, n));
     out.extend(p5026_nt_is_the_makespan(&f, stop, &ct));
-    if n <= OPTIMALITY_CHECK_DRONES {
+    if n <= OPTIMALITY_CHECK_DRONES && stop.status == SolveStatus::Optimal {
         out.extend(p5028_nt_is_optimal(&f, stop, &ct, node.pads as usize));
     }
     out.extend(p5027_nt_above_the_lower_bound(&f, stop, &ct, node.pads));
@@ -1023,7 +1025,8 @@ fn p5026_nt_is_the_makespan(f: &str, stop: &Stop, ct: &[f64]) -> Option<Violatio
     })
 }
 
-/// P5028: `nt` is the optimal makespan, found by exhaustive search (small swarms only).
+/// P5028: `nt` is the optimal makespan, found by exhaustive search (small swarms only, stops
+/// labelled optimal: a node limit may leave a feasible incumbent).
 fn p5028_nt_is_optimal(f: &str, stop: &Stop, ct: &[f64], pads: usize) -> Option<Violation> {
     let best = optimal_makespan_min(ct, pads);
     (stop.nt_min > best + 1e-6 * (1.0 + best)).then(|| {

@@ -58,6 +58,10 @@ pub struct BatchArgs {
     /// Write every request's outcome (id, success, dt, stops, failure) as JSON to this file.
     #[arg(long, value_name = "FILE")]
     pub per_request: Option<PathBuf>,
+    /// Node limit of the exact node time at every stop (search nodes, the same on every machine);
+    /// a stop it stops keeps its incumbent, `status: feasible`.
+    #[arg(long, value_name = "N", default_value_t = crate::node_time::DEFAULT_STOP_NODE_LIMIT)]
+    pub node_limit: u64,
     /// Print the summaries as JSON.
     #[arg(long)]
     pub json: bool,
@@ -142,6 +146,7 @@ pub fn run(args: BatchArgs) -> Result<i32> {
     let requests = &instance.requests;
     let mut context = Context::new(&instance.network, &instance.graph, &instance.profile);
     context.exact = args.exact.settings()?;
+    context.node_limit = Some(args.node_limit);
     let combos = combinations(&args);
     let mut summaries = Vec::new();
     let mut outcomes = Vec::new();

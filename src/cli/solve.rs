@@ -45,6 +45,10 @@ pub struct SolveArgs {
     /// the paper's baseline without support drones; `idle-support` flies them without sharing).
     #[arg(long, value_name = "N")]
     pub support: Option<usize>,
+    /// Node limit of the exact node time at every stop (search nodes, the same on every machine);
+    /// a stop it stops keeps its incumbent, `status: feasible`.
+    #[arg(long, value_name = "N", default_value_t = crate::node_time::DEFAULT_STOP_NODE_LIMIT)]
+    pub node_limit: u64,
     /// Print the full report as JSON.
     #[arg(long)]
     pub json: bool,
@@ -85,6 +89,7 @@ pub fn run(args: SolveArgs) -> Result<i32> {
     let request = instance.requests[0].clone();
     let mut context = Context::new(&instance.network, &instance.graph, &instance.profile);
     context.exact = args.exact.settings()?;
+    context.node_limit = Some(args.node_limit);
     let options = PlanOptions {
         sharing: args.sharing,
         positioning: args.positioning,

@@ -51,6 +51,8 @@ pub struct Planner<'a> {
     exact: ExactSettings,
     /// Hop solves of the exact and fair policies made so far.
     solves: RefCell<HopSolveCounts>,
+    /// Node limit of the exact node time at every stop; `None` for none.
+    node_limit: Option<u64>,
 }
 
 impl<'a> Planner<'a> {
@@ -69,12 +71,20 @@ impl<'a> Planner<'a> {
             rates: RefCell::new(HashMap::new()),
             exact: ExactSettings::default(),
             solves: RefCell::new(HopSolveCounts::default()),
+            node_limit: Some(node_time::DEFAULT_STOP_NODE_LIMIT),
         }
     }
 
     /// The planner with the given settings of the exact and fair policies.
     pub fn with_exact(mut self, settings: ExactSettings) -> Planner<'a> {
         self.exact = settings;
+        self
+    }
+
+    /// The planner with the node limit of the exact node time at every stop (`None`: no limit;
+    /// default [`node_time::DEFAULT_STOP_NODE_LIMIT`]).
+    pub fn with_node_limit(mut self, node_limit: Option<u64>) -> Planner<'a> {
+        self.node_limit = node_limit;
         self
     }
 
@@ -231,7 +241,8 @@ impl<'a> Planner<'a> {
 
     /// The recharging stop at `node` for a swarm arriving with `arrival_mah`: every drone charges to
     /// full, `ct = (capacity - battery) / pad rate`, and `nt` is the exact optimal makespan on the
-    /// node's pads. `None` when the node has no pads.
+    /// node's pads, or, when the planner's node limit stops the search, the incumbent with status
+    /// `Feasible`. `None` when the node has no pads.
     pub fn stop_at(&self, node: usize, arrival_mah: &[f64]) -> Result<Option<Stop>> {
         let pads = self.graph.pads(node);
         if pads == 0 {
@@ -245,7 +256,11 @@ impl<'a> Planner<'a> {
             .zip(arrival_mah)
             .map(|(d, &b)| (d.capacity_mah - b).max(0.0) / rate)
             .collect();
-        let solution = node_time::exact(pads as usize, &charge_times_min, &Limits::default())?;
+        let limits = Limits {
+            time_limit_s: None,
+            node_limit: self.node_limit,
+        };
+        let solution = node_time::exact(pads as usize, &charge_times_min, &limits)?;
         Ok(Some(Stop {
             node: self.graph.id_of(node).to_string(),
             pads,

@@ -39,6 +39,9 @@ pub struct Context<'a> {
     pub average_wind: Wind,
     /// Solver settings of the exact and fair sharing policies.
     pub exact: ExactSettings,
+    /// Node limit of the exact node time at every stop (`None`: no limit), default
+    /// [`crate::node_time::DEFAULT_STOP_NODE_LIMIT`].
+    pub node_limit: Option<u64>,
 }
 
 /// The planned request: the document `solve --json` prints and `check --plan` reads back.
@@ -92,6 +95,7 @@ impl<'a> Context<'a> {
             formation,
             average_wind,
             exact: ExactSettings::default(),
+            node_limit: Some(crate::node_time::DEFAULT_STOP_NODE_LIMIT),
         }
     }
 
@@ -170,7 +174,8 @@ impl<'a> Context<'a> {
         };
         let choice = self.swarm_for(request, options.positioning, support)?;
         let planner = Planner::new(self.graph, self.profile, &choice.swarm, options.sharing)
-            .with_exact(self.exact);
+            .with_exact(self.exact)
+            .with_node_limit(self.node_limit);
         let plan = planner.compose(choice.source, choice.destination, options.route)?;
         let execution_ms = start.elapsed().as_secs_f64() * 1e3;
         Ok(RequestReport {

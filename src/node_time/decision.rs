@@ -65,7 +65,7 @@ pub(crate) enum Decision {
 
 /// Node and time budget shared by every search of one solve.
 pub(crate) struct Budget<'l> {
-    /// Placements made so far (all phases).
+    /// Nodes counted so far (all phases).
     pub nodes: u64,
     /// Start of the solve.
     pub start: Instant,

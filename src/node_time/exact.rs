@@ -80,10 +80,11 @@ const FIRST_TRIAL_NODES: u64 = 4000;
 /// after [`PARTITION_SWITCH_NODES`] nodes (with more per pad bin completion is far slower).
 const PARTITION_SWITCH_DRONES_PER_PAD: usize = 6;
 
-/// Nodes (completion queries and placements) after which sequential partitioning hands over to
-/// bin completion, keeping its lower bound: about 35 ms at 30 drones on 7 pads, beyond the
-/// slowest of 200 instances (75,000 nodes) where the instance suits partitioning.
-const PARTITION_SWITCH_NODES: u64 = 100_000;
+/// Nodes (completion queries and placements, and the queries' work: `partition.rs`,
+/// `WORK_PER_NODE`) after which sequential partitioning hands over to bin completion, keeping its
+/// lower bound: about 30 ms at 30 drones on 7 pads, beyond the slowest of 200 instances where the
+/// instance suits partitioning (75,000 queries; on another 200, 52,000 queries and 780,000 nodes).
+const PARTITION_SWITCH_NODES: u64 = 1_000_000;
 
 /// Depth-first branch and bound over the positive jobs, sorted decreasingly.
 struct Search<'a> {
@@ -570,7 +571,7 @@ pub fn exact(pads: usize, charge_times_min: &[f64], limits: &Limits) -> Result<N
 pub enum ExactSearch {
     /// Sequential partitioning with at most 7 pads and 40 drones, for real-valued times with more
     /// than 4 drones per pad and for whole minutes with at least 5 per pad and an optimum
-    /// expected above `sum/k`, handing over to bin completion after 100,000 nodes with at most 6
+    /// expected above `sum/k`, handing over to bin completion after 1,000,000 nodes with at most 6
     /// drones per pad; bin completion otherwise (what [`exact()`] does).
     #[default]
     Auto,

@@ -56,6 +56,15 @@ pub use milp::milp;
 /// Relative tolerance under which two makespans count as equal (`1e-9`).
 pub const REL_TOL: f64 = 1e-9;
 
+/// Node limit of the exact node time at every recharging stop the planner makes
+/// ([`crate::compose::Planner`], `solve` and `batch`, `--node-limit`): search nodes counted over
+/// every phase of [`exact()`], so a stopped search gives the same node time on any machine and
+/// thread count. A stop it stops keeps the incumbent (LPT or better), status `Feasible`.
+/// Exhausted in 0.24 to 0.36 s on one core, whichever phase runs; the stops of the README's main
+/// job (paper-195, `paper` profile) each need under 1,000 nodes (see `models/node_time.md`, "Node
+/// limit at a stop").
+pub const DEFAULT_STOP_NODE_LIMIT: u64 = 20_000_000;
+
 /// Largest charge time, in minutes, treated as a whole number for the exact integer search
 /// (`2^50`, so every sum of up to 1000 such times is exact in `f64`).
 const INTEGRAL_MAX_MIN: f64 = 1_125_899_906_842_624.0;
@@ -81,8 +90,9 @@ display_as_value_name!(NodeTimeMethod);
 pub struct Limits {
     /// Wall-clock limit in seconds; `None` for no limit.
     pub time_limit_s: Option<f64>,
-    /// Limit on branch-and-bound nodes (placements of one drone on one pad) of [`exact()`];
-    /// `None` for no limit. Other methods ignore it.
+    /// Limit on the search nodes of [`exact()`], counted over all its phases (placements,
+    /// completion queries and their work; `models/node_time.md`, "Limits"); `None` for no limit.
+    /// Other methods ignore it.
     pub node_limit: Option<u64>,
 }
 
