@@ -14,7 +14,7 @@
 //! requests, delivered, failures by kind, plans with a violation, violations by code, wall time.
 //! Exit code 1 when any plan breaks a rule or does not read back unchanged.
 
-use clap::Parser;
+use clap::{Parser, ValueEnum};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -100,14 +100,7 @@ fn run(args: &Args) -> swarmplan::error::Result<bool> {
     println!(
         "sharing,positioning,route,requests,delivered,failed_by_kind,plans_with_violations,violations_by_code,not_round_trip,wall_s"
     );
-    for sharing in [
-        SharingPolicy::None,
-        SharingPolicy::IdleSupport,
-        SharingPolicy::Pb,
-        SharingPolicy::Fb,
-        SharingPolicy::Exact,
-        SharingPolicy::Fair,
-    ] {
+    for &sharing in SharingPolicy::value_variants() {
         let limit = if sharing.is_exact() {
             args.exact_limit
         } else {

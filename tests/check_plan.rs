@@ -442,23 +442,17 @@ fn every_method_plan_read_back_from_json_passes_the_checker() {
     assert_eq!(plans, 3 * 4 * 8);
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 
-    let every = [
-        SharingPolicy::None,
-        SharingPolicy::IdleSupport,
-        SharingPolicy::Pb,
-        SharingPolicy::Fb,
-        SharingPolicy::Exact,
-        SharingPolicy::Fair,
-    ];
+    // Every policy there is.
+    let every = <SharingPolicy as clap::ValueEnum>::value_variants();
     let (line, line_graph, flat) = flat_instance("flat-line.json");
     let set: RequestSet = read_json(&repo_path("instances/tiny/flat-requests.json")).unwrap();
-    let (plans, failures) = read_back_and_check(&line, &line_graph, &flat, &set.requests, &every);
+    let (plans, failures) = read_back_and_check(&line, &line_graph, &flat, &set.requests, every);
     assert_eq!(plans, 3 * 6 * 8);
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 
     let (stop, stop_graph, flat) = flat_instance("flat-stop.json");
     let request = flat_stop_request("stop");
-    let (plans, failures) = read_back_and_check(&stop, &stop_graph, &flat, &[request], &every);
+    let (plans, failures) = read_back_and_check(&stop, &stop_graph, &flat, &[request], every);
     assert_eq!(plans, 6 * 8);
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
