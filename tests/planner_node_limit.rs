@@ -290,3 +290,147 @@ fn solve_takes_a_node_limit() {
     let out = common::swarmplan(&["solve", "--request-id", "r00029", "--node-limit", "-1"]);
     assert_eq!(out.status.code(), Some(2));
 }
+
+/// A hop problem of `capacities.len()` drones at rest (no legs): only the drones matter to the
+/// node time of the end batteries.
+fn drones_at_rest(capacities: &[f64]) -> swarmplan::eaas::HopProblem {
+    use swarmplan::eaas::{DroneState, HopProblem};
+    use swarmplan::problem::Role;
+    let n = capacities.len();
+    HopProblem {
+        legs: Vec::new(),
+        drones: capacities
+            .iter()
+            .map(|&c| DroneState {
+                role: Role::Delivery,
+                capacity_mah: c,
+                battery_mah: c,
+            })
+            .collect(),
+        slots_m: (0..n)
+            .map(|i| nalgebra::Vector2::new(i as f64, 0.0))
+            .collect(),
+        initial_slot: (0..n).collect(),
+        rho_mah_per_min: 4.0,
+        range_m: 1.2,
+        gamma_mah: 50.0,
+        lambda_mah: 20.0,
+        delta_mah: 100.0,
+    }
+}
+
+/// The node time a hop's schedule is scored by (`eaas::milp::objective_of`, used by the exact and
+/// fair policies and `swarmplan eaas`) stops at the node limit of a stop and says so: 60
+/// real-valued charge times on 4 pads (the swarm of the test above) are left at an incumbent no
+/// worse than LPT and marked unproven; 5 drones on 2 pads are proven, at the brute-force optimum.
+#[test]
+fn a_hop_objective_the_node_time_cannot_prove_is_marked_unproven() {
+    use rand::{Rng, SeedableRng};
+    use swarmplan::eaas::milp::{objective_of, Objective};
+    let rate = 40.0;
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(60);
+    let capacities: Vec<f64> = (0..60).map(|_| rng.random_range(3000.0..6000.0)).collect();
+    let ct: Vec<f64> = capacities
+        .iter()
+        .map(|&c| rng.random_range(0.05..0.95) * c / rate)
+        .collect();
+    let end: Vec<f64> = capacities
+        .iter()
+        .zip(&ct)
+        .map(|(c, t)| c - t * rate)
+        .collect();
+    let problem = drones_at_rest(&capacities);
+    let objective = Objective::NodeTime {
+        pads: 4,
+        pad_rate_mah_per_min: rate,
+    };
+    let value = objective_of(&problem, &objective, &end).unwrap();
+    assert!(!value.proven, "60 real drones on 4 pads were proven");
+    let by_lpt = lpt(4, &ct).unwrap().makespan_min;
+    assert!(value.value <= by_lpt * (1.0 + 1e-12));
+    assert!(value.value >= ct.iter().sum::<f64>() / 4.0 * (1.0 - 1e-12));
+
+    // Five drones, 7, 6, 5, 4, 3 min on 2 pads: the sum 25 leaves at least 13 on one pad, and
+    // 7 + 6 against 5 + 4 + 3 meets it.
+    let ct = [7.0, 6.0, 5.0, 4.0, 3.0];
+    let capacities = [1000.0; 5];
+    let end: Vec<f64> = ct.iter().map(|t| 1000.0 - t * rate).collect();
+    let objective = Objective::NodeTime {
+        pads: 2,
+        pad_rate_mah_per_min: rate,
+    };
+    let value = objective_of(&drones_at_rest(&capacities), &objective, &end).unwrap();
+    assert!(value.proven);
+    let optimum = brute(2, &ct, &Limits::default()).unwrap().makespan_min;
+    assert_eq!(optimum, 13.0);
+    assert!((value.value - 13.0).abs() < 1e-9, "{}", value.value);
+}
+
+/// Request of 32 identical 0.5 kg packages n010 -> n168 (33 drones): its candidate stops have
+/// charge times most of which are equal. Sequential partitioning could not prove the stops on 3
+/// and 4 pads within the default node limit (the plan took about 3 minutes with six stops left
+/// feasible); bin completion proves every one. Each stop of the plan is labelled optimal, lies
+/// between the bound `sum/k` and LPT, and where sequential partitioning alone also proves the
+/// stop within the limit the two searches agree.
+#[test]
+fn a_request_of_identical_packages_proves_every_stop() {
+    use node_time::{exact_with, ExactSearch};
+    let paper = paper_195();
+    let options = PlanOptions {
+        sharing: SharingPolicy::Pb,
+        positioning: Positioning::LocationAware,
+        route: RouteMethod::Sequential,
+        support: None,
+    };
+    let context = Context::new(&paper.network, &paper.graph, &paper.profile);
+    let request = request(32);
+    let report = context.plan(&request, &options).unwrap();
+    assert!(report.plan.delivered());
+    assert_eq!(report.swarm.drones.len(), 33);
+    let violations = check_plan(
+        &paper.network,
+        &paper.profile,
+        &request,
+        &report.swarm,
+        options.sharing,
+        &report.plan,
+    );
+    assert!(violations.is_empty(), "{violations:?}");
+    let limits = Limits {
+        time_limit_s: None,
+        node_limit: Some(DEFAULT_STOP_NODE_LIMIT),
+    };
+    let mut cross_checked = 0;
+    let mut stops = 0;
+    for stop in report.plan.hops.iter().filter_map(|h| h.stop.as_ref()) {
+        stops += 1;
+        assert_eq!(stop.status, SolveStatus::Optimal, "{stop:?}");
+        assert_valid_assignment(stop);
+        let pads = stop.pads as usize;
+        let sum: f64 = stop.charge_times_min.iter().sum();
+        assert!(stop.nt_min >= sum / pads as f64 * (1.0 - 1e-12));
+        let by_lpt = lpt(pads, &stop.charge_times_min).unwrap().makespan_min;
+        assert!(stop.nt_min <= by_lpt * (1.0 + 1e-12));
+        let other = exact_with(
+            pads,
+            &stop.charge_times_min,
+            &limits,
+            ExactSearch::Partition,
+        )
+        .unwrap();
+        if other.status == SolveStatus::Optimal {
+            cross_checked += 1;
+            assert!(
+                (other.makespan_min - stop.nt_min).abs() <= 1e-9 * stop.nt_min,
+                "{} vs {}",
+                other.makespan_min,
+                stop.nt_min
+            );
+        }
+    }
+    assert!(stops >= 5, "{stops} stops");
+    assert!(
+        cross_checked >= 3,
+        "{cross_checked} of {stops} cross-checked"
+    );
+}

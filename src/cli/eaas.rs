@@ -124,6 +124,9 @@ pub struct MethodRow {
     /// Objective of the schedule (node time, min, or lowest delivery arrival battery, mAh); the
     /// bound itself for `fluid`.
     pub objective: Option<f64>,
+    /// False when `objective` is a node time not proven within the node limit of a stop (an
+    /// upper bound on the schedule's node time; printed with `<=`).
+    pub objective_proven: bool,
     /// The model's proven bound on the objective (MILP, fluid LP).
     pub bound: Option<f64>,
     /// `fair` only: the QP optimum, sum of squared end deficits over every drone, mAh^2 (a lower
@@ -304,6 +307,7 @@ fn exact_row(method: HopMethod, kind: &'static str, o: ExactOutcome) -> MethodRo
         } else {
             o.objective
         },
+        objective_proven: method == HopMethod::Fluid || o.objective_proven,
         bound: if method == HopMethod::Fair {
             None
         } else {
@@ -347,16 +351,18 @@ fn rows(
                     _ => SharingPolicy::None,
                 };
                 let o = simulate_with(problem, policy, readings)?;
+                let value = if o.feasible {
+                    Some(objective_of(problem, objective, &o.final_battery_mah)?)
+                } else {
+                    None
+                };
                 MethodRow {
                     method: m,
                     kind: "heuristic",
                     status: None,
                     feasible: Some(o.feasible),
-                    objective: if o.feasible {
-                        Some(objective_of(problem, objective, &o.final_battery_mah)?)
-                    } else {
-                        None
-                    },
+                    objective: value.map(|v| v.value),
+                    objective_proven: value.is_none_or(|v| v.proven),
                     bound: None,
                     qp_squared_deficits_mah2: None,
                     gap: None,
@@ -388,8 +394,13 @@ fn rows(
     let reference = rows
         .iter()
         .find_map(|r| match (r.method, r.status, r.objective) {
-            (HopMethod::Milp, Some(ExactStatus::Optimal), Some(v)) => {
+            // The MILP's schedule is optimal over the grid; its node time is the reference only
+            // when the exact node time proved it.
+            (HopMethod::Milp, Some(ExactStatus::Optimal), Some(v)) if r.objective_proven => {
                 Some((v, ReferenceKind::Optimal))
+            }
+            (HopMethod::Milp, Some(ExactStatus::Optimal), Some(v)) => {
+                Some((v, ReferenceKind::Incumbent))
             }
             (HopMethod::Milp, Some(ExactStatus::Feasible), Some(v)) => {
                 Some((v, ReferenceKind::Incumbent))
@@ -445,7 +456,10 @@ fn print_human(r: &EaasReport) -> Result<()> {
             row.kind,
             row.status.map_or("-".to_string(), |s| format!("{s:?}")),
             row.feasible.map_or("-".to_string(), |f| f.to_string()),
-            num(row.objective),
+            match row.objective {
+                Some(v) if !row.objective_proven => format!("<={v:.4}"),
+                v => num(v),
+            },
             num(row.bound),
             gap,
             row.grid_step_min

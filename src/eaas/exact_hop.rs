@@ -69,6 +69,14 @@ pub enum Fallback {
     ModelRejectsEmptySchedule,
 }
 
+fn proven() -> bool {
+    true
+}
+
+fn is_proven(proven: &bool) -> bool {
+    *proven
+}
+
 /// How the exact or fair solve of one hop ended.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -89,6 +97,11 @@ pub struct HopSolve {
     /// The flown schedule's node time (goal `node_time_min`), minutes.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub objective: Option<f64>,
+    /// False when `objective` was not proven within the node limit of a stop
+    /// ([`crate::node_time::DEFAULT_STOP_NODE_LIMIT`]): it is then an upper bound. Written only
+    /// when false.
+    #[serde(default = "proven", skip_serializing_if = "is_proven")]
+    pub objective_proven: bool,
     /// A proven lower bound on the node time over the solver's schedules (the optimum when
     /// `optimal`; the LP relaxation or fluid bound after a limit; the fair QP has none).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -244,6 +257,7 @@ pub fn fly_exact(
         status,
         backend_error,
         objective: None,
+        objective_proven: true,
         bound: bound.filter(|_| exact_node_time),
         grid_step_min,
         schedule_flies: schedule.as_ref().is_some_and(|o| o.feasible),
@@ -267,11 +281,9 @@ pub fn fly_exact(
         }
     };
     if goal == HopGoal::NodeTimeMin && outcome.feasible {
-        solve.objective = Some(super::milp::objective_of(
-            problem,
-            objective,
-            &outcome.final_battery_mah,
-        )?);
+        let value = super::milp::objective_of(problem, objective, &outcome.final_battery_mah)?;
+        solve.objective = Some(value.value);
+        solve.objective_proven = value.proven;
     }
     Ok((outcome, solve))
 }

@@ -264,6 +264,7 @@ fn empty_outcome(legs: usize) -> ExactOutcome {
     ExactOutcome {
         status: ExactStatus::Infeasible,
         objective: None,
+        objective_proven: true,
         model_objective: None,
         bound: None,
         grid_step_min: 0.0,
@@ -429,7 +430,9 @@ pub fn fair(
     out.bound = Some(value);
     let transfers = layout(problem, &m, &x);
     let replay = evaluate(problem, &transfers).into_outcome();
-    out.objective = Some(objective_of(problem, objective, &replay.final_battery_mah)?);
+    let value = objective_of(problem, objective, &replay.final_battery_mah)?;
+    out.objective = Some(value.value);
+    out.objective_proven = value.proven;
     out.transfers = replay.transfers.clone();
     out.outcome = Some(replay);
     out.solve_ms = start.elapsed().as_secs_f64() * 1e3;

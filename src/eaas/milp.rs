@@ -33,7 +33,7 @@ use crate::error::{Error, Result, Violation};
 use crate::node_time;
 use crate::solver::lp_file::LpCapture;
 pub use crate::solver::lp_file::LpSize;
-use crate::solver::MilpBackend;
+use crate::solver::{MilpBackend, SolveStatus};
 use good_lp::{
     constraint, variable, Expression, ProblemVariables, ResolutionError, Solution, SolutionStatus,
     SolverModel, Variable, WithTimeLimit,
@@ -126,6 +126,10 @@ pub struct ExactOutcome {
     /// Objective of the returned schedule, re-evaluated from its replay (node time in minutes,
     /// lowest delivery arrival battery in mAh, or 0 for feasibility); `None` without a schedule.
     pub objective: Option<f64>,
+    /// False when `objective` is a node time the exact search did not prove within
+    /// [`node_time::DEFAULT_STOP_NODE_LIMIT`] nodes (then an upper bound on the schedule's node
+    /// time); true otherwise.
+    pub objective_proven: bool,
     /// Objective value reported by the model itself (grid MILP, LP or QP).
     pub model_objective: Option<f64>,
     /// A proven bound on the model's optimum (lower for minimisation, upper for maximisation):
@@ -281,8 +285,29 @@ fn validate_time_limit(time_limit_s: f64) -> Result<()> {
     }
 }
 
+/// The objective of a replayed hop and whether that value is proven.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ObjectiveValue {
+    /// Node time (min), lowest delivery arrival battery (mAh), or 0.
+    pub value: f64,
+    /// False when the exact node time stopped at [`node_time::DEFAULT_STOP_NODE_LIMIT`] nodes:
+    /// `value` is then the makespan of the best pad assignment found, an upper bound on the
+    /// schedule's node time.
+    pub proven: bool,
+}
+
+impl ObjectiveValue {
+    fn proven(value: f64) -> ObjectiveValue {
+        ObjectiveValue {
+            value,
+            proven: true,
+        }
+    }
+}
+
 /// Objective value of a replayed hop: node time by the exact P||Cmax search on the charge times
-/// `(C_d - b_d(tt)) / pad_rate` (a battery above capacity counts as full), lowest delivery arrival
+/// `(C_d - b_d(tt)) / pad_rate` (a battery above capacity counts as full) under the node limit
+/// of a planner's stop ([`node_time::DEFAULT_STOP_NODE_LIMIT`]), lowest delivery arrival
 /// battery, or 0.
 ///
 /// # Errors
@@ -291,7 +316,7 @@ pub fn objective_of(
     problem: &HopProblem,
     objective: &Objective,
     final_battery_mah: &[f64],
-) -> Result<f64> {
+) -> Result<ObjectiveValue> {
     match *objective {
         Objective::NodeTime {
             pads,
@@ -303,16 +328,26 @@ pub fn objective_of(
                 .zip(final_battery_mah)
                 .map(|(d, &b)| ((d.capacity_mah - b) / pad_rate_mah_per_min).max(0.0))
                 .collect();
-            Ok(node_time::exact(pads, &times, &node_time::Limits::default())?.makespan_min)
+            let limits = node_time::Limits {
+                time_limit_s: None,
+                node_limit: Some(node_time::DEFAULT_STOP_NODE_LIMIT),
+            };
+            let solution = node_time::exact(pads, &times, &limits)?;
+            Ok(ObjectiveValue {
+                value: solution.makespan_min,
+                proven: solution.status == SolveStatus::Optimal,
+            })
         }
-        Objective::MaxMinArrival => Ok(problem
-            .drones
-            .iter()
-            .zip(final_battery_mah)
-            .filter(|(d, _)| d.role == Role::Delivery)
-            .map(|(_, &b)| b)
-            .fold(f64::INFINITY, f64::min)),
-        Objective::Feasible => Ok(0.0),
+        Objective::MaxMinArrival => Ok(ObjectiveValue::proven(
+            problem
+                .drones
+                .iter()
+                .zip(final_battery_mah)
+                .filter(|(d, _)| d.role == Role::Delivery)
+                .map(|(_, &b)| b)
+                .fold(f64::INFINITY, f64::min),
+        )),
+        Objective::Feasible => Ok(ObjectiveValue::proven(0.0)),
     }
 }
 
@@ -630,11 +665,12 @@ where
         if !replay.feasible {
             return Ok(Solved::Infeasible);
         }
+        let value = objective_of(problem, objective, &replay.final_battery_mah)?;
         return Ok(Solved::Values(Raw {
             on: y.iter().map(|_| Vec::new()).collect(),
             slots: (mode == Reorder::Free).then(Vec::new),
-            value: objective_of(problem, objective, &replay.final_battery_mah)?,
-            proven: true,
+            value: value.value,
+            proven: value.proven,
             names,
         }));
     }
@@ -877,6 +913,7 @@ pub fn solve_milp(
     let mut out = ExactOutcome {
         status: ExactStatus::Infeasible,
         objective: None,
+        objective_proven: true,
         model_objective: None,
         bound: None,
         grid_step_min: grid.step_min(),
@@ -936,7 +973,9 @@ pub fn solve_milp(
             raw.slots.as_deref().unwrap_or(&[]),
         )
     };
-    out.objective = Some(objective_of(problem, objective, &final_battery)?);
+    let value = objective_of(problem, objective, &final_battery)?;
+    out.objective = Some(value.value);
+    out.objective_proven = value.proven;
     out.model_objective = Some(raw.value);
     out.transfers = transfers;
     out.slots = raw.slots;

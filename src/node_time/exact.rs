@@ -56,6 +56,13 @@ const PARTITION_REAL_DRONES_PER_PAD: usize = 4;
 /// optimum expected above `sum/k`).
 const PARTITION_WHOLE_DRONES_PER_PAD: usize = 5;
 
+/// Real-valued times on more than 2 pads of which at least one in this many repeats an earlier one
+/// (identical drones carrying identical packages) go to bin completion, which proves most of them
+/// in milliseconds where sequential partitioning lists the same subset sums over and over (on 2
+/// pads partitioning stays far faster) (`models/experiments/
+/// node_time.md`, "Repeated charge times").
+const REPEATED_SHARE_DENOMINATOR: usize = 4;
+
 /// Most pads for which phase 2 is sequential partitioning (with more, bin completion's median
 /// and worst case are lower; measured at 4 drones per pad).
 const PARTITION_MAX_PADS: usize = 7;
@@ -481,7 +488,8 @@ fn first_guess(m: usize, p: &[f64], integral: bool, lb: f64, ub: f64) -> Option<
 /// Whether phase 2 is sequential partitioning (`partition.rs`) rather than bin completion, for
 /// the charge times `times` (`positive` of them above zero) on `m` pads: at most
 /// [`PARTITION_MAX_PADS`] pads and at most [`PARTITION_MAX_DRONES`] drones, and with real-valued
-/// times more than [`PARTITION_REAL_DRONES_PER_PAD`] drones per pad; with whole minutes at least
+/// times more than [`PARTITION_REAL_DRONES_PER_PAD`] drones per pad and, beyond 2 pads, fewer
+/// than one in [`REPEATED_SHARE_DENOMINATOR`] repeated; with whole minutes at least
 /// [`PARTITION_WHOLE_DRONES_PER_PAD`] per pad and no assignment expected to meet the bound (the
 /// expected excess of the optimum over `sum/k` at least half a minute; below, bin completion
 /// usually finds a perfect assignment at `C = LB` at once). Measured by
@@ -491,13 +499,21 @@ fn use_partition(m: usize, times: &[f64], positive: usize, integral: bool) -> bo
         return false;
     }
     if !integral {
-        return positive > PARTITION_REAL_DRONES_PER_PAD * m;
+        return positive > PARTITION_REAL_DRONES_PER_PAD * m
+            && (m == 2 || REPEATED_SHARE_DENOMINATOR * repeated_times(times) < positive);
     }
     if positive < PARTITION_WHOLE_DRONES_PER_PAD * m {
         return false;
     }
     let p: Vec<f64> = times.iter().copied().filter(|&t| t > 0.0).collect();
     expected_excess(&p, m, 1.0) >= 0.5
+}
+
+/// How many of the positive `times` equal an earlier one.
+fn repeated_times(times: &[f64]) -> usize {
+    let mut p: Vec<f64> = times.iter().copied().filter(|&t| t > 0.0).collect();
+    p.sort_by(f64::total_cmp);
+    p.windows(2).filter(|w| w[0] == w[1]).count()
 }
 
 /// The expected excess of the node time over `sum/k` for `m` pads and drones with charge times
