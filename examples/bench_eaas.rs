@@ -28,7 +28,8 @@ fn problem(rng: &mut ChaCha8Rng) -> HopProblem {
             duration_min: rng.random_range(1.0..10.0),
             rate_mah_per_min: (0..n)
                 .map(|_| (0..n).map(|_| rng.random_range(100.0..200.0)).collect())
-                .collect(),
+                .collect::<Vec<_>>()
+                .into(),
         })
         .collect();
     let drones = (0..n)

@@ -35,7 +35,8 @@ fn hop(rng: &mut ChaCha8Rng, nd: usize, ns: usize, periods: usize) -> HopProblem
             duration_min: periods as f64,
             rate_mah_per_min: (0..n)
                 .map(|_| (0..n).map(|_| scale * rng.random_range(2.0..6.0)).collect())
-                .collect(),
+                .collect::<Vec<_>>()
+                .into(),
         }],
         drones: (0..n)
             .map(|d| DroneState {

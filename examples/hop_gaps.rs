@@ -308,7 +308,7 @@ fn request_rows(
             };
             steps.push(nodes[0]);
             let end = *nodes.last().expect("a hop has nodes");
-            let problem = planner.hop_problem(&path, &hop.departure_battery_mah);
+            let problem = planner.hop_problem(&path, &hop.departure_battery_mah)?;
             let replay = simulate_with(&problem, policy, &readings)?;
             let replay_matches = replay.feasible
                 && replay
@@ -369,7 +369,7 @@ fn request_rows(
             let Some(path) = graph.shortest_path(from, destination) else {
                 continue;
             };
-            let problem: HopProblem = planner.hop_problem(&path, &full);
+            let problem: HopProblem = planner.hop_problem(&path, &full)?;
             let Ok(lp) = fluid::bound(&problem, &Objective::Feasible, Reorder::Paper, time_limit_s)
             else {
                 rows.errors[p] += 1;

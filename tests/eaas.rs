@@ -156,7 +156,8 @@ fn out_of_range_consumer_swaps_next_to_the_support_drone_and_pays_that_slots_rat
                 vec![10.0, 20.0, 99.0],
                 vec![6.0, 8.0, 99.0],
                 vec![99.0, 99.0, 5.0],
-            ],
+            ]
+            .into(),
         }],
         drones: vec![
             drone(Role::Delivery, 400.0, 120.0),
@@ -357,7 +358,7 @@ fn malformed_problems_are_invalid_input() {
     let mut p = two_drones();
     p.initial_slot = vec![0, 0];
     p.rho_mah_per_min = f64::NAN;
-    p.legs[0].rate_mah_per_min[0].pop();
+    std::sync::Arc::make_mut(&mut p.legs[0].rate_mah_per_min)[0].pop();
     let err = simulate(&p, SharingPolicy::Pb).unwrap_err();
     assert_eq!(err.exit_code(), 2);
     let swarmplan::Error::Invalid(v) = err else {
@@ -426,7 +427,8 @@ fn random_problem(seed: u64) -> HopProblem {
             },
             rate_mah_per_min: (0..n)
                 .map(|_| (0..n).map(|_| rng.random_range(0.0..30.0)).collect())
-                .collect(),
+                .collect::<Vec<_>>()
+                .into(),
         })
         .collect();
     let drones = (0..n)
@@ -471,7 +473,8 @@ fn swap_partner_hop() -> HopProblem {
                 vec![10.0, 10.0, 10.0],
                 vec![30.0, 10.0, 10.0],
                 vec![5.0, 5.0, 5.0],
-            ],
+            ]
+            .into(),
         }],
         drones: vec![
             drone(Role::Delivery, 200.0, 150.0),
@@ -662,7 +665,8 @@ proptest! {
             leg.rate_mah_per_min = keep
                 .iter()
                 .map(|&d| keep.iter().map(|&q| leg.rate_mah_per_min[d][q]).collect())
-                .collect();
+                .collect::<Vec<_>>()
+                .into();
         }
         let none = simulate(&p, SharingPolicy::None).unwrap();
         for policy in [SharingPolicy::Pb, SharingPolicy::Fb] {

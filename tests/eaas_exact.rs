@@ -347,7 +347,8 @@ fn integral_hop(seed: u64) -> HopProblem {
             duration_min: rng.random_range(1..=2u32) as f64,
             rate_mah_per_min: (0..n)
                 .map(|_| (0..n).map(|_| rng.random_range(0..=3u32) as f64).collect())
-                .collect(),
+                .collect::<Vec<_>>()
+                .into(),
         })
         .collect();
     let drones = (0..n)
@@ -570,7 +571,8 @@ fn large_hop() -> HopProblem {
         duration_min: 8.0,
         rate_mah_per_min: (0..n)
             .map(|d| (0..n).map(|q| 2.0 + ((d * 3 + q) % 4) as f64).collect())
-            .collect(),
+            .collect::<Vec<_>>()
+            .into(),
     }];
     p.slots_m = (0..n).map(|q| Vector2::new(0.7 * q as f64, 0.0)).collect();
     p.initial_slot = vec![0, 1, 3, 5, 6, 2, 4];

@@ -768,7 +768,8 @@ fn p5015_schedule_passes_the_hop_checker(
                     swarm,
                     l.heading_deg,
                     &l.wind,
-                ),
+                )
+                .into(),
             })
             .collect(),
         drones: swarm

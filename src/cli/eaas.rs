@@ -251,7 +251,7 @@ fn planned_hop(args: &EaasArgs) -> Result<(HopFile, PolicyOptions)> {
             message: format!("the plan's hop path {:?} is not a network path", hop.path),
         })?;
     let planner = Planner::new(graph, &instance.profile, &report.swarm, SharingPolicy::Pb);
-    let problem = planner.hop_problem(&path, &hop.departure_battery_mah);
+    let problem = planner.hop_problem(&path, &hop.departure_battery_mah)?;
     let end = nodes.last().copied().unwrap_or(0);
     // A plan's hop without a stop ends at the destination: no node time there, whatever its pads.
     let pads = if hop.stop.is_some() {

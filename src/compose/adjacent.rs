@@ -69,7 +69,7 @@ impl Planner<'_> {
             // Lines 12-16: the best neighbour not yet visited.
             let mut best = None;
             let mut best_cost = f64::INFINITY;
-            for (v, _) in graph.neighbors(current) {
+            for &(v, _) in graph.neighbors(current) {
                 if visited[v] {
                     continue;
                 }

@@ -18,7 +18,7 @@ impl Planner<'_> {
         let full = self.full_battery_mah();
         let mut costs = Vec::new();
         for u in 0..graph.node_count() {
-            for (v, _) in graph.neighbors(u) {
+            for &(v, _) in graph.neighbors(u) {
                 let Some(path) = graph.path_from_nodes(&[u, v]) else {
                     continue;
                 };

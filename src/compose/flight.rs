@@ -6,7 +6,7 @@ use crate::eaas::exact_hop::{self, ExactSettings, HopSolve, HopSolveCounts};
 use crate::eaas::milp::Objective;
 use crate::eaas::{self, HopOutcome, HopProblem, SharingPolicy};
 use crate::energy;
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::network::Route;
 use crate::node_time::{self, Limits};
 use crate::problem::profile::Readings;
@@ -14,11 +14,12 @@ use crate::problem::Profile;
 use crate::problem::SkywayGraph;
 use crate::problem::Wind;
 use crate::problem::{Role, Swarm};
-use std::cell::RefCell;
-use std::collections::HashMap;
+use std::cell::{Cell, RefCell};
+use std::sync::Arc;
 
-/// Rate matrices `[drone][slot]` per directed edge `(from, to)`.
-type RateCache = RefCell<HashMap<(usize, usize), Vec<Vec<f64>>>>;
+/// Rate matrices `[drone][slot]` per directed edge: edge `e` flown from its file `from` node at
+/// `2 e`, the other way at `2 e + 1`.
+type RateCache = RefCell<Vec<Option<Arc<Vec<Vec<f64>>>>>>;
 
 /// Where a flown hop ends, which decides what the exact and fair policies optimise.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -53,6 +54,9 @@ pub struct Planner<'a> {
     solves: RefCell<HopSolveCounts>,
     /// Node limit of the exact node time at every stop; `None` for none.
     node_limit: Option<u64>,
+    /// Whether a hop problem of this planner passed [`eaas::validate`] (the rules that do not
+    /// depend on the path: drones, slots, sharing parameters).
+    validated: Cell<bool>,
 }
 
 impl<'a> Planner<'a> {
@@ -68,10 +72,11 @@ impl<'a> Planner<'a> {
             profile,
             swarm,
             sharing,
-            rates: RefCell::new(HashMap::new()),
+            rates: RefCell::new(vec![None; 2 * graph.edge_count()]),
             exact: ExactSettings::default(),
             solves: RefCell::new(HopSolveCounts::default()),
             node_limit: Some(node_time::DEFAULT_STOP_NODE_LIMIT),
+            validated: Cell::new(false),
         }
     }
 
@@ -147,34 +152,68 @@ impl<'a> Planner<'a> {
         self.swarm.drones.iter().map(|d| d.capacity_mah).collect()
     }
 
+    /// The consumption-rate matrix `[drone][slot]` of flying `leg`, computed once per directed
+    /// edge and checked then: every rate finite and `>= 0`.
+    ///
+    /// # Errors
+    /// [`Error::Invalid`] with E4007 when the energy model gives a rate that is not finite or is
+    /// negative (the profile and network passed validation, so this would be a bug).
+    fn leg_rates(&self, leg: &crate::network::Leg) -> Result<Arc<Vec<Vec<f64>>>> {
+        let key = 2 * leg.edge + usize::from(leg.from != self.graph.edge(leg.edge).a);
+        if let Some(rate) = &self.rates.borrow()[key] {
+            return Ok(Arc::clone(rate));
+        }
+        let rate = energy::rate_matrix_mah_per_min(
+            self.profile,
+            self.swarm,
+            leg.heading_deg,
+            &Wind {
+                speed_mps: leg.wind_speed_mps,
+                from_deg: leg.wind_from_deg,
+            },
+        );
+        let bad = rate.iter().enumerate().find_map(|(d, row)| {
+            row.iter()
+                .position(|&r| !(r.is_finite() && r >= 0.0))
+                .map(|q| (d, q))
+        });
+        if let Some((d, q)) = bad {
+            return Err(Error::invalid(
+                "E4007",
+                format!(
+                    "rate of drone {d} in slot {q} from {} to {}",
+                    self.graph.id_of(leg.from),
+                    self.graph.id_of(leg.to)
+                ),
+                format!("{} is not a finite rate >= 0", rate[d][q]),
+                "report it with the network and profile",
+            ));
+        }
+        let rate = Arc::new(rate);
+        self.rates.borrow_mut()[key] = Some(Arc::clone(&rate));
+        Ok(rate)
+    }
+
     /// The in-flight sharing problem of flying `path` with batteries `battery_mah` at departure.
-    pub fn hop_problem(&self, path: &Route, battery_mah: &[f64]) -> HopProblem {
+    /// The first problem a planner builds is validated in full ([`eaas::validate`]), every rate
+    /// matrix when first computed; the planner's own hops are then simulated without
+    /// re-validation.
+    ///
+    /// # Errors
+    /// [`Error::Invalid`] when a rate is not finite (E4007) or the first problem breaks a rule of
+    /// [`eaas::validate`].
+    pub fn hop_problem(&self, path: &Route, battery_mah: &[f64]) -> Result<HopProblem> {
         let speed = self.speed_m_per_min();
-        let mut cache = self.rates.borrow_mut();
         let legs = path
             .legs
             .iter()
             .map(|leg| {
-                let rate = cache
-                    .entry((leg.from, leg.to))
-                    .or_insert_with(|| {
-                        energy::rate_matrix_mah_per_min(
-                            self.profile,
-                            self.swarm,
-                            leg.heading_deg,
-                            &Wind {
-                                speed_mps: leg.wind_speed_mps,
-                                from_deg: leg.wind_from_deg,
-                            },
-                        )
-                    })
-                    .clone();
-                eaas::LegRates {
+                Ok(eaas::LegRates {
                     duration_min: leg.distance_m / speed,
-                    rate_mah_per_min: rate,
-                }
+                    rate_mah_per_min: self.leg_rates(leg)?,
+                })
             })
-            .collect();
+            .collect::<Result<Vec<_>>>()?;
         let drones = self
             .swarm
             .drones
@@ -187,7 +226,7 @@ impl<'a> Planner<'a> {
             })
             .collect();
         let s = &self.profile.sharing;
-        HopProblem {
+        let problem = HopProblem {
             legs,
             drones,
             slots_m: self.swarm.slots_m.clone(),
@@ -197,7 +236,12 @@ impl<'a> Planner<'a> {
             gamma_mah: s.gamma_mah,
             lambda_mah: s.lambda_mah,
             delta_mah: s.delta_mah,
+        };
+        if !self.validated.get() {
+            eaas::validate(&problem)?;
+            self.validated.set(true);
         }
+        Ok(problem)
     }
 
     /// Flies `path` without stopping under `policy`: PB, FB and the baselines are simulated; the
@@ -213,11 +257,11 @@ impl<'a> Planner<'a> {
         policy: SharingPolicy,
         end: HopEnd,
     ) -> Result<Flight> {
-        let problem = self.hop_problem(path, battery_mah);
+        let problem = self.hop_problem(path, battery_mah)?;
         if !policy.is_exact() {
             let options = eaas::PolicyOptions::from(&self.profile.readings);
             return Ok(Flight {
-                outcome: eaas::simulate_with(&problem, policy, &options)?,
+                outcome: eaas::simulate_valid(&problem, policy, &options)?,
                 solve: None,
             });
         }
@@ -337,18 +381,20 @@ impl<'a> Planner<'a> {
     }
 
     /// Smallest consumption rate of every drone over every directed edge and every slot, mAh/min.
-    pub(crate) fn min_rates_mah_per_min(&self) -> Vec<f64> {
+    ///
+    /// # Errors
+    /// Those of [`Planner::hop_problem`].
+    pub(crate) fn min_rates_mah_per_min(&self) -> Result<Vec<f64>> {
         let n = self.swarm.drones.len();
         let mut min_rate = vec![f64::INFINITY; n];
         for u in 0..self.graph.node_count() {
-            for (v, _) in self.graph.neighbors(u) {
+            for &(v, _) in self.graph.neighbors(u) {
                 let path = match self.graph.path_from_nodes(&[u, v]) {
                     Some(p) => p,
                     None => continue,
                 };
-                let problem = self.hop_problem(&path, &self.full_battery_mah());
-                for leg in &problem.legs {
-                    for (d, row) in leg.rate_mah_per_min.iter().enumerate() {
+                for leg in &path.legs {
+                    for (d, row) in self.leg_rates(leg)?.iter().enumerate() {
                         for &r in row {
                             min_rate[d] = min_rate[d].min(r);
                         }
@@ -356,6 +402,6 @@ impl<'a> Planner<'a> {
                 }
             }
         }
-        min_rate
+        Ok(min_rate)
     }
 }

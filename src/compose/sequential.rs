@@ -30,7 +30,7 @@ impl Planner<'_> {
         let settings = self.exact_settings();
         let mut out = Vec::with_capacity(candidates.len());
         for (v, path, look_ahead_min, _) in candidates {
-            let problem = self.hop_problem(&path, battery);
+            let problem = self.hop_problem(&path, battery)?;
             let objective = Objective::NodeTime {
                 pads: self.graph().pads(v) as usize,
                 pad_rate_mah_per_min: self.pad_rate_mah_per_min(v),
@@ -101,7 +101,10 @@ impl Planner<'_> {
                 direct_failure = flight.outcome.failure;
             }
             // Lines 12-16: the best recharging node reachable without stopping.
-            let min_rates = min_rates.get_or_insert_with(|| self.min_rates_mah_per_min());
+            let min_rates = match &mut min_rates {
+                Some(rates) => rates,
+                None => min_rates.insert(self.min_rates_mah_per_min()?),
+            };
             let endurance_min = self.endurance_bound_min(&battery, min_rates);
             // Shortest paths v -> current, flown reversed: one Dijkstra for all candidates.
             let towards_current = graph.shortest_paths_to(current);
@@ -116,10 +119,7 @@ impl Planner<'_> {
                 {
                     continue;
                 }
-                let Some(path) = towards_current.path_from(v).and_then(|p| {
-                    let reversed: Vec<usize> = p.nodes.into_iter().rev().collect();
-                    graph.path_from_nodes(&reversed)
-                }) else {
+                let Some(path) = towards_current.reversed_path_from(v) else {
                     continue;
                 };
                 let look_ahead_min = if look_ahead == LookAhead::RemainingTravelTime {

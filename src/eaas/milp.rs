@@ -887,7 +887,7 @@ fn swaps_only(
 /// use nalgebra::Vector2;
 /// // One delivery drone (80 mAh, 10 mAh/min) next to a support drone, 10 minutes.
 /// let p = HopProblem {
-///     legs: vec![LegRates { duration_min: 10.0, rate_mah_per_min: vec![vec![10.0, 10.0], vec![5.0, 5.0]] }],
+///     legs: vec![LegRates { duration_min: 10.0, rate_mah_per_min: vec![vec![10.0, 10.0], vec![5.0, 5.0]].into() }],
 ///     drones: vec![
 ///         DroneState { role: Role::Delivery, capacity_mah: 200.0, battery_mah: 80.0 },
 ///         DroneState { role: Role::Support, capacity_mah: 500.0, battery_mah: 500.0 },
@@ -1077,7 +1077,7 @@ pub fn lp_text(
 /// use swarmplan::eaas::milp::{write_lp, MilpOptions, Objective};
 /// use nalgebra::Vector2;
 /// let p = HopProblem {
-///     legs: vec![LegRates { duration_min: 3.0, rate_mah_per_min: vec![vec![10.0, 10.0], vec![5.0, 5.0]] }],
+///     legs: vec![LegRates { duration_min: 3.0, rate_mah_per_min: vec![vec![10.0, 10.0], vec![5.0, 5.0]].into() }],
 ///     drones: vec![
 ///         DroneState { role: Role::Delivery, capacity_mah: 200.0, battery_mah: 80.0 },
 ///         DroneState { role: Role::Support, capacity_mah: 500.0, battery_mah: 500.0 },

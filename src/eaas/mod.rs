@@ -20,6 +20,7 @@ pub use crate::problem::profile::{PbRequest, Readings};
 use crate::problem::Role;
 use nalgebra::Vector2;
 use serde::{Deserialize, Serialize};
+use std::sync::Arc;
 
 pub mod exact_hop;
 mod fb;
@@ -78,8 +79,9 @@ pub struct HopProblem {
 pub struct LegRates {
     /// Duration of the leg, minutes.
     pub duration_min: f64,
-    /// `rate_mah_per_min[d][q]` = consumption of drone `d` flying in slot `q`, mAh/min.
-    pub rate_mah_per_min: Vec<Vec<f64>>,
+    /// `rate_mah_per_min[d][q]` = consumption of drone `d` flying in slot `q`, mAh/min. Shared:
+    /// every hop over the same directed edge with the same swarm uses one matrix.
+    pub rate_mah_per_min: Arc<Vec<Vec<f64>>>,
 }
 
 /// A drone's battery at the start of the hop.
@@ -254,7 +256,7 @@ pub struct HopOutcome {
 /// use swarmplan::problem::Role;
 /// use nalgebra::Vector2;
 /// let p = HopProblem {
-///     legs: vec![LegRates { duration_min: 10.0, rate_mah_per_min: vec![vec![10.0, 10.0], vec![5.0, 5.0]] }],
+///     legs: vec![LegRates { duration_min: 10.0, rate_mah_per_min: vec![vec![10.0, 10.0], vec![5.0, 5.0]].into() }],
 ///     drones: vec![
 ///         DroneState { role: Role::Delivery, capacity_mah: 200.0, battery_mah: 80.0 },
 ///         DroneState { role: Role::Support, capacity_mah: 500.0, battery_mah: 500.0 },
@@ -292,9 +294,26 @@ pub fn simulate_with(
     options: &PolicyOptions,
 ) -> Result<HopOutcome> {
     validate(problem)?;
+    simulate_valid(problem, policy, options)
+}
+
+/// [`simulate_with`] for a problem that passed [`validate`] (the route planner validates its
+/// hop problems once, not at every hop).
+///
+/// # Errors
+/// Those of [`simulate_with`] other than the validation's.
+pub(crate) fn simulate_valid(
+    problem: &HopProblem,
+    policy: SharingPolicy,
+    options: &PolicyOptions,
+) -> Result<HopOutcome> {
     let plan = match policy {
         SharingPolicy::None | SharingPolicy::IdleSupport => none::plan(problem),
-        SharingPolicy::Pb => pb::plan(problem, options),
+        SharingPolicy::Pb => match pb::plan(problem, options) {
+            // Realising no transfer again would repeat the same arithmetic.
+            (_, Some(run)) => return Ok(run.into_outcome()),
+            (plan, None) => plan,
+        },
         SharingPolicy::Fb => {
             fb_work_bound(problem)?;
             fb::plan(problem, options)
@@ -391,7 +410,7 @@ pub fn battery_trace(problem: &HopProblem, transfers: &[Transfer]) -> Result<Vec
     if !bad.is_empty() {
         return Err(Error::Invalid(bad));
     }
-    Ok(simulate::evaluate(problem, transfers).trace)
+    Ok(simulate::evaluate(problem, transfers).trace())
 }
 
 /// Edge travel time `tt`, minutes: the sum of the legs' durations.

@@ -31,8 +31,9 @@ struct Request {
     re_mah: f64,
 }
 
-/// PB's schedule.
-pub(super) fn plan(problem: &HopProblem, options: &PolicyOptions) -> Vec<Transfer> {
+/// PB's schedule, with its realisation when the schedule is empty (the hop without sharing, which
+/// PB evaluates first anyway).
+pub(super) fn plan(problem: &HopProblem, options: &PolicyOptions) -> (Vec<Transfer>, Option<Run>) {
     let owner = responsible_support(problem);
     let tt = travel_time_min(problem);
     let rho = problem.rho_mah_per_min;
@@ -116,7 +117,8 @@ pub(super) fn plan(problem: &HopProblem, options: &PolicyOptions) -> Vec<Transfe
             rejected.push((er.drone, er.st_min));
         }
     }
-    plan
+    let empty = plan.is_empty().then_some(run);
+    (plan, empty)
 }
 
 /// Current requests of every delivery drone that has a responsible support drone.
@@ -147,15 +149,15 @@ fn requests(
         if b0 < gamma {
             found = Some((t0, b0));
         } else {
-            for w in run.trace.windows(2) {
-                let (t1, b1) = (w[1].0, w[1].1[d]);
+            for k in 1..run.times_min.len() {
+                let (t1, b1) = (run.times_min[k], run.breakpoint(k)[d]);
                 if t1 <= t0 {
                     continue;
                 }
-                let (ta, ba) = if w[0].0 < t0 {
+                let (ta, ba) = if run.times_min[k - 1] < t0 {
                     (t0, b0)
                 } else {
-                    (w[0].0, w[0].1[d])
+                    (run.times_min[k - 1], run.breakpoint(k - 1)[d])
                 };
                 if ba >= gamma && b1 < gamma {
                     let st = ta + (ba - gamma) / (ba - b1) * (t1 - ta);

@@ -88,11 +88,17 @@ pub fn busy_drones(problem: &HopProblem, plan: &[Transfer], start: f64, end: f64
 /// Every drone's slot while the transfers `active` run (they must be drone-disjoint).
 pub fn slot_assignment(problem: &HopProblem, active: &[Transfer]) -> Vec<usize> {
     let mut slot = problem.initial_slot.clone();
+    slot_assignment_into(problem, active, &mut slot);
+    slot
+}
+
+/// [`slot_assignment`] written into `slot` (as many entries as drones).
+pub(crate) fn slot_assignment_into(problem: &HopProblem, active: &[Transfer], slot: &mut [usize]) {
+    slot.copy_from_slice(&problem.initial_slot);
     for t in active {
         if let Some(p) = swap_partner(problem, t) {
             slot[p] = problem.initial_slot[t.consumer];
             slot[t.consumer] = t.consumer_slot;
         }
     }
-    slot
 }

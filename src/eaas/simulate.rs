@@ -8,7 +8,7 @@
 //! ([`super::sharing_budget_mah`], i.e. reaching `delta` net of its own remaining consumption).
 //! Between breakpoints every battery is linear, so checks at breakpoints are exact.
 
-use super::reorder::slot_assignment;
+use super::reorder::slot_assignment_into;
 use super::{
     sharing_budget_mah, travel_time_min, FailureReason, HopFailure, HopOutcome, HopProblem, Role,
     Transfer, ENERGY_TOL_MAH, TIME_TOL_MIN,
@@ -18,8 +18,13 @@ use super::{
 pub(crate) struct Run {
     /// Realised transfers, by start then support drone.
     pub transfers: Vec<Transfer>,
-    /// `(t, batteries)` at every breakpoint.
-    pub trace: Vec<(f64, Vec<f64>)>,
+    /// Time of every breakpoint, minutes.
+    pub times_min: Vec<f64>,
+    /// Every drone's battery at every breakpoint, mAh: breakpoint `k`, drone `d` at
+    /// `k * drones + d`.
+    pub batteries_mah: Vec<f64>,
+    /// Number of drones.
+    pub drones: usize,
     /// First battery below zero.
     pub failure: Option<HopFailure>,
     /// Lowest battery per drone.
@@ -32,10 +37,8 @@ impl Run {
     /// The public outcome.
     pub fn into_outcome(self) -> HopOutcome {
         let final_battery_mah = self
-            .trace
-            .last()
-            .map(|(_, b)| b.clone())
-            .unwrap_or_default();
+            .breakpoint(self.times_min.len().wrapping_sub(1))
+            .to_vec();
         HopOutcome {
             feasible: self.failure.is_none(),
             failure: self.failure,
@@ -58,27 +61,45 @@ impl Run {
             .any(|(&after, &was)| after < -ENERGY_TOL_MAH && after < was - ENERGY_TOL_MAH)
     }
 
+    /// Every drone's battery at breakpoint `k`; empty when there is no such breakpoint.
+    pub fn breakpoint(&self, k: usize) -> &[f64] {
+        if k >= self.times_min.len() {
+            return &[];
+        }
+        &self.batteries_mah[k * self.drones..(k + 1) * self.drones]
+    }
+
     /// Battery of drone `d` at `tt`.
     pub fn final_battery(&self, d: usize) -> f64 {
-        self.trace.last().map_or(0.0, |(_, b)| b[d])
+        self.breakpoint(self.times_min.len().wrapping_sub(1))
+            .get(d)
+            .copied()
+            .unwrap_or(0.0)
     }
 
     /// Battery of drone `d` at time `t` (linear between breakpoints).
     pub fn battery_at(&self, d: usize, t: f64) -> f64 {
-        let tr = &self.trace;
-        let k = tr.partition_point(|(ti, _)| *ti <= t);
+        let tr = &self.times_min;
+        let k = tr.partition_point(|ti| *ti <= t);
         if k == 0 {
-            return tr[0].1[d];
+            return self.breakpoint(0)[d];
         }
         if k == tr.len() {
-            return tr[k - 1].1[d];
+            return self.breakpoint(k - 1)[d];
         }
-        let (t0, b0) = (&tr[k - 1].0, &tr[k - 1].1);
-        let (t1, b1) = (&tr[k].0, &tr[k].1);
+        let (t0, b0) = (tr[k - 1], self.breakpoint(k - 1)[d]);
+        let (t1, b1) = (tr[k], self.breakpoint(k)[d]);
         if t1 - t0 <= 0.0 {
-            return b1[d];
+            return b1;
         }
-        b0[d] + (b1[d] - b0[d]) * (t - t0) / (t1 - t0)
+        b0 + (b1 - b0) * (t - t0) / (t1 - t0)
+    }
+
+    /// `(t, batteries)` at every breakpoint.
+    pub fn trace(&self) -> Vec<(f64, Vec<f64>)> {
+        (0..self.times_min.len())
+            .map(|k| (self.times_min[k], self.breakpoint(k).to_vec()))
+            .collect()
     }
 }
 
@@ -107,12 +128,14 @@ pub(crate) fn evaluate(problem: &HopProblem, plan: &[Transfer]) -> Run {
         .collect();
     let cap: Vec<f64> = problem.drones.iter().map(|d| d.capacity_mah).collect();
     let mut plan: Vec<Transfer> = plan.to_vec();
-    plan.sort_by(|a, b| {
-        a.start_min
-            .total_cmp(&b.start_min)
-            .then(a.support.cmp(&b.support))
-            .then(a.consumer.cmp(&b.consumer))
-    });
+    if plan.len() > 1 {
+        plan.sort_by(|a, b| {
+            a.start_min
+                .total_cmp(&b.start_min)
+                .then(a.support.cmp(&b.support))
+                .then(a.consumer.cmp(&b.consumer))
+        });
+    }
     let mut leg_end = Vec::with_capacity(problem.legs.len());
     let mut acc = 0.0;
     for l in &problem.legs {
@@ -127,7 +150,12 @@ pub(crate) fn evaluate(problem: &HopProblem, plan: &[Transfer]) -> Run {
     }
     let mut b: Vec<f64> = problem.drones.iter().map(|d| d.battery_mah).collect();
     let mut min_battery = b.clone();
-    let mut trace = vec![(0.0, b.clone())];
+    let mut times_min = Vec::with_capacity(leg_end.len() + 2 * plan.len() + 2);
+    let mut batteries_mah = Vec::with_capacity(n * (leg_end.len() + 2 * plan.len() + 2));
+    times_min.push(0.0);
+    batteries_mah.extend_from_slice(&b);
+    let mut slot = problem.initial_slot.clone();
+    let mut net = vec![0.0; n];
     let mut shared = vec![0.0; n];
     let mut active: Vec<Transfer> = Vec::new();
     let mut done: Vec<Transfer> = Vec::new();
@@ -160,10 +188,12 @@ pub(crate) fn evaluate(problem: &HopProblem, plan: &[Transfer]) -> Run {
         if leg >= leg_end.len() {
             break;
         }
-        let slot = slot_assignment(problem, &active);
+        slot_assignment_into(problem, &active, &mut slot);
         let rates = &problem.legs[leg].rate_mah_per_min;
         // net[d] = consumption of d in mAh/min over this piece (negative when gaining).
-        let mut net: Vec<f64> = (0..n).map(|d| rates[d][slot[d]]).collect();
+        for d in 0..n {
+            net[d] = rates[d][slot[d]];
+        }
         for a in &active {
             net[a.support] += rho;
             net[a.consumer] -= rho;
@@ -236,7 +266,8 @@ pub(crate) fn evaluate(problem: &HopProblem, plan: &[Transfer]) -> Run {
             }
             !stop
         });
-        trace.push((t, b.clone()));
+        times_min.push(t);
+        batteries_mah.extend_from_slice(&b);
     }
     done.sort_by(|a, b| {
         a.start_min
@@ -245,7 +276,9 @@ pub(crate) fn evaluate(problem: &HopProblem, plan: &[Transfer]) -> Run {
     });
     Run {
         transfers: done,
-        trace,
+        times_min,
+        batteries_mah,
+        drones: n,
         failure,
         min_battery,
         shared_by_support: shared,

@@ -38,32 +38,19 @@ pub struct Route {
     pub distance_m: f64,
 }
 
-/// Direction from `a` to `b` in degrees clockwise from north, in `[0, 360)`; 0 when `a == b`.
-pub fn heading_deg(a: (f64, f64), b: (f64, f64)) -> f64 {
-    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-    if dx == 0.0 && dy == 0.0 {
-        return 0.0;
-    }
-    let h = dx.atan2(dy).to_degrees();
-    let h = if h < 0.0 { h + 360.0 } else { h };
-    if h >= 360.0 {
-        0.0
-    } else {
-        h
-    }
-}
+pub use crate::problem::graph::heading_deg;
 
 impl SkywayGraph {
     /// The leg flying from node `from` to adjacent node `to`, `None` if no edge joins them.
     pub fn leg(&self, from: usize, to: usize) -> Option<Leg> {
-        let e = self.edge_between(from, to)?;
+        let (e, heading_deg) = self.edge_and_heading(from, to)?;
         let s = &self.edges[e];
         Some(Leg {
             from,
             to,
             edge: e,
             distance_m: s.distance_m,
-            heading_deg: heading_deg(self.position_m(from), self.position_m(to)),
+            heading_deg,
             wind_speed_mps: s.wind_speed_mps,
             wind_from_deg: s.wind_from_deg,
         })
@@ -203,6 +190,19 @@ pub struct ShortestPathsTo<'a> {
 impl ShortestPathsTo<'_> {
     /// The shortest path from `from` to the target, `None` if unreachable or out of range.
     pub fn path_from(&self, from: usize) -> Option<Route> {
+        self.graph.path_from_nodes(&self.nodes_from(from)?)
+    }
+
+    /// The path of [`ShortestPathsTo::path_from`] flown the other way: from the target to
+    /// `from`, `None` if unreachable or out of range.
+    pub fn reversed_path_from(&self, from: usize) -> Option<Route> {
+        let mut nodes = self.nodes_from(from)?;
+        nodes.reverse();
+        self.graph.path_from_nodes(&nodes)
+    }
+
+    /// The nodes of the shortest path from `from` to the target.
+    fn nodes_from(&self, from: usize) -> Option<Vec<usize>> {
         let g = self.graph;
         let n = g.node_count();
         let to = self.to;
@@ -219,7 +219,7 @@ impl ShortestPathsTo<'_> {
             }
             let mut next: Option<usize> = None;
             let mut fallback: Option<(f64, usize)> = None;
-            for (v, e) in g.neighbors(u) {
+            for &(v, e) in g.neighbors(u) {
                 if d[v] >= d[u] {
                     continue;
                 }
@@ -235,6 +235,6 @@ impl ShortestPathsTo<'_> {
             u = next.or(fallback.map(|(_, v)| v))?;
             nodes.push(u);
         }
-        g.path_from_nodes(&nodes)
+        Some(nodes)
     }
 }

@@ -12,7 +12,6 @@ use super::Network;
 use crate::error::{Error, Result};
 use petgraph::graph::{NodeIndex, UnGraph};
 use petgraph::unionfind::UnionFind;
-use petgraph::visit::EdgeRef;
 use std::collections::HashMap;
 
 /// One edge of the graph, with its length resolved.
@@ -47,6 +46,26 @@ pub struct SkywayGraph {
     pub(crate) edges: Vec<SkywayEdge>,
     index: HashMap<String, usize>,
     component: Vec<usize>,
+    /// `(neighbour, edge)` pairs of every node, sorted by neighbour index.
+    adjacency: Vec<Vec<(usize, usize)>>,
+    /// `headings_deg[i][j]`: direction flown from node `i` to its `j`-th neighbour (as in
+    /// `adjacency`), degrees clockwise from north in `[0, 360)`.
+    headings_deg: Vec<Vec<f64>>,
+}
+
+/// Direction from `a` to `b` in degrees clockwise from north, in `[0, 360)`; 0 when `a == b`.
+pub fn heading_deg(a: (f64, f64), b: (f64, f64)) -> f64 {
+    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    if dx == 0.0 && dy == 0.0 {
+        return 0.0;
+    }
+    let h = dx.atan2(dy).to_degrees();
+    let h = if h < 0.0 { h + 360.0 } else { h };
+    if h >= 360.0 {
+        0.0
+    } else {
+        h
+    }
 }
 
 /// Reads a network JSON file, validates it and builds its graph.
@@ -139,12 +158,32 @@ impl SkywayGraph {
             });
         }
         let component = components.into_labeling();
+        let mut adjacency = vec![Vec::new(); nodes.len()];
+        for (e, s) in edges.iter().enumerate() {
+            adjacency[s.a].push((s.b, e));
+            adjacency[s.b].push((s.a, e));
+        }
+        for list in &mut adjacency {
+            list.sort_unstable();
+        }
+        let position = |i: usize| (nodes[i].x_m, nodes[i].y_m);
+        let headings_deg = adjacency
+            .iter()
+            .enumerate()
+            .map(|(i, list)| {
+                list.iter()
+                    .map(|&(j, _)| heading_deg(position(i), position(j)))
+                    .collect()
+            })
+            .collect();
         Ok(SkywayGraph {
             graph,
             nodes,
             edges,
             index,
             component,
+            adjacency,
+            headings_deg,
         })
     }
 
@@ -195,40 +234,47 @@ impl SkywayGraph {
     }
 
     /// Index of the edge joining `a` and `b` (either direction), `None` if they are not adjacent.
+    ///
+    /// # Complexity
+    /// O(log d) for degree d.
     pub fn edge_between(&self, a: usize, b: usize) -> Option<usize> {
+        self.neighbor_position(a, b).map(|j| self.adjacency[a][j].1)
+    }
+
+    /// Position of `b` in the neighbour list of `a`, `None` if either is out of range or they
+    /// are not adjacent.
+    fn neighbor_position(&self, a: usize, b: usize) -> Option<usize> {
         if a >= self.nodes.len() || b >= self.nodes.len() {
             return None;
         }
-        self.graph
-            .find_edge(NodeIndex::new(a), NodeIndex::new(b))
-            .map(|e| self.graph[e])
+        self.adjacency[a]
+            .binary_search_by(|&(other, _)| other.cmp(&b))
+            .ok()
+    }
+
+    /// The edge joining `from` and `to` and the direction flown from `from` to `to` (degrees
+    /// clockwise from north in `[0, 360)`, computed once when the graph is built), `None` if
+    /// they are not adjacent.
+    ///
+    /// # Complexity
+    /// O(log d) for degree d.
+    pub fn edge_and_heading(&self, from: usize, to: usize) -> Option<(usize, f64)> {
+        self.neighbor_position(from, to)
+            .map(|j| (self.adjacency[from][j].1, self.headings_deg[from][j]))
     }
 
     /// Neighbours of node `i` with the joining edge, as `(neighbour, edge)` pairs sorted by
     /// neighbour index.
     ///
     /// # Complexity
-    /// O(d log d) for degree d.
-    pub fn neighbors(&self, i: usize) -> Vec<(usize, usize)> {
-        let mut out: Vec<(usize, usize)> = self
-            .graph
-            .edges(NodeIndex::new(i))
-            .map(|e| {
-                let other = if e.source().index() == i {
-                    e.target().index()
-                } else {
-                    e.source().index()
-                };
-                (other, *e.weight())
-            })
-            .collect();
-        out.sort_unstable();
-        out
+    /// O(1): the lists are built once with the graph.
+    pub fn neighbors(&self, i: usize) -> &[(usize, usize)] {
+        &self.adjacency[i]
     }
 
     /// Number of edges at node `i`.
     pub fn degree(&self, i: usize) -> usize {
-        self.graph.edges(NodeIndex::new(i)).count()
+        self.adjacency[i].len()
     }
 
     /// Whether some chain of edges joins `a` and `b` (a node is connected to itself).

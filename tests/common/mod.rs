@@ -171,7 +171,11 @@ pub fn drone(role: Role, capacity_mah: f64, battery_mah: f64) -> DroneState {
 pub fn uniform_leg(duration_min: f64, rates: &[f64]) -> LegRates {
     LegRates {
         duration_min,
-        rate_mah_per_min: rates.iter().map(|&r| vec![r; rates.len()]).collect(),
+        rate_mah_per_min: rates
+            .iter()
+            .map(|&r| vec![r; rates.len()])
+            .collect::<Vec<_>>()
+            .into(),
     }
 }
 
