@@ -17,8 +17,7 @@ use crate::problem::{Role, Swarm};
 use std::cell::{Cell, RefCell};
 use std::sync::Arc;
 
-/// Rate matrices `[drone][slot]` per directed edge: edge `e` flown from its file `from` node at
-/// `2 e`, the other way at `2 e + 1`.
+/// Rate matrices `[drone][slot]` per directed edge ([`Planner::edge_key`]).
 type RateCache = RefCell<Vec<Option<Arc<Vec<Vec<f64>>>>>>;
 
 /// Where a flown hop ends, which decides what the exact and fair policies optimise.
@@ -46,8 +45,10 @@ pub struct Planner<'a> {
     profile: &'a Profile,
     swarm: &'a Swarm,
     sharing: SharingPolicy,
-    /// Consumption-rate matrices `[drone][slot]` per directed edge `(from, to)`, computed once.
+    /// Consumption-rate matrices `[drone][slot]` per directed edge, computed once.
     rates: RateCache,
+    /// The swarm's least total consumption rate per directed edge, mAh/min, computed once.
+    cheapest_rates: RefCell<Vec<Option<f64>>>,
     /// Settings of the exact and fair policies.
     exact: ExactSettings,
     /// Hop solves of the exact and fair policies made so far.
@@ -73,6 +74,7 @@ impl<'a> Planner<'a> {
             swarm,
             sharing,
             rates: RefCell::new(vec![None; 2 * graph.edge_count()]),
+            cheapest_rates: RefCell::new(vec![None; 2 * graph.edge_count()]),
             exact: ExactSettings::default(),
             solves: RefCell::new(HopSolveCounts::default()),
             node_limit: Some(node_time::DEFAULT_STOP_NODE_LIMIT),
@@ -159,7 +161,7 @@ impl<'a> Planner<'a> {
     /// [`Error::Invalid`] with E4007 when the energy model gives a rate that is not finite or is
     /// negative (the profile and network passed validation, so this would be a bug).
     fn leg_rates(&self, leg: &crate::network::Leg) -> Result<Arc<Vec<Vec<f64>>>> {
-        let key = 2 * leg.edge + usize::from(leg.from != self.graph.edge(leg.edge).a);
+        let key = self.edge_key(leg);
         if let Some(rate) = &self.rates.borrow()[key] {
             return Ok(Arc::clone(rate));
         }
@@ -192,6 +194,31 @@ impl<'a> Planner<'a> {
         let rate = Arc::new(rate);
         self.rates.borrow_mut()[key] = Some(Arc::clone(&rate));
         Ok(rate)
+    }
+
+    /// The least total consumption rate of the swarm on `leg`: every drone in its cheapest slot,
+    /// mAh/min, computed once per directed edge.
+    ///
+    /// # Errors
+    /// Those of [`Planner::leg_rates`].
+    pub(crate) fn cheapest_swarm_rate_mah_per_min(&self, leg: &crate::network::Leg) -> Result<f64> {
+        let key = self.edge_key(leg);
+        if let Some(rate) = self.cheapest_rates.borrow()[key] {
+            return Ok(rate);
+        }
+        let rate: f64 = self
+            .leg_rates(leg)?
+            .iter()
+            .map(|row| row.iter().copied().fold(f64::INFINITY, f64::min))
+            .sum();
+        self.cheapest_rates.borrow_mut()[key] = Some(rate);
+        Ok(rate)
+    }
+
+    /// Index of the directed edge `leg` flies in the per-edge caches: edge `e` flown from its
+    /// file `from` node at `2 e`, the other way at `2 e + 1`.
+    fn edge_key(&self, leg: &crate::network::Leg) -> usize {
+        2 * leg.edge + usize::from(leg.from != self.graph.edge(leg.edge).a)
     }
 
     /// The in-flight sharing problem of flying `path` with batteries `battery_mah` at departure.

@@ -13,6 +13,11 @@ use crate::problem::profile::Candidates;
 /// its bound exceeds the best cost by more than this fraction.
 const PRUNE_TOL_MIN: f64 = 1e-6;
 
+/// Relative margin by which the energy bound on a candidate's cost is lowered: far above the
+/// rounding of the sums behind the bound and the cost (about 1e-15 relative each), far below
+/// the gap between the bound and the cost it bounds.
+const BOUND_MARGIN: f64 = 1e-9;
+
 /// A candidate stop: node, hop path, A* look-ahead (min), lower bound on its cost (min).
 type Candidate = (usize, Route, f64, f64);
 
@@ -47,6 +52,33 @@ impl Planner<'_> {
                 Err(_) => 0.0,
             };
             let bound = path.distance_m / speed + nt_bound + look_ahead_min;
+            out.push((v, path, look_ahead_min, bound));
+        }
+        out.sort_by(|a, b| a.3.total_cmp(&b.3).then(a.0.cmp(&b.0)));
+        Ok(out)
+    }
+
+    /// Simulated policies: every candidate with a lower bound on its cost `tt + nt + look-ahead`,
+    /// sorted by bound then node. Sharing moves energy between drones and creates none, so the
+    /// swarm arrives short of full by at least the energy every drone consumes in its cheapest
+    /// slot on every leg, `E`; the pads must put it back, so `nt >= E / (k r)` for `k` pads
+    /// charging at `r` mAh/min. The bound is lowered by a relative [`BOUND_MARGIN`] so that
+    /// rounding never lifts it above the computed cost.
+    ///
+    /// # Errors
+    /// Those of [`Planner::hop_problem`] (a rate matrix that is not finite).
+    fn energy_bounded_candidates(&self, candidates: Vec<Candidate>) -> Result<Vec<Candidate>> {
+        let speed = self.speed_m_per_min();
+        let mut out = Vec::with_capacity(candidates.len());
+        for (v, path, look_ahead_min, _) in candidates {
+            let mut energy_mah = 0.0;
+            for leg in &path.legs {
+                energy_mah += leg.distance_m / speed * self.cheapest_swarm_rate_mah_per_min(leg)?;
+            }
+            let pads = f64::from(self.graph().pads(v));
+            let nt_bound = energy_mah / (pads * self.pad_rate_mah_per_min(v));
+            let bound =
+                (path.distance_m / speed + nt_bound + look_ahead_min) * (1.0 - BOUND_MARGIN);
             out.push((v, path, look_ahead_min, bound));
         }
         out.sort_by(|a, b| a.3.total_cmp(&b.3).then(a.0.cmp(&b.0)));
@@ -129,10 +161,16 @@ impl Planner<'_> {
                 };
                 candidates.push((v, path, look_ahead_min, 0.0));
             }
-            if self.sharing().is_exact() && self.exact_settings().prune_candidates {
-                // Lower bounds on each candidate's cost; the most promising are solved first,
-                // and a candidate whose bound exceeds the best cost found is never solved.
-                candidates = self.bounded_candidates(candidates, &battery)?;
+            if self.sharing().is_exact() {
+                if self.exact_settings().prune_candidates {
+                    // Lower bounds on each candidate's cost; the most promising are solved
+                    // first, and a candidate whose bound exceeds the best cost found is never
+                    // solved.
+                    candidates = self.bounded_candidates(candidates, &battery)?;
+                }
+            } else {
+                // The same for the simulated policies, with the energy bound on `nt`.
+                candidates = self.energy_bounded_candidates(candidates)?;
             }
             let mut best: Option<(usize, Route, Flight, Stop)> = None;
             let mut best_cost = f64::INFINITY;
