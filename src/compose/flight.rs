@@ -1,6 +1,7 @@
 //! Flying one hop: turning a network path into the hop problem of in-flight sharing, and the
 //! node time at a recharging stop.
 
+use super::factors::{EdgeFactorCache, EdgeFactors};
 use super::plan::{Hop, LegFlown, Plan, Stop};
 use crate::eaas::exact_hop::{self, ExactSettings, HopSolve, HopSolveCounts};
 use crate::eaas::milp::Objective;
@@ -12,10 +13,10 @@ use crate::node_time::{self, Limits};
 use crate::problem::profile::Readings;
 use crate::problem::Profile;
 use crate::problem::SkywayGraph;
-use crate::problem::Wind;
 use crate::problem::{Role, Swarm};
 use std::cell::{Cell, RefCell};
 use std::sync::Arc;
+use std::sync::OnceLock;
 
 /// Rate matrices `[drone][slot]` per directed edge ([`Planner::edge_key`]).
 type RateCache = RefCell<Vec<Option<Arc<Vec<Vec<f64>>>>>>;
@@ -47,6 +48,11 @@ pub struct Planner<'a> {
     sharing: SharingPolicy,
     /// Consumption-rate matrices `[drone][slot]` per directed edge, computed once.
     rates: RateCache,
+    /// The energy model's leg factors of every directed edge (shared with other planners of the
+    /// same formation slots through [`Planner::with_edge_factors`]).
+    factors: OnceLock<Arc<EdgeFactors>>,
+    /// Every drone's `base rate x payload factor`, mAh/min.
+    payload_rates: OnceLock<Vec<f64>>,
     /// The swarm's least total consumption rate per directed edge, mAh/min, computed once.
     cheapest_rates: RefCell<Vec<Option<f64>>>,
     /// Settings of the exact and fair policies.
@@ -75,6 +81,8 @@ impl<'a> Planner<'a> {
             sharing,
             rates: RefCell::new(vec![None; 2 * graph.edge_count()]),
             cheapest_rates: RefCell::new(vec![None; 2 * graph.edge_count()]),
+            factors: OnceLock::new(),
+            payload_rates: OnceLock::new(),
             exact: ExactSettings::default(),
             solves: RefCell::new(HopSolveCounts::default()),
             node_limit: Some(node_time::DEFAULT_STOP_NODE_LIMIT),
@@ -92,6 +100,14 @@ impl<'a> Planner<'a> {
     /// default [`node_time::DEFAULT_STOP_NODE_LIMIT`]).
     pub fn with_node_limit(mut self, node_limit: Option<u64>) -> Planner<'a> {
         self.node_limit = node_limit;
+        self
+    }
+
+    /// The planner reading and filling the energy model's leg factors in `cache` (the table of
+    /// this swarm's formation slots), so that planners of swarms flying the same slots compute
+    /// them once; by default a planner keeps its own.
+    pub fn with_edge_factors(self, cache: &EdgeFactorCache) -> Planner<'a> {
+        let _ = self.factors.set(cache.for_slots(&self.swarm.slots_m));
         self
     }
 
@@ -165,15 +181,15 @@ impl<'a> Planner<'a> {
         if let Some(rate) = &self.rates.borrow()[key] {
             return Ok(Arc::clone(rate));
         }
-        let rate = energy::rate_matrix_mah_per_min(
-            self.profile,
-            self.swarm,
-            leg.heading_deg,
-            &Wind {
-                speed_mps: leg.wind_speed_mps,
-                from_deg: leg.wind_from_deg,
-            },
-        );
+        let factors = self
+            .factors
+            .get_or_init(|| EdgeFactorCache::new(self.graph).for_slots(&self.swarm.slots_m))
+            .leg(self.profile, key, leg);
+        let payload = self
+            .payload_rates
+            .get_or_init(|| energy::payload_rates_mah_per_min(self.profile, self.swarm));
+        let rate =
+            energy::rate_matrix_from_factors(payload, factors.wind_factor, &factors.slot_factors);
         let bad = rate.iter().enumerate().find_map(|(d, row)| {
             row.iter()
                 .position(|&r| !(r.is_finite() && r >= 0.0))

@@ -9,12 +9,14 @@
 
 mod adjacent;
 mod baselines;
+mod factors;
 mod flight;
 mod gaps;
 mod plan;
 mod request;
 mod sequential;
 
+pub use factors::{EdgeFactorCache, EdgeFactors};
 pub use flight::{Flight, HopEnd, Planner};
 pub use gaps::{lpt_node_time_gaps, LptGapSummary};
 pub use plan::{Hop, LegFlown, Plan, PlanOutcome, Stop};

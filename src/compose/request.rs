@@ -1,7 +1,7 @@
 //! Planning one request end to end: pre-composition (formation, support drones, positions) then
 //! route composition.
 
-use super::{Plan, Planner, RouteMethod};
+use super::{EdgeFactorCache, Plan, Planner, RouteMethod};
 use crate::eaas::exact_hop::ExactSettings;
 use crate::eaas::SharingPolicy;
 use crate::error::{Error, Result};
@@ -42,6 +42,8 @@ pub struct Context<'a> {
     /// Node limit of the exact node time at every stop (`None`: no limit), default
     /// [`crate::node_time::DEFAULT_STOP_NODE_LIMIT`].
     pub node_limit: Option<u64>,
+    /// The energy model's leg factors, shared by every request's planner.
+    factors: EdgeFactorCache,
 }
 
 /// The planned request: the document `solve --json` prints and `check --plan` reads back.
@@ -96,6 +98,7 @@ impl<'a> Context<'a> {
             average_wind,
             exact: ExactSettings::default(),
             node_limit: Some(crate::node_time::DEFAULT_STOP_NODE_LIMIT),
+            factors: EdgeFactorCache::new(graph),
         }
     }
 
@@ -175,7 +178,8 @@ impl<'a> Context<'a> {
         let choice = self.swarm_for(request, options.positioning, support)?;
         let planner = Planner::new(self.graph, self.profile, &choice.swarm, options.sharing)
             .with_exact(self.exact)
-            .with_node_limit(self.node_limit);
+            .with_node_limit(self.node_limit)
+            .with_edge_factors(&self.factors);
         let plan = planner.compose(choice.source, choice.destination, options.route)?;
         let execution_ms = start.elapsed().as_secs_f64() * 1e3;
         Ok(RequestReport {

@@ -95,13 +95,31 @@ pub fn rate_matrix_mah_per_min(
 ) -> Vec<Vec<f64>> {
     let wf = wind_factor(profile, heading_deg, wind);
     let sf = slot_factors(profile, &swarm.slots_m, heading_deg, wind);
+    rate_matrix_from_factors(&payload_rates_mah_per_min(profile, swarm), wf, &sf)
+}
+
+/// Every drone's still-air rate in a slot of factor 1, `base rate x payload factor`, mAh/min:
+/// the part of [`rate_matrix_mah_per_min`] that does not depend on the leg.
+pub fn payload_rates_mah_per_min(profile: &Profile, swarm: &Swarm) -> Vec<f64> {
     swarm
         .drones
         .iter()
-        .map(|d| {
-            let per_drone =
-                profile.base_rate_mah_per_min() * payload_factor(profile, d.payload_kg) * wf;
-            sf.iter().map(|f| per_drone * f).collect()
+        .map(|d| profile.base_rate_mah_per_min() * payload_factor(profile, d.payload_kg))
+        .collect()
+}
+
+/// [`rate_matrix_mah_per_min`] from its parts: the drones' [`payload_rates_mah_per_min`], the
+/// leg's [`wind_factor`] and its [`slot_factors`].
+pub fn rate_matrix_from_factors(
+    payload_rates_mah_per_min: &[f64],
+    wind_factor: f64,
+    slot_factors: &[f64],
+) -> Vec<Vec<f64>> {
+    payload_rates_mah_per_min
+        .iter()
+        .map(|&p| {
+            let per_drone = p * wind_factor;
+            slot_factors.iter().map(|f| per_drone * f).collect()
         })
         .collect()
 }

@@ -86,8 +86,17 @@ impl SkywayGraph {
     /// One entry per node: metres, `f64::INFINITY` when unreachable, 0 at `from`.
     ///
     /// # Complexity
-    /// O((V + E) log V).
+    /// O((V + E) log V) the first time for each `from`, then O(V): the graph keeps the distances
+    /// (up to [`crate::problem::graph::MAX_CACHED_DISTANCE_NODES`] nodes).
     pub fn distances_from_m(&self, from: usize) -> Vec<f64> {
+        match self.distance_row(from) {
+            Some(row) => row.get_or_init(|| self.dijkstra_m(from)).clone(),
+            None => self.dijkstra_m(from),
+        }
+    }
+
+    /// [`SkywayGraph::distances_from_m`] computed afresh.
+    fn dijkstra_m(&self, from: usize) -> Vec<f64> {
         let mut out = vec![f64::INFINITY; self.node_count()];
         if from >= self.node_count() {
             return out;

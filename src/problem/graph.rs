@@ -13,6 +13,7 @@ use crate::error::{Error, Result};
 use petgraph::graph::{NodeIndex, UnGraph};
 use petgraph::unionfind::UnionFind;
 use std::collections::HashMap;
+use std::sync::OnceLock;
 
 /// One edge of the graph, with its length resolved.
 #[derive(Debug, Clone, PartialEq)]
@@ -51,7 +52,14 @@ pub struct SkywayGraph {
     /// `headings_deg[i][j]`: direction flown from node `i` to its `j`-th neighbour (as in
     /// `adjacency`), degrees clockwise from north in `[0, 360)`.
     headings_deg: Vec<Vec<f64>>,
+    /// Shortest-path distances from every node, each computed on first use; empty above
+    /// [`MAX_CACHED_DISTANCE_NODES`] nodes.
+    distance_rows: Vec<OnceLock<Vec<f64>>>,
 }
+
+/// Most nodes for which a graph keeps the shortest-path distances it computed (`n^2` numbers:
+/// 32 MiB at this size).
+pub const MAX_CACHED_DISTANCE_NODES: usize = 2048;
 
 /// Direction from `a` to `b` in degrees clockwise from north, in `[0, 360)`; 0 when `a == b`.
 pub fn heading_deg(a: (f64, f64), b: (f64, f64)) -> f64 {
@@ -176,12 +184,18 @@ impl SkywayGraph {
                     .collect()
             })
             .collect();
+        let distance_rows = if nodes.len() <= MAX_CACHED_DISTANCE_NODES {
+            (0..nodes.len()).map(|_| OnceLock::new()).collect()
+        } else {
+            Vec::new()
+        };
         Ok(SkywayGraph {
             graph,
             nodes,
             edges,
             index,
             component,
+            distance_rows,
             adjacency,
             headings_deg,
         })
@@ -270,6 +284,12 @@ impl SkywayGraph {
     /// O(1): the lists are built once with the graph.
     pub fn neighbors(&self, i: usize) -> &[(usize, usize)] {
         &self.adjacency[i]
+    }
+
+    /// The slot that keeps the shortest-path distances from node `i` once computed; `None` for
+    /// a graph too large to keep them.
+    pub(crate) fn distance_row(&self, i: usize) -> Option<&OnceLock<Vec<f64>>> {
+        self.distance_rows.get(i)
     }
 
     /// Number of edges at node `i`.
