@@ -58,31 +58,41 @@ impl Planner<'_> {
         Ok(out)
     }
 
-    /// Simulated policies: every candidate with a lower bound on its cost `tt + nt + look-ahead`,
-    /// sorted by bound then node. Sharing moves energy between drones and creates none, so the
-    /// swarm arrives short of full by at least the energy every drone consumes in its cheapest
-    /// slot on every leg, `E`; the pads must put it back, so `nt >= E / (k r)` for `k` pads
-    /// charging at `r` mAh/min. The bound is lowered by a relative [`BOUND_MARGIN`] so that
-    /// rounding never lifts it above the computed cost.
+    /// Simulated policies: a lower bound on the cost `tt + nt + look-ahead` of stopping at `v`
+    /// after flying `path`. Sharing moves energy between drones and creates none, so the swarm
+    /// arrives short of full by at least the energy every drone consumes in its cheapest slot on
+    /// every leg, `E`; the pads must put it back, so `nt >= E / (k r)` for `k` pads charging at
+    /// `r` mAh/min. Lowered by a relative [`BOUND_MARGIN`] so that rounding never lifts it above
+    /// the computed cost.
     ///
     /// # Errors
     /// Those of [`Planner::hop_problem`] (a rate matrix that is not finite).
-    fn energy_bounded_candidates(&self, candidates: Vec<Candidate>) -> Result<Vec<Candidate>> {
+    fn energy_bound_min(&self, path: &Route, v: usize, look_ahead_min: f64) -> Result<f64> {
         let speed = self.speed_m_per_min();
-        let mut out = Vec::with_capacity(candidates.len());
-        for (v, path, look_ahead_min, _) in candidates {
-            let mut energy_mah = 0.0;
-            for leg in &path.legs {
-                energy_mah += leg.distance_m / speed * self.cheapest_swarm_rate_mah_per_min(leg)?;
-            }
-            let pads = f64::from(self.graph().pads(v));
-            let nt_bound = energy_mah / (pads * self.pad_rate_mah_per_min(v));
-            let bound =
-                (path.distance_m / speed + nt_bound + look_ahead_min) * (1.0 - BOUND_MARGIN);
-            out.push((v, path, look_ahead_min, bound));
+        let mut energy_mah = 0.0;
+        for leg in &path.legs {
+            energy_mah += leg.distance_m / speed * self.cheapest_swarm_rate_mah_per_min(leg)?;
         }
-        out.sort_by(|a, b| a.3.total_cmp(&b.3).then(a.0.cmp(&b.0)));
-        Ok(out)
+        let pads = f64::from(self.graph().pads(v));
+        let nt_bound = energy_mah / (pads * self.pad_rate_mah_per_min(v));
+        Ok((path.distance_m / speed + nt_bound + look_ahead_min) * (1.0 - BOUND_MARGIN))
+    }
+
+    /// Simulated policies: [`Planner::energy_bound_min`] before the path is built, from the
+    /// shortest distance `distance_m` to `v` alone: every path is at least that long, and on every
+    /// leg the swarm consumes at least `min_swarm_rate_mah_per_min` (the sum over drones of each
+    /// one's least rate over every edge and slot).
+    fn distance_bound_min(
+        &self,
+        v: usize,
+        distance_m: f64,
+        look_ahead_min: f64,
+        min_swarm_rate_mah_per_min: f64,
+    ) -> f64 {
+        let tt_min = distance_m / self.speed_m_per_min();
+        let pads = f64::from(self.graph().pads(v));
+        let nt_bound = tt_min * min_swarm_rate_mah_per_min / (pads * self.pad_rate_mah_per_min(v));
+        (tt_min + nt_bound + look_ahead_min) * (1.0 - BOUND_MARGIN)
     }
 
     /// Algorithm 1. From the current node: fly straight to the destination if every drone can
@@ -140,7 +150,7 @@ impl Planner<'_> {
             let endurance_min = self.endurance_bound_min(&battery, min_rates);
             // Shortest paths v -> current, flown reversed: one Dijkstra for all candidates.
             let towards_current = graph.shortest_paths_to(current);
-            let mut candidates = Vec::new();
+            let mut reachable = Vec::new();
             for v in 0..graph.node_count() {
                 if stopped[v] || graph.pads(v) == 0 || v == destination {
                     continue;
@@ -151,33 +161,66 @@ impl Planner<'_> {
                 {
                     continue;
                 }
-                let Some(path) = towards_current.reversed_path_from(v) else {
-                    continue;
-                };
                 let look_ahead_min = if look_ahead == LookAhead::RemainingTravelTime {
                     to_destination_m[v] / speed
                 } else {
                     0.0
                 };
-                candidates.push((v, path, look_ahead_min, 0.0));
+                reachable.push((v, look_ahead_min));
             }
-            if self.sharing().is_exact() {
-                if self.exact_settings().prune_candidates {
-                    // Lower bounds on each candidate's cost; the most promising are solved
-                    // first, and a candidate whose bound exceeds the best cost found is never
-                    // solved.
-                    candidates = self.bounded_candidates(candidates, &battery)?;
+            // Candidates with a lower bound on their cost, the most promising first; a candidate
+            // whose bound exceeds the best cost found is never flown. The choice (least cost,
+            // then least node index) does not depend on the order.
+            let candidates: Vec<(usize, Option<Route>, f64, f64)> = if self.sharing().is_exact() {
+                let mut with_paths = Vec::new();
+                for (v, look_ahead_min) in reachable {
+                    if let Some(path) = towards_current.reversed_path_from(v) {
+                        with_paths.push((v, path, look_ahead_min, 0.0));
+                    }
                 }
+                if self.exact_settings().prune_candidates {
+                    // The fluid LP bounds `nt`.
+                    with_paths = self.bounded_candidates(with_paths, &battery)?;
+                }
+                with_paths
+                    .into_iter()
+                    .map(|(v, path, look_ahead_min, bound)| (v, Some(path), look_ahead_min, bound))
+                    .collect()
             } else {
-                // The same for the simulated policies, with the energy bound on `nt`.
-                candidates = self.energy_bounded_candidates(candidates)?;
-            }
+                // The energy bound, first from the distance alone; each path is built, and its
+                // own bound checked, only when the candidate's turn comes.
+                let min_swarm_rate: f64 = min_rates.iter().sum();
+                let mut bounded: Vec<_> = reachable
+                    .into_iter()
+                    .map(|(v, look_ahead_min)| {
+                        let d = towards_current.distance_m[v];
+                        let bound = self.distance_bound_min(v, d, look_ahead_min, min_swarm_rate);
+                        (v, None, look_ahead_min, bound)
+                    })
+                    .collect();
+                bounded.sort_by(|a, b| a.3.total_cmp(&b.3).then(a.0.cmp(&b.0)));
+                bounded
+            };
             let mut best: Option<(usize, Route, Flight, Stop)> = None;
             let mut best_cost = f64::INFINITY;
+            let beyond =
+                |bound: f64, best_cost: f64| bound > best_cost + PRUNE_TOL_MIN * (1.0 + best_cost);
             for (v, path, look_ahead_min, bound_min) in candidates {
-                if bound_min > best_cost + PRUNE_TOL_MIN * (1.0 + best_cost) {
+                if beyond(bound_min, best_cost) {
                     break;
                 }
+                let path = match path {
+                    Some(path) => path,
+                    None => {
+                        let Some(path) = towards_current.reversed_path_from(v) else {
+                            continue;
+                        };
+                        if beyond(self.energy_bound_min(&path, v, look_ahead_min)?, best_cost) {
+                            continue;
+                        }
+                        path
+                    }
+                };
                 let flight = self.fly(&path, &battery, self.sharing(), HopEnd::Stop)?;
                 if !flight.outcome.feasible {
                     continue;
