@@ -14,6 +14,8 @@ use std::sync::{Arc, Mutex, OnceLock};
 pub(crate) struct LegFactors {
     pub wind_factor: f64,
     pub slot_factors: Vec<f64>,
+    /// The least of `slot_factors`.
+    pub min_slot_factor: f64,
 }
 
 /// The leg factors of every directed edge for one set of formation slots.
@@ -32,9 +34,11 @@ impl EdgeFactors {
                 speed_mps: leg.wind_speed_mps,
                 from_deg: leg.wind_from_deg,
             };
+            let slot_factors = energy::slot_factors(profile, &self.slots_m, leg.heading_deg, &wind);
             LegFactors {
                 wind_factor: energy::wind_factor(profile, leg.heading_deg, &wind),
-                slot_factors: energy::slot_factors(profile, &self.slots_m, leg.heading_deg, &wind),
+                min_slot_factor: slot_factors.iter().copied().fold(f64::INFINITY, f64::min),
+                slot_factors,
             }
         })
     }

@@ -181,15 +181,12 @@ impl<'a> Planner<'a> {
         if let Some(rate) = &self.rates.borrow()[key] {
             return Ok(Arc::clone(rate));
         }
-        let factors = self
-            .factors
-            .get_or_init(|| EdgeFactorCache::new(self.graph).for_slots(&self.swarm.slots_m))
-            .leg(self.profile, key, leg);
-        let payload = self
-            .payload_rates
-            .get_or_init(|| energy::payload_rates_mah_per_min(self.profile, self.swarm));
-        let rate =
-            energy::rate_matrix_from_factors(payload, factors.wind_factor, &factors.slot_factors);
+        let factors = self.leg_factors(key, leg);
+        let rate = energy::rate_matrix_from_factors(
+            self.payload_rates(),
+            factors.wind_factor,
+            &factors.slot_factors,
+        );
         let bad = rate.iter().enumerate().find_map(|(d, row)| {
             row.iter()
                 .position(|&r| !(r.is_finite() && r >= 0.0))
@@ -222,13 +219,40 @@ impl<'a> Planner<'a> {
         if let Some(rate) = self.cheapest_rates.borrow()[key] {
             return Ok(rate);
         }
-        let rate: f64 = self
-            .leg_rates(leg)?
-            .iter()
-            .map(|row| row.iter().copied().fold(f64::INFINITY, f64::min))
-            .sum();
+        let rate: f64 = self.least_rates(key, leg).sum();
+        if !(rate.is_finite() && rate >= 0.0) {
+            // The rate matrix names the culprit.
+            self.leg_rates(leg)?;
+        }
         self.cheapest_rates.borrow_mut()[key] = Some(rate);
         Ok(rate)
+    }
+
+    /// Every drone's least rate over the slots on `leg` (directed edge index `key`), mAh/min:
+    /// the row minima of [`Planner::leg_rates`] without building the matrix (`(p w) f` grows with
+    /// `f` in floating point too, so the least slot factor gives the least product).
+    fn least_rates<'s>(
+        &'s self,
+        key: usize,
+        leg: &crate::network::Leg,
+    ) -> impl Iterator<Item = f64> + 's {
+        let factors = self.leg_factors(key, leg);
+        self.payload_rates()
+            .iter()
+            .map(move |&p| p * factors.wind_factor * factors.min_slot_factor)
+    }
+
+    /// The energy model's factors of `leg` (directed edge index `key`).
+    fn leg_factors(&self, key: usize, leg: &crate::network::Leg) -> &super::factors::LegFactors {
+        self.factors
+            .get_or_init(|| EdgeFactorCache::new(self.graph).for_slots(&self.swarm.slots_m))
+            .leg(self.profile, key, leg)
+    }
+
+    /// Every drone's `base rate x payload factor`, mAh/min.
+    fn payload_rates(&self) -> &[f64] {
+        self.payload_rates
+            .get_or_init(|| energy::payload_rates_mah_per_min(self.profile, self.swarm))
     }
 
     /// Index of the directed edge `leg` flies in the per-edge caches: edge `e` flown from its
@@ -432,16 +456,16 @@ impl<'a> Planner<'a> {
         let mut min_rate = vec![f64::INFINITY; n];
         for u in 0..self.graph.node_count() {
             for &(v, _) in self.graph.neighbors(u) {
-                let path = match self.graph.path_from_nodes(&[u, v]) {
-                    Some(p) => p,
-                    None => continue,
+                let Some(leg) = self.graph.leg(u, v) else {
+                    continue;
                 };
-                for leg in &path.legs {
-                    for (d, row) in self.leg_rates(leg)?.iter().enumerate() {
-                        for &r in row {
-                            min_rate[d] = min_rate[d].min(r);
-                        }
+                let key = self.edge_key(&leg);
+                for (d, r) in self.least_rates(key, &leg).enumerate() {
+                    if !(r.is_finite() && r >= 0.0) {
+                        // The rate matrix names the culprit.
+                        self.leg_rates(&leg)?;
                     }
+                    min_rate[d] = min_rate[d].min(r);
                 }
             }
         }
