@@ -99,18 +99,48 @@ pub fn floyd_warshall(node_count: usize, edges_min: &[(usize, usize, f64)]) -> A
     }
 }
 
-/// `d_i[j] = d_ik + d_k[j]` and `p_i[j] = p_k[j]` wherever that is strictly shorter, for every `j`:
-/// branch-free selects over equal-length slices, so the loop is vectorised.
+/// Columns relaxed together: a block the compiler turns into vector instructions (2 lanes of
+/// `f64` with SSE2) with enough independent work between them.
+const BLOCK: usize = 8;
+
+/// `d_i[j] = d_ik + d_k[j]` and `p_i[j] = p_k[j]` wherever that is strictly shorter, for every `j`,
+/// in blocks of [`BLOCK`] columns.
 #[inline]
 fn relax_row(d_ik: f64, d_i: &mut [f64], p_i: &mut [u32], d_k: &[f64], p_k: &[u32]) {
-    let n = d_i.len();
-    let (p_i, d_k, p_k) = (&mut p_i[..n], &d_k[..n], &p_k[..n]);
-    for j in 0..n {
-        let via = d_ik + d_k[j];
-        let shorter = d_i[j] > via;
-        d_i[j] = if shorter { via } else { d_i[j] };
-        p_i[j] = if shorter { p_k[j] } else { p_i[j] };
+    let mut d_i_blocks = d_i.chunks_exact_mut(BLOCK);
+    let mut p_i_blocks = p_i.chunks_exact_mut(BLOCK);
+    let mut d_k_blocks = d_k.chunks_exact(BLOCK);
+    let mut p_k_blocks = p_k.chunks_exact(BLOCK);
+    for (((d_i, p_i), d_k), p_k) in (&mut d_i_blocks)
+        .zip(&mut p_i_blocks)
+        .zip(&mut d_k_blocks)
+        .zip(&mut p_k_blocks)
+    {
+        for j in 0..BLOCK {
+            relax(d_ik, &mut d_i[j], &mut p_i[j], d_k[j], p_k[j]);
+        }
     }
+    for (((d_ij, p_ij), &d_kj), &p_kj) in d_i_blocks
+        .into_remainder()
+        .iter_mut()
+        .zip(p_i_blocks.into_remainder())
+        .zip(d_k_blocks.remainder())
+        .zip(p_k_blocks.remainder())
+    {
+        relax(d_ik, d_ij, p_ij, d_kj, p_kj);
+    }
+}
+
+/// One relaxation, `d_ij > d_ik + d_kj` as petgraph compares, written with bit masks rather than
+/// a branch or a conditional store so that it vectorises.
+#[inline(always)]
+fn relax(d_ik: f64, d_ij: &mut f64, p_ij: &mut u32, d_kj: f64, p_kj: u32) {
+    let via = d_ik + d_kj;
+    let shorter = *d_ij > via;
+    let mask = u64::from(shorter).wrapping_neg();
+    *d_ij = f64::from_bits((via.to_bits() & mask) | (d_ij.to_bits() & !mask));
+    let mask = u32::from(shorter).wrapping_neg();
+    *p_ij = (p_kj & mask) | (*p_ij & !mask);
 }
 
 impl AllPairs {
