@@ -24,6 +24,14 @@ use std::time::Instant;
 
 /// Plan every request of a request set and summarise.
 #[derive(Debug, clap::Args)]
+#[command(
+    after_help = "The grid (requests x combinations) runs on --threads worker threads, one job \
+per request planning all its combinations and computing once what they share (the swarm of each \
+positioning, the Dijkstra and Floyd-Warshall edge costs of each distinct swarm). The column wall_ms \
+of a combination is the sum of its execution times over the requests, shared work split equally \
+among the combinations using it: with several threads the column adds up to more than the elapsed \
+time, which the last line on stderr gives."
+)]
 pub struct BatchArgs {
     /// Network and profile.
     #[command(flatten)]
