@@ -29,7 +29,8 @@ use std::time::Instant;
 per request planning all its combinations and computing once what they share (the swarm of each \
 positioning, the Dijkstra and Floyd-Warshall edge costs of each distinct swarm). The column wall_ms \
 of a combination is the sum of its execution times over the requests, shared work split equally \
-among the combinations using it: with several threads the column adds up to more than the elapsed \
+among the combinations using it (consumption rates, cached per swarm and sharing policy, count in \
+the first combination, in CSV order, that needs them): with several threads the column adds up to more than the elapsed \
 time, which the last line on stderr gives."
 )]
 pub struct BatchArgs {
@@ -111,8 +112,10 @@ pub struct Summary {
     /// Time spent planning the combination, ms: the sum over the requests of its execution time,
     /// where work shared with other combinations of the request (its swarm, the baseline edge
     /// costs and Floyd–Warshall's all-pairs result of a swarm) is split equally among the
-    /// combinations using it. Summed over the combinations it is the busy time of every thread
-    /// together, so with several threads it exceeds the elapsed time.
+    /// combinations using it, and the consumption rates a planner caches count in the first
+    /// combination of its swarm and sharing policy (see [`Context::plan_each`]). Summed over the
+    /// combinations it is the busy time of every thread together, so with several threads it
+    /// exceeds the elapsed time.
     pub wall_ms: f64,
 }
 

@@ -170,17 +170,19 @@ impl<'a> Context<'a> {
     }
 
     /// Plans one validated request with each of several method combinations, doing once the work
-    /// they share: the swarm of each (positioning, support drones) pair, and the fixed-route
-    /// baselines' edge costs `tt + nt` of each distinct swarm (the same for every sharing policy
-    /// that flies it, and for Dijkstra and Floyd–Warshall), with Floyd–Warshall's all-pairs
-    /// result on them.
+    /// they share: the swarm of each (positioning, support drones) pair; one [`Planner`], with its
+    /// cache of consumption rates per edge, for each swarm and sharing policy, whatever the route
+    /// method; and the fixed-route baselines' edge costs `tt + nt` of each distinct swarm (the
+    /// same for every sharing policy that flies it, and for Dijkstra and Floyd–Warshall), with
+    /// Floyd–Warshall's all-pairs result on them.
     ///
     /// # Returns
     /// One report per combination, in the order of `options`, each equal to the one
     /// [`Context::plan`] gives, except `execution_ms`: the combination's own time plus an equal
     /// share of each piece of shared work it uses (a swarm among the combinations flying it; a
     /// swarm's edge costs among its Dijkstra and Floyd–Warshall combinations; the all-pairs
-    /// result among its Floyd–Warshall combinations). The times add up to the call's.
+    /// result among its Floyd–Warshall combinations). A consumption rate counts in the
+    /// combination that computes it first. The times add up to the call's.
     ///
     /// # Errors
     /// As [`Context::plan`].
@@ -188,7 +190,7 @@ impl<'a> Context<'a> {
     /// # Complexity
     /// Per combination that of [`Planner::compose`], except that the edge costs (one hop
     /// simulation and one exact node time per directed edge) and Floyd–Warshall's O(|V|^3) are
-    /// paid once per distinct swarm.
+    /// paid once per distinct swarm, and a rate matrix once per edge, swarm and sharing policy.
     pub fn plan_each(
         &self,
         request: &Request,
@@ -275,13 +277,25 @@ impl<'a> Context<'a> {
             costs_of[i] = Some(e);
         }
         let mut plans = Vec::with_capacity(options.len());
+        let mut planners: Vec<((usize, SharingPolicy), Planner)> = Vec::new();
         for (i, o) in options.iter().enumerate() {
             let start = Instant::now();
             let mut shared_ms = 0.0;
             let choice = &choices[choice_of[i]];
-            let planner = Planner::new(self.graph, self.profile, &choice.swarm, o.sharing)
-                .with_exact(self.exact)
-                .with_node_limit(self.node_limit);
+            let key = (choice_of[i], o.sharing);
+            let p = match planners.iter().position(|(k, _)| *k == key) {
+                Some(p) => p,
+                None => {
+                    planners.push((
+                        key,
+                        Planner::new(self.graph, self.profile, &choice.swarm, o.sharing)
+                            .with_exact(self.exact)
+                            .with_node_limit(self.node_limit),
+                    ));
+                    planners.len() - 1
+                }
+            };
+            let planner = &planners[p].1;
             let plan = match costs_of[i] {
                 Some(e) => {
                     let entry = &mut swarm_costs[e];
