@@ -157,8 +157,16 @@ fn progress_is_not_drawn_when_stderr_is_not_a_terminal() {
     assert_eq!(batch.status.code(), Some(0), "{batch:?}");
     let err = stderr(&batch);
     let lines: Vec<&str> = err.lines().collect();
-    assert_eq!(lines.len(), 2, "one line per combination: {err}");
-    assert!(lines.iter().all(|l| l.starts_with("sharing ")), "{err}");
+    assert_eq!(
+        lines.len(),
+        3,
+        "one line per combination, then the grid's: {err}"
+    );
+    assert!(
+        lines[..2].iter().all(|l| l.starts_with("sharing ")),
+        "{err}"
+    );
+    assert!(lines[2].contains(" combinations on "), "{err}");
     assert!(!err.contains('\r') && !err.contains('\u{1b}'), "{err:?}");
     let quiet = [
         [&["batch"], &instance[..], &["--sharing", "exact", "--json"]].concat(),

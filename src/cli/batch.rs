@@ -1,9 +1,14 @@
 //! `swarmplan batch`: plan every request of a request set with one or more method combinations and
 //! report success counts (with their denominator), delivery and node times, and run time.
+//!
+//! The grid (requests x combinations) runs on a local rayon pool: one job per request plans every
+//! combination of it ([`Context::plan_each`], which does the work they share once), and the
+//! results come back in request order, so every number but the times is the same for any thread
+//! count.
 
 use super::inputs::{ExactArgs, InstanceArgs};
 use crate::compose::{
-    lpt_node_time_gaps, Context, LptGapSummary, PlanOptions, RequestReport, RouteMethod,
+    lpt_node_time_gaps, Context, LptGapSummary, PlanOptions, RequestReport, RouteMethod, Stop,
 };
 use crate::eaas::exact_hop::HopSolveCounts;
 use crate::eaas::SharingPolicy;
@@ -11,6 +16,7 @@ use crate::error::{Error, Result};
 use crate::precompose::Positioning;
 use crate::problem::{io, Request};
 use indicatif::ProgressBar;
+use rayon::prelude::*;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -18,6 +24,15 @@ use std::time::Instant;
 
 /// Plan every request of a request set and summarise.
 #[derive(Debug, clap::Args)]
+#[command(
+    after_help = "The grid (requests x combinations) runs on --threads worker threads, one job \
+per request planning all its combinations and computing once what they share (the swarm of each \
+positioning, the Dijkstra and Floyd-Warshall edge costs of each distinct swarm). The column wall_ms \
+of a combination is the sum of its execution times over the requests, shared work split equally \
+among the combinations using it (consumption rates, cached per swarm and sharing policy, count in \
+the first combination, in CSV order, that needs them): with several threads the column adds up to more than the elapsed \
+time, which the last line on stderr gives."
+)]
 pub struct BatchArgs {
     /// Network and profile.
     #[command(flatten)]
@@ -52,9 +67,10 @@ pub struct BatchArgs {
     /// `none`, the paper's baseline without support drones).
     #[arg(long, value_name = "N")]
     pub support: Option<usize>,
-    /// Worker threads; results are identical for any count.
-    #[arg(long, default_value_t = 1)]
-    pub threads: usize,
+    /// Worker threads [default: the number of available cores]; every number but `wall_ms` is
+    /// identical for any count.
+    #[arg(long, value_name = "N")]
+    pub threads: Option<usize>,
     /// Write every request's outcome (id, success, dt, stops, failure) as JSON to this file.
     #[arg(long, value_name = "FILE")]
     pub per_request: Option<PathBuf>,
@@ -93,7 +109,13 @@ pub struct Summary {
     /// with a solve stopped by its time limit the numbers depend on the machine's speed.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub hop_solves: Option<HopSolveCounts>,
-    /// Wall-clock time for the whole set, ms.
+    /// Time spent planning the combination, ms: the sum over the requests of its execution time,
+    /// where work shared with other combinations of the request (its swarm, the baseline edge
+    /// costs and Floyd–Warshall's all-pairs result of a swarm) is split equally among the
+    /// combinations using it, and the consumption rates a planner caches count in the first
+    /// combination of its swarm and sharing policy (see [`Context::plan_each`]). Summed over the
+    /// combinations it is the busy time of every thread together, so with several threads it
+    /// exceeds the elapsed time.
     pub wall_ms: f64,
 }
 
@@ -121,7 +143,12 @@ pub struct Outcome {
 
 /// Runs the subcommand.
 pub fn run(args: BatchArgs) -> Result<i32> {
-    if args.threads == 0 {
+    let threads = args.threads.unwrap_or_else(|| {
+        std::thread::available_parallelism()
+            .map(|n| n.get())
+            .unwrap_or(1)
+    });
+    if threads == 0 {
         return Err(Error::invalid(
             "E0004",
             "--threads",
@@ -148,20 +175,20 @@ pub fn run(args: BatchArgs) -> Result<i32> {
     context.exact = args.exact.settings()?;
     context.node_limit = Some(args.node_limit);
     let combos = combinations(&args);
+    let bar = super::progress::bar((combos.len() * requests.len()) as u64, "requests");
+    bar.set_message(format!("x {} combinations", combos.len()));
+    let start = Instant::now();
+    let grid = plan_grid(&context, requests, &combos, threads, &bar)?;
+    let grid_ms = start.elapsed().as_secs_f64() * 1e3;
+    bar.finish_and_clear();
     let mut summaries = Vec::new();
     let mut outcomes = Vec::new();
-    let bar = super::progress::bar((combos.len() * requests.len()) as u64, "requests");
-    for options in combos {
-        bar.set_message(format!(
-            "{} {} {}",
-            options.sharing, options.positioning, options.route
-        ));
-        let start = Instant::now();
-        let reports = plan_all(&context, requests, &options, args.threads, &bar)?;
-        let wall_ms = start.elapsed().as_secs_f64() * 1e3;
-        let summary = summarise(options, &reports, wall_ms)?;
+    for (c, &options) in combos.iter().enumerate() {
+        let planned: Vec<&Planned> = grid.iter().map(|row| &row[c]).collect();
+        let wall_ms = total(planned.iter().map(|p| p.execution_ms));
+        let summary = summarise(options, &planned, wall_ms)?;
         if !args.json {
-            bar.suspend(|| eprintln!(
+            eprintln!(
                 "sharing {:<4} positioning {:<14} route {:<14} delivered {}/{} mean dt {:.2} min, {:.0} ms",
                 options.sharing,
                 options.positioning,
@@ -170,23 +197,20 @@ pub fn run(args: BatchArgs) -> Result<i32> {
                 summary.requests,
                 summary.mean_dt_min,
                 summary.wall_ms
-            ));
+            );
         }
         if args.per_request.is_some() {
-            outcomes.extend(reports.iter().map(|r| Outcome {
-                options,
-                request_id: r.request.id.clone(),
-                success: r.plan.delivered(),
-                outcome: r.plan.outcome.kind(),
-                dt_min: r.plan.dt_min,
-                nt_min: r.plan.nt_min,
-                stops: r.plan.stops().into_iter().map(String::from).collect(),
-                failure: (!r.plan.delivered()).then(|| r.plan.outcome.to_string()),
-            }));
+            outcomes.extend(planned.iter().map(|p| p.outcome.clone()));
         }
         summaries.push(summary);
     }
-    bar.finish_and_clear();
+    if !args.json {
+        eprintln!(
+            "{} requests x {} combinations on {threads} threads in {grid_ms:.0} ms",
+            requests.len(),
+            combos.len()
+        );
+    }
     if let Some(path) = &args.per_request {
         io::write_json(path, &outcomes)?;
     }
@@ -251,40 +275,75 @@ fn combinations(args: &BatchArgs) -> Vec<PlanOptions> {
     combos
 }
 
-/// Plans every request; with several threads each takes a contiguous block, and the reports come
-/// back in request order, so the numbers do not depend on the thread count. `bar` counts the
-/// requests planned.
-fn plan_all(
+/// What the summaries and `--per-request` keep of one request planned with one combination.
+struct Planned {
+    /// The request's line of `--per-request`.
+    outcome: Outcome,
+    /// Energy shared in flight, mAh.
+    shared_mah: f64,
+    /// The recharging stops, in flight order.
+    stops: Vec<Stop>,
+    /// The hop solves of `exact` and `fair`.
+    hop_solves: Option<HopSolveCounts>,
+    /// Execution time, ms ([`RequestReport::execution_ms`]).
+    execution_ms: f64,
+}
+
+impl From<RequestReport> for Planned {
+    fn from(r: RequestReport) -> Self {
+        let delivered = r.plan.delivered();
+        Planned {
+            outcome: Outcome {
+                options: r.options,
+                request_id: r.request.id,
+                success: delivered,
+                outcome: r.plan.outcome.kind(),
+                dt_min: r.plan.dt_min,
+                nt_min: r.plan.nt_min,
+                stops: r.plan.stops().into_iter().map(String::from).collect(),
+                failure: (!delivered).then(|| r.plan.outcome.to_string()),
+            },
+            shared_mah: r.plan.shared_mah,
+            hop_solves: r.plan.hop_solves,
+            stops: r.plan.hops.into_iter().filter_map(|h| h.stop).collect(),
+            execution_ms: r.execution_ms,
+        }
+    }
+}
+
+/// Plans every request with every combination on a pool of `threads` threads, one job per
+/// request; row `i` of the result holds request `i`'s outcomes in the order of `combos`, whatever
+/// the thread count. `bar` counts the requests x combinations planned. The error, if any, is the
+/// first in request order.
+fn plan_grid(
     context: &Context,
     requests: &[Request],
-    options: &PlanOptions,
+    combos: &[PlanOptions],
     threads: usize,
     bar: &ProgressBar,
-) -> Result<Vec<RequestReport>> {
-    let plan = |r: &Request| {
-        let report = context.plan(r, options);
-        bar.inc(1);
-        report
-    };
-    if threads <= 1 || requests.len() < 2 {
-        return requests.iter().map(plan).collect();
-    }
-    let chunk = requests.len().div_ceil(threads);
-    let results: Vec<Result<Vec<RequestReport>>> = std::thread::scope(|scope| {
-        let handles: Vec<_> = requests
-            .chunks(chunk)
-            .map(|block| scope.spawn(move || block.iter().map(plan).collect::<Result<Vec<_>>>()))
-            .collect();
-        handles
-            .into_iter()
-            .map(|h| h.join().expect("a planning thread panicked"))
+) -> Result<Vec<Vec<Planned>>> {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| {
+            Error::invalid(
+                "E0004",
+                "--threads",
+                format!("cannot start {threads} worker threads: {e}"),
+                "give fewer --threads",
+            )
+        })?;
+    let rows: Vec<Result<Vec<Planned>>> = pool.install(|| {
+        requests
+            .par_iter()
+            .map(|r| {
+                let reports = context.plan_each(r, combos)?;
+                bar.inc(combos.len() as u64);
+                Ok(reports.into_iter().map(Planned::from).collect())
+            })
             .collect()
     });
-    let mut reports = Vec::with_capacity(requests.len());
-    for block in results {
-        reports.extend(block?);
-    }
-    Ok(reports)
+    rows.into_iter().collect()
 }
 
 /// Sum starting from +0.0, so that an empty sum prints as 0, not -0.
@@ -292,30 +351,30 @@ fn total(values: impl Iterator<Item = f64>) -> f64 {
     values.fold(0.0, |a, b| a + b)
 }
 
-fn summarise(options: PlanOptions, reports: &[RequestReport], wall_ms: f64) -> Result<Summary> {
-    let delivered: Vec<&RequestReport> = reports.iter().filter(|r| r.plan.delivered()).collect();
+fn summarise(options: PlanOptions, planned: &[&Planned], wall_ms: f64) -> Result<Summary> {
+    let delivered: Vec<&Planned> = planned
+        .iter()
+        .copied()
+        .filter(|p| p.outcome.success)
+        .collect();
     let mut failed_by_kind = BTreeMap::new();
-    for r in reports.iter().filter(|r| !r.plan.delivered()) {
-        *failed_by_kind.entry(r.plan.outcome.kind()).or_insert(0) += 1;
+    for p in planned.iter().filter(|p| !p.outcome.success) {
+        *failed_by_kind.entry(p.outcome.outcome.clone()).or_insert(0) += 1;
     }
     let k = delivered.len().max(1) as f64;
     Ok(Summary {
         options,
         delivered: delivered.len(),
-        requests: reports.len(),
+        requests: planned.len(),
         failed_by_kind,
-        mean_dt_min: total(delivered.iter().map(|r| r.plan.dt_min)) / k,
-        mean_nt_min: total(delivered.iter().map(|r| r.plan.nt_min)) / k,
-        mean_stops: total(delivered.iter().map(|r| r.plan.stops().len() as f64)) / k,
-        shared_mah: total(delivered.iter().map(|r| r.plan.shared_mah)),
-        lpt_node_time: lpt_node_time_gaps(
-            delivered
-                .iter()
-                .flat_map(|r| r.plan.hops.iter().filter_map(|h| h.stop.as_ref())),
-        )?,
+        mean_dt_min: total(delivered.iter().map(|p| p.outcome.dt_min)) / k,
+        mean_nt_min: total(delivered.iter().map(|p| p.outcome.nt_min)) / k,
+        mean_stops: total(delivered.iter().map(|p| p.outcome.stops.len() as f64)) / k,
+        shared_mah: total(delivered.iter().map(|p| p.shared_mah)),
+        lpt_node_time: lpt_node_time_gaps(delivered.iter().flat_map(|p| p.stops.iter()))?,
         hop_solves: options.sharing.is_exact().then(|| {
             let mut sum = HopSolveCounts::default();
-            for c in reports.iter().filter_map(|r| r.plan.hop_solves.as_ref()) {
+            for c in planned.iter().filter_map(|p| p.hop_solves.as_ref()) {
                 sum.merge(c);
             }
             sum

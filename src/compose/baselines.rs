@@ -1,17 +1,110 @@
 //! Fixed-route baselines: Dijkstra and Floyd–Warshall on edge cost `tt + nt`, then flown with
 //! recharging only where the swarm must.
+//!
+//! The edge costs depend on the swarm (and the network, the profile and the node limit of the
+//! planner), not on the sharing policy nor on the algorithm: [`BaselineCosts`] holds them for one
+//! swarm, with the all-pairs result of Floyd–Warshall, so that the combinations of one request
+//! that fly the same swarm compute them once ([`Planner::compose_with_baseline_costs`]).
 
 use super::plan::{Plan, PlanOutcome};
 use super::{FixedRoute, HopEnd, Planner};
 use crate::eaas::SharingPolicy;
 use crate::error::Result;
+use crate::network::floyd_warshall::{floyd_warshall, AllPairs};
+use crate::problem::Swarm;
 use petgraph::graph::{DiGraph, NodeIndex};
+use std::sync::OnceLock;
+
+/// The baselines' edge costs `tt(u, v) + nt(v)` of one swarm, min, and the shortest paths on them.
+#[derive(Debug, Clone)]
+pub struct BaselineCosts {
+    /// The swarm the costs were computed for.
+    swarm: Swarm,
+    /// Directed edges `(u, v, tt + nt)`, in the order of [`Planner::baseline_edge_costs_min`].
+    edges_min: Vec<(usize, usize, f64)>,
+    /// The same edges as a graph for Dijkstra.
+    digraph: DiGraph<(), f64>,
+    /// Floyd–Warshall's all-pairs shortest paths, computed on first use.
+    all_pairs: OnceLock<AllPairs>,
+}
+
+impl BaselineCosts {
+    /// The costs `edges_min` (directed edges `(u, v, tt + nt)`, finite and non-negative) of
+    /// `swarm` on a network of `node_count` nodes.
+    pub fn new(swarm: Swarm, node_count: usize, edges_min: Vec<(usize, usize, f64)>) -> Self {
+        let mut digraph: DiGraph<(), f64> = DiGraph::with_capacity(node_count, edges_min.len());
+        for _ in 0..node_count {
+            digraph.add_node(());
+        }
+        for &(u, v, cost) in &edges_min {
+            digraph.add_edge(NodeIndex::new(u), NodeIndex::new(v), cost);
+        }
+        BaselineCosts {
+            swarm,
+            edges_min,
+            digraph,
+            all_pairs: OnceLock::new(),
+        }
+    }
+
+    /// The swarm the costs were computed for.
+    pub fn swarm(&self) -> &Swarm {
+        &self.swarm
+    }
+
+    /// Directed edges `(u, v, tt + nt)`, min.
+    pub fn edges_min(&self) -> &[(usize, usize, f64)] {
+        &self.edges_min
+    }
+
+    /// Floyd–Warshall's shortest paths between every pair of nodes on these costs, computed on the
+    /// first call.
+    ///
+    /// # Complexity
+    /// O(|V|^3) on the first call, O(1) after.
+    pub fn all_pairs(&self) -> &AllPairs {
+        self.all_pairs
+            .get_or_init(|| floyd_warshall(self.digraph.node_count(), &self.edges_min))
+    }
+
+    /// The baseline route from `source` to `destination` on these costs: node indices, or `None`
+    /// if unreachable.
+    ///
+    /// # Panics
+    /// When a node index is outside the network.
+    ///
+    /// # Complexity
+    /// Dijkstra: O(|E| log |V|). Floyd–Warshall: O(|V|^3) for the first route of this swarm
+    /// (all pairs at once), O(|V|) for the others.
+    pub fn route(
+        &self,
+        source: usize,
+        destination: usize,
+        algorithm: FixedRoute,
+    ) -> Option<Vec<usize>> {
+        match algorithm {
+            FixedRoute::Dijkstra => {
+                let (s, t) = (NodeIndex::new(source), NodeIndex::new(destination));
+                let found =
+                    petgraph::algo::astar(&self.digraph, s, |x| x == t, |e| *e.weight(), |_| 0.0);
+                found.map(|(_, nodes)| nodes.into_iter().map(|x| x.index()).collect())
+            }
+            FixedRoute::FloydWarshall => self.all_pairs().path(source, destination),
+        }
+    }
+}
 
 impl Planner<'_> {
     /// Edge cost of the baselines, min, for every directed edge `(u, v)`: `tt(u, v) + nt(v)`, where
     /// `nt(v)` is the exact node time at `v` of a swarm that flew the edge from full batteries
     /// without sharing (0 where `v` has no pads). See models/compose.md for this reading of the
-    /// paper's rule.
+    /// paper's rule. The costs do not depend on the planner's sharing policy.
+    ///
+    /// # Errors
+    /// Those of [`Planner::fly`] and [`Planner::stop_at`].
+    ///
+    /// # Complexity
+    /// One hop simulation and one exact node time per directed edge.
     pub fn baseline_edge_costs_min(&self) -> Result<Vec<(usize, usize, f64)>> {
         let graph = self.graph();
         let speed = self.speed_m_per_min();
@@ -33,60 +126,60 @@ impl Planner<'_> {
         Ok(costs)
     }
 
+    /// [`Planner::baseline_edge_costs_min`] of this planner's swarm, ready for routing: pass them
+    /// to [`Planner::compose_with_baseline_costs`] of every planner of the same graph, profile,
+    /// swarm and node limit (whatever its sharing policy).
+    ///
+    /// # Errors
+    /// Those of [`Planner::baseline_edge_costs_min`].
+    ///
+    /// # Complexity
+    /// That of [`Planner::baseline_edge_costs_min`].
+    pub fn baseline_costs(&self) -> Result<BaselineCosts> {
+        Ok(BaselineCosts::new(
+            self.swarm().clone(),
+            self.graph().node_count(),
+            self.baseline_edge_costs_min()?,
+        ))
+    }
+
     /// The baseline route from `source` to `destination`: node indices, or `None` if unreachable.
+    ///
+    /// # Errors
+    /// Those of [`Planner::baseline_edge_costs_min`].
+    ///
+    /// # Complexity
+    /// That of [`Planner::baseline_edge_costs_min`], then of [`BaselineCosts::route`].
     pub fn baseline_route(
         &self,
         source: usize,
         destination: usize,
         algorithm: FixedRoute,
     ) -> Result<Option<Vec<usize>>> {
-        let n = self.graph().node_count();
-        let mut digraph: DiGraph<(), f64> = DiGraph::with_capacity(n, 0);
-        for _ in 0..n {
-            digraph.add_node(());
-        }
-        for (u, v, cost) in self.baseline_edge_costs_min()? {
-            digraph.add_edge(NodeIndex::new(u), NodeIndex::new(v), cost);
-        }
-        let (s, t) = (NodeIndex::new(source), NodeIndex::new(destination));
-        if algorithm == FixedRoute::Dijkstra {
-            let found = petgraph::algo::astar(&digraph, s, |x| x == t, |e| *e.weight(), |_| 0.0);
-            return Ok(found.map(|(_, nodes)| nodes.into_iter().map(|x| x.index()).collect()));
-        }
-        let (_, prev) =
-            petgraph::algo::floyd_warshall::floyd_warshall_path(&digraph, |e| *e.weight())
-                .expect("edge costs are non-negative, so there is no negative cycle");
-        // prev[s][t] is the node before t on the shortest s-t path.
-        let mut route = vec![destination];
-        let mut at = destination;
-        while at != source {
-            match prev[source][at] {
-                Some(p) if route.len() <= n => {
-                    route.push(p);
-                    at = p;
-                }
-                _ => return Ok(None),
-            }
-        }
-        route.reverse();
-        Ok(Some(route))
+        Ok(self.baseline_costs()?.route(source, destination, algorithm))
     }
 
     /// Dijkstra / Floyd–Warshall baseline: compute the route, then fly it, stopping at a pad node
     /// on it only when the next pad node (or the destination) cannot be reached without stopping;
-    /// fail when even the next pad node cannot be reached.
+    /// fail when even the next pad node cannot be reached. `costs`: the baseline costs of this
+    /// planner's swarm, computed here when `None`.
     pub(crate) fn compose_fixed_route(
         &self,
         source: usize,
         destination: usize,
         algorithm: FixedRoute,
+        costs: Option<&BaselineCosts>,
     ) -> Result<Plan> {
         let graph = self.graph();
         let mut plan = self.empty_plan(source, destination);
         if source == destination {
             return Ok(plan.finish());
         }
-        let Some(route) = self.baseline_route(source, destination, algorithm)? else {
+        let route = match costs {
+            Some(costs) => costs.route(source, destination, algorithm),
+            None => self.baseline_route(source, destination, algorithm)?,
+        };
+        let Some(route) = route else {
             return Ok(plan.fail(PlanOutcome::NoRoute {
                 from: graph.id_of(source).to_string(),
                 to: graph.id_of(destination).to_string(),

@@ -16,6 +16,7 @@ mod plan;
 mod request;
 mod sequential;
 
+pub use baselines::BaselineCosts;
 pub use factors::{EdgeFactorCache, EdgeFactors};
 pub use flight::{Flight, HopEnd, Planner};
 pub use gaps::{lpt_node_time_gaps, LptGapSummary};
@@ -90,13 +91,57 @@ impl Planner<'_> {
     ///
     /// # Complexity
     /// Sequential/A*: at most one step per recharging node, each step one Dijkstra tree and one
-    /// hop simulation per recharging node. Dijkstra: one Dijkstra on `tt + nt` costs.
-    /// Floyd–Warshall: O(|V|^3).
+    /// hop simulation per recharging node. Dijkstra and Floyd–Warshall: one hop simulation and one
+    /// exact node time per directed edge for the `tt + nt` costs, then one Dijkstra, or
+    /// Floyd–Warshall's O(|V|^3).
     pub fn compose(
         &self,
         source: usize,
         destination: usize,
         method: RouteMethod,
+    ) -> crate::error::Result<Plan> {
+        self.compose_with(source, destination, method, None)
+    }
+
+    /// [`Planner::compose`] with the fixed-route baselines' edge costs given instead of computed:
+    /// the same plan, for the price of the route alone. The costs of one swarm serve every planner
+    /// of that swarm, whatever its sharing policy, and both Dijkstra and Floyd–Warshall
+    /// (Floyd–Warshall's all-pairs result is kept in `costs` and read for every later pair).
+    ///
+    /// # Arguments
+    /// * `source`, `destination`, `method`: as [`Planner::compose`].
+    /// * `costs`: from [`Planner::baseline_costs`] of a planner on the same graph and profile,
+    ///   with the same swarm and node limit; used only by the fixed-route methods.
+    ///
+    /// # Errors
+    /// As [`Planner::compose`].
+    ///
+    /// # Panics
+    /// When `costs` belong to another swarm.
+    ///
+    /// # Complexity
+    /// As [`Planner::compose`], without the edge costs of the fixed routes: Dijkstra O(|E| log |V|);
+    /// Floyd–Warshall O(|V|^3) for the first route on `costs`, O(|V|) for the others.
+    pub fn compose_with_baseline_costs(
+        &self,
+        source: usize,
+        destination: usize,
+        method: RouteMethod,
+        costs: &BaselineCosts,
+    ) -> crate::error::Result<Plan> {
+        assert!(
+            costs.swarm() == self.swarm(),
+            "baseline costs of another swarm"
+        );
+        self.compose_with(source, destination, method, Some(costs))
+    }
+
+    fn compose_with(
+        &self,
+        source: usize,
+        destination: usize,
+        method: RouteMethod,
+        costs: Option<&BaselineCosts>,
     ) -> crate::error::Result<Plan> {
         let adjacent = self.readings().candidates == Candidates::Adjacent;
         self.reset_hop_solves();
@@ -114,10 +159,10 @@ impl Planner<'_> {
                 self.compose_sequential(source, destination, LookAhead::RemainingTravelTime)
             }
             RouteMethod::Dijkstra => {
-                self.compose_fixed_route(source, destination, FixedRoute::Dijkstra)
+                self.compose_fixed_route(source, destination, FixedRoute::Dijkstra, costs)
             }
             RouteMethod::FloydWarshall => {
-                self.compose_fixed_route(source, destination, FixedRoute::FloydWarshall)
+                self.compose_fixed_route(source, destination, FixedRoute::FloydWarshall, costs)
             }
         }?;
         if self.sharing().is_exact() {

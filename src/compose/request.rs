@@ -1,7 +1,7 @@
 //! Planning one request end to end: pre-composition (formation, support drones, positions) then
 //! route composition.
 
-use super::{EdgeFactorCache, Plan, Planner, RouteMethod};
+use super::{BaselineCosts, EdgeFactorCache, Plan, Planner, RouteMethod};
 use crate::eaas::exact_hop::ExactSettings;
 use crate::eaas::SharingPolicy;
 use crate::error::{Error, Result};
@@ -168,30 +168,200 @@ impl<'a> Context<'a> {
     /// [`Error::Invalid`] when the request names an unknown node (validate requests first to get
     /// every violation at once).
     pub fn plan(&self, request: &Request, options: &PlanOptions) -> Result<RequestReport> {
-        let start = Instant::now();
-        // The paper's baseline (`none`) is the swarm without support drones.
-        let support = if options.sharing.flies_support() {
-            options.support
-        } else {
-            Some(0)
-        };
-        let choice = self.swarm_for(request, options.positioning, support)?;
-        let planner = Planner::new(self.graph, self.profile, &choice.swarm, options.sharing)
-            .with_exact(self.exact)
-            .with_node_limit(self.node_limit)
-            .with_edge_factors(&self.factors);
-        let plan = planner.compose(choice.source, choice.destination, options.route)?;
-        let execution_ms = start.elapsed().as_secs_f64() * 1e3;
-        Ok(RequestReport {
-            schema_version: SCHEMA_VERSION,
-            request: request.clone(),
-            options: *options,
-            formation: self.formation,
-            support_decision: choice.support_decision,
-            support_drones: choice.support_drones,
-            swarm: choice.swarm,
-            plan,
-            execution_ms,
-        })
+        let mut reports = self.plan_each(request, std::slice::from_ref(options))?;
+        Ok(reports.pop().expect("one report per combination"))
     }
+
+    /// Plans one validated request with each of several method combinations, doing once the work
+    /// they share: the swarm of each (positioning, support drones) pair; one [`Planner`], with its
+    /// cache of consumption rates per edge, for each swarm and sharing policy, whatever the route
+    /// method; and the fixed-route baselines' edge costs `tt + nt` of each distinct swarm (the
+    /// same for every sharing policy that flies it, and for Dijkstra and Floyd–Warshall), with
+    /// Floyd–Warshall's all-pairs result on them.
+    ///
+    /// # Returns
+    /// One report per combination, in the order of `options`, each equal to the one
+    /// [`Context::plan`] gives, except `execution_ms`: the combination's own time plus an equal
+    /// share of each piece of shared work it uses (a swarm among the combinations flying it; a
+    /// swarm's edge costs among its Dijkstra and Floyd–Warshall combinations; the all-pairs
+    /// result among its Floyd–Warshall combinations). A consumption rate counts in the
+    /// combination that computes it first. The times add up to the call's.
+    ///
+    /// # Errors
+    /// As [`Context::plan`].
+    ///
+    /// # Complexity
+    /// Per combination that of [`Planner::compose`], except that the edge costs (one hop
+    /// simulation and one exact node time per directed edge) and Floyd–Warshall's O(|V|^3) are
+    /// paid once per distinct swarm, and a rate matrix once per edge, swarm and sharing policy.
+    pub fn plan_each(
+        &self,
+        request: &Request,
+        options: &[PlanOptions],
+    ) -> Result<Vec<RequestReport>> {
+        /// Work shared by several combinations: its time, ms, and the combinations using it.
+        #[derive(Default)]
+        struct Shared {
+            ms: f64,
+            users: Vec<usize>,
+        }
+        /// A distinct swarm's baseline costs, computed by its first fixed-route combination.
+        struct SwarmCosts {
+            choice: usize,
+            costs: Option<BaselineCosts>,
+            edges: Shared,
+            all_pairs: Shared,
+            all_pairs_done: bool,
+        }
+        let mut own_ms = vec![0.0; options.len()];
+        // Pre-composition, once per (positioning, support drones).
+        let mut choice_keys: Vec<(Positioning, Option<usize>)> = Vec::new();
+        let mut choices: Vec<SwarmChoice> = Vec::new();
+        let mut choice_work: Vec<Shared> = Vec::new();
+        let mut choice_of = Vec::with_capacity(options.len());
+        for (i, o) in options.iter().enumerate() {
+            // The paper's baseline (`none`) is the swarm without support drones.
+            let key = (
+                o.positioning,
+                if o.sharing.flies_support() {
+                    o.support
+                } else {
+                    Some(0)
+                },
+            );
+            let c = match choice_keys.iter().position(|k| *k == key) {
+                Some(c) => c,
+                None => {
+                    let start = Instant::now();
+                    choices.push(self.swarm_for(request, key.0, key.1)?);
+                    choice_work.push(Shared {
+                        ms: elapsed_ms(start),
+                        users: Vec::new(),
+                    });
+                    choice_keys.push(key);
+                    choices.len() - 1
+                }
+            };
+            choice_work[c].users.push(i);
+            choice_of.push(c);
+        }
+        // Baseline costs, once per distinct swarm among the fixed-route combinations.
+        let mut swarm_costs: Vec<SwarmCosts> = Vec::new();
+        let mut costs_of = vec![None; options.len()];
+        for (i, o) in options.iter().enumerate() {
+            let fixed = match o.route {
+                RouteMethod::Dijkstra | RouteMethod::FloydWarshall => true,
+                RouteMethod::Sequential | RouteMethod::Astar => false,
+            };
+            if !fixed {
+                continue;
+            }
+            let swarm = &choices[choice_of[i]].swarm;
+            let e = match swarm_costs
+                .iter()
+                .position(|e| choices[e.choice].swarm == *swarm)
+            {
+                Some(e) => e,
+                None => {
+                    swarm_costs.push(SwarmCosts {
+                        choice: choice_of[i],
+                        costs: None,
+                        edges: Shared::default(),
+                        all_pairs: Shared::default(),
+                        all_pairs_done: false,
+                    });
+                    swarm_costs.len() - 1
+                }
+            };
+            swarm_costs[e].edges.users.push(i);
+            if o.route == RouteMethod::FloydWarshall {
+                swarm_costs[e].all_pairs.users.push(i);
+            }
+            costs_of[i] = Some(e);
+        }
+        let mut plans = Vec::with_capacity(options.len());
+        let mut planners: Vec<((usize, SharingPolicy), Planner)> = Vec::new();
+        for (i, o) in options.iter().enumerate() {
+            let start = Instant::now();
+            let mut shared_ms = 0.0;
+            let choice = &choices[choice_of[i]];
+            let key = (choice_of[i], o.sharing);
+            let p = match planners.iter().position(|(k, _)| *k == key) {
+                Some(p) => p,
+                None => {
+                    planners.push((
+                        key,
+                        Planner::new(self.graph, self.profile, &choice.swarm, o.sharing)
+                            .with_exact(self.exact)
+                            .with_node_limit(self.node_limit)
+                            .with_edge_factors(&self.factors),
+                    ));
+                    planners.len() - 1
+                }
+            };
+            let planner = &planners[p].1;
+            let plan = match costs_of[i] {
+                Some(e) => {
+                    let entry = &mut swarm_costs[e];
+                    if entry.costs.is_none() {
+                        let at = Instant::now();
+                        entry.costs = Some(planner.baseline_costs()?);
+                        entry.edges.ms = elapsed_ms(at);
+                        shared_ms += entry.edges.ms;
+                    }
+                    let costs = entry.costs.as_ref().expect("computed above");
+                    if o.route == RouteMethod::FloydWarshall && !entry.all_pairs_done {
+                        let at = Instant::now();
+                        costs.all_pairs();
+                        entry.all_pairs.ms = elapsed_ms(at);
+                        entry.all_pairs_done = true;
+                        shared_ms += entry.all_pairs.ms;
+                    }
+                    planner.compose_with_baseline_costs(
+                        choice.source,
+                        choice.destination,
+                        o.route,
+                        costs,
+                    )?
+                }
+                None => planner.compose(choice.source, choice.destination, o.route)?,
+            };
+            own_ms[i] = elapsed_ms(start) - shared_ms;
+            plans.push(plan);
+        }
+        let mut execution_ms = own_ms;
+        let shared = choice_work
+            .iter()
+            .chain(swarm_costs.iter().flat_map(|e| [&e.edges, &e.all_pairs]));
+        for work in shared {
+            for &i in &work.users {
+                execution_ms[i] += work.ms / work.users.len() as f64;
+            }
+        }
+        Ok(options
+            .iter()
+            .zip(plans)
+            .zip(execution_ms)
+            .enumerate()
+            .map(|(i, ((o, plan), execution_ms))| {
+                let choice = &choices[choice_of[i]];
+                RequestReport {
+                    schema_version: SCHEMA_VERSION,
+                    request: request.clone(),
+                    options: *o,
+                    formation: self.formation,
+                    support_decision: choice.support_decision.clone(),
+                    support_drones: choice.support_drones,
+                    swarm: choice.swarm.clone(),
+                    plan,
+                    execution_ms,
+                }
+            })
+            .collect())
+    }
+}
+
+/// Milliseconds since `start`.
+fn elapsed_ms(start: Instant) -> f64 {
+    start.elapsed().as_secs_f64() * 1e3
 }
