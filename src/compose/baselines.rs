@@ -8,7 +8,6 @@
 
 use super::plan::{Plan, PlanOutcome};
 use super::{FixedRoute, HopEnd, Planner};
-use crate::eaas::SharingPolicy;
 use crate::error::Result;
 use crate::network::floyd_warshall::{floyd_warshall, AllPairs};
 use crate::problem::Swarm;
@@ -100,27 +99,36 @@ impl Planner<'_> {
     /// without sharing (0 where `v` has no pads). See models/compose.md for this reading of the
     /// paper's rule. The costs do not depend on the planner's sharing policy.
     ///
+    /// The arrival batteries are those of [`Planner::fly`] with [`crate::eaas::SharingPolicy::None`] from full
+    /// batteries, to the last digit, computed without building the hop problem (one leg, no
+    /// transfer: `C_d - r_d τ`).
+    ///
     /// # Errors
     /// Those of [`Planner::fly`] and [`Planner::stop_at`].
     ///
     /// # Complexity
-    /// One hop simulation and one exact node time per directed edge.
+    /// One exact node time per directed edge into a node with pads.
     pub fn baseline_edge_costs_min(&self) -> Result<Vec<(usize, usize, f64)>> {
         let graph = self.graph();
         let speed = self.speed_m_per_min();
-        let full = self.full_battery_mah();
         let mut costs = Vec::new();
         for u in 0..graph.node_count() {
             for &(v, _) in graph.neighbors(u) {
-                let Some(path) = graph.path_from_nodes(&[u, v]) else {
+                let Some(leg) = graph.leg(u, v) else {
                     continue;
                 };
-                let flight = self.fly(&path, &full, SharingPolicy::None, HopEnd::Stop)?;
-                let nt = match self.stop_at(v, &flight.outcome.final_battery_mah)? {
-                    Some(stop) => stop.nt_min,
-                    None => 0.0,
+                let nt = if graph.pads(v) == 0 {
+                    0.0
+                } else {
+                    let arrival = self.arrival_without_sharing_mah(&leg)?;
+                    match self.stop_at(v, &arrival)? {
+                        Some(stop) => stop.nt_min,
+                        None => 0.0,
+                    }
                 };
-                costs.push((u, v, path.distance_m / speed + nt));
+                // The path's length: the sum of its one leg.
+                let distance_m: f64 = [leg.distance_m].iter().sum();
+                costs.push((u, v, distance_m / speed + nt));
             }
         }
         Ok(costs)

@@ -242,6 +242,41 @@ impl<'a> Planner<'a> {
             .map(move |&p| p * factors.wind_factor * factors.min_slot_factor)
     }
 
+    /// Every drone's battery after flying the single edge `leg` from full batteries without
+    /// sharing, mAh: `C_d - r_{d, q_d} τ` with `q_d` the drone's own slot and `τ` the leg's
+    /// duration. This is the hop evaluation ([`Planner::fly`] with [`SharingPolicy::None`])
+    /// for one leg and no transfer, with the same arithmetic and so the same numbers, without
+    /// building the hop problem.
+    ///
+    /// # Errors
+    /// Those of [`Planner::hop_problem`] when a rate is not finite.
+    pub(crate) fn arrival_without_sharing_mah(
+        &self,
+        leg: &crate::network::Leg,
+    ) -> Result<Vec<f64>> {
+        let duration_min = leg.distance_m / self.speed_m_per_min();
+        let key = self.edge_key(leg);
+        let factors = self.leg_factors(key, leg);
+        let mut arrival = self.full_battery_mah();
+        // The evaluation skips a leg shorter than its time tolerance.
+        if duration_min <= eaas::TIME_TOL_MIN {
+            return Ok(arrival);
+        }
+        for ((b, &p), &q) in arrival
+            .iter_mut()
+            .zip(self.payload_rates())
+            .zip(&self.swarm.initial_slot)
+        {
+            let rate = p * factors.wind_factor * factors.slot_factors[q];
+            if !(rate.is_finite() && rate >= 0.0) {
+                // The rate matrix names the culprit.
+                self.leg_rates(leg)?;
+            }
+            *b -= rate * duration_min;
+        }
+        Ok(arrival)
+    }
+
     /// The energy model's factors of `leg` (directed edge index `key`).
     fn leg_factors(&self, key: usize, leg: &crate::network::Leg) -> &super::factors::LegFactors {
         self.factors
