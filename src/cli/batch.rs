@@ -7,9 +7,7 @@
 //! count.
 
 use super::inputs::{ExactArgs, InstanceArgs};
-use crate::compose::{
-    lpt_node_time_gaps, Context, LptGapSummary, PlanOptions, RequestReport, RouteMethod, Stop,
-};
+use crate::compose::{lpt_gap, Context, LptGapSummary, PlanOptions, RequestReport, RouteMethod};
 use crate::eaas::exact_hop::HopSolveCounts;
 use crate::eaas::SharingPolicy;
 use crate::error::{Error, Result};
@@ -281,18 +279,29 @@ struct Planned {
     outcome: Outcome,
     /// Energy shared in flight, mAh.
     shared_mah: f64,
-    /// The recharging stops, in flight order.
-    stops: Vec<Stop>,
+    /// LPT's gap at every recharging stop, in flight order (`None`: the stop's node time is
+    /// only an incumbent); the stops themselves are not kept.
+    lpt_gaps: Vec<Option<f64>>,
     /// The hop solves of `exact` and `fair`.
     hop_solves: Option<HopSolveCounts>,
     /// Execution time, ms ([`RequestReport::execution_ms`]).
     execution_ms: f64,
 }
 
-impl From<RequestReport> for Planned {
-    fn from(r: RequestReport) -> Self {
+impl Planned {
+    fn of(r: RequestReport) -> Result<Self> {
         let delivered = r.plan.delivered();
-        Planned {
+        let lpt_gaps = if delivered {
+            r.plan
+                .hops
+                .iter()
+                .filter_map(|h| h.stop.as_ref())
+                .map(lpt_gap)
+                .collect::<Result<Vec<_>>>()?
+        } else {
+            Vec::new()
+        };
+        Ok(Planned {
             outcome: Outcome {
                 options: r.options,
                 request_id: r.request.id,
@@ -305,9 +314,9 @@ impl From<RequestReport> for Planned {
             },
             shared_mah: r.plan.shared_mah,
             hop_solves: r.plan.hop_solves,
-            stops: r.plan.hops.into_iter().filter_map(|h| h.stop).collect(),
+            lpt_gaps,
             execution_ms: r.execution_ms,
-        }
+        })
     }
 }
 
@@ -339,7 +348,7 @@ fn plan_grid(
             .map(|r| {
                 let reports = context.plan_each(r, combos)?;
                 bar.inc(combos.len() as u64);
-                Ok(reports.into_iter().map(Planned::from).collect())
+                reports.into_iter().map(Planned::of).collect()
             })
             .collect()
     });
@@ -371,7 +380,7 @@ fn summarise(options: PlanOptions, planned: &[&Planned], wall_ms: f64) -> Result
         mean_nt_min: total(delivered.iter().map(|p| p.outcome.nt_min)) / k,
         mean_stops: total(delivered.iter().map(|p| p.outcome.stops.len() as f64)) / k,
         shared_mah: total(delivered.iter().map(|p| p.shared_mah)),
-        lpt_node_time: lpt_node_time_gaps(delivered.iter().flat_map(|p| p.stops.iter()))?,
+        lpt_node_time: LptGapSummary::of(delivered.iter().flat_map(|p| p.lpt_gaps.iter().copied())),
         hop_solves: options.sharing.is_exact().then(|| {
             let mut sum = HopSolveCounts::default();
             for c in planned.iter().filter_map(|p| p.hop_solves.as_ref()) {

@@ -19,7 +19,7 @@ mod sequential;
 pub use baselines::BaselineCosts;
 pub use factors::{EdgeFactorCache, EdgeFactors};
 pub use flight::{Flight, HopEnd, Planner};
-pub use gaps::{lpt_node_time_gaps, LptGapSummary};
+pub use gaps::{lpt_gap, lpt_node_time_gaps, LptGapSummary};
 pub use plan::{Hop, LegFlown, Plan, PlanOutcome, Stop};
 pub use request::{Context, PlanOptions, RequestReport, SwarmChoice};
 
