@@ -161,7 +161,7 @@ pub fn run(cmd: GenerateCommand) -> Result<i32> {
 }
 
 /// `E0013`: `output` exists and `--force` was not given; generate never overwrites a file unasked.
-fn may_write(output: &Path, force: bool) -> Result<()> {
+pub(crate) fn may_write(output: &Path, force: bool) -> Result<()> {
     if force || !output.exists() {
         return Ok(());
     }

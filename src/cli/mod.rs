@@ -18,6 +18,7 @@ pub mod check;
 pub mod eaas;
 pub mod generate;
 pub mod human;
+pub mod import;
 pub mod inputs;
 pub mod inspect;
 pub mod node_time;
@@ -39,6 +40,8 @@ pub enum Command {
     /// Write a seeded synthetic network or request set.
     #[command(subcommand)]
     Generate(generate::GenerateCommand),
+    /// Turn a road network (nodes/edges CSV or GeoJSON lines) into a skyway network.
+    Import(import::ImportArgs),
     /// Describe a network, and the swarm a request would fly.
     Inspect(inspect::InspectArgs),
     /// Node time at a recharging node: pad-to-drone assignment (P||Cmax).
@@ -71,6 +74,7 @@ pub fn main() -> i32 {
     };
     let result = match cli.command {
         Command::Generate(cmd) => generate::run(cmd),
+        Command::Import(args) => import::run(args),
         Command::Inspect(args) => inspect::run(args),
         Command::NodeTime(args) => node_time::run(args),
         Command::Solve(args) => solve::run(args),

@@ -8,6 +8,7 @@
 //! The distributions are documented on [`network::generate_network`] and
 //! [`requests::generate_requests`], and in `instances/paper-195/README.md`.
 
+pub mod import;
 pub mod network;
 pub mod requests;
 

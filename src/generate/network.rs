@@ -3,7 +3,7 @@
 use super::{below, normal, round_to, shuffle, unit};
 use crate::error::{Error, Result};
 use crate::problem::validate::validate_network;
-use crate::problem::{Edge, Network, Node, SCHEMA_VERSION};
+use crate::problem::{Edge, Network, Node, Wind, SCHEMA_VERSION};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
@@ -197,40 +197,22 @@ pub fn generate_network(params: &NetworkParams) -> Result<Network> {
     }
 
     // 6. Pads.
-    let mut pads: Vec<u32> = (0..n).map(|_| draw_pads(&mut rng)).collect();
-    if pads.iter().all(|&p| p == 0) {
-        let k = below(&mut rng, n);
-        pads[k] = 2;
-    }
+    let pads = draw_network_pads(&mut rng, n);
 
     // 7. Wind.
-    let prevailing_deg = 360.0 * unit(&mut rng);
-    let mean_mps =
-        MEAN_WIND_RANGE_MPS.0 + (MEAN_WIND_RANGE_MPS.1 - MEAN_WIND_RANGE_MPS.0) * unit(&mut rng);
     let mut pairs = g.edge_list();
     pairs.sort_unstable();
+    let winds = draw_edge_winds(&mut rng, pairs.len());
     let id = |k: usize| format!("n{k:0width$}");
     let edges = pairs
         .into_iter()
-        .map(|(a, b)| {
-            let dir = round_to(
-                (prevailing_deg + WIND_DIRECTION_SD_DEG * normal(&mut rng)).rem_euclid(360.0),
-                1,
-            ) % 360.0;
-            let log_mean_shift = WIND_SPEED_LOG_SD * WIND_SPEED_LOG_SD / 2.0;
-            let speed = loop {
-                let v = mean_mps * (WIND_SPEED_LOG_SD * normal(&mut rng) - log_mean_shift).exp();
-                if v < WIND_SPEED_CAP_MPS {
-                    break round_to(v, 2);
-                }
-            };
-            Edge {
-                from: id(a),
-                to: id(b),
-                distance_m: None,
-                wind_speed_mps: speed,
-                wind_from_deg: dir,
-            }
+        .zip(winds)
+        .map(|((a, b), wind)| Edge {
+            from: id(a),
+            to: id(b),
+            distance_m: None,
+            wind_speed_mps: wind.speed_mps,
+            wind_from_deg: wind.from_deg,
         })
         .collect();
     let nodes = (0..n)
@@ -256,6 +238,46 @@ pub fn generate_network(params: &NetworkParams) -> Result<Network> {
         return Err(Error::Invalid(violations));
     }
     Ok(network)
+}
+
+/// Pads of `n` nodes, each drawn from [`PAD_PROBABILITIES`]; when every node drew none, a node
+/// drawn uniformly gets 2 (a network needs a pad somewhere).
+pub(crate) fn draw_network_pads(rng: &mut ChaCha8Rng, n: usize) -> Vec<u32> {
+    let mut pads: Vec<u32> = (0..n).map(|_| draw_pads(rng)).collect();
+    if n > 0 && pads.iter().all(|&p| p == 0) {
+        let k = below(rng, n);
+        pads[k] = 2;
+    }
+    pads
+}
+
+/// Winds of `edges` edges: a prevailing direction uniform in `[0, 360)` and a network mean speed
+/// uniform in [`MEAN_WIND_RANGE_MPS`], then per edge a direction normal around the prevailing one
+/// (sd [`WIND_DIRECTION_SD_DEG`], 0.1 degree) and a log-normal speed with that mean (log sd
+/// [`WIND_SPEED_LOG_SD`], redrawn until below [`WIND_SPEED_CAP_MPS`], 0.01 m/s).
+pub(crate) fn draw_edge_winds(rng: &mut ChaCha8Rng, edges: usize) -> Vec<Wind> {
+    let prevailing_deg = 360.0 * unit(rng);
+    let mean_mps =
+        MEAN_WIND_RANGE_MPS.0 + (MEAN_WIND_RANGE_MPS.1 - MEAN_WIND_RANGE_MPS.0) * unit(rng);
+    (0..edges)
+        .map(|_| {
+            let from_deg = round_to(
+                (prevailing_deg + WIND_DIRECTION_SD_DEG * normal(rng)).rem_euclid(360.0),
+                1,
+            ) % 360.0;
+            let log_mean_shift = WIND_SPEED_LOG_SD * WIND_SPEED_LOG_SD / 2.0;
+            let speed_mps = loop {
+                let v = mean_mps * (WIND_SPEED_LOG_SD * normal(rng) - log_mean_shift).exp();
+                if v < WIND_SPEED_CAP_MPS {
+                    break round_to(v, 2);
+                }
+            };
+            Wind {
+                speed_mps,
+                from_deg,
+            }
+        })
+        .collect()
 }
 
 fn draw_pads(rng: &mut ChaCha8Rng) -> u32 {
