@@ -237,9 +237,9 @@ impl<'a> Planner<'a> {
         leg: &crate::network::Leg,
     ) -> impl Iterator<Item = f64> + 's {
         let factors = self.leg_factors(key, leg);
-        self.payload_rates()
-            .iter()
-            .map(move |&p| p * factors.wind_factor * factors.min_slot_factor)
+        self.payload_rates().iter().map(move |&p| {
+            energy::rate_from_factors(p, factors.wind_factor, factors.min_slot_factor)
+        })
     }
 
     /// Every drone's battery after flying the single edge `leg` from full batteries without
@@ -267,7 +267,7 @@ impl<'a> Planner<'a> {
             .zip(self.payload_rates())
             .zip(&self.swarm.initial_slot)
         {
-            let rate = p * factors.wind_factor * factors.slot_factors[q];
+            let rate = energy::rate_from_factors(p, factors.wind_factor, factors.slot_factors[q]);
             if !(rate.is_finite() && rate >= 0.0) {
                 // The rate matrix names the culprit.
                 self.leg_rates(leg)?;

@@ -118,10 +118,18 @@ pub fn rate_matrix_from_factors(
     payload_rates_mah_per_min
         .iter()
         .map(|&p| {
-            let per_drone = p * wind_factor;
-            slot_factors.iter().map(|f| per_drone * f).collect()
+            slot_factors
+                .iter()
+                .map(|&f| rate_from_factors(p, wind_factor, f))
+                .collect()
         })
         .collect()
+}
+
+/// One entry of [`rate_matrix_from_factors`]: `(payload rate x wind factor) x slot factor`,
+/// mAh/min, multiplied in that order (every caller gets the same number to the last digit).
+pub fn rate_from_factors(payload_rate_mah_per_min: f64, wind_factor: f64, slot_factor: f64) -> f64 {
+    payload_rate_mah_per_min * wind_factor * slot_factor
 }
 
 /// Consumption rate of every drone (by id) in its initial slot, mAh/min. A swarm whose
