@@ -19,6 +19,7 @@ use swarmplan::eaas::SharingPolicy;
 use swarmplan::precompose::Positioning;
 use swarmplan::problem::network::{Edge, Node};
 use swarmplan::problem::{Network, Profile, Request, SkywayGraph, Swarm};
+use swarmplan::solver::SolveStatus;
 
 /// Relative tolerance between two delivery times summed in different orders.
 const REL_TOL: f64 = 1e-9;
@@ -211,7 +212,12 @@ fn optimal_route_equals_the_enumeration_of_stop_sequences_and_never_exceeds_algo
     for seed in 0..100u64 {
         let (network, graph, request) = random_case(seed);
         let context = Context::new(&network, &graph, &profile);
-        for sharing in [SharingPolicy::None, SharingPolicy::Pb] {
+        for sharing in [
+            SharingPolicy::None,
+            SharingPolicy::IdleSupport,
+            SharingPolicy::Pb,
+            SharingPolicy::Fb,
+        ] {
             let reports = context
                 .plan_each(
                     &request,
@@ -365,4 +371,46 @@ fn route_optimal_with_exact_or_fair_sharing_is_refused_with_e0015() {
         assert_eq!(out.status.code(), Some(2));
         assert!(common::stderr(&out).contains("[E0015]"));
     }
+}
+
+#[test]
+fn a_stop_stopped_by_the_node_limit_leaves_the_route_unproven() {
+    let (network, graph, profile, requests) = paper_195();
+    let mut context = Context::new(&network, &graph, &profile);
+    context.node_limit = Some(1);
+    let mut unproven = 0;
+    for request in requests.iter().take(30) {
+        let r = context
+            .plan(request, &options(SharingPolicy::Pb, RouteMethod::Optimal))
+            .unwrap();
+        checked(&network, &profile, request, &r);
+        let proof = r.plan.route_optimality.expect("optimal records its search");
+        let chosen_unproven = r
+            .plan
+            .hops
+            .iter()
+            .filter_map(|h| h.stop.as_ref())
+            .filter(|s| s.status != SolveStatus::Optimal)
+            .count();
+        assert!(proof.stops_unproven >= chosen_unproven, "{}", request.id);
+        assert!(proof.stops_unproven <= proof.stops_solved, "{}", request.id);
+        assert_eq!(proof.proven(), proof.stops_unproven == 0);
+        unproven += usize::from(!proof.proven());
+    }
+    assert!(unproven > 0, "a node limit of 1 stops some search");
+}
+
+#[test]
+fn solve_check_reads_back_an_optimal_plan() {
+    let out = swarmplan(&[
+        "solve",
+        "--request-id",
+        "r00001",
+        "--route",
+        "optimal",
+        "--sharing",
+        "fb",
+        "--check",
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", common::stderr(&out));
 }
