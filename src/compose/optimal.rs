@@ -15,7 +15,7 @@ const BOUND_MARGIN: f64 = 1e-9;
 
 /// The best arc found so far into a node of the stop graph: its tail, the hop path, the flight
 /// and the stop at its head (`None` at the destination).
-struct Arc {
+struct BestArc {
     from: usize,
     path: Route,
     flight: Flight,
@@ -103,7 +103,7 @@ impl Planner<'_> {
         let min_swarm_rate: f64 = min_rates.iter().sum();
         let endurance_min = self.endurance_bound_min(&full, &min_rates);
         let mut cost_min = vec![f64::INFINITY; n];
-        let mut best: Vec<Option<Arc>> = (0..n).map(|_| None).collect();
+        let mut best: Vec<Option<BestArc>> = (0..n).map(|_| None).collect();
         let mut settled = vec![false; n];
         cost_min[source] = 0.0;
         loop {
@@ -141,7 +141,7 @@ impl Planner<'_> {
                         optimality.arcs_flown += 1;
                         if let Some(flight) = flight {
                             cost_min[destination] = cost;
-                            best[destination] = Some(Arc {
+                            best[destination] = Some(BestArc {
                                 from: u,
                                 path,
                                 flight,
@@ -188,7 +188,7 @@ impl Planner<'_> {
                 let cost = cost_min[u] + path.distance_m / speed + stop.nt_min;
                 if improves(cost, u, cost_min[v], &best[v]) {
                     cost_min[v] = cost;
-                    best[v] = Some(Arc {
+                    best[v] = Some(BestArc {
                         from: u,
                         path,
                         flight,
@@ -279,7 +279,7 @@ fn beyond(bound_min: f64, limit_min: f64) -> bool {
 
 /// Whether an arc from `from` giving cost `cost_min` replaces the best arc `best` of cost
 /// `best_min`: a lower cost, or the same cost from a lower node index.
-fn improves(cost_min: f64, from: usize, best_min: f64, best: &Option<Arc>) -> bool {
+fn improves(cost_min: f64, from: usize, best_min: f64, best: &Option<BestArc>) -> bool {
     match best {
         None => cost_min < best_min,
         Some(arc) => cost_min < best_min || cost_min == best_min && from < arc.from,
