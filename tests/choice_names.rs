@@ -40,7 +40,13 @@ fn every_choice_has_one_name() {
     // The spellings the README documents for the command line.
     assert_eq!(
         names::<RouteMethod>(),
-        ["sequential", "astar", "dijkstra", "floyd-warshall"]
+        [
+            "sequential",
+            "astar",
+            "dijkstra",
+            "floyd-warshall",
+            "optimal"
+        ]
     );
     assert_eq!(
         names::<SharingPolicy>(),

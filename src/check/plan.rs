@@ -427,6 +427,15 @@ fn p5035_failure_names_where_the_swarm_is(raw: &Raw, plan: &Plan) -> Option<Viol
             }
             format!("cannot reach {to} from {from}, but the swarm is at {at}")
         }
+        PlanOutcome::NoStopSequence { from, to, .. } => {
+            if from == at && *to == raw.request.destination {
+                return None;
+            }
+            format!(
+                "no sequence of stops from {from} to {to}, but the swarm is at {at} and heads                  for {}",
+                raw.request.destination
+            )
+        }
     };
     Some(v("P5035", "outcome", cause))
 }

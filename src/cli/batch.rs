@@ -55,10 +55,12 @@ pub struct BatchArgs {
         default_value = "location-aware"
     )]
     pub positioning: Vec<Positioning>,
-    /// Route methods, comma-separated.
+    /// Route methods, comma-separated (`optimal`: the least delivery time over stop sequences,
+    /// simulated sharing policies only; never part of `--all`).
     #[arg(long, value_enum, value_delimiter = ',', default_value = "sequential")]
     pub route: Vec<RouteMethod>,
-    /// Every combination of sharing, positioning and route (overrides the three lists).
+    /// Every combination of sharing, positioning and route (overrides the three lists): the
+    /// paper's grid, `optimal` not included.
     #[arg(long)]
     pub all: bool,
     /// Number of support drones for every request, overriding the redundancy table (not used by
@@ -153,6 +155,9 @@ pub fn run(args: BatchArgs) -> Result<i32> {
             "0 worker threads",
             "give --threads 1 or more",
         ));
+    }
+    for combo in combinations(&args) {
+        combo.validate()?;
     }
     let (instance, set) = args.instance.load_with_requests(args.requests.as_deref())?;
     let mut requests = set.requests;

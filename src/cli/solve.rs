@@ -96,6 +96,7 @@ pub fn run(args: SolveArgs) -> Result<i32> {
         route: args.route,
         support: args.support,
     };
+    options.validate()?;
     // A hop solve can take up to --hop-time-limit, and a route makes many.
     let spinner = args
         .sharing
@@ -188,6 +189,21 @@ fn print_human(report: &RequestReport) -> Result<()> {
             c.backend_errors,
             c.schedule_does_not_fly,
             c.fallbacks
+        );
+    }
+    if let Some(o) = &plan.route_optimality {
+        let verdict = if o.proven() {
+            "proven optimal over stop sequences"
+        } else {
+            "optimal for the node times found (a stop's solve reached the node limit)"
+        };
+        outln!(
+            "route: {verdict}; {} recharging node(s) settled, {} hop(s) flown, {} stop(s) solved, \
+             {} at the node limit",
+            o.stops_settled,
+            o.arcs_flown,
+            o.stops_solved,
+            o.stops_unproven
         );
     }
     if plan.delivered() {

@@ -1,6 +1,6 @@
 //! Route composition (level 2): Algorithm 1 of the paper (sequential composition) and its A*-style
-//! variant, and the Dijkstra and Floyd–Warshall baselines with edge cost `tt + nt`.
-//! See models/compose.md.
+//! variant, the Dijkstra and Floyd–Warshall baselines with edge cost `tt + nt`, and the optimal
+//! route over stop sequences (Dijkstra on the stop graph). See models/compose.md.
 //!
 //! Every method produces a [`Plan`]: the hops flown between stops, the in-flight sharing schedule of
 //! each hop, the node time and pad assignment at every recharging stop, and the delivery time
@@ -12,6 +12,7 @@ mod baselines;
 mod factors;
 mod flight;
 mod gaps;
+mod optimal;
 mod plan;
 mod request;
 mod sequential;
@@ -20,7 +21,7 @@ pub use baselines::BaselineCosts;
 pub use factors::{EdgeFactorCache, EdgeFactors};
 pub use flight::{Flight, HopEnd, Planner};
 pub use gaps::{lpt_gap, lpt_node_time_gaps, LptGapSummary};
-pub use plan::{Hop, LegFlown, Plan, PlanOutcome, Stop};
+pub use plan::{Hop, LegFlown, Plan, PlanOutcome, RouteOptimality, Stop};
 pub use request::{Context, PlanOptions, RequestReport, SwarmChoice};
 
 use crate::problem::profile::Candidates;
@@ -40,6 +41,11 @@ pub enum RouteMethod {
     Dijkstra,
     /// Fixed route: Floyd–Warshall all-pairs on edge cost `tt + nt`.
     FloydWarshall,
+    /// The least delivery time over every sequence of stops (Dijkstra on the stop graph, each
+    /// hop along the shortest path between its stops, under the sharing policy): the proven
+    /// optimum the heuristics are measured against. Simulated sharing policies only. Not in
+    /// [`RouteMethod::ALL`]: asked for by name.
+    Optimal,
 }
 
 display_as_value_name!(RouteMethod);
@@ -67,7 +73,8 @@ pub enum FixedRoute {
 display_as_value_name!(FixedRoute);
 
 impl RouteMethod {
-    /// Every method, in a fixed order.
+    /// The paper's methods, in a fixed order: the grid of `batch --all`. [`RouteMethod::Optimal`]
+    /// is not one of them and is asked for by name (`--route optimal`).
     pub const ALL: [RouteMethod; 4] = [
         RouteMethod::Sequential,
         RouteMethod::Astar,
@@ -87,13 +94,16 @@ impl Planner<'_> {
     /// A [`Plan`]; `plan.outcome` says why when the swarm cannot deliver ([`PlanOutcome`]).
     ///
     /// # Errors
-    /// Only for malformed internal problems (a bug or inconsistent input that escaped validation).
+    /// [`crate::Error::Invalid`] E0015 for [`RouteMethod::Optimal`] with the exact and fair
+    /// policies; else only for malformed internal problems (a bug or inconsistent input that
+    /// escaped validation).
     ///
     /// # Complexity
     /// Sequential/A*: at most one step per recharging node, each step one Dijkstra tree and one
     /// hop simulation per recharging node. Dijkstra and Floyd–Warshall: one hop simulation and one
     /// exact node time per directed edge for the `tt + nt` costs, then one Dijkstra, or
-    /// Floyd–Warshall's O(|V|^3).
+    /// Floyd–Warshall's O(|V|^3). Optimal: see [`RouteMethod::Optimal`] and models/compose.md;
+    /// at most one hop simulation and one exact node time per pair of recharging nodes.
     pub fn compose(
         &self,
         source: usize,
@@ -164,6 +174,7 @@ impl Planner<'_> {
             RouteMethod::FloydWarshall => {
                 self.compose_fixed_route(source, destination, FixedRoute::FloydWarshall, costs)
             }
+            RouteMethod::Optimal => self.compose_optimal(source, destination),
         }?;
         if self.sharing().is_exact() {
             plan.hop_solves = Some(self.hop_solves());

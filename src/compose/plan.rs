@@ -32,6 +32,34 @@ pub struct Plan {
     /// grid schedules.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub hop_solves: Option<HopSolveCounts>,
+    /// `--route optimal`: the search of the stop graph, and whether the route is proven optimal.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub route_optimality: Option<RouteOptimality>,
+}
+
+/// What the optimal route's search of the stop graph did (`--route optimal`,
+/// models/compose.md): the route is the least delivery time over stop sequences when every
+/// stop solved while searching was solved to optimality (`stops_unproven == 0`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RouteOptimality {
+    /// Nodes with pads settled before the destination (their out-arcs flown).
+    pub stops_settled: usize,
+    /// Hops flown while searching (arcs evaluated), the route's included.
+    pub arcs_flown: usize,
+    /// Exact node times solved at the heads of flyable arcs.
+    pub stops_solved: usize,
+    /// Of those, the stops whose solve the node limit stopped (an incumbent, status
+    /// `feasible`): when not 0 the route is optimal only for the node times found.
+    pub stops_unproven: usize,
+}
+
+impl RouteOptimality {
+    /// Whether every node time of the search was proven optimal, so the route is the proven
+    /// optimum over stop sequences.
+    pub fn proven(&self) -> bool {
+        self.stops_unproven == 0
+    }
 }
 
 /// How a plan ends: delivered, or the kind of failure with its data. In JSON a tagged object,
@@ -73,11 +101,24 @@ pub enum PlanOutcome {
         /// The hop's first failure: the failing drone and when.
         failure: HopFailure,
     },
+    /// Optimal route (`optimal`): no sequence of stops reaches the destination from the source,
+    /// though a path of the network joins them. No hop is flown.
+    NoStopSequence {
+        /// The source.
+        from: String,
+        /// The destination.
+        to: String,
+        /// Nodes with pads the swarm can reach from the source with stops on the way.
+        stops_reached: usize,
+        /// The first failure of the direct flight from the source to the destination (with
+        /// sharing, when the policy shares).
+        direct: HopFailure,
+    },
 }
 
 impl PlanOutcome {
     /// The kind as written in JSON (its `kind` tag): `delivered`, `no-route`, `dead-end`,
-    /// `hop-infeasible`.
+    /// `hop-infeasible`, `no-stop-sequence`.
     pub fn kind(&self) -> String {
         match serde_json::to_value(self) {
             Ok(serde_json::Value::Object(map)) => match map.get("kind") {
@@ -131,6 +172,16 @@ impl fmt::Display for PlanOutcome {
                 "cannot reach {to} (next pad node or destination on the fixed route) from {from}: \
                  {}",
                 first(failure)
+            ),
+            PlanOutcome::NoStopSequence {
+                from,
+                to,
+                stops_reached,
+                direct,
+            } => write!(
+                f,
+                "no sequence of stops reaches {to} from {from}: {stops_reached} recharging nodes                  reached, none of them nor {from} reaches {to} without stopping (flying straight                  from {from}, {})",
+                first(direct)
             ),
         }
     }
@@ -219,6 +270,7 @@ impl Plan {
             dt_min: 0.0,
             shared_mah: 0.0,
             hop_solves: None,
+            route_optimality: None,
         }
     }
 

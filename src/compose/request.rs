@@ -29,6 +29,23 @@ pub struct PlanOptions {
     pub support: Option<usize>,
 }
 
+impl PlanOptions {
+    /// Checks that the combination can be planned: `--route optimal` with a simulated sharing
+    /// policy (none, idle-support, pb, fb).
+    ///
+    /// # Errors
+    /// [`Error::Invalid`] E0015 for [`RouteMethod::Optimal`] with `exact` or `fair`.
+    ///
+    /// # Complexity
+    /// O(1).
+    pub fn validate(&self) -> Result<()> {
+        if self.route == RouteMethod::Optimal && self.sharing.is_exact() {
+            return Err(super::optimal::optimal_with_solved_sharing(self.sharing));
+        }
+        Ok(())
+    }
+}
+
 /// What is fixed for every request on one network with one profile.
 pub struct Context<'a> {
     graph: &'a SkywayGraph,
@@ -166,7 +183,8 @@ impl<'a> Context<'a> {
     ///
     /// # Errors
     /// [`Error::Invalid`] when the request names an unknown node (validate requests first to get
-    /// every violation at once).
+    /// every violation at once), E0015 when `options` cannot be planned
+    /// ([`PlanOptions::validate`]).
     pub fn plan(&self, request: &Request, options: &PlanOptions) -> Result<RequestReport> {
         let mut reports = self.plan_each(request, std::slice::from_ref(options))?;
         Ok(reports.pop().expect("one report per combination"))
@@ -188,7 +206,8 @@ impl<'a> Context<'a> {
     /// combination that computes it first. The times add up to the call's.
     ///
     /// # Errors
-    /// As [`Context::plan`].
+    /// As [`Context::plan`]; E0015 ([`PlanOptions::validate`]) before any work when a
+    /// combination cannot be planned.
     ///
     /// # Complexity
     /// Per combination that of [`Planner::compose`], except that the edge costs (one hop
@@ -212,6 +231,9 @@ impl<'a> Context<'a> {
             edges: Shared,
             all_pairs: Shared,
             all_pairs_done: bool,
+        }
+        for o in options {
+            o.validate()?;
         }
         let mut own_ms = vec![0.0; options.len()];
         // Pre-composition, once per (positioning, support drones).
@@ -251,7 +273,7 @@ impl<'a> Context<'a> {
         for (i, o) in options.iter().enumerate() {
             let fixed = match o.route {
                 RouteMethod::Dijkstra | RouteMethod::FloydWarshall => true,
-                RouteMethod::Sequential | RouteMethod::Astar => false,
+                RouteMethod::Sequential | RouteMethod::Astar | RouteMethod::Optimal => false,
             };
             if !fixed {
                 continue;

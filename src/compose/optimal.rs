@@ -1,0 +1,287 @@
+//! The optimal route of one request over stop sequences: Dijkstra on the stop graph, with its
+//! arcs evaluated lazily. See models/compose.md, "Optimal route".
+
+use super::plan::{Plan, PlanOutcome, RouteOptimality};
+use super::{Flight, HopEnd, Planner, Stop};
+use crate::eaas::SharingPolicy;
+use crate::error::{Error, Result};
+use crate::network::Route;
+use crate::solver::SolveStatus;
+
+/// Relative margin by which a lower bound on an arc's cost is lowered before it prunes the arc:
+/// far above the rounding of the sums behind the bound (about 1e-15 relative), far below the gap
+/// between the bound and the cost it bounds.
+const BOUND_MARGIN: f64 = 1e-9;
+
+/// The best arc found so far into a node of the stop graph: its tail, the hop path, the flight
+/// and the stop at its head (`None` at the destination).
+struct BestArc {
+    from: usize,
+    path: Route,
+    flight: Flight,
+    stop: Option<Stop>,
+}
+
+/// The coded error of `--route optimal` with `--sharing exact | fair`.
+pub(crate) fn optimal_with_solved_sharing(sharing: SharingPolicy) -> Error {
+    Error::invalid(
+        "E0015",
+        "--route optimal",
+        format!(
+            "--route optimal supports the simulated sharing policies (none, idle-support, pb, \
+             fb), not {sharing}"
+        ),
+        "use --sharing none, idle-support, pb or fb with --route optimal, or another --route \
+         with --sharing exact or fair",
+    )
+}
+
+impl Planner<'_> {
+    /// The least delivery time over every sequence of stops from `source` to `destination`,
+    /// each hop along the shortest path by distance between its two stops and flown under the
+    /// planner's sharing policy from full batteries.
+    ///
+    /// Stop graph: the source, the destination and every node with pads; arc `u -> v` when the
+    /// hop flies, of cost `tt(u, v) + nt(v)` (`tt` alone into the destination, whose hop flies
+    /// without sharing or with the policy, as in Algorithm 1's lines 5–10). Every stop leaves
+    /// every battery full, so an arc's cost does not depend on how `u` was reached, and Dijkstra
+    /// on these non-negative costs gives the optimum. When the direct hop from the source flies
+    /// it is the route (no route with stops is shorter: its paths are at least as long).
+    ///
+    /// Nodes are settled in order of (cost, node index); a node's out-arcs are flown when it is
+    /// settled, and the search ends when the destination is. Among arcs giving a node the same
+    /// cost, the one from the lowest node index is kept. An arc is skipped only when a lower
+    /// bound proves it improves neither its head nor the destination: the endurance bound (it
+    /// cannot fly) and the energy bound of Algorithm 1's candidate pruning (its cost exceeds the
+    /// head's or the destination's cost found so far).
+    ///
+    /// # Returns
+    /// The plan, with [`RouteOptimality`]: the route is proven optimal when every stop solved
+    /// while searching (the arcs' node times) ended `optimal`; a stop the node limit stopped
+    /// makes the route optimal only for the node times found. [`PlanOutcome::NoStopSequence`]
+    /// when no sequence of stops reaches the destination, [`PlanOutcome::NoRoute`] when no path
+    /// does.
+    ///
+    /// # Errors
+    /// E0015 for the exact and fair policies; else those of [`Planner::fly`] and
+    /// [`Planner::stop_at`].
+    ///
+    /// # Complexity
+    /// At most one Dijkstra tree of the network and, per node with pads, one hop simulation
+    /// and one exact node time for each settled node: O(K^2) hops for K nodes with pads, fewer
+    /// when bounds prune; plus O(K^2) to pick the nodes to settle.
+    pub(crate) fn compose_optimal(&self, source: usize, destination: usize) -> Result<Plan> {
+        if self.sharing().is_exact() {
+            return Err(optimal_with_solved_sharing(self.sharing()));
+        }
+        let graph = self.graph();
+        let speed = self.speed_m_per_min();
+        let n = graph.node_count();
+        let mut plan = self.empty_plan(source, destination);
+        let mut optimality = RouteOptimality::default();
+        if source == destination {
+            plan.route_optimality = Some(optimality);
+            return Ok(plan.finish());
+        }
+        let full = self.full_battery_mah();
+        let Some(direct) = graph.shortest_path(source, destination) else {
+            plan.route_optimality = Some(optimality);
+            return Ok(plan.fail(PlanOutcome::NoRoute {
+                from: graph.id_of(source).to_string(),
+                to: graph.id_of(destination).to_string(),
+            }));
+        };
+        // The direct hop flies: no route with stops is shorter.
+        let (flight, direct_failure) = self.fly_to_destination(&direct, &full)?;
+        optimality.arcs_flown += 1;
+        if let Some(flight) = flight {
+            plan.push(self.hop(&direct, &full, flight, None));
+            plan.route_optimality = Some(optimality);
+            return Ok(plan.finish());
+        }
+        let min_rates = self.min_rates_mah_per_min()?;
+        let min_swarm_rate: f64 = min_rates.iter().sum();
+        let endurance_min = self.endurance_bound_min(&full, &min_rates);
+        let mut cost_min = vec![f64::INFINITY; n];
+        let mut best: Vec<Option<BestArc>> = (0..n).map(|_| None).collect();
+        let mut settled = vec![false; n];
+        cost_min[source] = 0.0;
+        loop {
+            // The unsettled node of least cost, the lowest index among equals.
+            let mut next: Option<usize> = None;
+            for v in 0..n {
+                // Only the source, the destination and nodes with pads ever get a finite cost.
+                if settled[v] || !cost_min[v].is_finite() {
+                    continue;
+                }
+                if next.is_none_or(|u| cost_min[v] < cost_min[u]) {
+                    next = Some(v);
+                }
+            }
+            let Some(u) = next else {
+                plan.route_optimality = Some(optimality);
+                return Ok(plan.fail(PlanOutcome::NoStopSequence {
+                    from: graph.id_of(source).to_string(),
+                    to: graph.id_of(destination).to_string(),
+                    stops_reached: settled.iter().filter(|&&s| s).count() - 1,
+                    direct: direct_failure.expect("an infeasible hop reports its first failure"),
+                }));
+            };
+            settled[u] = true;
+            if u == destination {
+                break;
+            }
+            optimality.stops_settled += usize::from(u != source);
+            // Into the destination (from the source, flown above).
+            if u != source {
+                if let Some(path) = graph.shortest_path(u, destination) {
+                    let cost = cost_min[u] + path.distance_m / speed;
+                    if improves(cost, u, cost_min[destination], &best[destination]) {
+                        let (flight, _) = self.fly_to_destination(&path, &full)?;
+                        optimality.arcs_flown += 1;
+                        if let Some(flight) = flight {
+                            cost_min[destination] = cost;
+                            best[destination] = Some(BestArc {
+                                from: u,
+                                path,
+                                flight,
+                                stop: None,
+                            });
+                        }
+                    }
+                }
+            }
+            // Into every unsettled node with pads.
+            let towards_u = graph.shortest_paths_to(u);
+            for v in 0..n {
+                if settled[v] || v == destination || graph.pads(v) == 0 {
+                    continue;
+                }
+                let distance_m = towards_u.distance_m[v];
+                if !distance_m.is_finite() || distance_m / speed > endurance_min {
+                    continue;
+                }
+                let limit = cost_min[v].min(cost_min[destination]);
+                let bound =
+                    cost_min[u] + self.arc_distance_bound_min(v, distance_m, min_swarm_rate);
+                if beyond(bound, limit) {
+                    continue;
+                }
+                let Some(path) = towards_u.reversed_path_from(v) else {
+                    continue;
+                };
+                if beyond(cost_min[u] + self.arc_energy_bound_min(&path, v)?, limit) {
+                    continue;
+                }
+                let flight = self.fly(&path, &full, self.sharing(), HopEnd::Stop)?;
+                optimality.arcs_flown += 1;
+                if !flight.outcome.feasible {
+                    continue;
+                }
+                let stop = self
+                    .stop_at(v, &flight.outcome.final_battery_mah)?
+                    .expect("the node has pads");
+                optimality.stops_solved += 1;
+                if stop.status != SolveStatus::Optimal {
+                    optimality.stops_unproven += 1;
+                }
+                let cost = cost_min[u] + path.distance_m / speed + stop.nt_min;
+                if improves(cost, u, cost_min[v], &best[v]) {
+                    cost_min[v] = cost;
+                    best[v] = Some(BestArc {
+                        from: u,
+                        path,
+                        flight,
+                        stop: Some(stop),
+                    });
+                }
+            }
+        }
+        // The arcs of the route, from the destination back to the source.
+        let mut arcs = Vec::new();
+        let mut at = destination;
+        while at != source {
+            let arc = best[at]
+                .take()
+                .expect("a settled node other than the source has an arc");
+            at = arc.from;
+            arcs.push(arc);
+        }
+        for arc in arcs.into_iter().rev() {
+            plan.push(self.hop(&arc.path, &full, arc.flight, arc.stop));
+        }
+        plan.route_optimality = Some(optimality);
+        Ok(plan.finish())
+    }
+
+    /// The hop `path` into the destination from full batteries `full`: flown without sharing if
+    /// that flies, else under the policy when it shares (Algorithm 1's lines 5–10). The flight,
+    /// or `None` with the first failure (of the flight with sharing, when the policy shares).
+    fn fly_to_destination(
+        &self,
+        path: &Route,
+        full: &[f64],
+    ) -> Result<(Option<Flight>, Option<crate::eaas::HopFailure>)> {
+        let flight = self.fly(path, full, SharingPolicy::None, HopEnd::NoStop)?;
+        if flight.outcome.feasible {
+            return Ok((Some(flight), None));
+        }
+        let mut failure = flight.outcome.failure;
+        if self.sharing().shares() {
+            let flight = self.fly(path, full, self.sharing(), HopEnd::NoStop)?;
+            if flight.outcome.feasible {
+                return Ok((Some(flight), None));
+            }
+            failure = flight.outcome.failure;
+        }
+        Ok((None, failure))
+    }
+
+    /// A lower bound on the cost `tt + nt` of an arc into `v` before its path is built: every
+    /// path is at least the shortest distance `distance_m` long, and the swarm consumes at least
+    /// `min_swarm_rate_mah_per_min` on every leg, which the pads must put back.
+    fn arc_distance_bound_min(
+        &self,
+        v: usize,
+        distance_m: f64,
+        min_swarm_rate_mah_per_min: f64,
+    ) -> f64 {
+        let tt_min = distance_m / self.speed_m_per_min();
+        let pads = f64::from(self.graph().pads(v));
+        let nt_bound = tt_min * min_swarm_rate_mah_per_min / (pads * self.pad_rate_mah_per_min(v));
+        (tt_min + nt_bound) * (1.0 - BOUND_MARGIN)
+    }
+
+    /// A lower bound on the cost `tt + nt` of the arc flying `path` into `v`: the swarm arrives
+    /// short of full by at least what every drone consumes in its cheapest slot on every leg
+    /// (sharing creates no energy), and `k` pads at rate `r` put it back in at least that over
+    /// `k r`.
+    ///
+    /// # Errors
+    /// Those of [`Planner::hop_problem`] (a rate that is not finite).
+    fn arc_energy_bound_min(&self, path: &Route, v: usize) -> Result<f64> {
+        let speed = self.speed_m_per_min();
+        let mut energy_mah = 0.0;
+        for leg in &path.legs {
+            energy_mah += leg.distance_m / speed * self.cheapest_swarm_rate_mah_per_min(leg)?;
+        }
+        let pads = f64::from(self.graph().pads(v));
+        let nt_bound = energy_mah / (pads * self.pad_rate_mah_per_min(v));
+        Ok((path.distance_m / speed + nt_bound) * (1.0 - BOUND_MARGIN))
+    }
+}
+
+/// Whether a bound, already lowered by [`BOUND_MARGIN`], exceeds the cost `limit`: the arc's
+/// cost is then above `limit`, never equal to it, so arcs of equal cost are always flown.
+fn beyond(bound_min: f64, limit_min: f64) -> bool {
+    bound_min > limit_min
+}
+
+/// Whether an arc from `from` giving cost `cost_min` replaces the best arc `best` of cost
+/// `best_min`: a lower cost, or the same cost from a lower node index.
+fn improves(cost_min: f64, from: usize, best_min: f64, best: &Option<BestArc>) -> bool {
+    match best {
+        None => cost_min < best_min,
+        Some(arc) => cost_min < best_min || cost_min == best_min && from < arc.from,
+    }
+}

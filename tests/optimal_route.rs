@@ -1,0 +1,416 @@
+//! `--route optimal`: the least delivery time over stop sequences (models/compose.md, "Optimal
+//! route").
+//!
+//! The reference is an exhaustive enumeration written here: every simple sequence of distinct
+//! nodes with pads between the source and the destination, each hop along the shortest path by
+//! distance between its ends and flown with the public `Planner::fly` and `Planner::stop_at`
+//! from full batteries, infeasible hops rejected. It shares no code with the stop-graph search.
+
+mod common;
+
+use common::{paper_195, swarmplan};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use swarmplan::check::check_plan;
+use swarmplan::compose::{
+    Context, HopEnd, PlanOptions, PlanOutcome, Planner, RequestReport, RouteMethod,
+};
+use swarmplan::eaas::SharingPolicy;
+use swarmplan::precompose::Positioning;
+use swarmplan::problem::network::{Edge, Node};
+use swarmplan::problem::{Network, Profile, Request, SkywayGraph, Swarm};
+use swarmplan::solver::SolveStatus;
+
+/// Relative tolerance between two delivery times summed in different orders.
+const REL_TOL: f64 = 1e-9;
+
+fn options(sharing: SharingPolicy, route: RouteMethod) -> PlanOptions {
+    PlanOptions {
+        sharing,
+        positioning: Positioning::LocationAware,
+        route,
+        support: None,
+    }
+}
+
+/// A random connected network of 5 to 9 nodes spread over a 7 km square (a loaded swarm of the
+/// paper profile flies a few km on full batteries, so most far pairs need stops and some cannot
+/// be joined at all), most nodes with pads, light winds;
+/// and a request between the two nodes farthest apart by shortest path.
+fn random_case(seed: u64) -> (Network, SkywayGraph, Request) {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let n = rng.random_range(5..=9);
+    let mut nodes: Vec<Node> = (0..n)
+        .map(|i| Node {
+            id: format!("v{i}"),
+            x_m: rng.random_range(0.0..7_000.0),
+            y_m: rng.random_range(0.0..7_000.0),
+            pads: if rng.random_bool(0.7) {
+                rng.random_range(1..=3)
+            } else {
+                0
+            },
+            pad_charge_rate_mah_per_min: None,
+        })
+        .collect();
+    // A network has a node with pads (rule E1105).
+    if nodes.iter().all(|v| v.pads == 0) {
+        nodes[0].pads = 1;
+    }
+    let mut order: Vec<usize> = (0..n).collect();
+    for i in (1..n).rev() {
+        order.swap(i, rng.random_range(0..=i));
+    }
+    // A spanning path in random order, then a few chords.
+    let mut pairs: Vec<(usize, usize)> = order.windows(2).map(|w| (w[0], w[1])).collect();
+    for _ in 0..n {
+        let (a, b) = (rng.random_range(0..n), rng.random_range(0..n));
+        let known = pairs.contains(&(a, b)) || pairs.contains(&(b, a));
+        if a != b && !known {
+            pairs.push((a, b));
+        }
+    }
+    let edges = pairs
+        .into_iter()
+        .map(|(a, b)| Edge {
+            from: format!("v{a}"),
+            to: format!("v{b}"),
+            distance_m: None,
+            wind_speed_mps: rng.random_range(0.0..6.0),
+            wind_from_deg: rng.random_range(0.0..360.0),
+        })
+        .collect();
+    let network = Network {
+        schema_version: swarmplan::problem::SCHEMA_VERSION,
+        name: Some(format!("random-{seed}")),
+        nodes,
+        edges,
+    };
+    let graph = SkywayGraph::new(&network).unwrap();
+    let mut far = (0, 1, -1.0);
+    for a in 0..n {
+        let d = graph.distances_from_m(a);
+        for (b, &x) in d.iter().enumerate() {
+            if x.is_finite() && x > far.2 {
+                far = (a, b, x);
+            }
+        }
+    }
+    let packages = rng.random_range(1..=3);
+    let request = Request {
+        id: format!("q{seed}"),
+        source: format!("v{}", far.0),
+        destination: format!("v{}", far.1),
+        packages_kg: (0..packages)
+            .map(|_| (rng.random_range(0.2..1.2f64) * 100.0).round() / 100.0)
+            .collect(),
+    };
+    (network, graph, request)
+}
+
+/// The least delivery time over every simple sequence of distinct pad nodes from `source` to
+/// `destination` (`None` when none delivers), by enumeration: from each stop, the hop into the
+/// destination flies without sharing or with the policy; the hop into a pad node flies with the
+/// policy, and the stop's node time is that of the arrival batteries.
+fn enumerate_min_dt(
+    graph: &SkywayGraph,
+    profile: &Profile,
+    swarm: &Swarm,
+    sharing: SharingPolicy,
+    source: usize,
+    destination: usize,
+) -> Option<f64> {
+    let planner = Planner::new(graph, profile, swarm, sharing);
+    let full = planner.full_battery_mah();
+    let speed = planner.speed_m_per_min();
+    let mut visited = vec![false; graph.node_count()];
+    visited[source] = true;
+    let mut best: Option<f64> = None;
+    // Depth-first over sequences: (node, cost so far).
+    fn walk(
+        ctx: &(&Planner, &SkywayGraph, &[f64], f64, usize, SharingPolicy),
+        u: usize,
+        cost_min: f64,
+        visited: &mut Vec<bool>,
+        best: &mut Option<f64>,
+    ) {
+        let (planner, graph, full, speed, destination, sharing) = *ctx;
+        if let Some(path) = graph.shortest_path(u, destination) {
+            let plain = planner
+                .fly(&path, full, SharingPolicy::None, HopEnd::NoStop)
+                .unwrap();
+            let flies = plain.outcome.feasible
+                || sharing.shares()
+                    && planner
+                        .fly(&path, full, sharing, HopEnd::NoStop)
+                        .unwrap()
+                        .outcome
+                        .feasible;
+            if flies {
+                let dt = cost_min + path.distance_m / speed;
+                if best.is_none_or(|b| dt < b) {
+                    *best = Some(dt);
+                }
+            }
+        }
+        for v in 0..graph.node_count() {
+            if visited[v] || v == destination || graph.pads(v) == 0 {
+                continue;
+            }
+            let Some(path) = graph.shortest_paths_to(u).reversed_path_from(v) else {
+                continue;
+            };
+            let flight = planner.fly(&path, full, sharing, HopEnd::Stop).unwrap();
+            if !flight.outcome.feasible {
+                continue;
+            }
+            let stop = planner
+                .stop_at(v, &flight.outcome.final_battery_mah)
+                .unwrap()
+                .unwrap();
+            visited[v] = true;
+            let cost = cost_min + path.distance_m / speed + stop.nt_min;
+            walk(ctx, v, cost, visited, best);
+            visited[v] = false;
+        }
+    }
+    let ctx = (
+        &planner,
+        graph,
+        full.as_slice(),
+        speed,
+        destination,
+        sharing,
+    );
+    walk(&ctx, source, 0.0, &mut visited, &mut best);
+    best
+}
+
+fn checked(network: &Network, profile: &Profile, request: &Request, r: &RequestReport) {
+    let v = check_plan(
+        network,
+        profile,
+        request,
+        &r.swarm,
+        r.options.sharing,
+        &r.plan,
+    );
+    assert!(
+        v.is_empty(),
+        "{} {:?}: checker says {v:?}",
+        request.id,
+        r.options
+    );
+}
+
+#[test]
+fn optimal_route_equals_the_enumeration_of_stop_sequences_and_never_exceeds_algorithm_1_or_astar() {
+    let profile = common::shipped_profile("paper");
+    let mut with_stops = 0;
+    let mut no_sequence = 0;
+    let mut cases = 0;
+    for seed in 0..100u64 {
+        let (network, graph, request) = random_case(seed);
+        let context = Context::new(&network, &graph, &profile);
+        for sharing in [
+            SharingPolicy::None,
+            SharingPolicy::IdleSupport,
+            SharingPolicy::Pb,
+            SharingPolicy::Fb,
+        ] {
+            let reports = context
+                .plan_each(
+                    &request,
+                    &[
+                        options(sharing, RouteMethod::Optimal),
+                        options(sharing, RouteMethod::Sequential),
+                        options(sharing, RouteMethod::Astar),
+                    ],
+                )
+                .unwrap();
+            let (opt, seq, astar) = (&reports[0], &reports[1], &reports[2]);
+            assert_eq!(opt.options.route, RouteMethod::Optimal);
+            checked(&network, &profile, &request, opt);
+            let (s, t) = (
+                graph.index_of(&request.source).unwrap(),
+                graph.index_of(&request.destination).unwrap(),
+            );
+            let expected = enumerate_min_dt(&graph, &profile, &opt.swarm, sharing, s, t);
+            let what = format!("seed {seed} {sharing}");
+            match expected {
+                Some(dt) => {
+                    assert!(opt.plan.delivered(), "{what}: {}", opt.plan.outcome);
+                    let got = opt.plan.dt_min;
+                    assert!(
+                        (got - dt).abs() <= REL_TOL * dt.max(1.0),
+                        "{what}: optimal dt {got}, enumeration {dt}"
+                    );
+                    with_stops += usize::from(!opt.plan.stops().is_empty());
+                }
+                None => {
+                    assert!(
+                        matches!(opt.plan.outcome, PlanOutcome::NoStopSequence { .. }),
+                        "{what}: no sequence delivers, but {}",
+                        opt.plan.outcome
+                    );
+                    no_sequence += 1;
+                }
+            }
+            for other in [seq, astar] {
+                if other.plan.delivered() {
+                    assert!(opt.plan.delivered(), "{what}: {:?}", other.options.route);
+                    assert!(
+                        opt.plan.dt_min <= other.plan.dt_min * (1.0 + REL_TOL),
+                        "{what}: optimal {} > {} {}",
+                        opt.plan.dt_min,
+                        other.options.route,
+                        other.plan.dt_min
+                    );
+                }
+            }
+            let proof = opt
+                .plan
+                .route_optimality
+                .expect("optimal records its search");
+            assert!(proof.proven(), "{what}: {proof:?}");
+            cases += 1;
+        }
+    }
+    // The property is not vacuous: many optimal routes stop on the way, some requests fail.
+    assert!(
+        with_stops * 2 >= cases,
+        "only {with_stops} of {cases} routes stop"
+    );
+    assert!(no_sequence > 0, "every request of the {cases} delivers");
+}
+
+#[test]
+fn optimal_route_on_paper_195_passes_the_checker_and_never_exceeds_algorithm_1_or_astar() {
+    let (network, graph, profile, requests) = paper_195();
+    let context = Context::new(&network, &graph, &profile);
+    let mut stops = 0;
+    for request in requests.iter().take(12) {
+        for sharing in [SharingPolicy::None, SharingPolicy::Pb] {
+            let reports = context
+                .plan_each(
+                    request,
+                    &[
+                        options(sharing, RouteMethod::Optimal),
+                        options(sharing, RouteMethod::Sequential),
+                        options(sharing, RouteMethod::Astar),
+                    ],
+                )
+                .unwrap();
+            let opt = &reports[0];
+            checked(&network, &profile, request, opt);
+            stops += opt.plan.stops().len();
+            for other in &reports[1..] {
+                checked(&network, &profile, request, other);
+                if other.plan.delivered() {
+                    assert!(opt.plan.delivered());
+                    assert!(
+                        opt.plan.dt_min <= other.plan.dt_min * (1.0 + REL_TOL),
+                        "{} {sharing}: optimal {} > {} {}",
+                        request.id,
+                        opt.plan.dt_min,
+                        other.options.route,
+                        other.plan.dt_min
+                    );
+                }
+            }
+        }
+    }
+    assert!(stops > 0, "some of these requests need a stop");
+}
+
+#[test]
+fn optimal_route_is_not_part_of_the_papers_grid() {
+    assert!(!RouteMethod::ALL.contains(&RouteMethod::Optimal));
+}
+
+#[test]
+fn solve_with_route_optimal_prints_an_optimal_plan() {
+    let out = swarmplan(&[
+        "solve",
+        "--request-id",
+        "r00042",
+        "--route",
+        "optimal",
+        "--json",
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", common::stderr(&out));
+    let doc: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(doc["options"]["route"], "optimal");
+    assert_eq!(doc["plan"]["outcome"]["kind"], "delivered");
+    assert!(doc["plan"]["route_optimality"].is_object());
+}
+
+#[test]
+fn route_optimal_with_exact_or_fair_sharing_is_refused_with_e0015() {
+    for sharing in ["exact", "fair"] {
+        let out = swarmplan(&[
+            "solve",
+            "--request-id",
+            "r00042",
+            "--route",
+            "optimal",
+            "--sharing",
+            sharing,
+        ]);
+        assert_eq!(out.status.code(), Some(2));
+        assert!(common::stderr(&out).contains("[E0015]"));
+        let out = swarmplan(&[
+            "batch",
+            "--limit",
+            "1",
+            "--route",
+            "optimal",
+            "--sharing",
+            sharing,
+        ]);
+        assert_eq!(out.status.code(), Some(2));
+        assert!(common::stderr(&out).contains("[E0015]"));
+    }
+}
+
+#[test]
+fn a_stop_stopped_by_the_node_limit_leaves_the_route_unproven() {
+    let (network, graph, profile, requests) = paper_195();
+    let mut context = Context::new(&network, &graph, &profile);
+    context.node_limit = Some(1);
+    let mut unproven = 0;
+    for request in requests.iter().take(30) {
+        let r = context
+            .plan(request, &options(SharingPolicy::Pb, RouteMethod::Optimal))
+            .unwrap();
+        checked(&network, &profile, request, &r);
+        let proof = r.plan.route_optimality.expect("optimal records its search");
+        let chosen_unproven = r
+            .plan
+            .hops
+            .iter()
+            .filter_map(|h| h.stop.as_ref())
+            .filter(|s| s.status != SolveStatus::Optimal)
+            .count();
+        assert!(proof.stops_unproven >= chosen_unproven, "{}", request.id);
+        assert!(proof.stops_unproven <= proof.stops_solved, "{}", request.id);
+        assert_eq!(proof.proven(), proof.stops_unproven == 0);
+        unproven += usize::from(!proof.proven());
+    }
+    assert!(unproven > 0, "a node limit of 1 stops some search");
+}
+
+#[test]
+fn solve_check_reads_back_an_optimal_plan() {
+    let out = swarmplan(&[
+        "solve",
+        "--request-id",
+        "r00001",
+        "--route",
+        "optimal",
+        "--sharing",
+        "fb",
+        "--check",
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", common::stderr(&out));
+}
