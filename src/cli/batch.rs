@@ -7,7 +7,10 @@
 //! count.
 
 use super::inputs::{ExactArgs, InstanceArgs};
-use crate::compose::{lpt_gap, Context, LptGapSummary, PlanOptions, RequestReport, RouteMethod};
+use crate::compose::{
+    lpt_gap, Context, LptGapSummary, PlanOptions, RequestReport, RouteGapSummary, RouteMethod,
+    RoutePair,
+};
 use crate::eaas::exact_hop::HopSolveCounts;
 use crate::eaas::SharingPolicy;
 use crate::error::{Error, Result};
@@ -78,6 +81,11 @@ pub struct BatchArgs {
     /// a stop it stops keeps its incumbent, `status: feasible`.
     #[arg(long, value_name = "N", default_value_t = crate::node_time::DEFAULT_STOP_NODE_LIMIT)]
     pub node_limit: u64,
+    /// Route gap: also plan every request with `--route optimal` (same sharing policy,
+    /// positioning and support drones) and give each other route method's gap against it
+    /// (columns route_gap_*; simulated sharing policies only).
+    #[arg(long)]
+    pub gap: bool,
     /// Print the summaries as JSON.
     #[arg(long)]
     pub json: bool,
@@ -109,6 +117,10 @@ pub struct Summary {
     /// with a solve stopped by its time limit the numbers depend on the machine's speed.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub hop_solves: Option<HopSolveCounts>,
+    /// With `--gap`: the route gap against the optimal route (`None` for `optimal` itself and
+    /// the exact and fair policies).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub route_gap: Option<RouteGapSummary>,
     /// Time spent planning the combination, ms: the sum over the requests of its execution time,
     /// where work shared with other combinations of the request (its swarm, the baseline edge
     /// costs and Floyd–Warshall's all-pairs result of a swarm) is split equally among the
@@ -139,6 +151,9 @@ pub struct Outcome {
     /// Why the request failed, as a sentence (`solve --json` gives the outcome's data).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub failure: Option<String>,
+    /// With `--gap`, when both delivered: `(dt - dt_opt) / dt_opt` against the optimal route.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub route_gap: Option<f64>,
 }
 
 /// Runs the subcommand.
@@ -177,7 +192,28 @@ pub fn run(args: BatchArgs) -> Result<i32> {
     let mut context = Context::new(&instance.network, &instance.graph, &instance.profile);
     context.exact = args.exact.settings()?;
     context.node_limit = Some(args.node_limit);
-    let combos = combinations(&args);
+    let shown = combinations(&args);
+    // With --gap, the optimal route of each compared combination, planned with it.
+    let mut combos = shown.clone();
+    let mut reference_of: Vec<Option<usize>> = vec![None; shown.len()];
+    if args.gap {
+        for (i, o) in shown.iter().enumerate() {
+            if o.route == RouteMethod::Optimal || o.sharing.is_exact() {
+                continue;
+            }
+            let optimal = PlanOptions {
+                route: RouteMethod::Optimal,
+                ..*o
+            };
+            reference_of[i] = Some(match combos.iter().position(|c| *c == optimal) {
+                Some(j) => j,
+                None => {
+                    combos.push(optimal);
+                    combos.len() - 1
+                }
+            });
+        }
+    }
     let bar = super::progress::bar((combos.len() * requests.len()) as u64, "requests");
     bar.set_message(format!("x {} combinations", combos.len()));
     let start = Instant::now();
@@ -186,10 +222,22 @@ pub fn run(args: BatchArgs) -> Result<i32> {
     bar.finish_and_clear();
     let mut summaries = Vec::new();
     let mut outcomes = Vec::new();
-    for (c, &options) in combos.iter().enumerate() {
+    for (c, &options) in shown.iter().enumerate() {
         let planned: Vec<&Planned> = grid.iter().map(|row| &row[c]).collect();
         let wall_ms = total(planned.iter().map(|p| p.execution_ms));
-        let summary = summarise(options, &planned, wall_ms)?;
+        let mut summary = summarise(options, &planned, wall_ms)?;
+        let pairs: Option<Vec<RoutePair>> = reference_of[c].map(|j| {
+            grid.iter()
+                .map(|row| RoutePair {
+                    heuristic_dt_min: row[c].outcome.success.then_some(row[c].outcome.dt_min),
+                    optimal_dt_min: row[j].outcome.success.then_some(row[j].outcome.dt_min),
+                    optimal_proven: row[j].route_proven,
+                })
+                .collect()
+        });
+        summary.route_gap = pairs
+            .as_ref()
+            .map(|p| RouteGapSummary::of(p.iter().copied()));
         if !args.json {
             eprintln!(
                 "sharing {:<4} positioning {:<14} route {:<14} delivered {}/{} mean dt {:.2} min, {:.0} ms",
@@ -203,7 +251,10 @@ pub fn run(args: BatchArgs) -> Result<i32> {
             );
         }
         if args.per_request.is_some() {
-            outcomes.extend(planned.iter().map(|p| p.outcome.clone()));
+            outcomes.extend(planned.iter().enumerate().map(|(r, p)| Outcome {
+                route_gap: pairs.as_ref().and_then(|pairs| pairs[r].gap()),
+                ..p.outcome.clone()
+            }));
         }
         summaries.push(summary);
     }
@@ -221,11 +272,32 @@ pub fn run(args: BatchArgs) -> Result<i32> {
         super::print_json(&summaries)?;
     } else {
         // Data, as the JSON: every float with all its digits (the lines on stderr are rounded).
-        outln!("sharing,positioning,route,delivered,requests,mean_dt_min,mean_nt_min,mean_stops,stops,lpt_optimal,lpt_mean_gap,lpt_max_gap,hop_solves,hop_solves_unproven,wall_ms");
+        let gap_header = if args.gap {
+            ",route_gap_reference,route_gap_compared,route_gap_zero,route_gap_mean,route_gap_max,route_gap_min,heuristic_fails_optimum_delivers,optimum_fails_heuristic_delivers,route_gap_unproven_references"
+        } else {
+            ""
+        };
+        outln!("sharing,positioning,route,delivered,requests,mean_dt_min,mean_nt_min,mean_stops,stops,lpt_optimal,lpt_mean_gap,lpt_max_gap,hop_solves,hop_solves_unproven,wall_ms{gap_header}");
         for s in &summaries {
             let hops = s.hop_solves.unwrap_or_default();
+            let gap_cells = match (&s.route_gap, args.gap) {
+                (Some(g), _) => format!(
+                    ",{},{},{},{},{},{},{},{},{}",
+                    g.reference_name(),
+                    g.compared,
+                    g.at_zero,
+                    g.mean_gap,
+                    g.max_gap,
+                    g.min_gap,
+                    g.heuristic_fails_optimum_delivers,
+                    g.optimum_fails_heuristic_delivers,
+                    g.unproven_references
+                ),
+                (None, true) => ",,,,,,,,,".to_string(),
+                (None, false) => String::new(),
+            };
             outln!(
-                "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+                "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}{}",
                 s.options.sharing,
                 s.options.positioning,
                 s.options.route,
@@ -240,7 +312,8 @@ pub fn run(args: BatchArgs) -> Result<i32> {
                 s.lpt_node_time.max_gap,
                 hops.solves,
                 hops.time_limit_incumbent + hops.time_limit_no_solution + hops.backend_errors,
-                s.wall_ms
+                s.wall_ms,
+                gap_cells
             );
         }
     }
@@ -291,6 +364,8 @@ struct Planned {
     hop_solves: Option<HopSolveCounts>,
     /// Execution time, ms ([`RequestReport::execution_ms`]).
     execution_ms: f64,
+    /// `optimal` route: whether every node time of its search was proven (true for the others).
+    route_proven: bool,
 }
 
 impl Planned {
@@ -316,11 +391,13 @@ impl Planned {
                 nt_min: r.plan.nt_min,
                 stops: r.plan.stops().into_iter().map(String::from).collect(),
                 failure: (!delivered).then(|| r.plan.outcome.to_string()),
+                route_gap: None,
             },
             shared_mah: r.plan.shared_mah,
             hop_solves: r.plan.hop_solves,
             lpt_gaps,
             execution_ms: r.execution_ms,
+            route_proven: r.plan.route_optimality.is_none_or(|o| o.proven()),
         })
     }
 }
@@ -393,6 +470,7 @@ fn summarise(options: PlanOptions, planned: &[&Planned], wall_ms: f64) -> Result
             }
             sum
         }),
+        route_gap: None,
         wall_ms,
     })
 }

@@ -79,3 +79,105 @@ impl LptGapSummary {
         summary
     }
 }
+
+/// How far a heuristic route method is from the optimal route (`--route optimal`, same sharing
+/// policy, positioning and support drones) over a request set: gaps `(dt - dt_opt) / dt_opt` on
+/// the requests both deliver, summed in request order. The optimum is over stop sequences with
+/// hops along the shortest path between stops; Dijkstra's and Floyd–Warshall's hops follow their
+/// fixed route instead, so their gap can be negative (shown, never clipped).
+#[derive(Debug, Clone, Serialize)]
+pub struct RouteGapSummary {
+    /// What the gaps are measured against: `optimal` (over stop sequences).
+    pub reference: ReferenceKind,
+    /// The hop-path rule of the reference: `shortest-between-stops`.
+    pub reference_hop_paths: &'static str,
+    /// Requests both delivered (the gaps' denominator).
+    pub compared: usize,
+    /// Of those, requests at gap 0 (within 1e-9 relative).
+    pub at_zero: usize,
+    /// Mean gap over the compared requests.
+    pub mean_gap: f64,
+    /// Largest gap.
+    pub max_gap: f64,
+    /// Smallest gap (negative only for a method whose hops follow another path rule).
+    pub min_gap: f64,
+    /// Requests the heuristic fails and the optimum delivers.
+    pub heuristic_fails_optimum_delivers: usize,
+    /// Requests the optimum fails and the heuristic delivers (0 for Algorithm 1 and A*, whose
+    /// hops follow the same rule).
+    pub optimum_fails_heuristic_delivers: usize,
+    /// Compared requests whose optimum is proven only for the node times found (a stop of its
+    /// search stopped by the node limit).
+    pub unproven_references: usize,
+}
+
+/// One request for [`RouteGapSummary::of`]: the heuristic's and the optimum's delivery times
+/// (`None` when not delivered), and whether the optimum is proven.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RoutePair {
+    /// The heuristic's delivery time, min.
+    pub heuristic_dt_min: Option<f64>,
+    /// The optimum's delivery time, min.
+    pub optimal_dt_min: Option<f64>,
+    /// Whether the optimum's node times were all proven.
+    pub optimal_proven: bool,
+}
+
+impl RoutePair {
+    /// The relative gap when both delivered (0 when both delivery times are 0).
+    pub fn gap(&self) -> Option<f64> {
+        let (h, o) = (self.heuristic_dt_min?, self.optimal_dt_min?);
+        Some(if o > 0.0 { (h - o) / o } else { 0.0 })
+    }
+}
+
+impl RouteGapSummary {
+    /// The reference's name as in JSON: `optimal`.
+    pub fn reference_name(&self) -> &'static str {
+        match self.reference {
+            ReferenceKind::Optimal => "optimal",
+            ReferenceKind::Incumbent => "incumbent",
+            ReferenceKind::Bound => "bound",
+        }
+    }
+
+    /// The summary of the requests `pairs`, in the order given.
+    pub fn of(pairs: impl IntoIterator<Item = RoutePair>) -> RouteGapSummary {
+        let mut s = RouteGapSummary {
+            reference: ReferenceKind::Optimal,
+            reference_hop_paths: "shortest-between-stops",
+            compared: 0,
+            at_zero: 0,
+            mean_gap: 0.0,
+            max_gap: f64::NEG_INFINITY,
+            min_gap: f64::INFINITY,
+            heuristic_fails_optimum_delivers: 0,
+            optimum_fails_heuristic_delivers: 0,
+            unproven_references: 0,
+        };
+        let mut sum = 0.0;
+        for pair in pairs {
+            match (pair.heuristic_dt_min, pair.optimal_dt_min) {
+                (None, Some(_)) => s.heuristic_fails_optimum_delivers += 1,
+                (Some(_), None) => s.optimum_fails_heuristic_delivers += 1,
+                _ => {}
+            }
+            let Some(gap) = pair.gap() else { continue };
+            s.compared += 1;
+            if !pair.optimal_proven {
+                s.unproven_references += 1;
+            }
+            if gap.abs() <= 1e-9 {
+                s.at_zero += 1;
+            }
+            sum += gap;
+            s.max_gap = s.max_gap.max(gap);
+            s.min_gap = s.min_gap.min(gap);
+        }
+        if s.compared == 0 {
+            (s.max_gap, s.min_gap) = (0.0, 0.0);
+        }
+        s.mean_gap = sum / s.compared.max(1) as f64;
+        s
+    }
+}

@@ -20,7 +20,7 @@ mod sequential;
 pub use baselines::BaselineCosts;
 pub use factors::{EdgeFactorCache, EdgeFactors};
 pub use flight::{Flight, HopEnd, Planner};
-pub use gaps::{lpt_gap, lpt_node_time_gaps, LptGapSummary};
+pub use gaps::{lpt_gap, lpt_node_time_gaps, LptGapSummary, RouteGapSummary, RoutePair};
 pub use plan::{Hop, LegFlown, Plan, PlanOutcome, RouteOptimality, Stop};
 pub use request::{Context, PlanOptions, RequestReport, SwarmChoice};
 
