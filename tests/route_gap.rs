@@ -135,3 +135,55 @@ fn gap_columns_appear_only_with_gap() {
     let text = String::from_utf8(out.stdout).unwrap();
     assert!(!text.lines().next().unwrap().contains("route_gap"));
 }
+
+#[test]
+fn solve_gap_is_the_gap_to_a_separate_optimal_solve_and_reads_back() {
+    let plan = tmp("solve_gap.json");
+    let out = swarmplan(&[
+        "solve",
+        "--request-id",
+        "r00042",
+        "--sharing",
+        "pb",
+        "--route",
+        "sequential",
+        "--gap",
+        "--json",
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    std::fs::write(&plan, &out.stdout).unwrap();
+    let report: Value = serde_json::from_slice(&out.stdout).unwrap();
+    let out = swarmplan(&[
+        "solve",
+        "--request-id",
+        "r00042",
+        "--sharing",
+        "pb",
+        "--route",
+        "optimal",
+        "--json",
+    ]);
+    let optimal: Value = serde_json::from_slice(&out.stdout).unwrap();
+    let (dt, dt_opt) = (
+        report["plan"]["dt_min"].as_f64().unwrap(),
+        optimal["plan"]["dt_min"].as_f64().unwrap(),
+    );
+    let g = &report["route_gap"];
+    assert_eq!(g["reference"], "optimal");
+    assert_eq!(g["optimal_dt_min"].as_f64().unwrap(), dt_opt);
+    assert_eq!(g["gap"].as_f64().unwrap(), (dt - dt_opt) / dt_opt);
+    // The document with its gap is still a plan the checker reads.
+    let out = swarmplan(&["check", "--plan", plan.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    // The exact policy has no optimal route to compare with.
+    let out = swarmplan(&[
+        "solve",
+        "--request-id",
+        "r00042",
+        "--sharing",
+        "exact",
+        "--gap",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stderr(&out).contains("E0015"), "{}", stderr(&out));
+}

@@ -1,11 +1,12 @@
 //! `swarmplan solve`: plan one request and print the plan.
 
 use super::inputs::{self, ExactArgs, InstanceArgs};
-use crate::compose::{Context, PlanOptions, RequestReport, RouteMethod};
+use crate::compose::{Context, PlanOptions, RequestReport, RouteGap, RouteMethod, RoutePair};
 use crate::eaas::SharingPolicy;
 use crate::error::{Error, Result};
 use crate::precompose::Positioning;
 use crate::problem::Request;
+use crate::solver::ReferenceKind;
 use std::path::PathBuf;
 
 /// Plan one request: route, sharing schedules, node times, delivery time.
@@ -52,6 +53,11 @@ pub struct SolveArgs {
     /// Print the full report as JSON.
     #[arg(long)]
     pub json: bool,
+    /// Also plan the request with `--route optimal` (same sharing policy, positioning and support
+    /// drones) and give this plan's gap against it (`route_gap` in the JSON; simulated sharing
+    /// policies only).
+    #[arg(long)]
+    pub gap: bool,
     /// Re-verify the plan as printed with the independent checker (as `swarmplan check` does);
     /// violations go to stderr, and the exit code is 1 when there is one.
     #[arg(long)]
@@ -97,12 +103,43 @@ pub fn run(args: SolveArgs) -> Result<i32> {
         support: args.support,
     };
     options.validate()?;
+    if args.gap && args.sharing.is_exact() {
+        return Err(Error::invalid(
+            "E0015",
+            "--gap",
+            format!(
+                "--gap compares with --route optimal, which supports the simulated sharing \
+                 policies (none, idle-support, pb, fb), not {}",
+                args.sharing
+            ),
+            "use --gap with --sharing none, idle-support, pb or fb",
+        ));
+    }
     // A hop solve can take up to --hop-time-limit, and a route makes many.
     let spinner = args
         .sharing
         .is_exact()
         .then(|| super::progress::spinner(format!("planning request {}", request.id)));
-    let report = context.plan(&request, &options)?;
+    let mut report = context.plan(&request, &options)?;
+    if args.gap {
+        let optimal = PlanOptions {
+            route: RouteMethod::Optimal,
+            ..options
+        };
+        optimal.validate()?;
+        let best = context.plan(&request, &optimal)?.plan;
+        let pair = RoutePair {
+            heuristic_dt_min: report.plan.delivered().then_some(report.plan.dt_min),
+            optimal_dt_min: best.delivered().then_some(best.dt_min),
+            optimal_proven: best.route_optimality.is_none_or(|o| o.proven()),
+        };
+        report.route_gap = Some(RouteGap {
+            reference: ReferenceKind::Optimal,
+            optimal_dt_min: pair.optimal_dt_min,
+            gap: pair.gap(),
+            optimal_proven: pair.optimal_proven,
+        });
+    }
     drop(spinner);
     if args.json {
         super::print_json(&report)?;
@@ -217,6 +254,24 @@ fn print_human(report: &RequestReport) -> Result<()> {
         );
     } else {
         outln!("failed: {}", plan.outcome);
+    }
+    if let Some(g) = &report.route_gap {
+        let proven = if g.optimal_proven {
+            "proven"
+        } else {
+            "optimal for the node times found"
+        };
+        match (g.gap, g.optimal_dt_min) {
+            (Some(gap), Some(best)) => outln!(
+                "route gap: {:+.2}% against the optimal route over stop sequences (dt {:.2} min, {proven})",
+                100.0 * gap,
+                best
+            ),
+            (None, Some(best)) => outln!(
+                "route gap: n/a, the optimal route over stop sequences delivers in {best:.2} min ({proven})"
+            ),
+            _ => outln!("route gap: n/a, the optimal route over stop sequences does not deliver either"),
+        }
     }
     Ok(())
 }

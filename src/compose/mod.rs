@@ -22,7 +22,7 @@ pub use factors::{EdgeFactorCache, EdgeFactors};
 pub use flight::{Flight, HopEnd, Planner};
 pub use gaps::{lpt_gap, lpt_node_time_gaps, LptGapSummary, RouteGapSummary, RoutePair};
 pub use plan::{Hop, LegFlown, Plan, PlanOutcome, RouteOptimality, Stop};
-pub use request::{Context, PlanOptions, RequestReport, SwarmChoice};
+pub use request::{Context, PlanOptions, RequestReport, RouteGap, SwarmChoice};
 
 use crate::problem::profile::Candidates;
 use serde::{Deserialize, Serialize};

@@ -85,6 +85,25 @@ pub struct RequestReport {
     pub plan: Plan,
     /// Wall-clock time of pre-composition and composition, ms (not reproducible, unlike the rest).
     pub execution_ms: f64,
+    /// `solve --gap`: the plan against the optimal route of the same request and combination.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub route_gap: Option<RouteGap>,
+}
+
+/// A plan's delivery time against the optimal route (`--route optimal`) of the same request,
+/// sharing policy, positioning and support drones.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RouteGap {
+    /// `optimal`: over stop sequences, hops along the shortest path between stops.
+    pub reference: crate::solver::ReferenceKind,
+    /// The optimum's delivery time, min; `None` when it does not deliver.
+    pub optimal_dt_min: Option<f64>,
+    /// `(dt - dt_opt) / dt_opt` when both deliver (negative only for a route whose hops follow
+    /// other paths: Dijkstra, Floyd–Warshall).
+    pub gap: Option<f64>,
+    /// Whether every node time of the optimum's search was proven.
+    pub optimal_proven: bool,
 }
 
 /// The swarm pre-composition gives a request.
@@ -377,6 +396,7 @@ impl<'a> Context<'a> {
                     swarm: choice.swarm.clone(),
                     plan,
                     execution_ms,
+                    route_gap: None,
                 }
             })
             .collect())

@@ -142,7 +142,7 @@ pub enum SolveStatus {
 }
 
 /// Kind of reference a gap is measured against; never mix them.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum ReferenceKind {
     /// A proven optimum.
