@@ -8,11 +8,6 @@ use crate::error::{Error, Result};
 use crate::network::Route;
 use crate::solver::SolveStatus;
 
-/// Relative margin by which a lower bound on an arc's cost is lowered before it prunes the arc:
-/// far above the rounding of the sums behind the bound (about 1e-15 relative), far below the gap
-/// between the bound and the cost it bounds.
-const BOUND_MARGIN: f64 = 1e-9;
-
 /// The best arc found so far into a node of the stop graph: its tail, the hop path, the flight
 /// and the stop at its head (`None` at the destination).
 struct BestArc {
@@ -163,14 +158,14 @@ impl Planner<'_> {
                 }
                 let limit = cost_min[v].min(cost_min[destination]);
                 let bound =
-                    cost_min[u] + self.arc_distance_bound_min(v, distance_m, min_swarm_rate);
+                    cost_min[u] + self.distance_bound_min(v, distance_m, 0.0, min_swarm_rate);
                 if beyond(bound, limit) {
                     continue;
                 }
                 let Some(path) = towards_u.reversed_path_from(v) else {
                     continue;
                 };
-                if beyond(cost_min[u] + self.arc_energy_bound_min(&path, v)?, limit) {
+                if beyond(cost_min[u] + self.energy_bound_min(&path, v, 0.0)?, limit) {
                     continue;
                 }
                 let flight = self.fly(&path, &full, self.sharing(), HopEnd::Stop)?;
@@ -236,42 +231,9 @@ impl Planner<'_> {
         }
         Ok((None, failure))
     }
-
-    /// A lower bound on the cost `tt + nt` of an arc into `v` before its path is built: every
-    /// path is at least the shortest distance `distance_m` long, and the swarm consumes at least
-    /// `min_swarm_rate_mah_per_min` on every leg, which the pads must put back.
-    fn arc_distance_bound_min(
-        &self,
-        v: usize,
-        distance_m: f64,
-        min_swarm_rate_mah_per_min: f64,
-    ) -> f64 {
-        let tt_min = distance_m / self.speed_m_per_min();
-        let pads = f64::from(self.graph().pads(v));
-        let nt_bound = tt_min * min_swarm_rate_mah_per_min / (pads * self.pad_rate_mah_per_min(v));
-        (tt_min + nt_bound) * (1.0 - BOUND_MARGIN)
-    }
-
-    /// A lower bound on the cost `tt + nt` of the arc flying `path` into `v`: the swarm arrives
-    /// short of full by at least what every drone consumes in its cheapest slot on every leg
-    /// (sharing creates no energy), and `k` pads at rate `r` put it back in at least that over
-    /// `k r`.
-    ///
-    /// # Errors
-    /// Those of [`Planner::hop_problem`] (a rate that is not finite).
-    fn arc_energy_bound_min(&self, path: &Route, v: usize) -> Result<f64> {
-        let speed = self.speed_m_per_min();
-        let mut energy_mah = 0.0;
-        for leg in &path.legs {
-            energy_mah += leg.distance_m / speed * self.cheapest_swarm_rate_mah_per_min(leg)?;
-        }
-        let pads = f64::from(self.graph().pads(v));
-        let nt_bound = energy_mah / (pads * self.pad_rate_mah_per_min(v));
-        Ok((path.distance_m / speed + nt_bound) * (1.0 - BOUND_MARGIN))
-    }
 }
 
-/// Whether a bound, already lowered by [`BOUND_MARGIN`], exceeds the cost `limit`: the arc's
+/// Whether a bound, already lowered by a relative margin (Algorithm 1's candidate bounds), exceeds the cost `limit`: the arc's
 /// cost is then above `limit`, never equal to it, so arcs of equal cost are always flown.
 fn beyond(bound_min: f64, limit_min: f64) -> bool {
     bound_min > limit_min

@@ -67,7 +67,12 @@ impl Planner<'_> {
     ///
     /// # Errors
     /// Those of [`Planner::hop_problem`] (a rate matrix that is not finite).
-    fn energy_bound_min(&self, path: &Route, v: usize, look_ahead_min: f64) -> Result<f64> {
+    pub(super) fn energy_bound_min(
+        &self,
+        path: &Route,
+        v: usize,
+        look_ahead_min: f64,
+    ) -> Result<f64> {
         let speed = self.speed_m_per_min();
         let mut energy_mah = 0.0;
         for leg in &path.legs {
@@ -82,7 +87,7 @@ impl Planner<'_> {
     /// shortest distance `distance_m` to `v` alone: every path is at least that long, and on every
     /// leg the swarm consumes at least `min_swarm_rate_mah_per_min` (the sum over drones of each
     /// one's least rate over every edge and slot).
-    fn distance_bound_min(
+    pub(super) fn distance_bound_min(
         &self,
         v: usize,
         distance_m: f64,
