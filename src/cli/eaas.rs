@@ -20,36 +20,15 @@
 use super::inputs::{self, InstanceArgs};
 use crate::compose::{Context, PlanOptions, Planner, RouteMethod};
 use crate::eaas::hop_file::{read_hop_file, write_hop_file, HopEnd, HopFile};
-use crate::eaas::milp::{
-    objective_of, solve_milp, write_lp, ExactOutcome, ExactStatus, MilpOptions,
-};
-use crate::eaas::milp::{Objective, Reorder};
-use crate::eaas::{fluid, simulate_with, HopProblem, PolicyOptions, SharingPolicy, Transfer};
+pub use crate::eaas::compare::{HopMethod, MethodRow};
+use crate::eaas::compare::{label_gaps, run_method};
+use crate::eaas::milp::{write_lp, MilpOptions, Objective, Reorder};
+use crate::eaas::{HopProblem, PolicyOptions, SharingPolicy};
 use crate::error::{Error, Result};
 use crate::precompose::Positioning;
-use crate::solver::{Gap, MilpBackend, ReferenceKind};
+use crate::solver::MilpBackend;
 use serde::Serialize;
 use std::path::PathBuf;
-
-/// A method `swarmplan eaas` can run on a hop.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, clap::ValueEnum)]
-#[serde(rename_all = "lowercase")]
-pub enum HopMethod {
-    /// No sharing.
-    None,
-    /// Priority-based heuristic (Algorithm 2).
-    Pb,
-    /// Fairness-based heuristic (Algorithm 3).
-    Fb,
-    /// Time-indexed MILP (optimal over grid schedules).
-    Milp,
-    /// Fluid LP bound (valid for every continuous-time schedule).
-    Fluid,
-    /// Fair QP optimum laid out as a schedule.
-    Fair,
-}
-
-display_as_value_name!(HopMethod);
 
 /// Arguments of `swarmplan eaas`.
 #[derive(Debug, clap::Args)]
@@ -108,38 +87,6 @@ pub struct EaasArgs {
     /// Print the report as JSON.
     #[arg(long)]
     pub json: bool,
-}
-
-/// One method's result on the hop.
-#[derive(Debug, Clone, Serialize)]
-pub struct MethodRow {
-    /// The method.
-    pub method: HopMethod,
-    /// `heuristic`, `exact_grid` (MILP), `bound` (fluid LP) or `fair_layout` (QP schedule).
-    pub kind: &'static str,
-    /// Solve status of the exact models; `None` for the heuristics.
-    pub status: Option<ExactStatus>,
-    /// Whether the method's schedule flies (`None` without a schedule).
-    pub feasible: Option<bool>,
-    /// Objective of the schedule (node time, min, or lowest delivery arrival battery, mAh); the
-    /// bound itself for `fluid`.
-    pub objective: Option<f64>,
-    /// False when `objective` is a node time not proven within the node limit of a stop (an
-    /// upper bound on the schedule's node time; printed with `<=`).
-    pub objective_proven: bool,
-    /// The model's proven bound on the objective (MILP, fluid LP).
-    pub bound: Option<f64>,
-    /// `fair` only: the QP optimum, sum of squared end deficits over every drone, mAh^2 (a lower
-    /// bound on that sum for every continuous-time schedule).
-    pub qp_squared_deficits_mah2: Option<f64>,
-    /// Gap against the reference, with its kind.
-    pub gap: Option<Gap>,
-    /// MILP grid step, minutes.
-    pub grid_step_min: Option<f64>,
-    /// Wall-clock time, ms.
-    pub solve_ms: f64,
-    /// The schedule.
-    pub transfers: Vec<Transfer>,
 }
 
 /// The report.
@@ -238,34 +185,22 @@ fn planned_hop(args: &EaasArgs) -> Result<(HopFile, PolicyOptions)> {
             "give a hop index below the number of hops (see `swarmplan solve`)",
         )
     })?;
-    let graph = &instance.graph;
-    let nodes: Vec<usize> = hop
-        .path
-        .iter()
-        .filter_map(|id| graph.index_of(id))
-        .collect();
-    let path = graph
-        .path_from_nodes(&nodes)
-        .ok_or_else(|| Error::Backend {
-            backend: "compose".into(),
-            message: format!("the plan's hop path {:?} is not a network path", hop.path),
-        })?;
-    let planner = Planner::new(graph, &instance.profile, &report.swarm, SharingPolicy::Pb);
-    let problem = planner.hop_problem(&path, &hop.departure_battery_mah)?;
-    let end = nodes.last().copied().unwrap_or(0);
-    // A plan's hop without a stop ends at the destination: no node time there, whatever its pads.
-    let pads = if hop.stop.is_some() {
-        graph.pads(end)
-    } else {
-        0
-    };
-    let end = match pads {
-        0 => None,
-        pads => Some(HopEnd {
-            pads: pads as usize,
-            pad_rate_mah_per_min: graph
-                .pad_rate_mah_per_min(end, instance.profile.pads.charge_rate_mah_per_min),
+    let planner = Planner::new(
+        &instance.graph,
+        &instance.profile,
+        &report.swarm,
+        SharingPolicy::Pb,
+    );
+    let (problem, objective) = planner.studied_hop(hop)?;
+    let end = match objective {
+        Objective::NodeTime {
+            pads,
+            pad_rate_mah_per_min,
+        } => Some(HopEnd {
+            pads,
+            pad_rate_mah_per_min,
         }),
+        Objective::MaxMinArrival | Objective::Feasible => None,
     };
     let profile = if args.instance.literal {
         format!("{} (--literal)", instance.profile.name)
@@ -296,35 +231,6 @@ fn milp_options(args: &EaasArgs) -> MilpOptions {
     }
 }
 
-fn exact_row(method: HopMethod, kind: &'static str, o: ExactOutcome) -> MethodRow {
-    MethodRow {
-        method,
-        kind,
-        status: Some(o.status),
-        feasible: o.outcome.as_ref().map(|x| x.feasible),
-        objective: if method == HopMethod::Fluid {
-            o.bound
-        } else {
-            o.objective
-        },
-        objective_proven: method == HopMethod::Fluid || o.objective_proven,
-        bound: if method == HopMethod::Fair {
-            None
-        } else {
-            o.bound
-        },
-        qp_squared_deficits_mah2: if method == HopMethod::Fair {
-            o.model_objective
-        } else {
-            None
-        },
-        gap: None,
-        grid_step_min: (method == HopMethod::Milp).then_some(o.grid_step_min),
-        solve_ms: o.solve_ms,
-        transfers: o.transfers,
-    }
-}
-
 /// Runs every method, then labels the gaps against the best reference.
 fn rows(
     problem: &HopProblem,
@@ -334,92 +240,18 @@ fn rows(
 ) -> Result<Vec<MethodRow>> {
     let mut rows = Vec::new();
     // The exact models may each run up to --time-limit; the heuristics take milliseconds.
-    let slow = |m: &HopMethod| matches!(m, HopMethod::Milp | HopMethod::Fluid | HopMethod::Fair);
-    let bar = if args.methods.iter().any(slow) {
+    let bar = if args.methods.iter().any(|m| m.is_model()) {
         super::progress::bar(args.methods.len() as u64, "methods")
     } else {
         indicatif::ProgressBar::hidden()
     };
     for &m in &args.methods {
-        bar.set_message(format!("{m:?}").to_lowercase());
-        let start = std::time::Instant::now();
-        let row = match m {
-            HopMethod::None | HopMethod::Pb | HopMethod::Fb => {
-                let policy = match m {
-                    HopMethod::Pb => SharingPolicy::Pb,
-                    HopMethod::Fb => SharingPolicy::Fb,
-                    _ => SharingPolicy::None,
-                };
-                let o = simulate_with(problem, policy, readings)?;
-                let value = if o.feasible {
-                    Some(objective_of(problem, objective, &o.final_battery_mah)?)
-                } else {
-                    None
-                };
-                MethodRow {
-                    method: m,
-                    kind: "heuristic",
-                    status: None,
-                    feasible: Some(o.feasible),
-                    objective: value.map(|v| v.value),
-                    objective_proven: value.is_none_or(|v| v.proven),
-                    bound: None,
-                    qp_squared_deficits_mah2: None,
-                    gap: None,
-                    grid_step_min: None,
-                    solve_ms: start.elapsed().as_secs_f64() * 1e3,
-                    transfers: o.transfers,
-                }
-            }
-            HopMethod::Milp => exact_row(
-                m,
-                "exact_grid",
-                solve_milp(problem, objective, &milp_options(args))?,
-            ),
-            HopMethod::Fluid => exact_row(
-                m,
-                "bound",
-                fluid::bound(problem, objective, args.reorder, args.time_limit)?,
-            ),
-            HopMethod::Fair => exact_row(
-                m,
-                "fair_layout",
-                fluid::fair(problem, objective, args.reorder, args.time_limit)?,
-            ),
-        };
-        rows.push(row);
+        bar.set_message(m.to_string());
+        rows.push(run_method(problem, objective, m, &milp_options(args), readings)?);
         bar.inc(1);
     }
     bar.finish_and_clear();
-    let reference = rows
-        .iter()
-        .find_map(|r| match (r.method, r.status, r.objective) {
-            // The MILP's schedule is optimal over the grid; its node time is the reference only
-            // when the exact node time proved it.
-            (HopMethod::Milp, Some(ExactStatus::Optimal), Some(v)) if r.objective_proven => {
-                Some((v, ReferenceKind::Optimal))
-            }
-            (HopMethod::Milp, Some(ExactStatus::Optimal), Some(v)) => {
-                Some((v, ReferenceKind::Incumbent))
-            }
-            (HopMethod::Milp, Some(ExactStatus::Feasible), Some(v)) => {
-                Some((v, ReferenceKind::Incumbent))
-            }
-            _ => None,
-        })
-        .or_else(|| {
-            rows.iter()
-                .find(|r| r.method == HopMethod::Fluid && r.status == Some(ExactStatus::Optimal))
-                .and_then(|r| r.bound.map(|b| (b, ReferenceKind::Bound)))
-        });
-    if let Some((v, kind)) = reference {
-        for r in rows.iter_mut() {
-            if matches!(r.method, HopMethod::Milp | HopMethod::Fluid) {
-                continue;
-            }
-            r.gap = r.objective.map(|h| Gap::new(h, v, kind));
-        }
-    }
+    label_gaps(&mut rows);
     Ok(rows)
 }
 

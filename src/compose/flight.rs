@@ -296,6 +296,39 @@ impl<'a> Planner<'a> {
         2 * leg.edge + usize::from(leg.from != self.graph.edge(leg.edge).a)
     }
 
+    /// A hop of a plan this planner's swarm flew, as a sharing problem with its objective: the
+    /// node time on the pads at its end when the plan stops there, else (the destination, where
+    /// no node time counts whatever its pads) the lowest delivery arrival battery.
+    ///
+    /// # Errors
+    /// [`Error::Backend`] when the hop's path is not a path of the network; those of
+    /// [`Planner::hop_problem`].
+    pub fn studied_hop(&self, hop: &Hop) -> Result<(HopProblem, Objective)> {
+        let nodes: Vec<usize> = hop
+            .path
+            .iter()
+            .filter_map(|id| self.graph.index_of(id))
+            .collect();
+        let path = self
+            .graph
+            .path_from_nodes(&nodes)
+            .filter(|_| nodes.len() == hop.path.len())
+            .ok_or_else(|| Error::Backend {
+                backend: "compose".into(),
+                message: format!("the plan's hop path {:?} is not a network path", hop.path),
+            })?;
+        let problem = self.hop_problem(&path, &hop.departure_battery_mah)?;
+        let end = nodes.last().copied().unwrap_or(0);
+        let objective = match (&hop.stop, self.graph.pads(end)) {
+            (Some(_), pads) if pads > 0 => Objective::NodeTime {
+                pads: pads as usize,
+                pad_rate_mah_per_min: self.pad_rate_mah_per_min(end),
+            },
+            _ => Objective::MaxMinArrival,
+        };
+        Ok((problem, objective))
+    }
+
     /// The in-flight sharing problem of flying `path` with batteries `battery_mah` at departure.
     /// The first problem a planner builds is validated in full ([`eaas::validate`]), every rate
     /// matrix when first computed; the planner's own hops are then simulated without

@@ -22,6 +22,7 @@ use nalgebra::Vector2;
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
 
+pub mod compare;
 pub mod exact_hop;
 mod fb;
 pub mod fluid;
