@@ -15,9 +15,7 @@ use crate::eaas::exact_hop::HopSolveCounts;
 use crate::eaas::SharingPolicy;
 use crate::error::{Error, Result};
 use crate::precompose::Positioning;
-use crate::problem::{io, Request};
-use indicatif::ProgressBar;
-use rayon::prelude::*;
+use crate::problem::io;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -217,7 +215,9 @@ pub fn run(args: BatchArgs) -> Result<i32> {
     let bar = super::progress::bar((combos.len() * requests.len()) as u64, "requests");
     bar.set_message(format!("x {} combinations", combos.len()));
     let start = Instant::now();
-    let grid = plan_grid(&context, requests, &combos, threads, &bar)?;
+    let grid = context.plan_grid(requests, &combos, threads, &|n| bar.inc(n), &|_, r| {
+        Planned::of(r)
+    })?;
     let grid_ms = start.elapsed().as_secs_f64() * 1e3;
     bar.finish_and_clear();
     let mut summaries = Vec::new();
@@ -400,41 +400,6 @@ impl Planned {
             route_proven: r.plan.route_optimality.is_none_or(|o| o.proven()),
         })
     }
-}
-
-/// Plans every request with every combination on a pool of `threads` threads, one job per
-/// request; row `i` of the result holds request `i`'s outcomes in the order of `combos`, whatever
-/// the thread count. `bar` counts the requests x combinations planned. The error, if any, is the
-/// first in request order.
-fn plan_grid(
-    context: &Context,
-    requests: &[Request],
-    combos: &[PlanOptions],
-    threads: usize,
-    bar: &ProgressBar,
-) -> Result<Vec<Vec<Planned>>> {
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .map_err(|e| {
-            Error::invalid(
-                "E0004",
-                "--threads",
-                format!("cannot start {threads} worker threads: {e}"),
-                "give fewer --threads",
-            )
-        })?;
-    let rows: Vec<Result<Vec<Planned>>> = pool.install(|| {
-        requests
-            .par_iter()
-            .map(|r| {
-                let reports = context.plan_each(r, combos)?;
-                bar.inc(combos.len() as u64);
-                reports.into_iter().map(Planned::of).collect()
-            })
-            .collect()
-    });
-    rows.into_iter().collect()
 }
 
 /// Sum starting from +0.0, so that an empty sum prints as 0, not -0.

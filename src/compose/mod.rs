@@ -12,6 +12,7 @@ mod baselines;
 mod factors;
 mod flight;
 mod gaps;
+mod grid;
 mod optimal;
 mod plan;
 mod request;
