@@ -37,6 +37,7 @@ macro_rules! display_as_value_name {
     )+};
 }
 
+pub mod bench;
 pub mod check;
 pub mod cli;
 pub mod compose;

@@ -138,6 +138,25 @@ impl<'a> Context<'a> {
         }
     }
 
+    /// The profile.
+    pub fn profile(&self) -> &'a Profile {
+        self.profile
+    }
+
+    /// The network's graph.
+    pub fn graph(&self) -> &'a SkywayGraph {
+        self.graph
+    }
+
+    /// A planner of `swarm` under `sharing` with this context's leg factors, exact settings and
+    /// node limit: the one [`Context::plan`] composes with, for looking at a plan's hops again.
+    pub fn planner<'s>(&'s self, swarm: &'s Swarm, sharing: SharingPolicy) -> Planner<'s> {
+        Planner::new(self.graph, self.profile, swarm, sharing)
+            .with_exact(self.exact)
+            .with_node_limit(self.node_limit)
+            .with_edge_factors(&self.factors)
+    }
+
     /// Pre-composition of one request: support drones from the redundancy table (or `support`),
     /// then the initial positions.
     ///
@@ -330,13 +349,7 @@ impl<'a> Context<'a> {
             let p = match planners.iter().position(|(k, _)| *k == key) {
                 Some(p) => p,
                 None => {
-                    planners.push((
-                        key,
-                        Planner::new(self.graph, self.profile, &choice.swarm, o.sharing)
-                            .with_exact(self.exact)
-                            .with_node_limit(self.node_limit)
-                            .with_edge_factors(&self.factors),
-                    ));
+                    planners.push((key, self.planner(&choice.swarm, o.sharing)));
                     planners.len() - 1
                 }
             };

@@ -95,7 +95,8 @@ pub enum ExactStatus {
 }
 
 /// Settings of a MILP solve.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct MilpOptions {
     /// Longest period of the grid, minutes (default 1.0).
     pub period_min: f64,

@@ -10,7 +10,7 @@ use serde::{Deserialize, Serialize};
 pub mod lp_file;
 
 /// MILP backend.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, clap::ValueEnum)]
 #[serde(rename_all = "kebab-case")]
 pub enum MilpBackend {
     /// good_lp's pure-Rust `microlp` branch and bound (default build).

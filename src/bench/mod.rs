@@ -1,0 +1,564 @@
+//! The experiments of the paper's section 6 and the optimality-gap report (`swarmplan bench`):
+//! every request of a request set planned with every method combination, written as tables
+//! (one row per request and combination, per hop and per stop), summarised, and drawn.
+//!
+//! A run plans the requests of its [`Shard`]; every file but `timings.csv` and the times of
+//! `summary.json` is a function of the instance, the request set and the [`BenchConfig`] alone, so
+//! runs with any thread count, and the merge of shards ([`merge`]), write the same bytes.
+//!
+//! - `requests.csv` ([`RequestRow`]): the outcome of each request and combination, with its
+//!   route gap against the optimal route of the same sharing policy and positioning;
+//! - `hops.csv` ([`HopRow`]): on the exact subset (the first `exact_limit` requests of the set),
+//!   every hop of a delivered plan under a sharing heuristic (PB, FB) solved again by the hop MILP
+//!   (optimal over grid schedules) and the fluid bound, with the heuristic's gap;
+//! - `stops.csv` ([`StopRow`]): on the same subset, every stop's exact node time against LPT;
+//! - `timings.csv` ([`TimingRow`]): execution times, machine-dependent;
+//! - `summary.json` ([`Summary`]) and the SVG figures of [`figures`].
+
+mod files;
+pub mod figures;
+mod findings;
+mod summary;
+
+pub use files::{merge, read_data, write_outputs, CONFIG_FILE, DATA_FILES};
+pub use findings::{findings, Finding, Verdict};
+pub use summary::{
+    DistanceBucket, GapHistogram, HopGapSummary, MethodSummary, StopGapSummary, Summary,
+    SUMMARY_SCHEMA_VERSION,
+};
+
+use crate::compose::{lpt_gap, Context, PlanOptions, RequestReport, RouteMethod};
+use crate::eaas::compare::{label_gaps, run_method, HopMethod};
+use crate::eaas::milp::{MilpOptions, Objective};
+use crate::eaas::{PolicyOptions, SharingPolicy};
+use crate::error::{Error, Result};
+use crate::node_time;
+use crate::problem::Request;
+use crate::solver::ReferenceKind;
+use serde::{Deserialize, Serialize};
+
+/// Which requests of the set a run plans: those at positions `index`, `index + count`,
+/// `index + 2 count`, ... (`0/1`: every request).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Shard {
+    /// First position planned, `0 <= index < count`.
+    pub index: usize,
+    /// Number of shards.
+    pub count: usize,
+}
+
+impl Shard {
+    /// The whole request set.
+    pub const WHOLE: Shard = Shard { index: 0, count: 1 };
+
+    /// Parses `I/N`.
+    ///
+    /// # Errors
+    /// E7001 when the text is not two integers `I/N` with `0 <= I < N`.
+    pub fn parse(text: &str) -> Result<Shard> {
+        let parsed = text.split_once('/').and_then(|(i, n)| {
+            Some((i.trim().parse::<usize>().ok()?, n.trim().parse::<usize>().ok()?))
+        });
+        match parsed {
+            Some((index, count)) if index < count => Ok(Shard { index, count }),
+            _ => Err(Error::invalid(
+                "E7001",
+                "--shard",
+                format!("`{text}` is not a shard I/N with 0 <= I < N"),
+                "give the shard as I/N, such as 0/4 for the first of 4 shards",
+            )),
+        }
+    }
+
+    /// Whether the request at `position` of the set belongs to the shard.
+    pub fn holds(&self, position: usize) -> bool {
+        position % self.count == self.index
+    }
+}
+
+impl std::fmt::Display for Shard {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}/{}", self.index, self.count)
+    }
+}
+
+/// Everything that decides a run's numbers (besides the instance files it names), written to
+/// `config.json`: shards merge only when their configurations agree but for the shard.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BenchConfig {
+    /// Version of the output files' schema, [`SUMMARY_SCHEMA_VERSION`].
+    pub schema_version: u32,
+    /// The network, profile and request set, as given (`embedded ...` for the shipped ones).
+    pub network: String,
+    /// The profile.
+    pub profile: String,
+    /// The request set.
+    pub requests: String,
+    /// The method combinations reported, in the order of the files' rows.
+    pub combos: Vec<PlanOptions>,
+    /// Whether each combination with a simulated sharing policy and a heuristic route is also
+    /// planned with `--route optimal` for its route gap.
+    pub gap: bool,
+    /// Requests of the set considered (the first `limit`); the shards split these.
+    pub limit: usize,
+    /// Requests (the first of the set) whose hops and stops are solved again exactly.
+    pub exact_limit: usize,
+    /// The hop models' settings on the exact subset (and of `--sharing exact|fair`).
+    pub milp: MilpOptions,
+    /// Node limit of the exact node time at every stop.
+    pub node_limit: Option<u64>,
+    /// Width of the distance buckets of the figures and the summary, m.
+    pub distance_bucket_m: f64,
+    /// The requests this run planned.
+    pub shard: Shard,
+}
+
+impl BenchConfig {
+    /// The combinations planned: those reported, then the optimal routes the route gaps need
+    /// that are not among them.
+    pub fn planned_combos(&self) -> Vec<PlanOptions> {
+        let mut combos = self.combos.clone();
+        for c in self.combos.iter().filter_map(|c| self.reference_of(c)) {
+            if !combos.contains(&c) {
+                combos.push(c);
+            }
+        }
+        combos
+    }
+
+    /// The optimal route a combination's route gap is measured against, when there is one.
+    pub fn reference_of(&self, combo: &PlanOptions) -> Option<PlanOptions> {
+        (self.gap && combo.route != RouteMethod::Optimal && !combo.sharing.is_exact()).then_some(
+            PlanOptions {
+                route: RouteMethod::Optimal,
+                ..*combo
+            },
+        )
+    }
+}
+
+/// One request planned with one combination: a row of `requests.csv`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RequestRow {
+    /// Position of the request in the request set (0-based).
+    pub request_index: usize,
+    /// Request id.
+    pub request_id: String,
+    /// Source node id.
+    pub source: String,
+    /// Destination node id.
+    pub destination: String,
+    /// Packages (delivery drones).
+    pub packages: usize,
+    /// Shortest-path distance from source to destination, m.
+    pub distance_m: f64,
+    /// Sharing policy.
+    pub sharing: SharingPolicy,
+    /// Support positioning.
+    pub positioning: crate::precompose::Positioning,
+    /// Route method.
+    pub route: RouteMethod,
+    /// Support drones flown.
+    pub support_drones: usize,
+    /// Delivered?
+    pub success: bool,
+    /// The plan's outcome: `delivered`, `no-route`, `dead-end`, `hop-infeasible`,
+    /// `no-stop-sequence`.
+    pub outcome: String,
+    /// Delivery time, min (of the part flown when not delivered).
+    pub dt_min: f64,
+    /// Travel time, min.
+    pub tt_min: f64,
+    /// Node time, min.
+    pub nt_min: f64,
+    /// Recharging stops.
+    pub stops: usize,
+    /// Energy shared in flight, mAh.
+    pub shared_mah: f64,
+    /// Stops whose exact node time is proven optimal (delivered plans only).
+    pub lpt_stops: usize,
+    /// Of those, stops where LPT's node time equals the optimum (within 1e-9 relative).
+    pub lpt_optimal: usize,
+    /// Sum of LPT's relative gaps over those stops.
+    pub lpt_gap_sum: f64,
+    /// `optimal` when the row has a route gap reference (the optimal route of the same sharing
+    /// policy and positioning, hops along the shortest path between stops); empty otherwise.
+    pub route_gap_reference: String,
+    /// The reference's delivery time, min, when it delivers.
+    pub optimal_dt_min: Option<f64>,
+    /// Whether every node time of the reference's search was proven.
+    pub optimal_proven: Option<bool>,
+    /// `(dt - dt_opt) / dt_opt` when both deliver (negative only for Dijkstra and
+    /// Floyd–Warshall, whose hops follow their own route).
+    pub route_gap: Option<f64>,
+}
+
+impl RequestRow {
+    /// The combination of the row.
+    pub fn options(&self, support: Option<usize>) -> PlanOptions {
+        PlanOptions {
+            sharing: self.sharing,
+            positioning: self.positioning,
+            route: self.route,
+            support,
+        }
+    }
+}
+
+/// One hop of a delivered plan under a sharing heuristic, solved again exactly: a row of
+/// `hops.csv`. The objective is the node time at the hop's stop (min, smaller is better), or at
+/// the destination the lowest delivery arrival battery (mAh, larger is better).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct HopRow {
+    /// Position of the request in the request set.
+    pub request_index: usize,
+    /// Request id.
+    pub request_id: String,
+    /// Sharing policy (the heuristic).
+    pub sharing: SharingPolicy,
+    /// Support positioning.
+    pub positioning: crate::precompose::Positioning,
+    /// Route method.
+    pub route: RouteMethod,
+    /// Position of the hop in the plan.
+    pub hop_index: usize,
+    /// Node the hop starts at.
+    pub from: String,
+    /// Node the hop ends at.
+    pub to: String,
+    /// Legs (edges) of the hop.
+    pub legs: usize,
+    /// `node-time` or `max-min-arrival`.
+    pub objective: String,
+    /// The heuristic's objective value.
+    pub heuristic: Option<f64>,
+    /// The MILP's status: `optimal` (over grid schedules), `feasible` (time limit, an
+    /// incumbent), `infeasible`, `time_limit_no_solution`.
+    pub milp_status: String,
+    /// The MILP's objective value.
+    pub milp: Option<f64>,
+    /// The MILP grid's step, min.
+    pub grid_step_min: Option<f64>,
+    /// The fluid LP bound (valid for every continuous-time schedule).
+    pub fluid_bound: Option<f64>,
+    /// What the gap is measured against: `optimal`, `incumbent` or `bound`; empty without one.
+    pub reference: String,
+    /// The reference's value.
+    pub reference_value: Option<f64>,
+    /// `(heuristic - reference) / reference`: positive is worse for a node time, negative is
+    /// worse for an arrival battery.
+    pub gap: Option<f64>,
+}
+
+/// One recharging stop of a delivered plan on the exact subset: a row of `stops.csv`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct StopRow {
+    /// Position of the request in the request set.
+    pub request_index: usize,
+    /// Request id.
+    pub request_id: String,
+    /// Sharing policy.
+    pub sharing: SharingPolicy,
+    /// Support positioning.
+    pub positioning: crate::precompose::Positioning,
+    /// Route method.
+    pub route: RouteMethod,
+    /// Position of the hop ending at the stop.
+    pub hop_index: usize,
+    /// Node id.
+    pub node: String,
+    /// Pads.
+    pub pads: u32,
+    /// Drones charged.
+    pub drones: usize,
+    /// Exact node time, min.
+    pub nt_min: f64,
+    /// `optimal`, or `feasible` when the node limit stopped the proof.
+    pub status: String,
+    /// LPT's node time, min.
+    pub lpt_nt_min: f64,
+    /// `(lpt - nt) / nt` against the proven optimum; empty when `status` is not `optimal`.
+    pub lpt_gap: Option<f64>,
+}
+
+/// Execution time of one request and combination (`what` = `plan`), or of one model on one hop
+/// of the exact subset (`milp`, `fluid`): a row of `timings.csv`. Machine-dependent.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TimingRow {
+    /// Position of the request in the request set.
+    pub request_index: usize,
+    /// Sharing policy.
+    pub sharing: SharingPolicy,
+    /// Support positioning.
+    pub positioning: crate::precompose::Positioning,
+    /// Route method.
+    pub route: RouteMethod,
+    /// The hop, for `milp` and `fluid`.
+    pub hop_index: Option<usize>,
+    /// `plan`, `milp` or `fluid`.
+    pub what: String,
+    /// Wall-clock time, ms.
+    pub ms: f64,
+}
+
+/// The rows of a run (or of merged shards), in file order: by request position, then
+/// combination in the order of [`BenchConfig::combos`], then hop.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct BenchData {
+    /// `requests.csv`.
+    pub requests: Vec<RequestRow>,
+    /// `hops.csv`.
+    pub hops: Vec<HopRow>,
+    /// `stops.csv`.
+    pub stops: Vec<StopRow>,
+    /// `timings.csv`.
+    pub timings: Vec<TimingRow>,
+}
+
+/// What is kept of one request planned with one combination.
+struct Kept {
+    row: RequestRow,
+    proven: bool,
+    hops: Vec<HopRow>,
+    stops: Vec<StopRow>,
+    timings: Vec<TimingRow>,
+}
+
+/// Plans the requests of `config.shard` among `requests` (the first `config.limit` of the set)
+/// with every combination, on `threads` threads; `done(n)` is called as `n` more request x
+/// combination plans are made.
+///
+/// # Errors
+/// Those of [`Context::plan_grid`] and of the hop models on the exact subset.
+pub fn run(
+    context: &Context,
+    requests: &[Request],
+    config: &BenchConfig,
+    threads: usize,
+    done: &(dyn Fn(u64) + Sync),
+) -> Result<BenchData> {
+    let positions: Vec<usize> = (0..requests.len().min(config.limit))
+        .filter(|&i| config.shard.holds(i))
+        .collect();
+    let planned: Vec<Request> = positions.iter().map(|&i| requests[i].clone()).collect();
+    let combos = config.planned_combos();
+    let graph = context.graph();
+    let readings = PolicyOptions::from(&context.profile().readings);
+    let keep = |i: usize, report: RequestReport| -> Result<Kept> {
+        let position = positions[i];
+        let distance_m = match (
+            graph.index_of(&report.request.source),
+            graph.index_of(&report.request.destination),
+        ) {
+            (Some(s), Some(d)) => graph.distances_from_m(s)[d],
+            _ => f64::NAN,
+        };
+        keep_report(context, config, &readings, position, distance_m, report)
+    };
+    let grid = context.plan_grid(&planned, &combos, threads, done, &keep)?;
+    let mut data = BenchData::default();
+    for row in grid {
+        // Route gaps against the optimal route planned with the request.
+        let reference: Vec<Option<(Option<f64>, bool)>> = config
+            .combos
+            .iter()
+            .map(|c| {
+                let j = combos.iter().position(|x| Some(*x) == config.reference_of(c))?;
+                let r = &row[j];
+                Some((r.row.success.then_some(r.row.dt_min), r.proven))
+            })
+            .collect();
+        for (c, kept) in row.into_iter().enumerate() {
+            // The optimal routes planned only as references keep their times alone.
+            data.timings.extend(kept.timings);
+            let Some(&reference) = reference.get(c) else {
+                continue;
+            };
+            let mut r = kept.row;
+            if let Some((optimal_dt_min, proven)) = reference {
+                r.route_gap_reference = "optimal".into();
+                r.optimal_dt_min = optimal_dt_min;
+                r.optimal_proven = Some(proven);
+                r.route_gap = crate::compose::RoutePair {
+                    heuristic_dt_min: r.success.then_some(r.dt_min),
+                    optimal_dt_min,
+                    optimal_proven: proven,
+                }
+                .gap();
+            }
+            data.requests.push(r);
+            data.hops.extend(kept.hops);
+            data.stops.extend(kept.stops);
+        }
+    }
+    Ok(data)
+}
+
+/// The rows of one report; on the exact subset, its hops and stops solved again.
+fn keep_report(
+    context: &Context,
+    config: &BenchConfig,
+    readings: &PolicyOptions,
+    position: usize,
+    distance_m: f64,
+    report: RequestReport,
+) -> Result<Kept> {
+    let plan = &report.plan;
+    let o = report.options;
+    let delivered = plan.delivered();
+    let mut lpt = (0, 0, 0.0);
+    if delivered {
+        for stop in plan.hops.iter().filter_map(|h| h.stop.as_ref()) {
+            if let Some(gap) = lpt_gap(stop)? {
+                lpt.0 += 1;
+                lpt.1 += usize::from(gap.abs() <= 1e-9);
+                lpt.2 += gap;
+            }
+        }
+    }
+    let mut kept = Kept {
+        row: RequestRow {
+            request_index: position,
+            request_id: report.request.id.clone(),
+            source: report.request.source.clone(),
+            destination: report.request.destination.clone(),
+            packages: report.request.packages_kg.len(),
+            distance_m,
+            sharing: o.sharing,
+            positioning: o.positioning,
+            route: o.route,
+            support_drones: report.support_drones,
+            success: delivered,
+            outcome: plan.outcome.kind(),
+            dt_min: plan.dt_min,
+            tt_min: plan.tt_min,
+            nt_min: plan.nt_min,
+            stops: plan.hops.iter().filter(|h| h.stop.is_some()).count(),
+            shared_mah: plan.shared_mah,
+            lpt_stops: lpt.0,
+            lpt_optimal: lpt.1,
+            lpt_gap_sum: lpt.2,
+            route_gap_reference: String::new(),
+            optimal_dt_min: None,
+            optimal_proven: None,
+            route_gap: None,
+        },
+        proven: plan.route_optimality.is_none_or(|r| r.proven()),
+        hops: Vec::new(),
+        stops: Vec::new(),
+        timings: vec![TimingRow {
+            request_index: position,
+            sharing: o.sharing,
+            positioning: o.positioning,
+            route: o.route,
+            hop_index: None,
+            what: "plan".into(),
+            ms: report.execution_ms,
+        }],
+    };
+    let reported = config
+        .combos
+        .iter()
+        .any(|c| c.sharing == o.sharing && c.positioning == o.positioning && c.route == o.route);
+    if !delivered || position >= config.exact_limit || !reported {
+        return Ok(kept);
+    }
+    for (h, hop) in plan.hops.iter().enumerate() {
+        if let Some(stop) = &hop.stop {
+            let lpt = node_time::lpt(stop.pads as usize, &stop.charge_times_min)?;
+            kept.stops.push(StopRow {
+                request_index: position,
+                request_id: report.request.id.clone(),
+                sharing: o.sharing,
+                positioning: o.positioning,
+                route: o.route,
+                hop_index: h,
+                node: stop.node.clone(),
+                pads: stop.pads,
+                drones: stop.charge_times_min.len(),
+                nt_min: stop.nt_min,
+                status: serde_name(&stop.status),
+                lpt_nt_min: lpt.makespan_min,
+                lpt_gap: lpt_gap(stop)?,
+            });
+        }
+    }
+    // Hops under a sharing heuristic: solved again by the MILP and the fluid bound.
+    let Some(heuristic) = HopMethod::of_policy(o.sharing).filter(|m| *m != HopMethod::None) else {
+        return Ok(kept);
+    };
+    let planner = context.planner(&report.swarm, o.sharing);
+    for (h, hop) in plan.hops.iter().enumerate() {
+        let (problem, objective) = planner.studied_hop(hop)?;
+        let mut rows = [heuristic, HopMethod::Milp, HopMethod::Fluid]
+            .into_iter()
+            .map(|m| run_method(&problem, &objective, m, &config.milp, readings))
+            .collect::<Result<Vec<_>>>()?;
+        label_gaps(&mut rows);
+        let [heur, milp, fluid] = &rows[..] else {
+            unreachable!("three methods were run")
+        };
+        for (row, what) in [(milp, "milp"), (fluid, "fluid")] {
+            kept.timings.push(TimingRow {
+                request_index: position,
+                sharing: o.sharing,
+                positioning: o.positioning,
+                route: o.route,
+                hop_index: Some(h),
+                what: what.into(),
+                ms: row.solve_ms,
+            });
+        }
+        let reference = crate::eaas::compare::reference(&rows);
+        kept.hops.push(HopRow {
+            request_index: position,
+            request_id: report.request.id.clone(),
+            sharing: o.sharing,
+            positioning: o.positioning,
+            route: o.route,
+            hop_index: h,
+            from: hop.from.clone(),
+            to: hop.to.clone(),
+            legs: hop.legs.len(),
+            objective: match objective {
+                Objective::NodeTime { .. } => "node-time",
+                Objective::MaxMinArrival => "max-min-arrival",
+                Objective::Feasible => "feasible",
+            }
+            .into(),
+            heuristic: heur.objective,
+            milp_status: milp
+                .status
+                .map(|s| serde_name(&s))
+                .unwrap_or_default(),
+            milp: milp.objective,
+            grid_step_min: milp.grid_step_min,
+            fluid_bound: fluid.bound,
+            reference: reference
+                .map(|(_, k)| reference_name(k).to_string())
+                .unwrap_or_default(),
+            reference_value: reference.map(|(v, _)| v),
+            gap: heur.gap.and_then(|g| g.relative),
+        });
+    }
+    Ok(kept)
+}
+
+/// The name of a reference kind as in JSON.
+pub fn reference_name(kind: ReferenceKind) -> &'static str {
+    match kind {
+        ReferenceKind::Optimal => "optimal",
+        ReferenceKind::Incumbent => "incumbent",
+        ReferenceKind::Bound => "bound",
+    }
+}
+
+/// The serde name of a unit enum value.
+fn serde_name<T: Serialize>(value: &T) -> String {
+    serde_json::to_value(value)
+        .ok()
+        .and_then(|v| v.as_str().map(String::from))
+        .unwrap_or_default()
+}

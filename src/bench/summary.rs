@@ -1,0 +1,385 @@
+//! `summary.json`: every figure of a run, computed from its rows alone (so that one run and the
+//! merge of its shards give the same summary but for the times).
+
+use super::{BenchConfig, BenchData, Finding, RequestRow};
+use crate::compose::{PlanOptions, RouteGapSummary, RoutePair};
+use crate::eaas::SharingPolicy;
+use serde::Serialize;
+use std::collections::BTreeMap;
+
+/// Version of the schema of `summary.json`, `config.json` and the CSV files.
+pub const SUMMARY_SCHEMA_VERSION: u32 = 1;
+
+/// Upper edges of the gap histograms' bins after the bins `< 0` and `0`: `(0, 1%]`, `(1%, 5%]`,
+/// ..., `(200%, 500%]`, then `> 500%`.
+pub const GAP_BIN_EDGES: [f64; 8] = [0.01, 0.05, 0.1, 0.25, 0.5, 1.0, 2.0, 5.0];
+
+/// Gaps within this of 0 (relative) count as 0.
+pub const ZERO_GAP_TOL: f64 = 1e-9;
+
+/// Counts of gaps in the bins of [`GAP_BIN_EDGES`].
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct GapHistogram {
+    /// The bins' labels: `< 0`, `0`, `(0, 1%]`, ..., `> 500%`.
+    pub bins: Vec<String>,
+    /// The gaps in each bin.
+    pub counts: Vec<usize>,
+}
+
+impl GapHistogram {
+    /// The histogram of `gaps`.
+    pub fn of(gaps: impl IntoIterator<Item = f64>) -> GapHistogram {
+        let percent = |x: f64| format!("{}%", x * 100.0);
+        let mut bins = vec!["< 0".to_string(), "0".to_string()];
+        let mut lower = 0.0;
+        for &e in &GAP_BIN_EDGES {
+            bins.push(format!(
+                "({}, {}]",
+                if lower == 0.0 {
+                    "0".to_string()
+                } else {
+                    percent(lower)
+                },
+                percent(e)
+            ));
+            lower = e;
+        }
+        bins.push(format!("> {}", percent(lower)));
+        let mut counts = vec![0; bins.len()];
+        for g in gaps {
+            let bin = if g.abs() <= ZERO_GAP_TOL {
+                1
+            } else if g < 0.0 {
+                0
+            } else {
+                2 + GAP_BIN_EDGES.iter().take_while(|&&e| g > e).count()
+            };
+            counts[bin] += 1;
+        }
+        GapHistogram { bins, counts }
+    }
+}
+
+/// The requests of one distance bucket for one combination.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DistanceBucket {
+    /// Lower edge (included), m.
+    pub from_m: f64,
+    /// Upper edge (excluded), m.
+    pub to_m: f64,
+    /// Requests in the bucket.
+    pub requests: usize,
+    /// Of those, delivered.
+    pub delivered: usize,
+    /// Mean delivery time of the delivered, min.
+    pub mean_dt_min: Option<f64>,
+    /// Mean node time of the delivered, min.
+    pub mean_nt_min: Option<f64>,
+}
+
+/// One combination over the requests of the run.
+#[derive(Debug, Clone, Serialize)]
+pub struct MethodSummary {
+    /// The combination.
+    pub options: PlanOptions,
+    /// Requests delivered.
+    pub delivered: usize,
+    /// Requests planned (the denominator).
+    pub requests: usize,
+    /// Requests not delivered, by outcome kind.
+    pub failed_by_kind: BTreeMap<String, usize>,
+    /// Mean delivery time of the delivered, min (0 when none is).
+    pub mean_dt_min: f64,
+    /// Mean travel time of the delivered, min.
+    pub mean_tt_min: f64,
+    /// Mean node time of the delivered, min.
+    pub mean_nt_min: f64,
+    /// Mean recharging stops of the delivered.
+    pub mean_stops: f64,
+    /// Energy shared in flight over the delivered, mAh.
+    pub shared_mah: f64,
+    /// Stops of the delivered whose exact node time is proven (LPT's gaps are over these).
+    pub lpt_stops: usize,
+    /// Of those, stops where LPT is optimal.
+    pub lpt_optimal: usize,
+    /// Mean gap of LPT over those stops.
+    pub lpt_mean_gap: f64,
+    /// The route gap against the optimal route, when the run measured it.
+    pub route_gap: Option<RouteGapSummary>,
+    /// The route gaps' histogram.
+    pub route_gap_histogram: Option<GapHistogram>,
+    /// The requests by source–destination distance.
+    pub by_distance: Vec<DistanceBucket>,
+    /// Execution time over the requests, ms (machine-dependent): total.
+    pub exec_ms_total: f64,
+    /// Median execution time per request, ms.
+    pub exec_ms_median: f64,
+    /// Longest execution time of a request, ms.
+    pub exec_ms_max: f64,
+}
+
+/// A sharing heuristic's hops on the exact subset against the hop MILP.
+#[derive(Debug, Clone, Serialize)]
+pub struct HopGapSummary {
+    /// The heuristic.
+    pub sharing: SharingPolicy,
+    /// Hops solved again.
+    pub hops: usize,
+    /// Hops whose reference is the MILP's proven optimum over grid schedules.
+    pub against_optimal: usize,
+    /// Hops whose reference is a MILP incumbent (time limit).
+    pub against_incumbent: usize,
+    /// Hops whose reference is the fluid bound (no MILP schedule).
+    pub against_bound: usize,
+    /// Of the hops against the optimum, those where the heuristic is optimal (loss 0).
+    pub at_zero: usize,
+    /// Mean loss against the optimum: the relative gap signed so that positive is worse (the
+    /// gap for a node time, minus the gap for an arrival battery).
+    pub mean_loss: f64,
+    /// Largest loss against the optimum.
+    pub max_loss: f64,
+    /// Histogram of the losses against the optimum.
+    pub histogram: GapHistogram,
+    /// Hops where the heuristic's value is better than the grid optimum (a schedule off the
+    /// grid): loss below 0.
+    pub better_than_grid: usize,
+    /// The grid step of the MILP is at most this, min.
+    pub max_grid_step_min: f64,
+    /// Time of the MILP solves, ms (machine-dependent): total.
+    pub milp_ms_total: f64,
+    /// Median MILP solve, ms.
+    pub milp_ms_median: f64,
+    /// Longest MILP solve, ms.
+    pub milp_ms_max: f64,
+}
+
+/// LPT against the exact node time over the stops of the exact subset.
+#[derive(Debug, Clone, Serialize)]
+pub struct StopGapSummary {
+    /// Stops.
+    pub stops: usize,
+    /// Of those, proven optimal (LPT's gap is over these).
+    pub proven: usize,
+    /// Of those, LPT optimal.
+    pub lpt_optimal: usize,
+    /// Mean gap.
+    pub mean_gap: f64,
+    /// Largest gap.
+    pub max_gap: f64,
+    /// Histogram of the gaps.
+    pub histogram: GapHistogram,
+}
+
+/// `summary.json`.
+#[derive(Debug, Clone, Serialize)]
+pub struct Summary {
+    /// [`SUMMARY_SCHEMA_VERSION`].
+    pub schema_version: u32,
+    /// The command line that wrote the directory.
+    pub command: Vec<String>,
+    /// swarmplan's version.
+    pub version: String,
+    /// The run's configuration.
+    pub config: BenchConfig,
+    /// Requests planned (per combination).
+    pub requests_planned: usize,
+    /// One entry per combination, in the order of the configuration.
+    pub methods: Vec<MethodSummary>,
+    /// Per sharing heuristic, its hops on the exact subset.
+    pub hop_gaps: Vec<HopGapSummary>,
+    /// The stops of the exact subset.
+    pub stop_gaps: StopGapSummary,
+    /// The paper's findings.
+    pub findings: Vec<Finding>,
+    /// The figure files written, relative to the output directory.
+    pub figures: Vec<String>,
+}
+
+/// Sum from +0.0, in order.
+pub(super) fn total(values: impl Iterator<Item = f64>) -> f64 {
+    values.fold(0.0, |a, b| a + b)
+}
+
+/// The median of `values` (0 for none).
+fn median(mut values: Vec<f64>) -> f64 {
+    if values.is_empty() {
+        return 0.0;
+    }
+    values.sort_by(f64::total_cmp);
+    let n = values.len();
+    if n % 2 == 1 {
+        values[n / 2]
+    } else {
+        (values[n / 2 - 1] + values[n / 2]) / 2.0
+    }
+}
+
+/// Whether `row` is of the combination `o` (support drones aside).
+pub(super) fn is_of(row_options: (SharingPolicy, crate::precompose::Positioning, crate::compose::RouteMethod), o: &PlanOptions) -> bool {
+    row_options == (o.sharing, o.positioning, o.route)
+}
+
+/// The rows of combination `o`, in request order.
+pub(super) fn rows_of<'a>(data: &'a BenchData, o: &PlanOptions) -> Vec<&'a RequestRow> {
+    data.requests
+        .iter()
+        .filter(|r| is_of((r.sharing, r.positioning, r.route), o))
+        .collect()
+}
+
+fn mean_of(rows: &[&RequestRow], f: impl Fn(&RequestRow) -> f64) -> f64 {
+    total(rows.iter().map(|r| f(r))) / rows.len().max(1) as f64
+}
+
+fn method_summary(config: &BenchConfig, data: &BenchData, o: &PlanOptions) -> MethodSummary {
+    let rows = rows_of(data, o);
+    let delivered: Vec<&RequestRow> = rows.iter().copied().filter(|r| r.success).collect();
+    let mut failed_by_kind = BTreeMap::new();
+    for r in rows.iter().filter(|r| !r.success) {
+        *failed_by_kind.entry(r.outcome.clone()).or_insert(0) += 1;
+    }
+    let lpt_stops = delivered.iter().map(|r| r.lpt_stops).sum::<usize>();
+    let measured = rows.iter().any(|r| !r.route_gap_reference.is_empty());
+    let route_gap = measured.then(|| {
+        RouteGapSummary::of(rows.iter().map(|r| RoutePair {
+            heuristic_dt_min: r.success.then_some(r.dt_min),
+            optimal_dt_min: r.optimal_dt_min,
+            optimal_proven: r.optimal_proven.unwrap_or(true),
+        }))
+    });
+    let route_gap_histogram =
+        measured.then(|| GapHistogram::of(rows.iter().filter_map(|r| r.route_gap)));
+    let width = config.distance_bucket_m;
+    let mut by_distance: Vec<DistanceBucket> = Vec::new();
+    let buckets = rows
+        .iter()
+        .map(|r| (r.distance_m / width).floor() as usize)
+        .max()
+        .map_or(0, |b| b + 1);
+    for b in 0..buckets {
+        let inside: Vec<&RequestRow> = rows
+            .iter()
+            .copied()
+            .filter(|r| (r.distance_m / width).floor() as usize == b)
+            .collect();
+        if inside.is_empty() {
+            continue;
+        }
+        let ok: Vec<&RequestRow> = inside.iter().copied().filter(|r| r.success).collect();
+        by_distance.push(DistanceBucket {
+            from_m: b as f64 * width,
+            to_m: (b + 1) as f64 * width,
+            requests: inside.len(),
+            delivered: ok.len(),
+            mean_dt_min: (!ok.is_empty()).then(|| mean_of(&ok, |r| r.dt_min)),
+            mean_nt_min: (!ok.is_empty()).then(|| mean_of(&ok, |r| r.nt_min)),
+        });
+    }
+    let times: Vec<f64> = data
+        .timings
+        .iter()
+        .filter(|t| t.what == "plan" && is_of((t.sharing, t.positioning, t.route), o))
+        .map(|t| t.ms)
+        .collect();
+    MethodSummary {
+        options: *o,
+        delivered: delivered.len(),
+        requests: rows.len(),
+        failed_by_kind,
+        mean_dt_min: mean_of(&delivered, |r| r.dt_min),
+        mean_tt_min: mean_of(&delivered, |r| r.tt_min),
+        mean_nt_min: mean_of(&delivered, |r| r.nt_min),
+        mean_stops: mean_of(&delivered, |r| r.stops as f64),
+        shared_mah: total(delivered.iter().map(|r| r.shared_mah)),
+        lpt_stops,
+        lpt_optimal: delivered.iter().map(|r| r.lpt_optimal).sum(),
+        lpt_mean_gap: total(delivered.iter().map(|r| r.lpt_gap_sum)) / lpt_stops.max(1) as f64,
+        route_gap,
+        route_gap_histogram,
+        by_distance,
+        exec_ms_total: total(times.iter().copied()),
+        exec_ms_median: median(times.clone()),
+        exec_ms_max: times.iter().copied().fold(0.0, f64::max),
+    }
+}
+
+fn hop_gap_summary(data: &BenchData, sharing: SharingPolicy) -> HopGapSummary {
+    let hops: Vec<&super::HopRow> = data.hops.iter().filter(|h| h.sharing == sharing).collect();
+    let loss = |h: &super::HopRow| {
+        h.gap
+            .map(|g| if h.objective == "node-time" { g } else { -g })
+    };
+    let optimal: Vec<f64> = hops
+        .iter()
+        .filter(|h| h.reference == "optimal")
+        .filter_map(|h| loss(h))
+        .collect();
+    let times: Vec<f64> = data
+        .timings
+        .iter()
+        .filter(|t| t.what == "milp" && t.sharing == sharing)
+        .map(|t| t.ms)
+        .collect();
+    HopGapSummary {
+        sharing,
+        hops: hops.len(),
+        against_optimal: hops.iter().filter(|h| h.reference == "optimal").count(),
+        against_incumbent: hops.iter().filter(|h| h.reference == "incumbent").count(),
+        against_bound: hops.iter().filter(|h| h.reference == "bound").count(),
+        at_zero: optimal.iter().filter(|g| g.abs() <= ZERO_GAP_TOL).count(),
+        mean_loss: total(optimal.iter().copied()) / optimal.len().max(1) as f64,
+        max_loss: optimal.iter().copied().fold(0.0, f64::max),
+        histogram: GapHistogram::of(optimal.iter().copied()),
+        better_than_grid: optimal.iter().filter(|&&g| g < -ZERO_GAP_TOL).count(),
+        max_grid_step_min: hops
+            .iter()
+            .filter_map(|h| h.grid_step_min)
+            .fold(0.0, f64::max),
+        milp_ms_total: total(times.iter().copied()),
+        milp_ms_median: median(times.clone()),
+        milp_ms_max: times.iter().copied().fold(0.0, f64::max),
+    }
+}
+
+fn stop_gap_summary(data: &BenchData) -> StopGapSummary {
+    let gaps: Vec<f64> = data.stops.iter().filter_map(|s| s.lpt_gap).collect();
+    StopGapSummary {
+        stops: data.stops.len(),
+        proven: gaps.len(),
+        lpt_optimal: gaps.iter().filter(|g| g.abs() <= ZERO_GAP_TOL).count(),
+        mean_gap: total(gaps.iter().copied()) / gaps.len().max(1) as f64,
+        max_gap: gaps.iter().copied().fold(0.0, f64::max),
+        histogram: GapHistogram::of(gaps.iter().copied()),
+    }
+}
+
+impl Summary {
+    /// The summary of `data`, planned with `config` by `command`; the findings and figures are
+    /// filled in by the caller.
+    pub fn of(config: &BenchConfig, data: &BenchData, command: Vec<String>) -> Summary {
+        let methods: Vec<MethodSummary> = config
+            .combos
+            .iter()
+            .map(|o| method_summary(config, data, o))
+            .collect();
+        let mut sharing: Vec<SharingPolicy> = Vec::new();
+        for h in &data.hops {
+            if !sharing.contains(&h.sharing) {
+                sharing.push(h.sharing);
+            }
+        }
+        sharing.sort_by_key(|s| config.combos.iter().position(|c| c.sharing == *s));
+        Summary {
+            schema_version: SUMMARY_SCHEMA_VERSION,
+            command,
+            version: env!("CARGO_PKG_VERSION").to_string(),
+            config: config.clone(),
+            requests_planned: methods.first().map_or(0, |m| m.requests),
+            hop_gaps: sharing.into_iter().map(|s| hop_gap_summary(data, s)).collect(),
+            stop_gaps: stop_gap_summary(data),
+            findings: Vec::new(),
+            figures: Vec::new(),
+            methods,
+        }
+    }
+}
