@@ -135,7 +135,10 @@ pub fn merge(dirs: &[&Path]) -> Result<(BenchConfig, BenchData)> {
             return Err(Error::invalid(
                 "E7003",
                 dir.display().to_string(),
-                format!("shard {} repeats a shard or is not of {count} shards", c.shard),
+                format!(
+                    "shard {} repeats a shard or is not of {count} shards",
+                    c.shard
+                ),
                 "give each shard 0/N ... N-1/N of one run once",
             ));
         }

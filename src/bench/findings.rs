@@ -166,7 +166,9 @@ pub fn findings(methods: &[MethodSummary], data: &BenchData) -> Vec<Finding> {
         claim: "sharing delivers faster than the baseline (energy-aware placement)",
         paper: "figure only: PB and FB below the baseline's delivery time",
         ours: c.map_or(String::new(), |(n, a, b)| {
-            format!("common to baseline and PB-EA ({n}): dt {a:.1} (baseline) vs {b:.1} min (PB-EA)")
+            format!(
+                "common to baseline and PB-EA ({n}): dt {a:.1} (baseline) vs {b:.1} min (PB-EA)"
+            )
         }),
         verdict: verdict(c.is_some_and(|c| c.0 > 0), c.is_some_and(|(_, a, b)| b < a)),
         figure: "figures/dt_by_distance_energy-aware.svg",
@@ -187,7 +189,11 @@ pub fn findings(methods: &[MethodSummary], data: &BenchData) -> Vec<Finding> {
         claim: "location-aware placement delivers more requests than energy-aware (PB + FB)",
         paper: "19,271 / 20,000 vs 18,050 / 20,000",
         ours: if measured {
-            format!("location-aware {} vs energy-aware {}", count(sla), count(sea))
+            format!(
+                "location-aware {} vs energy-aware {}",
+                count(sla),
+                count(sea)
+            )
         } else {
             String::new()
         },

@@ -15,8 +15,8 @@
 //! - `timings.csv` ([`TimingRow`]): execution times, machine-dependent;
 //! - `summary.json` ([`Summary`]) and the SVG figures of [`figures`].
 
-mod files;
 pub mod figures;
+mod files;
 mod findings;
 mod summary;
 
@@ -58,7 +58,10 @@ impl Shard {
     /// E7001 when the text is not two integers `I/N` with `0 <= I < N`.
     pub fn parse(text: &str) -> Result<Shard> {
         let parsed = text.split_once('/').and_then(|(i, n)| {
-            Some((i.trim().parse::<usize>().ok()?, n.trim().parse::<usize>().ok()?))
+            Some((
+                i.trim().parse::<usize>().ok()?,
+                n.trim().parse::<usize>().ok()?,
+            ))
         });
         match parsed {
             Some((index, count)) if index < count => Ok(Shard { index, count }),
@@ -365,7 +368,9 @@ pub fn run(
             .combos
             .iter()
             .map(|c| {
-                let j = combos.iter().position(|x| Some(*x) == config.reference_of(c))?;
+                let j = combos
+                    .iter()
+                    .position(|x| Some(*x) == config.reference_of(c))?;
                 let r = &row[j];
                 Some((r.row.success.then_some(r.row.dt_min), r.proven))
             })
@@ -529,10 +534,7 @@ fn keep_report(
             }
             .into(),
             heuristic: heur.objective,
-            milp_status: milp
-                .status
-                .map(|s| serde_name(&s))
-                .unwrap_or_default(),
+            milp_status: milp.status.map(|s| serde_name(&s)).unwrap_or_default(),
             milp: milp.objective,
             grid_step_min: milp.grid_step_min,
             fluid_bound: fluid.bound,

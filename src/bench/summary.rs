@@ -215,7 +215,14 @@ fn median(mut values: Vec<f64>) -> f64 {
 }
 
 /// Whether `row` is of the combination `o` (support drones aside).
-pub(super) fn is_of(row_options: (SharingPolicy, crate::precompose::Positioning, crate::compose::RouteMethod), o: &PlanOptions) -> bool {
+pub(super) fn is_of(
+    row_options: (
+        SharingPolicy,
+        crate::precompose::Positioning,
+        crate::compose::RouteMethod,
+    ),
+    o: &PlanOptions,
+) -> bool {
     row_options == (o.sharing, o.positioning, o.route)
 }
 
@@ -375,7 +382,10 @@ impl Summary {
             version: env!("CARGO_PKG_VERSION").to_string(),
             config: config.clone(),
             requests_planned: methods.first().map_or(0, |m| m.requests),
-            hop_gaps: sharing.into_iter().map(|s| hop_gap_summary(data, s)).collect(),
+            hop_gaps: sharing
+                .into_iter()
+                .map(|s| hop_gap_summary(data, s))
+                .collect(),
             stop_gaps: stop_gap_summary(data),
             findings: Vec::new(),
             figures: Vec::new(),

@@ -19,9 +19,9 @@
 
 use super::inputs::{self, InstanceArgs};
 use crate::compose::{Context, PlanOptions, Planner, RouteMethod};
-use crate::eaas::hop_file::{read_hop_file, write_hop_file, HopEnd, HopFile};
-pub use crate::eaas::compare::{HopMethod, MethodRow};
 use crate::eaas::compare::{label_gaps, run_method};
+pub use crate::eaas::compare::{HopMethod, MethodRow};
+use crate::eaas::hop_file::{read_hop_file, write_hop_file, HopEnd, HopFile};
 use crate::eaas::milp::{write_lp, MilpOptions, Objective, Reorder};
 use crate::eaas::{HopProblem, PolicyOptions, SharingPolicy};
 use crate::error::{Error, Result};
@@ -247,7 +247,13 @@ fn rows(
     };
     for &m in &args.methods {
         bar.set_message(m.to_string());
-        rows.push(run_method(problem, objective, m, &milp_options(args), readings)?);
+        rows.push(run_method(
+            problem,
+            objective,
+            m,
+            &milp_options(args),
+            readings,
+        )?);
         bar.inc(1);
     }
     bar.finish_and_clear();

@@ -8,9 +8,37 @@ use crate::problem::{io, validate, Instance, Network, Profile, RequestSet};
 use crate::solver::MilpBackend;
 use std::path::{Path, PathBuf};
 
-const EMBEDDED_NETWORK: &str = include_str!("../../instances/paper-195/network.json");
 const EMBEDDED_REQUESTS: &str = include_str!("../../instances/paper-195/requests.json");
-const EMBEDDED_PROFILE: &str = include_str!("../../instances/profiles/paper.toml");
+
+/// A network and profile shipped in the binary, used when no file is given.
+#[derive(Debug, Clone, Copy)]
+pub struct Shipped {
+    /// The network's JSON.
+    pub network: &'static str,
+    /// Its name in messages and reports.
+    pub network_name: &'static str,
+    /// The profile's TOML.
+    pub profile: &'static str,
+    /// Its name in messages and reports.
+    pub profile_name: &'static str,
+}
+
+/// paper-195 with the `paper` profile: the default of every planning command but `bench`.
+pub const PAPER_195: Shipped = Shipped {
+    network: include_str!("../../instances/paper-195/network.json"),
+    network_name: "embedded paper-195 network",
+    profile: include_str!("../../instances/profiles/paper.toml"),
+    profile_name: "embedded paper profile",
+};
+
+/// findings-195 with the `paper-findings` profile: the instance of the paper's findings, the
+/// default of `bench`.
+pub const FINDINGS_195: Shipped = Shipped {
+    network: include_str!("../../instances/findings-195/network.json"),
+    network_name: "embedded findings-195 network",
+    profile: include_str!("../../instances/profiles/paper-findings.toml"),
+    profile_name: "embedded paper-findings profile",
+};
 
 /// File arguments shared by the planning subcommands.
 #[derive(Debug, Clone, clap::Args)]
@@ -104,11 +132,16 @@ impl InstanceArgs {
     /// Reads and validates the network and the profile, reporting every violation of both: a
     /// file that cannot be read or parsed does not hide a problem of the other.
     pub fn load(&self) -> Result<Instance> {
+        self.load_or(&PAPER_195)
+    }
+
+    /// [`InstanceArgs::load`] with `shipped` for the files not given.
+    pub fn load_or(&self, shipped: &Shipped) -> Result<Instance> {
         let network: Result<Network> = match &self.network {
             Some(p) => io::read_json(p),
-            None => io::parse_json(EMBEDDED_NETWORK, "embedded paper-195 network"),
+            None => io::parse_json(shipped.network, shipped.network_name),
         };
-        let (network, profile) = both(network, self.read_profile())?;
+        let (network, profile) = both(network, self.read_profile(shipped))?;
         Instance::new(network, profile)
     }
 
@@ -120,7 +153,7 @@ impl InstanceArgs {
 
     /// Reads and validates the profile alone, for a command that needs no network.
     pub fn load_profile(&self) -> Result<Profile> {
-        let profile = self.read_profile()?;
+        let profile = self.read_profile(&PAPER_195)?;
         let violations = crate::problem::profile::validate_profile(&profile);
         if violations.is_empty() {
             Ok(profile)
@@ -130,10 +163,10 @@ impl InstanceArgs {
     }
 
     /// The profile given (or the embedded `paper` profile), `--literal` applied, not validated.
-    fn read_profile(&self) -> Result<Profile> {
+    fn read_profile(&self, shipped: &Shipped) -> Result<Profile> {
         let mut profile: Profile = match &self.profile {
             Some(p) => io::read_toml(p)?,
-            None => io::parse_toml(EMBEDDED_PROFILE, "embedded paper profile")?,
+            None => io::parse_toml(shipped.profile, shipped.profile_name)?,
         };
         if self.literal {
             profile.readings = crate::problem::profile::Readings::literal();

@@ -14,6 +14,7 @@ macro_rules! outln {
 }
 
 pub mod batch;
+pub mod bench;
 pub mod check;
 pub mod eaas;
 pub mod generate;
@@ -50,6 +51,8 @@ pub enum Command {
     Solve(solve::SolveArgs),
     /// Plan every request of a request set with one or more method combinations.
     Batch(batch::BatchArgs),
+    /// The paper's experiments and the optimality-gap report, as files and figures.
+    Bench(bench::BenchArgs),
     /// One hop of a request: sharing heuristics against the exact MILP, fluid bound and fair QP.
     Eaas(eaas::EaasArgs),
     /// Re-verify a plan written by `solve --json` with the independent checker.
@@ -79,6 +82,7 @@ pub fn main() -> i32 {
         Command::NodeTime(args) => node_time::run(args),
         Command::Solve(args) => solve::run(args),
         Command::Batch(args) => batch::run(args),
+        Command::Bench(args) => bench::run(args),
         Command::Eaas(args) => eaas::run(args),
         Command::Check(args) => check::run(args),
     };

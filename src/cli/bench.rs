@@ -1,0 +1,423 @@
+//! `swarmplan bench`: the paper's experiments and the optimality-gap report, as files and
+//! figures; `swarmplan bench merge`: the shards of a run, merged into the files one run writes.
+//!
+//! ```text
+//! swarmplan bench --limit 1000 --out bench-out
+//! swarmplan bench --shard 0/4 --out shard-0      # ... 3/4, then:
+//! swarmplan bench merge shard-0 shard-1 shard-2 shard-3 --out bench-out
+//! ```
+
+use super::inputs::{ExactArgs, InstanceArgs, FINDINGS_195};
+use crate::bench::{self, BenchConfig, Shard, Summary, Verdict, DATA_FILES};
+use crate::compose::{Context, PlanOptions, RouteMethod};
+use crate::eaas::SharingPolicy;
+use crate::error::{Error, Result};
+use crate::precompose::Positioning;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Run the paper's experiments and the gap report, or merge shards.
+#[derive(Debug, clap::Args)]
+#[command(
+    args_conflicts_with_subcommands = true,
+    subcommand_negates_reqs = true,
+    after_help = "Writes to --out: config.json, requests.csv (one row per request and \
+combination), hops.csv and stops.csv (the exact subset), timings.csv (execution times, \
+machine-dependent), summary.json and figures/*.svg. Every file but timings.csv and the times in \
+summary.json is identical for any --threads, and for the merge of --shard runs."
+)]
+pub struct BenchArgs {
+    /// `merge`: merge the output directories of shards.
+    #[command(subcommand)]
+    pub command: Option<BenchCommand>,
+    /// The run.
+    #[command(flatten)]
+    pub run: RunArgs,
+}
+
+/// Subcommands of `bench`.
+#[derive(Debug, clap::Subcommand)]
+pub enum BenchCommand {
+    /// Merge the output directories of the shards `0/N` ... `N-1/N` of one run into the files
+    /// one run of the whole writes.
+    Merge(MergeArgs),
+}
+
+/// Arguments of `bench merge`.
+#[derive(Debug, clap::Args)]
+pub struct MergeArgs {
+    /// The shards' output directories, in any order.
+    #[arg(required = true, value_name = "DIR")]
+    pub dirs: Vec<PathBuf>,
+    /// Output directory.
+    #[arg(long, short = 'o', value_name = "DIR")]
+    pub out: PathBuf,
+    /// Overwrite the files of an earlier run in --out.
+    #[arg(long)]
+    pub force: bool,
+    /// Print the summary as JSON.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Arguments of a bench run.
+#[derive(Debug, clap::Args)]
+pub struct RunArgs {
+    /// Skyway network (JSON) [default: the shipped instances/findings-195/network.json].
+    #[arg(long, value_name = "FILE")]
+    pub network: Option<PathBuf>,
+    /// Parameter profile (TOML) [default: the shipped instances/profiles/paper-findings.toml].
+    #[arg(long, value_name = "FILE")]
+    pub profile: Option<PathBuf>,
+    /// Read the paper word for word where it can be read several ways (see `solve --help`).
+    #[arg(long)]
+    pub literal: bool,
+    /// Request set (JSON) [default: the shipped paper-195 requests].
+    #[arg(long, value_name = "FILE")]
+    pub requests: Option<PathBuf>,
+    /// Consider only the first N requests of the set [default: all].
+    #[arg(long, value_name = "N")]
+    pub limit: Option<usize>,
+    /// Sharing policies, comma-separated (`none` is the paper's baseline without support
+    /// drones: planned once, under location-aware, when both positionings are asked).
+    #[arg(long, value_enum, value_delimiter = ',', default_value = "none,pb,fb")]
+    pub sharing: Vec<SharingPolicy>,
+    /// Support positionings, comma-separated.
+    #[arg(
+        long,
+        value_enum,
+        value_delimiter = ',',
+        default_value = "location-aware,energy-aware"
+    )]
+    pub positioning: Vec<Positioning>,
+    /// Route methods, comma-separated.
+    #[arg(
+        long,
+        value_enum,
+        value_delimiter = ',',
+        default_value = "sequential,astar,dijkstra,floyd-warshall"
+    )]
+    pub route: Vec<RouteMethod>,
+    /// Do not plan the optimal routes the route gaps are measured against.
+    #[arg(long)]
+    pub no_gap: bool,
+    /// Requests (the first of the set) whose hops under PB and FB are solved again by the hop
+    /// MILP and the fluid bound, and whose stops' LPT node times are compared with the exact ones.
+    #[arg(long, value_name = "N", default_value_t = 5)]
+    pub exact_limit: usize,
+    /// Hop models: MILP backend.
+    #[arg(
+        long,
+        value_parser = crate::solver::backend_value_parser(),
+        default_value_t = crate::solver::MilpBackend::default()
+    )]
+    pub backend: crate::solver::MilpBackend,
+    /// Hop models: time limit of each solve, seconds (a MILP it stops gives an incumbent,
+    /// `milp_status` `feasible`, and its hop's gap is labelled `incumbent`; the default keeps
+    /// the default run under a minute with the pure-Rust backend).
+    #[arg(long = "hop-time-limit", default_value_t = BENCH_HOP_TIME_LIMIT_S, allow_negative_numbers = true)]
+    pub hop_time_limit_s: f64,
+    /// Hop models: longest period of the MILP's grid, minutes.
+    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
+    pub period_min: f64,
+    /// Hop models: re-ordering allowed (`paper` or `none`).
+    #[arg(long, value_enum, default_value_t = crate::eaas::milp::Reorder::Paper)]
+    pub reorder: crate::eaas::milp::Reorder,
+    /// Node limit of the exact node time at every stop.
+    #[arg(long, value_name = "N", default_value_t = crate::node_time::DEFAULT_STOP_NODE_LIMIT)]
+    pub node_limit: u64,
+    /// Width of the distance buckets, km.
+    #[arg(long, value_name = "KM", default_value_t = 1.0)]
+    pub distance_bucket_km: f64,
+    /// Plan only the requests at positions I, I + N, I + 2N, ... (0 <= I < N); merge the shards
+    /// with `bench merge`.
+    #[arg(long, value_name = "I/N", value_parser = parse_shard)]
+    pub shard: Option<Shard>,
+    /// Worker threads [default: the number of available cores].
+    #[arg(long, value_name = "N")]
+    pub threads: Option<usize>,
+    /// Output directory.
+    #[arg(long, short = 'o', value_name = "DIR", required = true)]
+    pub out: Option<PathBuf>,
+    /// Overwrite the files of an earlier run in --out.
+    #[arg(long)]
+    pub force: bool,
+    /// Print the summary as JSON (the table goes to stdout otherwise).
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Default time limit of each hop model solve on the exact subset, seconds.
+pub const BENCH_HOP_TIME_LIMIT_S: f64 = 0.5;
+
+fn parse_shard(text: &str) -> std::result::Result<Shard, String> {
+    Shard::parse(text).map_err(|e| e.to_string().replace("invalid input, 1 problem(s):\n", ""))
+}
+
+/// Runs the subcommand.
+pub fn run(args: BenchArgs) -> Result<i32> {
+    let command: Vec<String> = std::env::args().collect();
+    match args.command {
+        Some(BenchCommand::Merge(m)) => {
+            may_write(&m.out, m.force)?;
+            let dirs: Vec<&Path> = m.dirs.iter().map(PathBuf::as_path).collect();
+            let (config, data) = bench::merge(&dirs)?;
+            let summary = bench::write_outputs(&m.out, &config, &data, command)?;
+            report(&summary, &m.out, m.json)
+        }
+        None => run_grid(args.run, command),
+    }
+}
+
+fn run_grid(args: RunArgs, command: Vec<String>) -> Result<i32> {
+    let out = args.out.clone().expect("clap requires --out");
+    let threads = args.threads.unwrap_or_else(|| {
+        std::thread::available_parallelism()
+            .map(|n| n.get())
+            .unwrap_or(1)
+    });
+    if threads == 0 {
+        return Err(Error::invalid(
+            "E0004",
+            "--threads",
+            "0 worker threads",
+            "give --threads 1 or more",
+        ));
+    }
+    if !(args.distance_bucket_km.is_finite() && args.distance_bucket_km > 0.0) {
+        return Err(Error::invalid(
+            "E7006",
+            "--distance-bucket-km",
+            format!("{} is not a width > 0", args.distance_bucket_km),
+            "give the width of the distance buckets in km, such as 1",
+        ));
+    }
+    may_write(&out, args.force)?;
+    let combos = combinations(&args);
+    for c in &combos {
+        c.validate()?;
+    }
+    let instance_args = InstanceArgs {
+        network: args.network.clone(),
+        profile: args.profile.clone(),
+        literal: args.literal,
+    };
+    let (instance, set) = super::inputs::both(
+        instance_args.load_or(&FINDINGS_195),
+        super::inputs::load_requests(args.requests.as_deref()),
+    )?;
+    let mut requests = set.requests;
+    requests.truncate(args.limit.unwrap_or(usize::MAX));
+    if requests.is_empty() {
+        return Err(Error::invalid(
+            "E0005",
+            "--limit / --requests",
+            "no request to plan",
+            "give a request file with requests and a --limit of 1 or more",
+        ));
+    }
+    let instance = instance.with_requests(requests)?;
+    let mut context = Context::new(&instance.network, &instance.graph, &instance.profile);
+    context.exact = ExactArgs {
+        backend: args.backend,
+        hop_time_limit_s: args.hop_time_limit_s,
+        period_min: args.period_min,
+        reorder: args.reorder,
+    }
+    .settings()?;
+    context.node_limit = Some(args.node_limit);
+    let name = |p: &Option<PathBuf>, shipped: &str| {
+        p.as_ref()
+            .map_or(shipped.to_string(), |p| p.display().to_string())
+    };
+    let config = BenchConfig {
+        schema_version: bench::SUMMARY_SCHEMA_VERSION,
+        network: name(&args.network, FINDINGS_195.network_name),
+        profile: name(&args.profile, FINDINGS_195.profile_name)
+            + if args.literal { " (--literal)" } else { "" },
+        requests: name(&args.requests, "embedded paper-195 requests"),
+        combos,
+        gap: !args.no_gap,
+        limit: instance.requests.len(),
+        exact_limit: args.exact_limit,
+        milp: context.exact.milp,
+        node_limit: context.node_limit,
+        distance_bucket_m: args.distance_bucket_km * 1000.0,
+        shard: args.shard.unwrap_or(Shard::WHOLE),
+    };
+    let planned = (0..config.limit).filter(|&i| config.shard.holds(i)).count();
+    let bar = super::progress::bar((planned * config.planned_combos().len()) as u64, "plans");
+    bar.set_message(format!(
+        "{} requests x {} combinations",
+        planned,
+        config.planned_combos().len()
+    ));
+    let start = Instant::now();
+    let data = bench::run(&context, &instance.requests, &config, threads, &|n| {
+        bar.inc(n)
+    })?;
+    bar.finish_and_clear();
+    let elapsed_s = start.elapsed().as_secs_f64();
+    let summary = bench::write_outputs(&out, &config, &data, command)?;
+    eprintln!(
+        "{planned} requests x {} combinations on {threads} threads in {elapsed_s:.1} s",
+        config.planned_combos().len()
+    );
+    report(&summary, &out, args.json)
+}
+
+/// The combinations asked, in the order route, sharing, positioning; the baseline `none` once
+/// (under location-aware) when both positionings are asked, since it flies no support drone.
+fn combinations(args: &RunArgs) -> Vec<PlanOptions> {
+    let mut combos = Vec::new();
+    for &route in &args.route {
+        for &sharing in &args.sharing {
+            for &positioning in &args.positioning {
+                let both = args.positioning.contains(&Positioning::LocationAware);
+                if !sharing.flies_support() && both && positioning != Positioning::LocationAware {
+                    continue;
+                }
+                let o = PlanOptions {
+                    sharing,
+                    positioning,
+                    route,
+                    support: None,
+                };
+                if !combos.contains(&o) {
+                    combos.push(o);
+                }
+            }
+        }
+    }
+    combos
+}
+
+/// `E7005`: `dir` holds the files of a run and `--force` was not given.
+fn may_write(dir: &Path, force: bool) -> Result<()> {
+    let taken = std::iter::once(&bench::CONFIG_FILE)
+        .chain(&DATA_FILES)
+        .any(|f| dir.join(f).exists());
+    if force || !taken {
+        return Ok(());
+    }
+    Err(Error::invalid(
+        "E7005",
+        dir.display().to_string(),
+        "the directory holds the files of an earlier run; bench does not overwrite them unasked",
+        "pass --force to overwrite them, or give another --out",
+    ))
+}
+
+/// Prints the summary: a table on stdout (or the JSON), the files written on stderr.
+fn report(summary: &Summary, out: &Path, json: bool) -> Result<i32> {
+    if json {
+        super::print_json(summary)?;
+    } else {
+        print_table(summary)?;
+    }
+    let mut files: Vec<String> = DATA_FILES.iter().map(|f| f.to_string()).collect();
+    files.push("summary.json".into());
+    files.extend(summary.figures.iter().cloned());
+    eprintln!("wrote {} in {}", files.join(", "), out.display());
+    Ok(0)
+}
+
+fn percent(x: f64) -> String {
+    format!("{:.1}%", 100.0 * x)
+}
+
+fn print_table(s: &Summary) -> Result<()> {
+    let round = super::human::round;
+    outln!(
+        "{} requests of {} on {} ({}), profile {}",
+        s.requests_planned,
+        s.config.requests,
+        s.config.network,
+        if s.config.shard == Shard::WHOLE {
+            "whole run".to_string()
+        } else {
+            format!("shard {}", s.config.shard)
+        },
+        s.config.profile
+    );
+    outln!(
+        "{:<36} {:>13} {:>9} {:>9} {:>7} {:>9} {:>9} {:>9} {:>11}",
+        "combination",
+        "delivered",
+        "dt min",
+        "nt min",
+        "stops",
+        "gap = 0",
+        "gap mean",
+        "gap max",
+        "ms/request"
+    );
+    for m in &s.methods {
+        let o = &m.options;
+        let (zero, mean, max) = match &m.route_gap {
+            Some(g) if g.compared > 0 => (
+                format!("{}/{}", g.at_zero, g.compared),
+                percent(g.mean_gap),
+                percent(g.max_gap),
+            ),
+            _ => ("-".into(), "-".into(), "-".into()),
+        };
+        outln!(
+            "{:<36} {:>13} {:>9} {:>9} {:>7} {:>9} {:>9} {:>9} {:>11}",
+            format!("{}/{}/{}", o.sharing, o.positioning, o.route),
+            format!("{}/{}", m.delivered, m.requests),
+            round(m.mean_dt_min, 1),
+            round(m.mean_nt_min, 1),
+            round(m.mean_stops, 2),
+            zero,
+            mean,
+            max,
+            round(m.exec_ms_median, 2)
+        );
+    }
+    if s.config.gap {
+        outln!(
+            "route gap: (dt - dt_opt) / dt_opt over the requests both deliver, against the optimal \
+             route of the same sharing and positioning (hops along the shortest path between \
+             stops; Dijkstra and Floyd-Warshall can be below it)"
+        );
+    }
+    for h in &s.hop_gaps {
+        outln!(
+            "hops under {} (first {} requests): {} solved again; against the MILP optimum over grid \
+             schedules (step <= {} min): {}, optimal {}, mean loss {}, max loss {}, better than the grid {}; \
+             against an incumbent {}, the fluid bound {}",
+            h.sharing,
+            s.config.exact_limit,
+            h.hops,
+            round(h.max_grid_step_min, 3),
+            h.against_optimal,
+            h.at_zero,
+            percent(h.mean_loss),
+            percent(h.max_loss),
+            h.better_than_grid,
+            h.against_incumbent,
+            h.against_bound
+        );
+    }
+    let st = &s.stop_gaps;
+    if st.stops > 0 {
+        outln!(
+            "stops (first {} requests): {}, proven {}; LPT optimal at {}, mean gap {}, max gap {}",
+            s.config.exact_limit,
+            st.stops,
+            st.proven,
+            st.lpt_optimal,
+            percent(st.mean_gap),
+            percent(st.max_gap)
+        );
+    }
+    outln!("paper's findings:");
+    for f in &s.findings {
+        outln!("  {:<3} {:<14} {}", f.id, f.verdict.to_string(), f.claim);
+        if f.verdict != Verdict::NotMeasured {
+            outln!("      ours: {}; paper: {} [{}]", f.ours, f.paper, f.figure);
+        }
+    }
+    Ok(())
+}
