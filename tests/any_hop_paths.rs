@@ -125,7 +125,7 @@ fn brute_force_dt(
     let n = graph.node_count();
     // arc[u][v]: least tt (+ nt at a pad node) over the simple paths u -> v that fly.
     let mut arc = vec![vec![f64::INFINITY; n]; n];
-    for u in 0..n {
+    for (u, arc_u) in arc.iter_mut().enumerate() {
         if u != source && graph.pads(u) == 0 {
             continue;
         }
@@ -149,7 +149,7 @@ fn brute_force_dt(
                     .unwrap()
                     .nt_min;
             }
-            arc[u][v] = arc[u][v].min(cost);
+            arc_u[v] = arc_u[v].min(cost);
         }
     }
     fn walk(
@@ -174,7 +174,15 @@ fn brute_force_dt(
     let mut visited = vec![false; n];
     visited[source] = true;
     let mut best = f64::INFINITY;
-    walk(&arc, graph, destination, source, 0.0, &mut visited, &mut best);
+    walk(
+        &arc,
+        graph,
+        destination,
+        source,
+        0.0,
+        &mut visited,
+        &mut best,
+    );
     best.is_finite().then_some(best)
 }
 
@@ -237,8 +245,14 @@ fn any_hop_paths_gives_the_hand_optima_of_the_windless_tiny_instances() {
             destination: "T".into(),
             packages_kg: vec![0.21],
         };
-        let r = context.plan(&request, &options(RouteMethod::Optimal)).unwrap();
-        assert!(common::close(r.plan.dt_min, dt_min), "{file}: {}", r.plan.dt_min);
+        let r = context
+            .plan(&request, &options(RouteMethod::Optimal))
+            .unwrap();
+        assert!(
+            common::close(r.plan.dt_min, dt_min),
+            "{file}: {}",
+            r.plan.dt_min
+        );
     }
 }
 
@@ -250,8 +264,23 @@ fn hop_paths_any_with_a_sharing_policy_is_refused_with_e0016_and_exit_2() {
     );
     for sharing in ["pb", "fb"] {
         let out = swarmplan(&[
-            "solve", "--network", &net, "--profile", &profile, "--from", "S", "--to", "T",
-            "--packages", "0.21", "--sharing", sharing, "--route", "optimal", "--hop-paths", "any",
+            "solve",
+            "--network",
+            &net,
+            "--profile",
+            &profile,
+            "--from",
+            "S",
+            "--to",
+            "T",
+            "--packages",
+            "0.21",
+            "--sharing",
+            sharing,
+            "--route",
+            "optimal",
+            "--hop-paths",
+            "any",
         ]);
         assert_eq!(out.status.code(), Some(2), "{out:?}");
         let err = common::stderr(&out);

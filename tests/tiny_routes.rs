@@ -47,16 +47,41 @@ const fn known(
 const TABLE: [KnownRoute; 10] = [
     // flat-detour: W -1, S 0, Q 6 (pad 20 mAh/min), M 7, T 14 (minutes along a line).
     known("flat-detour.json", RouteMethod::Optimal, 23.317, &["M"]),
-    known("flat-detour.json", RouteMethod::Sequential, 65.247, &["W", "Q", "M"]),
-    known("flat-detour.json", RouteMethod::Astar, 65.247, &["W", "Q", "M"]),
+    known(
+        "flat-detour.json",
+        RouteMethod::Sequential,
+        65.247,
+        &["W", "Q", "M"],
+    ),
+    known(
+        "flat-detour.json",
+        RouteMethod::Astar,
+        65.247,
+        &["W", "Q", "M"],
+    ),
     known("flat-detour.json", RouteMethod::Dijkstra, 23.317, &["M"]),
-    known("flat-detour.json", RouteMethod::FloydWarshall, 23.317, &["M"]),
+    known(
+        "flat-detour.json",
+        RouteMethod::FloydWarshall,
+        23.317,
+        &["M"],
+    ),
     // flat-skip: the cycle S-P-X-T-Q2-Q1-S of 1, 7, 1, 5, 4, 1 min; Q1 pad 20 mAh/min.
     known("flat-skip.json", RouteMethod::Optimal, 16.655, &["Q2"]),
-    known("flat-skip.json", RouteMethod::Sequential, 21.317, &["P", "Q2"]),
+    known(
+        "flat-skip.json",
+        RouteMethod::Sequential,
+        21.317,
+        &["P", "Q2"],
+    ),
     known("flat-skip.json", RouteMethod::Astar, 19.648, &["P", "X"]),
     known("flat-skip.json", RouteMethod::Dijkstra, 19.648, &["P", "X"]),
-    known("flat-skip.json", RouteMethod::FloydWarshall, 19.648, &["P", "X"]),
+    known(
+        "flat-skip.json",
+        RouteMethod::FloydWarshall,
+        19.648,
+        &["P", "X"],
+    ),
 ];
 
 /// Plans `k` with the library, no sharing, one 0.21 kg drone, and runs the plan checker.
@@ -151,8 +176,23 @@ fn solve_prints_the_hand_computed_optima_and_the_gaps() {
             repo_arg("instances/tiny/flat.toml"),
         );
         let out = swarmplan(&[
-            "solve", "--network", &net, "--profile", &profile, "--from", "S", "--to", "T",
-            "--packages", "0.21", "--sharing", "none", "--route", route, "--gap", "--json",
+            "solve",
+            "--network",
+            &net,
+            "--profile",
+            &profile,
+            "--from",
+            "S",
+            "--to",
+            "T",
+            "--packages",
+            "0.21",
+            "--sharing",
+            "none",
+            "--route",
+            route,
+            "--gap",
+            "--json",
         ]);
         assert_eq!(out.status.code(), Some(0), "{network} {route}: {out:?}");
         let r: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
@@ -160,6 +200,9 @@ fn solve_prints_the_hand_computed_optima_and_the_gaps() {
         assert!(close(got, dt_min), "{network} {route}: dt {got}");
         let gap = r["route_gap"]["gap"].as_f64().unwrap();
         let expected = (dt_min - optimal_dt_min) / optimal_dt_min;
-        assert!((gap - expected).abs() < 1e-6, "{network} {route}: gap {gap}");
+        assert!(
+            (gap - expected).abs() < 1e-6,
+            "{network} {route}: gap {gap}"
+        );
     }
 }

@@ -241,7 +241,9 @@ fn print_human(report: &RequestReport) -> Result<()> {
         let verdict = match (o.proven(), o.hop_paths) {
             (true, HopPaths::Rule) => "proven optimal over stop sequences",
             (true, HopPaths::Any) => "proven optimal over stop sequences and hop paths",
-            (false, _) => "optimal for the node times found (a stop's solve reached the node limit)",
+            (false, _) => {
+                "optimal for the node times found (a stop's solve reached the node limit)"
+            }
         };
         outln!(
             "route: {verdict} (--hop-paths {}); {} recharging node(s) settled, {} hop(s) flown, \

@@ -216,13 +216,10 @@ impl Planner<'_> {
             let search = self.search_hop_paths(u, &full, horizon_min, &mut uses)?;
             optimality.hop_path_labels += search.labels.len();
             // Into the destination: the fastest label.
-            let fastest = search.front[destination]
-                .iter()
-                .copied()
-                .min_by(|&a, &b| {
-                    let (la, lb) = (&search.labels[a], &search.labels[b]);
-                    la.time_min.total_cmp(&lb.time_min).then(a.cmp(&b))
-                });
+            let fastest = search.front[destination].iter().copied().min_by(|&a, &b| {
+                let (la, lb) = (&search.labels[a], &search.labels[b]);
+                la.time_min.total_cmp(&lb.time_min).then(a.cmp(&b))
+            });
             if let Some(l) = fastest {
                 let path = graph
                     .path_from_nodes(&search.nodes(l))
@@ -258,7 +255,8 @@ impl Planner<'_> {
                     let limit = cost_min[v]
                         .min(cost_min[destination])
                         .min(chosen.map_or(f64::INFINITY, |c| c.0));
-                    let bound = cost_min[u] + label.time_min + self.nt_bound_min(v, &label.battery_mah);
+                    let bound =
+                        cost_min[u] + label.time_min + self.nt_bound_min(v, &label.battery_mah);
                     if bound * (1.0 - BOUND_MARGIN) > limit {
                         continue;
                     }
