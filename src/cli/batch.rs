@@ -87,6 +87,10 @@ pub struct BatchArgs {
     /// Print the summaries as JSON.
     #[arg(long)]
     pub json: bool,
+    /// Paths the hops of `--route optimal` (and of the `--gap` reference) may follow: `rule` or
+    /// `any` (every path flyable from full batteries; `--sharing none` or `idle-support` only).
+    #[arg(long, value_enum, default_value = "rule")]
+    pub hop_paths: crate::compose::HopPaths,
 }
 
 /// Summary of one method combination over a request set.
@@ -190,6 +194,7 @@ pub fn run(args: BatchArgs) -> Result<i32> {
     let mut context = Context::new(&instance.network, &instance.graph, &instance.profile);
     context.exact = args.exact.settings()?;
     context.node_limit = Some(args.node_limit);
+    context.hop_paths = args.hop_paths;
     let shown = combinations(&args);
     // With --gap, the optimal route of each compared combination, planned with it.
     let mut combos = shown.clone();

@@ -1,7 +1,9 @@
 //! `swarmplan solve`: plan one request and print the plan.
 
 use super::inputs::{self, ExactArgs, InstanceArgs};
-use crate::compose::{Context, PlanOptions, RequestReport, RouteGap, RouteMethod, RoutePair};
+use crate::compose::{
+    Context, HopPaths, PlanOptions, RequestReport, RouteGap, RouteMethod, RoutePair,
+};
 use crate::eaas::SharingPolicy;
 use crate::error::{Error, Result};
 use crate::precompose::Positioning;
@@ -46,6 +48,11 @@ pub struct SolveArgs {
     /// the paper's baseline without support drones; `idle-support` flies them without sharing).
     #[arg(long, value_name = "N")]
     pub support: Option<usize>,
+    /// Paths the hops of `--route optimal` (and of the `--gap` reference) may follow: `rule`, the
+    /// shortest path by distance between two stops; `any`, every path flyable from full
+    /// batteries (a resource-constrained search; `--sharing none` or `idle-support` only).
+    #[arg(long, value_enum, default_value = "rule")]
+    pub hop_paths: HopPaths,
     /// Node limit of the exact node time at every stop (search nodes, the same on every machine);
     /// a stop it stops keeps its incumbent, `status: feasible`.
     #[arg(long, value_name = "N", default_value_t = crate::node_time::DEFAULT_STOP_NODE_LIMIT)]
@@ -96,13 +103,14 @@ pub fn run(args: SolveArgs) -> Result<i32> {
     let mut context = Context::new(&instance.network, &instance.graph, &instance.profile);
     context.exact = args.exact.settings()?;
     context.node_limit = Some(args.node_limit);
+    context.hop_paths = args.hop_paths;
     let options = PlanOptions {
         sharing: args.sharing,
         positioning: args.positioning,
         route: args.route,
         support: args.support,
     };
-    options.validate()?;
+    context.validate(&options)?;
     if args.gap && args.sharing.is_exact() {
         return Err(Error::invalid(
             "E0015",
@@ -126,7 +134,7 @@ pub fn run(args: SolveArgs) -> Result<i32> {
             route: RouteMethod::Optimal,
             ..options
         };
-        optimal.validate()?;
+        context.validate(&optimal)?;
         let best = context.plan(&request, &optimal)?.plan;
         let pair = RoutePair {
             heuristic_dt_min: report.plan.delivered().then_some(report.plan.dt_min),
@@ -135,6 +143,7 @@ pub fn run(args: SolveArgs) -> Result<i32> {
         };
         report.route_gap = Some(RouteGap {
             reference: ReferenceKind::Optimal,
+            hop_paths: args.hop_paths,
             optimal_dt_min: pair.optimal_dt_min,
             gap: pair.gap(),
             optimal_proven: pair.optimal_proven,
@@ -229,14 +238,17 @@ fn print_human(report: &RequestReport) -> Result<()> {
         );
     }
     if let Some(o) = &plan.route_optimality {
-        let verdict = if o.proven() {
-            "proven optimal over stop sequences"
-        } else {
-            "optimal for the node times found (a stop's solve reached the node limit)"
+        let verdict = match (o.proven(), o.hop_paths) {
+            (true, HopPaths::Rule) => "proven optimal over stop sequences",
+            (true, HopPaths::Any) => "proven optimal over stop sequences and hop paths",
+            (false, _) => {
+                "optimal for the node times found (a stop's solve reached the node limit)"
+            }
         };
         outln!(
-            "route: {verdict}; {} recharging node(s) settled, {} hop(s) flown, {} stop(s) solved, \
-             {} at the node limit",
+            "route: {verdict} (--hop-paths {}); {} recharging node(s) settled, {} hop(s) flown, \
+             {} stop(s) solved, {} at the node limit",
+            o.hop_paths,
             o.stops_settled,
             o.arcs_flown,
             o.stops_solved,

@@ -61,6 +61,8 @@ pub struct Planner<'a> {
     solves: RefCell<HopSolveCounts>,
     /// Node limit of the exact node time at every stop; `None` for none.
     node_limit: Option<u64>,
+    /// Which paths the hops of the optimal route may follow.
+    hop_paths: super::HopPaths,
     /// Whether a hop problem of this planner passed [`eaas::validate`] (the rules that do not
     /// depend on the path: drones, slots, sharing parameters).
     validated: Cell<bool>,
@@ -86,6 +88,7 @@ impl<'a> Planner<'a> {
             exact: ExactSettings::default(),
             solves: RefCell::new(HopSolveCounts::default()),
             node_limit: Some(node_time::DEFAULT_STOP_NODE_LIMIT),
+            hop_paths: super::HopPaths::Rule,
             validated: Cell::new(false),
         }
     }
@@ -101,6 +104,18 @@ impl<'a> Planner<'a> {
     pub fn with_node_limit(mut self, node_limit: Option<u64>) -> Planner<'a> {
         self.node_limit = node_limit;
         self
+    }
+
+    /// The planner with the hop-path rule of its optimal route ([`super::RouteMethod::Optimal`]);
+    /// default [`super::HopPaths::Rule`].
+    pub fn with_hop_paths(mut self, hop_paths: super::HopPaths) -> Planner<'a> {
+        self.hop_paths = hop_paths;
+        self
+    }
+
+    /// Which paths the hops of the optimal route may follow.
+    pub fn hop_paths(&self) -> super::HopPaths {
+        self.hop_paths
     }
 
     /// The planner reading and filling the energy model's leg factors in `cache` (the table of
@@ -275,6 +290,22 @@ impl<'a> Planner<'a> {
             *b -= rate * duration_min;
         }
         Ok(arrival)
+    }
+
+    /// Every drone's consumption flying the single edge `leg` without sharing, mAh: `r_{d, q_d} τ`
+    /// with `q_d` the drone's own slot and `τ` the leg's duration (0 for a leg shorter than the
+    /// evaluation's time tolerance), the terms [`Planner::arrival_without_sharing_mah`]
+    /// subtracts.
+    ///
+    /// # Errors
+    /// Those of [`Planner::hop_problem`] when a rate is not finite.
+    pub(crate) fn leg_use_without_sharing_mah(
+        &self,
+        leg: &crate::network::Leg,
+    ) -> Result<Vec<f64>> {
+        let full = self.full_battery_mah();
+        let arrival = self.arrival_without_sharing_mah(leg)?;
+        Ok(full.iter().zip(&arrival).map(|(c, b)| c - b).collect())
     }
 
     /// The energy model's factors of `leg` (directed edge index `key`).

@@ -8,6 +8,7 @@
 //! outcome ([`PlanOutcome`]), never an error.
 
 mod adjacent;
+mod any_path;
 mod baselines;
 mod factors;
 mod flight;
@@ -18,6 +19,7 @@ mod plan;
 mod request;
 mod sequential;
 
+pub use any_path::MAX_HOP_PATH_LABELS;
 pub use baselines::BaselineCosts;
 pub use factors::{EdgeFactorCache, EdgeFactors};
 pub use flight::{Flight, HopEnd, Planner};
@@ -50,6 +52,23 @@ pub enum RouteMethod {
 }
 
 display_as_value_name!(RouteMethod);
+
+/// Which paths the hops of `--route optimal` may follow between two stops (models/compose.md,
+/// "Optimal route").
+#[derive(
+    Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize, clap::ValueEnum,
+)]
+#[serde(rename_all = "kebab-case")]
+pub enum HopPaths {
+    /// The shortest path by distance between the two stops, as Algorithm 1 and A* fly.
+    #[default]
+    Rule,
+    /// Every path the swarm can fly from full batteries: a resource-constrained shortest path
+    /// per stop, without in-flight sharing (policies `none` and `idle-support`).
+    Any,
+}
+
+display_as_value_name!(HopPaths);
 
 /// Algorithm 1's cost of a candidate stop: `tt + nt`, or with A* also the remaining
 /// shortest-path travel time to the destination.
@@ -174,6 +193,9 @@ impl Planner<'_> {
             }
             RouteMethod::FloydWarshall => {
                 self.compose_fixed_route(source, destination, FixedRoute::FloydWarshall, costs)
+            }
+            RouteMethod::Optimal if self.hop_paths() == HopPaths::Any => {
+                self.compose_optimal_any_path(source, destination)
             }
             RouteMethod::Optimal => self.compose_optimal(source, destination),
         }?;

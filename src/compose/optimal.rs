@@ -10,11 +10,11 @@ use crate::solver::SolveStatus;
 
 /// The best arc found so far into a node of the stop graph: its tail, the hop path, the flight
 /// and the stop at its head (`None` at the destination).
-struct BestArc {
-    from: usize,
-    path: Route,
-    flight: Flight,
-    stop: Option<Stop>,
+pub(super) struct BestArc {
+    pub(super) from: usize,
+    pub(super) path: Route,
+    pub(super) flight: Flight,
+    pub(super) stop: Option<Stop>,
 }
 
 /// The coded error of `--route optimal` with `--sharing exact | fair`.
@@ -241,7 +241,7 @@ fn beyond(bound_min: f64, limit_min: f64) -> bool {
 
 /// Whether an arc from `from` giving cost `cost_min` replaces the best arc `best` of cost
 /// `best_min`: a lower cost, or the same cost from a lower node index.
-fn improves(cost_min: f64, from: usize, best_min: f64, best: &Option<BestArc>) -> bool {
+pub(super) fn improves(cost_min: f64, from: usize, best_min: f64, best: &Option<BestArc>) -> bool {
     match best {
         None => cost_min < best_min,
         Some(arc) => cost_min < best_min || cost_min == best_min && from < arc.from,

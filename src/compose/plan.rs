@@ -52,6 +52,17 @@ pub struct RouteOptimality {
     /// Of those, the stops whose solve the node limit stopped (an incumbent, status
     /// `feasible`): when not 0 the route is optimal only for the node times found.
     pub stops_unproven: usize,
+    /// The paths the hops could follow: `rule` (the shortest path by distance between the two
+    /// stops) or `any` (every path flyable from full batteries).
+    #[serde(default)]
+    pub hop_paths: super::HopPaths,
+    /// `any`: labels created by the searches of hop paths (one search per settled stop).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub hop_path_labels: usize,
+}
+
+fn is_zero(n: &usize) -> bool {
+    *n == 0
 }
 
 impl RouteOptimality {

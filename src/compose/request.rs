@@ -1,7 +1,7 @@
 //! Planning one request end to end: pre-composition (formation, support drones, positions) then
 //! route composition.
 
-use super::{BaselineCosts, EdgeFactorCache, Plan, Planner, RouteMethod};
+use super::{BaselineCosts, EdgeFactorCache, HopPaths, Plan, Planner, RouteMethod};
 use crate::eaas::exact_hop::ExactSettings;
 use crate::eaas::SharingPolicy;
 use crate::error::{Error, Result};
@@ -59,6 +59,8 @@ pub struct Context<'a> {
     /// Node limit of the exact node time at every stop (`None`: no limit), default
     /// [`crate::node_time::DEFAULT_STOP_NODE_LIMIT`].
     pub node_limit: Option<u64>,
+    /// The paths the hops of `--route optimal` may follow (default [`HopPaths::Rule`]).
+    pub hop_paths: HopPaths,
     /// The energy model's leg factors, shared by every request's planner.
     factors: EdgeFactorCache,
 }
@@ -97,6 +99,10 @@ pub struct RequestReport {
 pub struct RouteGap {
     /// `optimal`: over stop sequences, hops along the shortest path between stops.
     pub reference: crate::solver::ReferenceKind,
+    /// The hop paths of the optimum: `rule` (the shortest path between stops) or `any` (every
+    /// flyable path; then a Dijkstra or Floyd–Warshall gap is never negative).
+    #[serde(default, skip_serializing_if = "is_rule")]
+    pub hop_paths: HopPaths,
     /// The optimum's delivery time, min; `None` when it does not deliver.
     pub optimal_dt_min: Option<f64>,
     /// `(dt - dt_opt) / dt_opt` when both deliver (negative only for a route whose hops follow
@@ -104,6 +110,10 @@ pub struct RouteGap {
     pub gap: Option<f64>,
     /// Whether every node time of the optimum's search was proven.
     pub optimal_proven: bool,
+}
+
+fn is_rule(h: &HopPaths) -> bool {
+    *h == HopPaths::Rule
 }
 
 /// The swarm pre-composition gives a request.
@@ -134,6 +144,7 @@ impl<'a> Context<'a> {
             average_wind,
             exact: ExactSettings::default(),
             node_limit: Some(crate::node_time::DEFAULT_STOP_NODE_LIMIT),
+            hop_paths: HopPaths::Rule,
             factors: EdgeFactorCache::new(graph),
         }
     }
@@ -154,6 +165,7 @@ impl<'a> Context<'a> {
         Planner::new(self.graph, self.profile, swarm, sharing)
             .with_exact(self.exact)
             .with_node_limit(self.node_limit)
+            .with_hop_paths(self.hop_paths)
             .with_edge_factors(&self.factors)
     }
 
@@ -217,6 +229,27 @@ impl<'a> Context<'a> {
         })
     }
 
+    /// Checks that `options` can be planned in this context: [`PlanOptions::validate`], and
+    /// `--hop-paths any` only with a policy that does not share in flight when the route is
+    /// optimal.
+    ///
+    /// # Errors
+    /// E0015 ([`PlanOptions::validate`]); E0016 for [`RouteMethod::Optimal`] with
+    /// [`HopPaths::Any`] and a policy that shares (pb, fb, exact, fair).
+    ///
+    /// # Complexity
+    /// O(1).
+    pub fn validate(&self, options: &PlanOptions) -> Result<()> {
+        options.validate()?;
+        if options.route == RouteMethod::Optimal
+            && self.hop_paths == HopPaths::Any
+            && (options.sharing.shares() || options.sharing.is_exact())
+        {
+            return Err(super::any_path::any_path_with_sharing(options.sharing));
+        }
+        Ok(())
+    }
+
     /// Plans one validated request.
     ///
     /// # Errors
@@ -271,7 +304,7 @@ impl<'a> Context<'a> {
             all_pairs_done: bool,
         }
         for o in options {
-            o.validate()?;
+            self.validate(o)?;
         }
         let mut own_ms = vec![0.0; options.len()];
         // Pre-composition, once per (positioning, support drones).

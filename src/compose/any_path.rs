@@ -1,0 +1,431 @@
+//! The optimal route over stop sequences and hop paths, without in-flight sharing
+//! (`--route optimal --hop-paths any`): Dijkstra on the stop graph, each arc `u -> v` the best
+//! of every path from `u` to `v` the swarm can fly from full batteries, found by a
+//! resource-constrained shortest-path search from `u`. See models/compose.md, "Optimal route",
+//! "Any hop path".
+
+use super::optimal::{improves, BestArc};
+use super::plan::{Plan, PlanOutcome, RouteOptimality};
+use super::{HopEnd, HopPaths, Planner};
+use crate::eaas::{SharingPolicy, ENERGY_TOL_MAH};
+use crate::error::{Error, Result};
+use crate::solver::SolveStatus;
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+
+/// Most labels one search of hop paths (from one stop) may create; above it `--hop-paths any`
+/// is refused with E0017. About 40 bytes plus 8 per drone each: 200,000 labels of a 10-drone
+/// swarm take about 24 MB.
+pub const MAX_HOP_PATH_LABELS: usize = 200_000;
+
+/// Relative margin by which a lower bound is lowered before it prunes (as Algorithm 1's
+/// candidate bounds): far above the rounding of the sums behind it.
+const BOUND_MARGIN: f64 = 1e-9;
+
+/// A path from the search's origin: where it ends, when, every drone's battery there, and the
+/// label it extends.
+struct Label {
+    node: usize,
+    time_min: f64,
+    battery_mah: Vec<f64>,
+    parent: Option<usize>,
+    /// Whether no later label dominates it.
+    alive: bool,
+}
+
+impl Label {
+    /// Whether this label dominates a path reaching the same node at `time_min` with
+    /// `battery_mah`: no slower, and no drone with less energy.
+    fn dominates(&self, time_min: f64, battery_mah: &[f64]) -> bool {
+        self.time_min <= time_min
+            && self
+                .battery_mah
+                .iter()
+                .zip(battery_mah)
+                .all(|(a, b)| a >= b)
+    }
+}
+
+/// The Pareto fronts of one search: every label created, and the alive ones at each node.
+struct HopPathSearch {
+    labels: Vec<Label>,
+    front: Vec<Vec<usize>>,
+}
+
+impl HopPathSearch {
+    /// The nodes of label `l`'s path, from the origin.
+    fn nodes(&self, mut l: usize) -> Vec<usize> {
+        let mut nodes = vec![self.labels[l].node];
+        while let Some(p) = self.labels[l].parent {
+            nodes.push(self.labels[p].node);
+            l = p;
+        }
+        nodes.reverse();
+        nodes
+    }
+}
+
+/// A label waiting in the search's queue, the earliest first, then the lowest index.
+#[derive(PartialEq)]
+struct Queued {
+    time_min: f64,
+    label: usize,
+}
+
+impl Eq for Queued {}
+
+impl Ord for Queued {
+    fn cmp(&self, other: &Self) -> Ordering {
+        // Reversed: BinaryHeap pops the greatest.
+        other
+            .time_min
+            .total_cmp(&self.time_min)
+            .then(other.label.cmp(&self.label))
+    }
+}
+
+impl PartialOrd for Queued {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+/// The coded error of `--hop-paths any` with a policy that shares energy in flight.
+pub(crate) fn any_path_with_sharing(sharing: SharingPolicy) -> Error {
+    Error::invalid(
+        "E0016",
+        "--hop-paths any",
+        format!(
+            "--hop-paths any searches hop paths without in-flight sharing (policies none and \
+             idle-support), not {sharing}"
+        ),
+        format!(
+            "use --hop-paths any with --sharing none or idle-support, or --hop-paths rule with \
+             --sharing {sharing}"
+        ),
+    )
+}
+
+/// The coded error of a search of hop paths above [`MAX_HOP_PATH_LABELS`].
+fn too_many_labels(from: &str) -> Error {
+    Error::invalid(
+        "E0017",
+        "--hop-paths any",
+        format!(
+            "the search of hop paths from {from} needs more than {MAX_HOP_PATH_LABELS} labels \
+             (paths not dominated in time and in every drone's battery)"
+        ),
+        "use --hop-paths rule on this network, or a network with fewer nodes or a swarm with \
+         fewer drones",
+    )
+}
+
+impl Planner<'_> {
+    /// The least delivery time over every sequence of stops and every path of each hop, without
+    /// in-flight sharing: [`Planner::compose_optimal`] with the arcs of the stop graph taken over
+    /// all flyable paths instead of the shortest one.
+    ///
+    /// When a stop `u` is settled, one search from `u` with full batteries builds, at every
+    /// node, the Pareto front of the flyable paths from `u`: labels `(node, time, battery of
+    /// each drone)`, extended one edge at a time in order of time, a label dropped when a drone's
+    /// battery falls below zero (the hop evaluation's rule) or another label at its node is no
+    /// slower with no drone holding less energy. The arc into the destination is the fastest
+    /// label there; the arc into a node `v` with pads is the label of least `tt + nt(v)` (node
+    /// time of its arrival batteries): the node time falls as any battery rises, so a dominated
+    /// label never gives a smaller cost. The arc chosen is flown again by [`Planner::fly`], whose
+    /// flight and stop make the plan.
+    ///
+    /// # Returns
+    /// As [`Planner::compose_optimal`], with `route_optimality.hop_paths` = `any`.
+    ///
+    /// # Errors
+    /// E0016 for a policy that shares in flight (or the exact and fair ones); E0017 when a
+    /// search creates more than [`MAX_HOP_PATH_LABELS`] labels; else those of
+    /// [`Planner::fly`] and [`Planner::stop_at`].
+    ///
+    /// # Complexity
+    /// One search per settled stop, each O(L (deg + F n)) for L labels, F the largest front at
+    /// a node and n drones (plus O(L log L) for the queue); L is at most
+    /// [`MAX_HOP_PATH_LABELS`]. One exact node time per front label not pruned by the energy
+    /// bound, and one hop simulation per improving arc.
+    pub(crate) fn compose_optimal_any_path(
+        &self,
+        source: usize,
+        destination: usize,
+    ) -> Result<Plan> {
+        if self.sharing().shares() || self.sharing().is_exact() {
+            return Err(any_path_with_sharing(self.sharing()));
+        }
+        let graph = self.graph();
+        let speed = self.speed_m_per_min();
+        let n = graph.node_count();
+        let mut plan = self.empty_plan(source, destination);
+        let mut optimality = RouteOptimality {
+            hop_paths: HopPaths::Any,
+            ..RouteOptimality::default()
+        };
+        if source == destination {
+            plan.route_optimality = Some(optimality);
+            return Ok(plan.finish());
+        }
+        let full = self.full_battery_mah();
+        let Some(direct) = graph.shortest_path(source, destination) else {
+            plan.route_optimality = Some(optimality);
+            return Ok(plan.fail(PlanOutcome::NoRoute {
+                from: graph.id_of(source).to_string(),
+                to: graph.id_of(destination).to_string(),
+            }));
+        };
+        let mut uses: Vec<Option<Vec<f64>>> = vec![None; 2 * graph.edge_count()];
+        let mut cost_min = vec![f64::INFINITY; n];
+        let mut best: Vec<Option<BestArc>> = (0..n).map(|_| None).collect();
+        let mut settled = vec![false; n];
+        cost_min[source] = 0.0;
+        loop {
+            let mut next: Option<usize> = None;
+            for v in 0..n {
+                if settled[v] || !cost_min[v].is_finite() {
+                    continue;
+                }
+                if next.is_none_or(|u| cost_min[v] < cost_min[u]) {
+                    next = Some(v);
+                }
+            }
+            let Some(u) = next else {
+                // The shortest path does not fly (else the search would have reached the
+                // destination): its first failure.
+                let flight = self.fly(&direct, &full, SharingPolicy::None, HopEnd::NoStop)?;
+                plan.route_optimality = Some(optimality);
+                return Ok(plan.fail(PlanOutcome::NoStopSequence {
+                    from: graph.id_of(source).to_string(),
+                    to: graph.id_of(destination).to_string(),
+                    stops_reached: settled.iter().filter(|&&s| s).count() - 1,
+                    direct: flight
+                        .outcome
+                        .failure
+                        .expect("the shortest path to the destination does not fly"),
+                }));
+            };
+            settled[u] = true;
+            if u == destination {
+                break;
+            }
+            optimality.stops_settled += usize::from(u != source);
+            // No label slower than the destination's cost improves anything (nt >= 0).
+            let horizon_min = (cost_min[destination] - cost_min[u]) * (1.0 + BOUND_MARGIN);
+            let search = self.search_hop_paths(u, &full, horizon_min, &mut uses)?;
+            optimality.hop_path_labels += search.labels.len();
+            // Into the destination: the fastest label.
+            let fastest = search.front[destination].iter().copied().min_by(|&a, &b| {
+                let (la, lb) = (&search.labels[a], &search.labels[b]);
+                la.time_min.total_cmp(&lb.time_min).then(a.cmp(&b))
+            });
+            if let Some(l) = fastest {
+                let path = graph
+                    .path_from_nodes(&search.nodes(l))
+                    .expect("labels follow network edges");
+                let cost = cost_min[u] + path.distance_m / speed;
+                if improves(cost, u, cost_min[destination], &best[destination]) {
+                    let flight = self.fly(&path, &full, SharingPolicy::None, HopEnd::NoStop)?;
+                    optimality.arcs_flown += 1;
+                    if flight.outcome.feasible {
+                        cost_min[destination] = cost;
+                        best[destination] = Some(BestArc {
+                            from: u,
+                            path,
+                            flight,
+                            stop: None,
+                        });
+                    }
+                }
+            }
+            // Into every unsettled node with pads: the label of least tt + nt.
+            for v in 0..n {
+                if settled[v] || v == destination || graph.pads(v) == 0 {
+                    continue;
+                }
+                let mut front = search.front[v].clone();
+                front.sort_by(|&a, &b| {
+                    let (la, lb) = (&search.labels[a], &search.labels[b]);
+                    la.time_min.total_cmp(&lb.time_min).then(a.cmp(&b))
+                });
+                let mut chosen: Option<(f64, usize)> = None;
+                for l in front {
+                    let label = &search.labels[l];
+                    let limit = cost_min[v]
+                        .min(cost_min[destination])
+                        .min(chosen.map_or(f64::INFINITY, |c| c.0));
+                    let bound =
+                        cost_min[u] + label.time_min + self.nt_bound_min(v, &label.battery_mah);
+                    if bound * (1.0 - BOUND_MARGIN) > limit {
+                        continue;
+                    }
+                    let stop = self
+                        .stop_at(v, &label.battery_mah)?
+                        .expect("the node has pads");
+                    optimality.stops_solved += 1;
+                    if stop.status != SolveStatus::Optimal {
+                        optimality.stops_unproven += 1;
+                    }
+                    let cost = cost_min[u] + label.time_min + stop.nt_min;
+                    if chosen.is_none_or(|c| cost < c.0) {
+                        chosen = Some((cost, l));
+                    }
+                }
+                let Some((_, l)) = chosen else {
+                    continue;
+                };
+                let path = graph
+                    .path_from_nodes(&search.nodes(l))
+                    .expect("labels follow network edges");
+                let flight = self.fly(&path, &full, self.sharing(), HopEnd::Stop)?;
+                optimality.arcs_flown += 1;
+                if !flight.outcome.feasible {
+                    continue;
+                }
+                let stop = self
+                    .stop_at(v, &flight.outcome.final_battery_mah)?
+                    .expect("the node has pads");
+                optimality.stops_solved += 1;
+                if stop.status != SolveStatus::Optimal {
+                    optimality.stops_unproven += 1;
+                }
+                let cost = cost_min[u] + path.distance_m / speed + stop.nt_min;
+                if improves(cost, u, cost_min[v], &best[v]) {
+                    cost_min[v] = cost;
+                    best[v] = Some(BestArc {
+                        from: u,
+                        path,
+                        flight,
+                        stop: Some(stop),
+                    });
+                }
+            }
+        }
+        let mut arcs = Vec::new();
+        let mut at = destination;
+        while at != source {
+            let arc = best[at]
+                .take()
+                .expect("a settled node other than the source has an arc");
+            at = arc.from;
+            arcs.push(arc);
+        }
+        for arc in arcs.into_iter().rev() {
+            plan.push(self.hop(&arc.path, &full, arc.flight, arc.stop));
+        }
+        plan.route_optimality = Some(optimality);
+        Ok(plan.finish())
+    }
+
+    /// A lower bound on the node time at `v` (with pads) of a swarm arriving with
+    /// `battery_mah`: the longest charge time, and the total charge time over the pads.
+    fn nt_bound_min(&self, v: usize, battery_mah: &[f64]) -> f64 {
+        let rate = self.pad_rate_mah_per_min(v);
+        let pads = f64::from(self.graph().pads(v));
+        let (mut total, mut longest) = (0.0_f64, 0.0_f64);
+        for (d, &b) in self.swarm().drones.iter().zip(battery_mah) {
+            let ct = (d.capacity_mah - b).max(0.0) / rate;
+            total += ct;
+            longest = longest.max(ct);
+        }
+        longest.max(total / pads)
+    }
+
+    /// The Pareto fronts of the paths from `origin` flyable without sharing from batteries
+    /// `full`, no longer than `horizon_min`; `uses` caches each directed edge's consumption.
+    ///
+    /// # Errors
+    /// E0017 above [`MAX_HOP_PATH_LABELS`] labels; those of
+    /// [`Planner::leg_use_without_sharing_mah`].
+    fn search_hop_paths(
+        &self,
+        origin: usize,
+        full: &[f64],
+        horizon_min: f64,
+        uses: &mut [Option<Vec<f64>>],
+    ) -> Result<HopPathSearch> {
+        let graph = self.graph();
+        let speed = self.speed_m_per_min();
+        let mut search = HopPathSearch {
+            labels: vec![Label {
+                node: origin,
+                time_min: 0.0,
+                battery_mah: full.to_vec(),
+                parent: None,
+                alive: true,
+            }],
+            front: vec![Vec::new(); graph.node_count()],
+        };
+        search.front[origin].push(0);
+        let mut queue = BinaryHeap::new();
+        queue.push(Queued {
+            time_min: 0.0,
+            label: 0,
+        });
+        while let Some(Queued { label, .. }) = queue.pop() {
+            if !search.labels[label].alive {
+                continue;
+            }
+            let x = search.labels[label].node;
+            for &(y, _) in graph.neighbors(x) {
+                let Some(leg) = graph.leg(x, y) else {
+                    continue;
+                };
+                let time_min = search.labels[label].time_min + leg.distance_m / speed;
+                if time_min > horizon_min {
+                    continue;
+                }
+                let key = 2 * leg.edge + usize::from(leg.from < leg.to);
+                if uses[key].is_none() {
+                    uses[key] = Some(self.leg_use_without_sharing_mah(&leg)?);
+                }
+                let use_mah = uses[key].as_ref().expect("filled above");
+                let battery_mah: Vec<f64> = search.labels[label]
+                    .battery_mah
+                    .iter()
+                    .zip(use_mah)
+                    .map(|(b, u)| b - u)
+                    .collect();
+                if battery_mah.iter().any(|&b| b < -ENERGY_TOL_MAH) {
+                    continue;
+                }
+                let labels = &mut search.labels;
+                if search.front[y]
+                    .iter()
+                    .any(|&m| labels[m].dominates(time_min, &battery_mah))
+                {
+                    continue;
+                }
+                search.front[y].retain(|&m| {
+                    let other = &mut labels[m];
+                    let dominated = time_min <= other.time_min
+                        && battery_mah
+                            .iter()
+                            .zip(&other.battery_mah)
+                            .all(|(a, b)| a >= b);
+                    if dominated {
+                        other.alive = false;
+                    }
+                    !dominated
+                });
+                if labels.len() >= MAX_HOP_PATH_LABELS {
+                    return Err(too_many_labels(graph.id_of(origin)));
+                }
+                labels.push(Label {
+                    node: y,
+                    time_min,
+                    battery_mah,
+                    parent: Some(label),
+                    alive: true,
+                });
+                search.front[y].push(labels.len() - 1);
+                queue.push(Queued {
+                    time_min,
+                    label: labels.len() - 1,
+                });
+            }
+        }
+        Ok(search)
+    }
+}
