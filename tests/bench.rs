@@ -1,0 +1,322 @@
+//! `swarmplan bench`: its files agree with `batch` and `eaas` on the same requests, do not depend
+//! on the thread count, and the merge of shards writes the files of one run, byte for byte.
+//!
+//! The runs are small (the first 12 requests of the shipped set on the default findings-195
+//! instance, a few combinations, the exact subset of the first 2 requests, whose hop MILPs solve
+//! to optimality in milliseconds, far from the time limit, so `hops.csv` is reproducible).
+
+mod common;
+
+use common::{swarmplan, tmp};
+use serde_json::Value;
+use std::collections::BTreeMap;
+use std::path::Path;
+
+const LIMIT: &str = "12";
+/// Combinations: the baseline and PB under Algorithm 1, PB under Dijkstra, both positionings.
+const COMBOS: [&str; 6] = [
+    "--sharing",
+    "none,pb",
+    "--positioning",
+    "location-aware,energy-aware",
+    "--route",
+    "sequential,dijkstra",
+];
+
+/// Runs `bench` into a fresh directory `name` with the test's combinations and `extra`.
+fn bench(name: &str, extra: &[&str]) -> std::path::PathBuf {
+    let out = tmp(name);
+    let _ = std::fs::remove_dir_all(&out);
+    let out_arg = out.to_str().unwrap().to_string();
+    let mut args = vec![
+        "bench",
+        "--limit",
+        LIMIT,
+        "--exact-limit",
+        "2",
+        "--out",
+        &out_arg,
+    ];
+    args.extend_from_slice(&COMBOS);
+    args.extend_from_slice(extra);
+    let run = swarmplan(&args);
+    assert!(run.status.success(), "{run:?}");
+    out
+}
+
+fn read(dir: &Path, file: &str) -> String {
+    std::fs::read_to_string(dir.join(file)).unwrap_or_else(|e| panic!("{file}: {e}"))
+}
+
+fn csv_rows(dir: &Path, file: &str) -> Vec<BTreeMap<String, String>> {
+    let mut r = csv::Reader::from_path(dir.join(file)).unwrap();
+    let header = r.headers().unwrap().clone();
+    r.records()
+        .map(|rec| {
+            header
+                .iter()
+                .zip(rec.unwrap().iter())
+                .map(|(h, v)| (h.to_string(), v.to_string()))
+                .collect()
+        })
+        .collect()
+}
+
+#[test]
+fn thread_counts_give_identical_files_and_shards_merge_into_one_run() {
+    let one = bench("threads-1", &["--threads", "1"]);
+    let two = bench("threads-2", &["--threads", "2"]);
+    for file in ["config.json", "requests.csv", "hops.csv", "stops.csv"] {
+        assert_eq!(
+            read(&one, file),
+            read(&two, file),
+            "{file} differs with 2 threads"
+        );
+    }
+    // Three shards, merged in a scrambled order.
+    let shards: Vec<_> = (0..3)
+        .map(|i| bench(&format!("shard-{i}"), &["--shard", &format!("{i}/3")]))
+        .collect();
+    let merged = tmp("merged");
+    let _ = std::fs::remove_dir_all(&merged);
+    let args = [
+        "bench",
+        "merge",
+        shards[2].to_str().unwrap(),
+        shards[0].to_str().unwrap(),
+        shards[1].to_str().unwrap(),
+        "--out",
+        merged.to_str().unwrap(),
+    ];
+    let run = swarmplan(&args);
+    assert!(run.status.success(), "{run:?}");
+    for file in ["config.json", "requests.csv", "hops.csv", "stops.csv"] {
+        assert_eq!(
+            read(&one, file),
+            read(&merged, file),
+            "{file}: merge differs from one run"
+        );
+    }
+    // Each shard planned its own requests: 12 requests at positions i, i + 3, ...
+    let rows = csv_rows(&shards[1], "requests.csv");
+    let positions: Vec<usize> = rows
+        .iter()
+        .map(|r| r["request_index"].parse().unwrap())
+        .collect();
+    assert!(positions.iter().all(|p| p % 3 == 1), "{positions:?}");
+    assert_eq!(rows.len(), 4 * 6, "4 requests x 6 combinations");
+    // The summaries agree but for the times and the command.
+    let strip = |dir: &Path| {
+        let mut v: Value = serde_json::from_str(&read(dir, "summary.json")).unwrap();
+        v["command"] = Value::Null;
+        for m in v["methods"].as_array_mut().unwrap() {
+            for k in ["exec_ms_total", "exec_ms_median", "exec_ms_max"] {
+                m[k] = Value::Null;
+            }
+        }
+        for h in v["hop_gaps"].as_array_mut().unwrap() {
+            for k in ["milp_ms_total", "milp_ms_median", "milp_ms_max"] {
+                h[k] = Value::Null;
+            }
+        }
+        for f in v["findings"].as_array_mut().unwrap() {
+            if f["id"] == "4b" {
+                f["ours"] = Value::Null;
+                f["verdict"] = Value::Null;
+            }
+        }
+        v
+    };
+    assert_eq!(strip(&one), strip(&merged));
+    // Every figure listed was written, as SVG.
+    let summary: Value = serde_json::from_str(&read(&one, "summary.json")).unwrap();
+    let figures = summary["figures"].as_array().unwrap();
+    assert!(
+        figures.iter().any(|f| f == "figures/delivered.svg"),
+        "{figures:?}"
+    );
+    for f in figures {
+        let svg = read(&one, f.as_str().unwrap());
+        assert!(svg.trim_end().ends_with("</svg>"), "{f}");
+    }
+    // A merge with a shard missing is refused.
+    let missing = tmp("merged-missing");
+    let args = [
+        "bench",
+        "merge",
+        shards[0].to_str().unwrap(),
+        shards[1].to_str().unwrap(),
+        "--out",
+        missing.to_str().unwrap(),
+    ];
+    let run = swarmplan(&args);
+    assert_eq!(run.status.code(), Some(2), "{run:?}");
+    assert!(
+        String::from_utf8_lossy(&run.stderr).contains("E7003"),
+        "{run:?}"
+    );
+}
+
+#[test]
+fn requests_and_summary_agree_with_batch() {
+    let out = bench("agree-batch", &[]);
+    let findings = common::repo_arg("instances/findings-195/network.json");
+    let profile = common::repo_arg("instances/profiles/paper-findings.toml");
+    let per_request = tmp("agree-batch-per-request.json");
+    let mut args = vec![
+        "batch",
+        "--network",
+        &findings,
+        "--profile",
+        &profile,
+        "--limit",
+        LIMIT,
+        "--gap",
+        "--json",
+        "--per-request",
+        per_request.to_str().unwrap(),
+    ];
+    args.extend_from_slice(&COMBOS);
+    let run = swarmplan(&args);
+    assert!(run.status.success(), "{run:?}");
+    let batch: Value = serde_json::from_slice(&run.stdout).unwrap();
+    let summary: Value = serde_json::from_str(&read(&out, "summary.json")).unwrap();
+    let key = |o: &Value| {
+        format!(
+            "{}/{}/{}",
+            o["sharing"].as_str().unwrap(),
+            o["positioning"].as_str().unwrap(),
+            o["route"].as_str().unwrap()
+        )
+    };
+    let batch_by: BTreeMap<String, &Value> = batch
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| (key(&s["options"]), s))
+        .collect();
+    let methods = summary["methods"].as_array().unwrap();
+    // The baseline is planned once per route, under location-aware: 6 combinations of batch's 8.
+    assert_eq!(methods.len(), 6);
+    assert!(!methods
+        .iter()
+        .any(|m| key(&m["options"]) == "none/energy-aware/sequential"));
+    for m in methods {
+        let b = batch_by[&key(&m["options"])];
+        for field in [
+            "delivered",
+            "requests",
+            "mean_dt_min",
+            "mean_nt_min",
+            "mean_stops",
+        ] {
+            assert_eq!(m[field], b[field], "{} {field}", key(&m["options"]));
+        }
+        assert_eq!(m["route_gap"]["compared"], b["route_gap"]["compared"]);
+        assert_eq!(m["route_gap"]["mean_gap"], b["route_gap"]["mean_gap"]);
+        assert_eq!(m["lpt_stops"], b["lpt_node_time"]["stops"]);
+    }
+    // Row by row against batch's per-request outcomes.
+    let outcomes: Value =
+        serde_json::from_str(&std::fs::read_to_string(&per_request).unwrap()).unwrap();
+    let by_request: BTreeMap<(String, String), &Value> = outcomes
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|o| {
+            (
+                (
+                    key(&o["options"]),
+                    o["request_id"].as_str().unwrap().to_string(),
+                ),
+                o,
+            )
+        })
+        .collect();
+    let rows = csv_rows(&out, "requests.csv");
+    assert_eq!(rows.len(), 12 * 6);
+    for r in &rows {
+        let k = format!("{}/{}/{}", r["sharing"], r["positioning"], r["route"]);
+        let o = by_request[&(k.clone(), r["request_id"].clone())];
+        assert_eq!(r["success"], o["success"].to_string(), "{k}");
+        assert_eq!(r["outcome"], o["outcome"].as_str().unwrap());
+        let dt: f64 = r["dt_min"].parse().unwrap();
+        assert_eq!(dt, o["dt_min"].as_f64().unwrap(), "{k} {}", r["request_id"]);
+        assert_eq!(r["stops"], o["stops"].as_array().unwrap().len().to_string());
+        match o.get("route_gap").and_then(Value::as_f64) {
+            Some(g) => assert_eq!(r["route_gap"].parse::<f64>().unwrap(), g),
+            None => assert_eq!(r["route_gap"], ""),
+        }
+    }
+}
+
+#[test]
+fn hop_rows_agree_with_eaas_on_the_same_hop() {
+    let out = bench("agree-eaas", &[]);
+    let rows = csv_rows(&out, "hops.csv");
+    // PB, location-aware, Algorithm 1: the plan `eaas` studies.
+    let ours: Vec<_> = rows
+        .iter()
+        .filter(|r| {
+            r["request_id"] == "r00000"
+                && r["sharing"] == "pb"
+                && r["positioning"] == "location-aware"
+                && r["route"] == "sequential"
+        })
+        .collect();
+    assert!(ours.len() >= 2, "{ours:?}");
+    let findings = common::repo_arg("instances/findings-195/network.json");
+    let profile = common::repo_arg("instances/profiles/paper-findings.toml");
+    for r in ours.iter().take(3) {
+        let run = swarmplan(&[
+            "eaas",
+            "--network",
+            &findings,
+            "--profile",
+            &profile,
+            "--request-id",
+            "r00000",
+            "--hop",
+            &r["hop_index"],
+            "--methods",
+            "pb,milp,fluid",
+            "--time-limit",
+            "0.5",
+            "--json",
+        ]);
+        assert!(run.status.success(), "{run:?}");
+        let e: Value = serde_json::from_slice(&run.stdout).unwrap();
+        let m = e["rows"].as_array().unwrap();
+        let num = |s: &str| s.parse::<f64>().ok();
+        assert_eq!(
+            num(&r["heuristic"]),
+            m[0]["objective"].as_f64(),
+            "hop {}",
+            r["hop_index"]
+        );
+        assert_eq!(num(&r["milp"]), m[1]["objective"].as_f64());
+        assert_eq!(num(&r["fluid_bound"]), m[2]["bound"].as_f64());
+        assert_eq!(r["milp_status"], m[1]["status"].as_str().unwrap());
+        assert_eq!(r["reference"], "optimal");
+        let gap = m[0]["gap"]["relative"].as_f64().unwrap();
+        assert_eq!(r["gap"].parse::<f64>().unwrap(), gap);
+    }
+}
+
+#[test]
+fn bad_shard_and_existing_output_are_refused() {
+    let out = tmp("bad-shard");
+    let run = swarmplan(&["bench", "--shard", "3/3", "--out", out.to_str().unwrap()]);
+    assert_eq!(run.status.code(), Some(2), "{run:?}");
+    assert!(
+        String::from_utf8_lossy(&run.stderr).contains("E7001"),
+        "{run:?}"
+    );
+    let done = bench("exists", &[]);
+    let run = swarmplan(&["bench", "--limit", "1", "--out", done.to_str().unwrap()]);
+    assert_eq!(run.status.code(), Some(2), "{run:?}");
+    assert!(
+        String::from_utf8_lossy(&run.stderr).contains("E7005"),
+        "{run:?}"
+    );
+}
