@@ -187,3 +187,38 @@ fn solve_gap_is_the_gap_to_a_separate_optimal_solve_and_reads_back() {
     assert_eq!(out.status.code(), Some(2));
     assert!(stderr(&out).contains("E0015"), "{}", stderr(&out));
 }
+
+/// With `--hop-paths any` the reference is labelled as the any-path optimum, and no heuristic
+/// beats it (its hops may take any flyable path, so even Dijkstra's gap is not negative).
+#[test]
+fn batch_labels_the_any_path_reference() {
+    let out = swarmplan(&[
+        "batch",
+        "--limit",
+        "30",
+        "--sharing",
+        "none",
+        "--route",
+        "sequential,dijkstra",
+        "--gap",
+        "--hop-paths",
+        "any",
+    ]);
+    assert!(out.status.success(), "{out:?}");
+    let text = String::from_utf8(out.stdout).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let mut labelled = 0;
+    for line in lines {
+        let cells: Vec<&str> = line.split(',').collect();
+        if cells[col("route")] == "optimal" {
+            continue;
+        }
+        assert_eq!(cells[col("route_gap_reference")], "optimal-any-path", "{line}");
+        let min: f64 = cells[col("route_gap_min")].parse().unwrap();
+        assert!(min >= -1e-9, "{line}");
+        labelled += 1;
+    }
+    assert_eq!(labelled, 2);
+}

@@ -242,7 +242,7 @@ pub fn run(args: BatchArgs) -> Result<i32> {
         });
         summary.route_gap = pairs
             .as_ref()
-            .map(|p| RouteGapSummary::of(p.iter().copied()));
+            .map(|p| RouteGapSummary::of(p.iter().copied()).with_hop_paths(args.hop_paths));
         if !args.json {
             eprintln!(
                 "sharing {:<4} positioning {:<14} route {:<14} delivered {}/{} mean dt {:.2} min, {:.0} ms",

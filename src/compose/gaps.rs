@@ -89,7 +89,8 @@ impl LptGapSummary {
 pub struct RouteGapSummary {
     /// What the gaps are measured against: `optimal` (over stop sequences).
     pub reference: ReferenceKind,
-    /// The hop-path rule of the reference: `shortest-between-stops`.
+    /// The hop paths of the reference: `shortest-between-stops` (`--hop-paths rule`) or
+    /// `any-flyable-path` (`--hop-paths any`).
     pub reference_hop_paths: &'static str,
     /// Requests both delivered (the gaps' denominator).
     pub compared: usize,
@@ -132,13 +133,24 @@ impl RoutePair {
 }
 
 impl RouteGapSummary {
-    /// The reference's name as in JSON: `optimal`.
+    /// The reference's name in `batch`'s CSV: `optimal` (hops along the shortest path between
+    /// stops) or `optimal-any-path`.
     pub fn reference_name(&self) -> &'static str {
-        match self.reference {
-            ReferenceKind::Optimal => "optimal",
-            ReferenceKind::Incumbent => "incumbent",
-            ReferenceKind::Bound => "bound",
+        match (self.reference, self.reference_hop_paths) {
+            (ReferenceKind::Optimal, "any-flyable-path") => "optimal-any-path",
+            (ReferenceKind::Optimal, _) => "optimal",
+            (ReferenceKind::Incumbent, _) => "incumbent",
+            (ReferenceKind::Bound, _) => "bound",
         }
+    }
+
+    /// The same summary, its reference planned with the hop paths `hop_paths`.
+    pub fn with_hop_paths(mut self, hop_paths: super::HopPaths) -> RouteGapSummary {
+        self.reference_hop_paths = match hop_paths {
+            super::HopPaths::Rule => "shortest-between-stops",
+            super::HopPaths::Any => "any-flyable-path",
+        };
+        self
     }
 
     /// The summary of the requests `pairs`, in the order given.
