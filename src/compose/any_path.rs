@@ -4,7 +4,7 @@
 //! resource-constrained shortest-path search from `u`. See models/compose.md, "Optimal route",
 //! "Any hop path".
 
-use super::optimal::{improves, BestArc};
+use super::optimal::{improves, relax, BestArc};
 use super::plan::{Plan, PlanOutcome, RouteOptimality};
 use super::{HopEnd, HopPaths, Planner};
 use crate::eaas::{SharingPolicy, ENERGY_TOL_MAH};
@@ -278,44 +278,12 @@ impl Planner<'_> {
                 let path = graph
                     .path_from_nodes(&search.nodes(l))
                     .expect("labels follow network edges");
-                let flight = self.fly(&path, &full, self.sharing(), HopEnd::Stop)?;
-                optimality.arcs_flown += 1;
-                if !flight.outcome.feasible {
-                    continue;
-                }
-                let stop = self
-                    .stop_at(v, &flight.outcome.final_battery_mah)?
-                    .expect("the node has pads");
-                optimality.stops_solved += 1;
-                if stop.status != SolveStatus::Optimal {
-                    optimality.stops_unproven += 1;
-                }
-                let cost = cost_min[u] + path.distance_m / speed + stop.nt_min;
-                if improves(cost, u, cost_min[v], &best[v]) {
-                    cost_min[v] = cost;
-                    best[v] = Some(BestArc {
-                        from: u,
-                        path,
-                        flight,
-                        stop: Some(stop),
-                    });
-                }
+                let arc = self.arc_into_stop(u, v, path, &full, &mut optimality)?;
+                let tail_cost_min = cost_min[u];
+                relax(&mut cost_min, &mut best, v, tail_cost_min, speed, arc);
             }
         }
-        let mut arcs = Vec::new();
-        let mut at = destination;
-        while at != source {
-            let arc = best[at]
-                .take()
-                .expect("a settled node other than the source has an arc");
-            at = arc.from;
-            arcs.push(arc);
-        }
-        for arc in arcs.into_iter().rev() {
-            plan.push(self.hop(&arc.path, &full, arc.flight, arc.stop));
-        }
-        plan.route_optimality = Some(optimality);
-        Ok(plan.finish())
+        Ok(self.route_of(plan, best, source, destination, optimality))
     }
 
     /// A lower bound on the node time at `v` (with pads) of a swarm arriving with

@@ -168,30 +168,56 @@ impl Planner<'_> {
                 if beyond(cost_min[u] + self.energy_bound_min(&path, v, 0.0)?, limit) {
                     continue;
                 }
-                let flight = self.fly(&path, &full, self.sharing(), HopEnd::Stop)?;
-                optimality.arcs_flown += 1;
-                if !flight.outcome.feasible {
-                    continue;
-                }
-                let stop = self
-                    .stop_at(v, &flight.outcome.final_battery_mah)?
-                    .expect("the node has pads");
-                optimality.stops_solved += 1;
-                if stop.status != SolveStatus::Optimal {
-                    optimality.stops_unproven += 1;
-                }
-                let cost = cost_min[u] + path.distance_m / speed + stop.nt_min;
-                if improves(cost, u, cost_min[v], &best[v]) {
-                    cost_min[v] = cost;
-                    best[v] = Some(BestArc {
-                        from: u,
-                        path,
-                        flight,
-                        stop: Some(stop),
-                    });
-                }
+                let arc = self.arc_into_stop(u, v, path, &full, &mut optimality)?;
+                let tail_cost_min = cost_min[u];
+                relax(&mut cost_min, &mut best, v, tail_cost_min, speed, arc);
             }
         }
+        Ok(self.route_of(plan, best, source, destination, optimality))
+    }
+
+    /// The arc `u -> v` into a node with pads along `path`, flown from full batteries `full`
+    /// under the planner's policy, with the stop at `v`; `None` when the hop does not fly.
+    /// Counts the hop and the stop in `optimality`.
+    pub(super) fn arc_into_stop(
+        &self,
+        u: usize,
+        v: usize,
+        path: Route,
+        full: &[f64],
+        optimality: &mut RouteOptimality,
+    ) -> Result<Option<BestArc>> {
+        let flight = self.fly(&path, full, self.sharing(), HopEnd::Stop)?;
+        optimality.arcs_flown += 1;
+        if !flight.outcome.feasible {
+            return Ok(None);
+        }
+        let stop = self
+            .stop_at(v, &flight.outcome.final_battery_mah)?
+            .expect("the node has pads");
+        optimality.stops_solved += 1;
+        if stop.status != SolveStatus::Optimal {
+            optimality.stops_unproven += 1;
+        }
+        Ok(Some(BestArc {
+            from: u,
+            path,
+            flight,
+            stop: Some(stop),
+        }))
+    }
+
+    /// The plan of the route the best arcs `best` give, from the source to the destination,
+    /// pushed on `plan` (empty so far), with `optimality`.
+    pub(super) fn route_of(
+        &self,
+        mut plan: Plan,
+        mut best: Vec<Option<BestArc>>,
+        source: usize,
+        destination: usize,
+        optimality: RouteOptimality,
+    ) -> Plan {
+        let full = self.full_battery_mah();
         // The arcs of the route, from the destination back to the source.
         let mut arcs = Vec::new();
         let mut at = destination;
@@ -206,7 +232,7 @@ impl Planner<'_> {
             plan.push(self.hop(&arc.path, &full, arc.flight, arc.stop));
         }
         plan.route_optimality = Some(optimality);
-        Ok(plan.finish())
+        plan.finish()
     }
 
     /// The hop `path` into the destination from full batteries `full`: flown without sharing if
@@ -237,6 +263,26 @@ impl Planner<'_> {
 /// cost is then above `limit`, never equal to it, so arcs of equal cost are always flown.
 fn beyond(bound_min: f64, limit_min: f64) -> bool {
     bound_min > limit_min
+}
+
+/// Keeps `arc` into `v` (if the hop flew) as the best arc into `v` when its cost, the tail's
+/// `tail_cost_min` plus the hop's travel time at `speed_m_per_min` and the stop's node time,
+/// improves `v`'s ([`improves`]).
+pub(super) fn relax(
+    cost_min: &mut [f64],
+    best: &mut [Option<BestArc>],
+    v: usize,
+    tail_cost_min: f64,
+    speed_m_per_min: f64,
+    arc: Option<BestArc>,
+) {
+    let Some(arc) = arc else { return };
+    let nt_min = arc.stop.as_ref().map_or(0.0, |s| s.nt_min);
+    let cost = tail_cost_min + arc.path.distance_m / speed_m_per_min + nt_min;
+    if improves(cost, arc.from, cost_min[v], &best[v]) {
+        cost_min[v] = cost;
+        best[v] = Some(arc);
+    }
 }
 
 /// Whether an arc from `from` giving cost `cost_min` replaces the best arc `best` of cost
