@@ -10,13 +10,10 @@ mod common;
 
 use common::{flat_instance, repo_arg, shipped_profile, swarmplan};
 use proptest::prelude::*;
-use rand::{Rng, SeedableRng};
-use rand_chacha::ChaCha8Rng;
 use swarmplan::check::check_plan;
 use swarmplan::compose::{Context, HopEnd, HopPaths, PlanOptions, Planner, RouteMethod};
 use swarmplan::eaas::SharingPolicy;
 use swarmplan::precompose::Positioning;
-use swarmplan::problem::network::{Edge, Node};
 use swarmplan::problem::{Network, Profile, Request, SkywayGraph, Swarm};
 
 /// Relative tolerance between delivery times summed in different orders.
@@ -26,69 +23,15 @@ const REL_TOL: f64 = 1e-9;
 /// up to 12 m/s (so that a longer path may cost less energy than the shortest), and a request
 /// between the two nodes farthest apart.
 fn random_case(seed: u64) -> (Network, SkywayGraph, Request) {
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let n = rng.random_range(5..=7);
-    let mut nodes: Vec<Node> = (0..n)
-        .map(|i| Node {
-            id: format!("v{i}"),
-            x_m: rng.random_range(0.0..6_000.0),
-            y_m: rng.random_range(0.0..6_000.0),
-            pads: if rng.random_bool(0.7) {
-                rng.random_range(1..=2)
-            } else {
-                0
-            },
-            pad_charge_rate_mah_per_min: None,
-        })
-        .collect();
-    if nodes.iter().all(|v| v.pads == 0) {
-        nodes[0].pads = 1;
-    }
-    let mut order: Vec<usize> = (0..n).collect();
-    for i in (1..n).rev() {
-        order.swap(i, rng.random_range(0..=i));
-    }
-    let mut pairs: Vec<(usize, usize)> = order.windows(2).map(|w| (w[0], w[1])).collect();
-    for _ in 0..n {
-        let (a, b) = (rng.random_range(0..n), rng.random_range(0..n));
-        if a != b && !pairs.contains(&(a, b)) && !pairs.contains(&(b, a)) {
-            pairs.push((a, b));
-        }
-    }
-    let edges = pairs
-        .into_iter()
-        .map(|(a, b)| Edge {
-            from: format!("v{a}"),
-            to: format!("v{b}"),
-            distance_m: None,
-            wind_speed_mps: rng.random_range(0.0..12.0),
-            wind_from_deg: rng.random_range(0.0..360.0),
-        })
-        .collect();
-    let network = Network {
-        schema_version: swarmplan::problem::SCHEMA_VERSION,
-        name: Some(format!("random-{seed}")),
-        nodes,
-        edges,
-    };
-    let graph = SkywayGraph::new(&network).unwrap();
-    let mut far = (0, 1, -1.0);
-    for a in 0..n {
-        for (b, &x) in graph.distances_from_m(a).iter().enumerate() {
-            if x.is_finite() && x > far.2 {
-                far = (a, b, x);
-            }
-        }
-    }
-    let request = Request {
-        id: format!("q{seed}"),
-        source: format!("v{}", far.0),
-        destination: format!("v{}", far.1),
-        packages_kg: (0..rng.random_range(1..=3))
-            .map(|_| (rng.random_range(0.2..1.2f64) * 100.0).round() / 100.0)
-            .collect(),
-    };
-    (network, graph, request)
+    common::random_network_case(
+        seed,
+        &common::RandomNetworkShape {
+            nodes: 5..=7,
+            square_m: 6_000.0,
+            max_pads: 2,
+            max_wind_mps: 12.0,
+        },
+    )
 }
 
 /// Every simple path from `u` (node lists), by depth-first search.

@@ -9,15 +9,12 @@
 mod common;
 
 use common::{paper_195, swarmplan};
-use rand::{Rng, SeedableRng};
-use rand_chacha::ChaCha8Rng;
 use swarmplan::check::check_plan;
 use swarmplan::compose::{
     Context, HopEnd, PlanOptions, PlanOutcome, Planner, RequestReport, RouteMethod,
 };
 use swarmplan::eaas::SharingPolicy;
 use swarmplan::precompose::Positioning;
-use swarmplan::problem::network::{Edge, Node};
 use swarmplan::problem::{Network, Profile, Request, SkywayGraph, Swarm};
 use swarmplan::solver::SolveStatus;
 
@@ -38,74 +35,15 @@ fn options(sharing: SharingPolicy, route: RouteMethod) -> PlanOptions {
 /// be joined at all), most nodes with pads, light winds;
 /// and a request between the two nodes farthest apart by shortest path.
 fn random_case(seed: u64) -> (Network, SkywayGraph, Request) {
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let n = rng.random_range(5..=9);
-    let mut nodes: Vec<Node> = (0..n)
-        .map(|i| Node {
-            id: format!("v{i}"),
-            x_m: rng.random_range(0.0..7_000.0),
-            y_m: rng.random_range(0.0..7_000.0),
-            pads: if rng.random_bool(0.7) {
-                rng.random_range(1..=3)
-            } else {
-                0
-            },
-            pad_charge_rate_mah_per_min: None,
-        })
-        .collect();
-    // A network has a node with pads (rule E1105).
-    if nodes.iter().all(|v| v.pads == 0) {
-        nodes[0].pads = 1;
-    }
-    let mut order: Vec<usize> = (0..n).collect();
-    for i in (1..n).rev() {
-        order.swap(i, rng.random_range(0..=i));
-    }
-    // A spanning path in random order, then a few chords.
-    let mut pairs: Vec<(usize, usize)> = order.windows(2).map(|w| (w[0], w[1])).collect();
-    for _ in 0..n {
-        let (a, b) = (rng.random_range(0..n), rng.random_range(0..n));
-        let known = pairs.contains(&(a, b)) || pairs.contains(&(b, a));
-        if a != b && !known {
-            pairs.push((a, b));
-        }
-    }
-    let edges = pairs
-        .into_iter()
-        .map(|(a, b)| Edge {
-            from: format!("v{a}"),
-            to: format!("v{b}"),
-            distance_m: None,
-            wind_speed_mps: rng.random_range(0.0..6.0),
-            wind_from_deg: rng.random_range(0.0..360.0),
-        })
-        .collect();
-    let network = Network {
-        schema_version: swarmplan::problem::SCHEMA_VERSION,
-        name: Some(format!("random-{seed}")),
-        nodes,
-        edges,
-    };
-    let graph = SkywayGraph::new(&network).unwrap();
-    let mut far = (0, 1, -1.0);
-    for a in 0..n {
-        let d = graph.distances_from_m(a);
-        for (b, &x) in d.iter().enumerate() {
-            if x.is_finite() && x > far.2 {
-                far = (a, b, x);
-            }
-        }
-    }
-    let packages = rng.random_range(1..=3);
-    let request = Request {
-        id: format!("q{seed}"),
-        source: format!("v{}", far.0),
-        destination: format!("v{}", far.1),
-        packages_kg: (0..packages)
-            .map(|_| (rng.random_range(0.2..1.2f64) * 100.0).round() / 100.0)
-            .collect(),
-    };
-    (network, graph, request)
+    common::random_network_case(
+        seed,
+        &common::RandomNetworkShape {
+            nodes: 5..=9,
+            square_m: 7_000.0,
+            max_pads: 3,
+            max_wind_mps: 6.0,
+        },
+    )
 }
 
 /// The least delivery time over every simple sequence of distinct pad nodes from `source` to

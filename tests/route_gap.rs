@@ -215,7 +215,11 @@ fn batch_labels_the_any_path_reference() {
         if cells[col("route")] == "optimal" {
             continue;
         }
-        assert_eq!(cells[col("route_gap_reference")], "optimal-any-path", "{line}");
+        assert_eq!(
+            cells[col("route_gap_reference")],
+            "optimal-any-path",
+            "{line}"
+        );
         let min: f64 = cells[col("route_gap_min")].parse().unwrap();
         assert!(min >= -1e-9, "{line}");
         labelled += 1;

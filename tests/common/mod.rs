@@ -186,3 +186,94 @@ pub fn line(xs: &[f64]) -> (Vec<Vector2<f64>>, Vec<usize>) {
         (0..xs.len()).collect(),
     )
 }
+
+// ---------------------------------------------------------------------------------------------
+// Random small networks for the route properties.
+
+/// The shape of [`random_network_case`]'s networks.
+pub struct RandomNetworkShape {
+    /// Node counts drawn from.
+    pub nodes: std::ops::RangeInclusive<usize>,
+    /// Side of the square the nodes are spread over, m.
+    pub square_m: f64,
+    /// Most pads at a node (about 70% of the nodes have 1 to this many).
+    pub max_pads: u32,
+    /// Wind speeds are drawn from `[0, max_wind_mps)`, m/s.
+    pub max_wind_mps: f64,
+}
+
+/// A random connected network of `shape` (a spanning path in random order, then a few chords),
+/// with a node with pads (rule E1105), and a request of 1 to 3 packages between the two nodes
+/// farthest apart by shortest path.
+pub fn random_network_case(
+    seed: u64,
+    shape: &RandomNetworkShape,
+) -> (Network, SkywayGraph, Request) {
+    use rand::{Rng, SeedableRng};
+    use swarmplan::problem::{Edge, Node};
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+    let n = rng.random_range(shape.nodes.clone());
+    let mut nodes: Vec<Node> = (0..n)
+        .map(|i| Node {
+            id: format!("v{i}"),
+            x_m: rng.random_range(0.0..shape.square_m),
+            y_m: rng.random_range(0.0..shape.square_m),
+            pads: if rng.random_bool(0.7) {
+                rng.random_range(1..=shape.max_pads)
+            } else {
+                0
+            },
+            pad_charge_rate_mah_per_min: None,
+        })
+        .collect();
+    if nodes.iter().all(|v| v.pads == 0) {
+        nodes[0].pads = 1;
+    }
+    let mut order: Vec<usize> = (0..n).collect();
+    for i in (1..n).rev() {
+        order.swap(i, rng.random_range(0..=i));
+    }
+    let mut pairs: Vec<(usize, usize)> = order.windows(2).map(|w| (w[0], w[1])).collect();
+    for _ in 0..n {
+        let (a, b) = (rng.random_range(0..n), rng.random_range(0..n));
+        let known = pairs.contains(&(a, b)) || pairs.contains(&(b, a));
+        if a != b && !known {
+            pairs.push((a, b));
+        }
+    }
+    let edges = pairs
+        .into_iter()
+        .map(|(a, b)| Edge {
+            from: format!("v{a}"),
+            to: format!("v{b}"),
+            distance_m: None,
+            wind_speed_mps: rng.random_range(0.0..shape.max_wind_mps),
+            wind_from_deg: rng.random_range(0.0..360.0),
+        })
+        .collect();
+    let network = Network {
+        schema_version: swarmplan::problem::SCHEMA_VERSION,
+        name: Some(format!("random-{seed}")),
+        nodes,
+        edges,
+    };
+    let graph = SkywayGraph::new(&network).unwrap();
+    let mut far = (0, 1, -1.0);
+    for a in 0..n {
+        for (b, &x) in graph.distances_from_m(a).iter().enumerate() {
+            if x.is_finite() && x > far.2 {
+                far = (a, b, x);
+            }
+        }
+    }
+    let packages = rng.random_range(1..=3);
+    let request = Request {
+        id: format!("q{seed}"),
+        source: format!("v{}", far.0),
+        destination: format!("v{}", far.1),
+        packages_kg: (0..packages)
+            .map(|_| (rng.random_range(0.2..1.2f64) * 100.0).round() / 100.0)
+            .collect(),
+    };
+    (network, graph, request)
+}
