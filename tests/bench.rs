@@ -320,3 +320,60 @@ fn bad_shard_and_existing_output_are_refused() {
         "{run:?}"
     );
 }
+
+#[test]
+fn request_rows_agree_with_solve() {
+    let out = bench("agree-solve", &["--no-gap"]);
+    let rows = csv_rows(&out, "requests.csv");
+    let findings = common::repo_arg("instances/findings-195/network.json");
+    let profile = common::repo_arg("instances/profiles/paper-findings.toml");
+    for (id, sharing, positioning, route) in [
+        ("r00003", "none", "location-aware", "sequential"),
+        ("r00007", "pb", "energy-aware", "dijkstra"),
+    ] {
+        let row = rows
+            .iter()
+            .find(|r| {
+                r["request_id"] == id
+                    && r["sharing"] == sharing
+                    && r["positioning"] == positioning
+                    && r["route"] == route
+            })
+            .unwrap();
+        let run = swarmplan(&[
+            "solve",
+            "--network",
+            &findings,
+            "--profile",
+            &profile,
+            "--request-id",
+            id,
+            "--sharing",
+            sharing,
+            "--positioning",
+            positioning,
+            "--route",
+            route,
+            "--json",
+        ]);
+        let report: Value = serde_json::from_slice(&run.stdout).unwrap();
+        let plan = &report["plan"];
+        let num = |k: &str| row[k].parse::<f64>().unwrap();
+        assert_eq!(num("dt_min"), plan["dt_min"].as_f64().unwrap(), "{id}");
+        assert_eq!(num("tt_min"), plan["tt_min"].as_f64().unwrap(), "{id}");
+        assert_eq!(num("nt_min"), plan["nt_min"].as_f64().unwrap(), "{id}");
+        assert_eq!(
+            num("shared_mah"),
+            plan["shared_mah"].as_f64().unwrap(),
+            "{id}"
+        );
+        assert_eq!(
+            row["support_drones"],
+            report["support_drones"].to_string(),
+            "{id}"
+        );
+        assert_eq!(row["success"], (run.status.code() == Some(0)).to_string());
+        // The gap columns are empty without --gap.
+        assert_eq!(row["route_gap_reference"], "");
+    }
+}
