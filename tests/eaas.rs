@@ -418,7 +418,7 @@ fn random_problem(seed: u64) -> HopProblem {
     for i in (1..n).rev() {
         initial_slot.swap(i, rng.random_range(0..=i));
     }
-    let legs = (0..rng.random_range(1..=3))
+    let legs: Vec<LegRates> = (0..rng.random_range(1..=3))
         .map(|_| LegRates {
             duration_min: if rng.random_bool(0.1) {
                 0.0
@@ -447,15 +447,23 @@ fn random_problem(seed: u64) -> HopProblem {
             drone(role, capacity_mah, battery_mah)
         })
         .collect();
+    let rho_mah_per_min = rng.random_range(1.0..40.0);
+    let range_m = rng.random_range(0.5..2.5);
+    let gamma_mah = rng.random_range(0.0..600.0);
+    // Within FB's work bound (`MAX_FB_ROUNDS` rounds per hop; beyond it FB refuses the hop with
+    // E4015, tested on its own): at most 400 rounds of lambda.
+    let tt_min: f64 = legs.iter().map(|l: &LegRates| l.duration_min).sum();
+    let least_lambda_mah = tt_min * rho_mah_per_min * supports as f64 / 400.0;
+    let lambda_mah = rng.random_range(5.0..200.0f64).max(least_lambda_mah);
     HopProblem {
         legs,
         drones,
         slots_m,
         initial_slot,
-        rho_mah_per_min: rng.random_range(1.0..40.0),
-        range_m: rng.random_range(0.5..2.5),
-        gamma_mah: rng.random_range(0.0..600.0),
-        lambda_mah: rng.random_range(5.0..200.0),
+        rho_mah_per_min,
+        range_m,
+        gamma_mah,
+        lambda_mah,
         delta_mah: rng.random_range(0.0..200.0),
     }
 }
