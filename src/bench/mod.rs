@@ -198,18 +198,6 @@ pub struct RequestRow {
     pub route_gap: Option<f64>,
 }
 
-impl RequestRow {
-    /// The combination of the row.
-    pub fn options(&self, support: Option<usize>) -> PlanOptions {
-        PlanOptions {
-            sharing: self.sharing,
-            positioning: self.positioning,
-            route: self.route,
-            support,
-        }
-    }
-}
-
 /// One hop of a delivered plan under a sharing heuristic, solved again exactly: a row of
 /// `hops.csv`. The objective is the node time at the hop's stop (min, smaller is better), or at
 /// the destination the lowest delivery arrival battery (mAh, larger is better).
