@@ -285,10 +285,13 @@ impl PcmaxClass {
             Self::L1 | Self::L2 | Self::L3 | Self::L4 | Self::L5 | Self::L6 | Self::L7 => {
                 // n/m in {2, 2.25, 2.5, 2.75, 3}, each ratio with its ten n.
                 let ratio = |num: usize, den: usize| n * den == m * num;
-                let step = |s: usize| n % s == 0 && (1..=10).contains(&(n / s));
-                (step(20) && (ratio(2, 1) || ratio(5, 2)))
-                    || (step(18) && (ratio(9, 4) || ratio(3, 1)))
-                    || (step(22) && ratio(11, 4))
+                // n in {s k : k in ks}: 20..=200 step 20, 36..=198 step 18, 22..=220 step 22.
+                let step = |s: usize, ks: std::ops::RangeInclusive<usize>| {
+                    n % s == 0 && ks.contains(&(n / s))
+                };
+                (step(20, 1..=10) && (ratio(2, 1) || ratio(5, 2)))
+                    || (step(18, 2..=11) && (ratio(9, 4) || ratio(3, 1)))
+                    || (step(22, 1..=10) && ratio(11, 4))
             }
             Self::E1R1To20 | Self::E1R20To50 => {
                 [3, 4, 5].contains(&m) && n % m == 0 && [2, 3, 5].contains(&(n / m))
