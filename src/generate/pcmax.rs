@@ -287,14 +287,14 @@ impl PcmaxClass {
                 let ratio = |num: usize, den: usize| n * den == m * num;
                 // n in {s k : k in ks}: 20..=200 step 20, 36..=198 step 18, 22..=220 step 22.
                 let step = |s: usize, ks: std::ops::RangeInclusive<usize>| {
-                    n % s == 0 && ks.contains(&(n / s))
+                    n.is_multiple_of(s) && ks.contains(&(n / s))
                 };
                 (step(20, 1..=10) && (ratio(2, 1) || ratio(5, 2)))
                     || (step(18, 2..=11) && (ratio(9, 4) || ratio(3, 1)))
                     || (step(22, 1..=10) && ratio(11, 4))
             }
             Self::E1R1To20 | Self::E1R20To50 => {
-                [3, 4, 5].contains(&m) && n % m == 0 && [2, 3, 5].contains(&(n / m))
+                [3, 4, 5].contains(&m) && n.is_multiple_of(m) && [2, 3, 5].contains(&(n / m))
             }
             Self::E2R100To800 => {
                 ([2, 3].contains(&m) && [10, 30, 50, 100].contains(&n))
