@@ -1,8 +1,10 @@
-//! `swarmplan generate network|requests`: write a seeded synthetic network or request set.
+//! `swarmplan generate network|requests|node-time`: write a seeded synthetic network, request set,
+//! or node-time instance of a classical P||Cmax benchmark class.
 
 use super::inputs::both;
 use crate::error::{Error, Result};
 use crate::generate::network::{DEFAULT_NODES, DEFAULT_SPACING_M, MAX_NODES, MIN_NODES};
+use crate::generate::pcmax::{generate_pcmax, PcmaxClass, PcmaxParams, MAX_JOBS, MAX_PADS};
 use crate::generate::requests::{DEFAULT_MAX_PACKAGE_KG, DEFAULT_REQUESTS, MAX_REQUESTS};
 use crate::generate::{generate_network, generate_requests, NetworkParams, RequestParams};
 use crate::problem::io::write_json;
@@ -16,6 +18,34 @@ pub enum GenerateCommand {
     Network(NetworkArgs),
     /// A seeded request set over a network (connected source/destination, 2-8 packages each).
     Requests(RequestsArgs),
+    /// A seeded node-time instance (P||Cmax) of a classical benchmark class, in the file format
+    /// `swarmplan node-time --file` reads; classes and sources in models/generate.md.
+    NodeTime(NodeTimeArgs),
+}
+
+/// Arguments of `generate node-time`.
+#[derive(Debug, clap::Args)]
+pub struct NodeTimeArgs {
+    /// Benchmark class: u1-u3 (França et al. 1994), nu1-nu3 (Frangioni et al. 2004), l1-l7
+    /// (Lawrinenko 2017), e1-1-20, e1-20-50, e2-100-800, e3-1-100, e3-100-200, e4-1-20,
+    /// e4-20-50, e4-1-100, e4-50-100, e4-100-200, e4-100-800 (Berndt et al. 2022).
+    #[arg(long, value_parser = parse_class)]
+    pub class: PcmaxClass,
+    /// Number of jobs (drones).
+    #[arg(long, value_parser = parse_jobs, allow_hyphen_values = true)]
+    pub jobs: usize,
+    /// Number of machines (pads).
+    #[arg(long, value_parser = parse_pads, allow_hyphen_values = true)]
+    pub pads: usize,
+    /// Seed of the random generator; the same seed writes the same file.
+    #[arg(long, value_parser = parse_node_time_seed, allow_hyphen_values = true)]
+    pub seed: u64,
+    /// Output JSON file; the instance goes to stdout without it.
+    #[arg(short = 'o', long = "output")]
+    pub output: Option<PathBuf>,
+    /// Overwrite the output file if it exists.
+    #[arg(long)]
+    pub force: bool,
 }
 
 /// Arguments of `generate network`.
@@ -96,6 +126,38 @@ fn parse_seed(s: &str, code: &str) -> std::result::Result<u64, String> {
     })
 }
 
+fn parse_node_time_seed(s: &str) -> std::result::Result<u64, String> {
+    parse_seed(s, "E3908")
+}
+
+fn parse_class(s: &str) -> std::result::Result<PcmaxClass, String> {
+    PcmaxClass::from_name(s).ok_or_else(|| {
+        let names: Vec<&str> = PcmaxClass::ALL.iter().map(|c| c.name()).collect();
+        format!(
+            "[E3905] --class: '{s}' is not a benchmark class; give one of {}",
+            names.join(", ")
+        )
+    })
+}
+
+fn parse_jobs(s: &str) -> std::result::Result<usize, String> {
+    match s.trim().parse::<usize>() {
+        Ok(n) if (1..=MAX_JOBS).contains(&n) => Ok(n),
+        _ => Err(format!(
+            "[E3906] --jobs: '{s}' is not a whole number from 1 to {MAX_JOBS}; give one"
+        )),
+    }
+}
+
+fn parse_pads(s: &str) -> std::result::Result<usize, String> {
+    match s.trim().parse::<usize>() {
+        Ok(n) if (1..=MAX_PADS).contains(&n) => Ok(n),
+        _ => Err(format!(
+            "[E3907] --pads: '{s}' is not a whole number from 1 to {MAX_PADS}; give one"
+        )),
+    }
+}
+
 fn parse_count(s: &str) -> std::result::Result<usize, String> {
     match s.trim().parse::<usize>() {
         Ok(n) if (1..=MAX_REQUESTS).contains(&n) => Ok(n),
@@ -155,6 +217,46 @@ pub fn run(cmd: GenerateCommand) -> Result<i32> {
                 a.seed,
                 a.output.display()
             );
+        }
+        GenerateCommand::NodeTime(a) => {
+            if let Some(out) = &a.output {
+                may_write(out, a.force)?;
+            }
+            let file = generate_pcmax(&PcmaxParams {
+                class: a.class,
+                jobs: a.jobs,
+                pads: a.pads,
+                seed: a.seed,
+            })?;
+            let grid = if a.class.published_grid(a.jobs, a.pads) {
+                "in the published grid"
+            } else {
+                "outside the published grid"
+            };
+            let what = format!(
+                "class {} ({}), {} jobs, {} pads ({grid}), seed {}",
+                a.class,
+                a.class.source(),
+                a.jobs,
+                a.pads,
+                a.seed
+            );
+            match &a.output {
+                Some(out) => {
+                    write_json(out, &file)?;
+                    eprintln!("wrote {what} to {}", out.display());
+                    eprintln!("solve with: swarmplan node-time --file {}", out.display());
+                }
+                None => {
+                    crate::cli::print_json(&file)?;
+                    eprintln!(
+                        "wrote {what} to stdout; solve with: swarmplan node-time --file FILE"
+                    );
+                }
+            }
+            if !a.class.note().is_empty() {
+                eprintln!("note: {}", a.class.note());
+            }
         }
     }
     Ok(0)

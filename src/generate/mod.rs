@@ -1,4 +1,5 @@
-//! Seeded synthetic instances: rooftop networks ([`network`]) and request sets ([`requests`]).
+//! Seeded synthetic instances: rooftop networks ([`network`]), request sets ([`requests`]) and
+//! the classical P||Cmax benchmark classes as node-time instances ([`pcmax`]).
 //!
 //! Every random choice comes from one `ChaCha8Rng` seeded with the user's seed. Only the generator's
 //! raw 64-bit output is used (`next_u64`); uniform reals, bounded integers, normal deviates and
@@ -10,6 +11,7 @@
 
 pub mod import;
 pub mod network;
+pub mod pcmax;
 pub mod requests;
 
 pub use network::{generate_network, NetworkParams};
