@@ -29,6 +29,7 @@
 //!   `LB` and `UB` (whole minutes: of the whole makespans not yet excluded).
 
 use super::decision::{bound_lift, local_search, BinCompletion, Budget, Decision, Memo, CAP_SLACK};
+use super::lp_bound::lp_refutes;
 use super::lpt::{ldm_sorted, lpt_sorted};
 use super::partition::{partition, PARTITION_MAX_DRONES};
 use super::{
@@ -329,6 +330,10 @@ fn run_assignment_search(
     (done, search.ub, search.nodes)
 }
 
+/// Nodes one bin-completion decision runs before the LP bound is tried at its capacity
+/// (`lp_bound.rs`): the decisions of small swarms end long before, so they never pay for an LP.
+const STALL_NODES: u64 = 100_000;
+
 /// Whether the caller's node or time limit is reached.
 fn budget_spent(budget: &Budget) -> bool {
     budget
@@ -395,6 +400,8 @@ fn phase2(
     let mut guess = first_guess(m, p, integral, lb, ub);
     let mut memo = Memo::default();
     let mut memo_cap = f64::INFINITY;
+    // Smallest capacity at which the LP bound did not refute (it cannot refute any larger one).
+    let mut lp_failed_at = f64::INFINITY;
     for _ in 0..10_000 {
         if proven(ub, lb) {
             return (true, lb, ub);
@@ -444,7 +451,27 @@ fn phase2(
             }
             d
         } else {
-            search.decide(budget)
+            // Bin completion first; when it stalls (STALL_NODES), the LP bound at `c` once (no
+            // larger capacity than one it failed at), then bin completion on with its memo.
+            let stall_limits = budget.limits_for(STALL_NODES);
+            let mut slice = Budget {
+                nodes: budget.nodes,
+                start: budget.start,
+                limits: &stall_limits,
+            };
+            let d = search.decide(&mut slice);
+            budget.nodes = slice.nodes;
+            if d != Decision::Stopped || budget_spent(budget) {
+                d
+            } else if c_run < lp_failed_at && lp_refutes(p, m, c, integral, budget) {
+                Decision::DoesNotFit
+            } else {
+                if !budget_spent(budget) {
+                    lp_failed_at = lp_failed_at.min(c_run);
+                }
+                search = BinCompletion::new(p, m, c_run, integral, search.into_memo());
+                search.decide(budget)
+            }
         };
         match decision {
             Decision::Fits => {
