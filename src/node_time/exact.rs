@@ -32,6 +32,7 @@ use super::decision::{bound_lift, local_search, BinCompletion, Budget, Decision,
 use super::lp_bound::lp_refutes;
 use super::lpt::{ldm_sorted, lpt_sorted};
 use super::partition::{partition, PARTITION_MAX_DRONES};
+use super::perfect::aim_at;
 use super::{
     all_integral, elapsed_ms, le_tol, lists_from_pad_of, lower_bound_sorted, one_per_pad,
     sort_desc, validate, validate_limits, Limits, NodeTimeMethod, NodeTimeSolution, REL_TOL,
@@ -330,8 +331,9 @@ fn run_assignment_search(
     (done, search.ub, search.nodes)
 }
 
-/// Nodes one bin-completion decision runs before the LP bound is tried at its capacity
-/// (`lp_bound.rs`): the decisions of small swarms end long before, so they never pay for an LP.
+/// Nodes one bin-completion decision runs before the LP bound (`lp_bound.rs`) and the
+/// perfect-partition search (`perfect.rs`) are tried at its capacity (then in slices doubling
+/// from this): the decisions of small swarms end long before, so they never pay for either.
 const STALL_NODES: u64 = 100_000;
 
 /// Whether the caller's node or time limit is reached.
@@ -433,6 +435,7 @@ fn phase2(
         }
         memo_cap = c_run;
         let mut search = BinCompletion::new(p, m, c_run, integral, std::mem::take(&mut memo));
+        let mut aimed: Option<Vec<usize>> = None;
         // Real minutes: the trial at the bound itself only pays off when the bound is the node
         // time (a perfect split, or the longest drone / pair bound); a failure there proves
         // nothing new, so that trial gets a small node budget and is dropped when it stops.
@@ -451,34 +454,56 @@ fn phase2(
             }
             d
         } else {
-            // Bin completion first; when it stalls (STALL_NODES), the LP bound at `c` once (no
-            // larger capacity than one it failed at), then bin completion on with its memo.
-            let stall_limits = budget.limits_for(STALL_NODES);
-            let mut slice = Budget {
-                nodes: budget.nodes,
-                start: budget.start,
-                limits: &stall_limits,
-            };
-            let d = search.decide(&mut slice);
-            budget.nodes = slice.nodes;
-            if d != Decision::Stopped || budget_spent(budget) {
-                d
-            } else if c_run < lp_failed_at && lp_refutes(p, m, c, integral, budget) {
-                Decision::DoesNotFit
-            } else {
-                if !budget_spent(budget) {
-                    lp_failed_at = lp_failed_at.min(c_run);
+            // Bin completion in slices, from STALL_NODES nodes, doubling. After the first slice
+            // the LP bound is tried at `c` once (not above a capacity where it failed); after
+            // every slice, with whole minutes, the perfect-partition search aims at `c` with as
+            // many nodes as the slice. Bin completion resumes with its memo.
+            let mut slice_nodes = STALL_NODES;
+            let mut round = 0u64;
+            loop {
+                let slice_limits = budget.limits_for(slice_nodes);
+                let mut slice = Budget {
+                    nodes: budget.nodes,
+                    start: budget.start,
+                    limits: &slice_limits,
+                };
+                let d = search.decide(&mut slice);
+                budget.nodes = slice.nodes;
+                if d != Decision::Stopped || budget_spent(budget) {
+                    break d;
                 }
+                if round == 0 && c_run < lp_failed_at {
+                    if lp_refutes(p, m, c, integral, budget) {
+                        break Decision::DoesNotFit;
+                    }
+                    if !budget_spent(budget) {
+                        lp_failed_at = c_run;
+                    }
+                }
+                if integral {
+                    let mut trial = pad_of.to_vec();
+                    if aim_at(m, p, c, &mut trial, slice_nodes, round, budget).is_some() {
+                        aimed = Some(trial);
+                        break Decision::Fits;
+                    }
+                }
+                if budget_spent(budget) {
+                    break Decision::Stopped;
+                }
+                round += 1;
+                slice_nodes = slice_nodes.saturating_mul(2);
                 search = BinCompletion::new(p, m, c_run, integral, search.into_memo());
-                search.decide(budget)
             }
         };
         match decision {
             Decision::Fits => {
-                let found = makespan_sorted(m, p, &search.pad_of);
+                // The perfect-partition search's assignment, or bin completion's; the makespan is
+                // recomputed from it either way.
+                let found_pads = aimed.take().unwrap_or_else(|| search.pad_of.clone());
+                let found = makespan_sorted(m, p, &found_pads);
                 if found < ub {
                     ub = found;
-                    pad_of.copy_from_slice(&search.pad_of);
+                    pad_of.copy_from_slice(&found_pads);
                     try_proof = true;
                 }
             }

@@ -48,6 +48,7 @@ mod lp_bound;
 pub mod lpt;
 pub mod milp;
 mod partition;
+mod perfect;
 
 pub use brute::brute;
 pub use exact::{exact, exact_with, ExactSearch};
