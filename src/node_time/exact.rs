@@ -29,8 +29,10 @@
 //!   `LB` and `UB` (whole minutes: of the whole makespans not yet excluded).
 
 use super::decision::{bound_lift, local_search, BinCompletion, Budget, Decision, Memo, CAP_SLACK};
+use super::lp_bound::lp_refutes;
 use super::lpt::{ldm_sorted, lpt_sorted};
 use super::partition::{partition, PARTITION_MAX_DRONES};
+use super::perfect::aim_at;
 use super::{
     all_integral, elapsed_ms, le_tol, lists_from_pad_of, lower_bound_sorted, one_per_pad,
     sort_desc, validate, validate_limits, Limits, NodeTimeMethod, NodeTimeSolution, REL_TOL,
@@ -329,6 +331,11 @@ fn run_assignment_search(
     (done, search.ub, search.nodes)
 }
 
+/// Nodes one bin-completion decision runs before the LP bound (`lp_bound.rs`) and the
+/// perfect-partition search (`perfect.rs`) are tried at its capacity (then in slices doubling
+/// from this): the decisions of small swarms end long before, so they never pay for either.
+const STALL_NODES: u64 = 100_000;
+
 /// Whether the caller's node or time limit is reached.
 fn budget_spent(budget: &Budget) -> bool {
     budget
@@ -395,6 +402,8 @@ fn phase2(
     let mut guess = first_guess(m, p, integral, lb, ub);
     let mut memo = Memo::default();
     let mut memo_cap = f64::INFINITY;
+    // Smallest capacity at which the LP bound did not refute (it cannot refute any larger one).
+    let mut lp_failed_at = f64::INFINITY;
     for _ in 0..10_000 {
         if proven(ub, lb) {
             return (true, lb, ub);
@@ -426,6 +435,7 @@ fn phase2(
         }
         memo_cap = c_run;
         let mut search = BinCompletion::new(p, m, c_run, integral, std::mem::take(&mut memo));
+        let mut aimed: Option<Vec<usize>> = None;
         // Real minutes: the trial at the bound itself only pays off when the bound is the node
         // time (a perfect split, or the longest drone / pair bound); a failure there proves
         // nothing new, so that trial gets a small node budget and is dropped when it stops.
@@ -444,14 +454,56 @@ fn phase2(
             }
             d
         } else {
-            search.decide(budget)
+            // Bin completion in slices, from STALL_NODES nodes, doubling. After the first slice
+            // the LP bound is tried at `c` once (not above a capacity where it failed); after
+            // every slice, with whole minutes, the perfect-partition search aims at `c` with as
+            // many nodes as the slice. Bin completion resumes with its memo.
+            let mut slice_nodes = STALL_NODES;
+            let mut round = 0u64;
+            loop {
+                let slice_limits = budget.limits_for(slice_nodes);
+                let mut slice = Budget {
+                    nodes: budget.nodes,
+                    start: budget.start,
+                    limits: &slice_limits,
+                };
+                let d = search.decide(&mut slice);
+                budget.nodes = slice.nodes;
+                if d != Decision::Stopped || budget_spent(budget) {
+                    break d;
+                }
+                if round == 0 && c_run < lp_failed_at {
+                    if lp_refutes(p, m, c, integral, budget) {
+                        break Decision::DoesNotFit;
+                    }
+                    if !budget_spent(budget) {
+                        lp_failed_at = c_run;
+                    }
+                }
+                if integral {
+                    let mut trial = pad_of.to_vec();
+                    if aim_at(m, p, c, &mut trial, slice_nodes, round, budget).is_some() {
+                        aimed = Some(trial);
+                        break Decision::Fits;
+                    }
+                }
+                if budget_spent(budget) {
+                    break Decision::Stopped;
+                }
+                round += 1;
+                slice_nodes = slice_nodes.saturating_mul(2);
+                search = BinCompletion::new(p, m, c_run, integral, search.into_memo());
+            }
         };
         match decision {
             Decision::Fits => {
-                let found = makespan_sorted(m, p, &search.pad_of);
+                // The perfect-partition search's assignment, or bin completion's; the makespan is
+                // recomputed from it either way.
+                let found_pads = aimed.take().unwrap_or_else(|| search.pad_of.clone());
+                let found = makespan_sorted(m, p, &found_pads);
                 if found < ub {
                     ub = found;
-                    pad_of.copy_from_slice(&search.pad_of);
+                    pad_of.copy_from_slice(&found_pads);
                     try_proof = true;
                 }
             }

@@ -44,9 +44,11 @@ use serde::Serialize;
 pub mod brute;
 mod decision;
 pub mod exact;
+mod lp_bound;
 pub mod lpt;
 pub mod milp;
 mod partition;
+mod perfect;
 
 pub use brute::brute;
 pub use exact::{exact, exact_with, ExactSearch};
@@ -232,6 +234,59 @@ pub fn solve(
         NodeTimeMethod::Lpt => lpt(pads, charge_times_min),
         NodeTimeMethod::Brute => brute(pads, charge_times_min, limits),
     }
+}
+
+/// Lower bound on the node time from the bin-packing LP (`models/node_time.md`, "LP bound"): the
+/// root bound, lifted by bisection to the largest capacity `C` below LPT's makespan at which the
+/// LP proves that the drones do not fit on the pads (then `nt >= C + 1` with whole minutes,
+/// `nt > C` otherwise).
+///
+/// # Arguments
+/// * `pads`, `charge_times_min` - the instance, as in [`validate`].
+/// * `limits` - time and node limits (nodes as in [`exact()`]); a limit returns the bound so far.
+///
+/// # Returns
+/// A proven lower bound (minutes) on the optimal node time, at least the root bound
+/// `max(p_1, sum/k, ...)` (rounded up for whole minutes).
+///
+/// # Errors
+/// Those of [`validate`] and `E5006`.
+///
+/// # Complexity
+/// `O(log(UB - LB))` LPs (whole minutes; about 60 for real minutes), each a column generation of
+/// at most 200 interior-point solves and exact knapsacks.
+///
+/// # Example
+/// ```
+/// use swarmplan::node_time::{lp_lower_bound, Limits};
+/// // Three drones of 6 min on 2 pads: the LP needs 3 pads of capacity 11, so nt >= 12.
+/// assert_eq!(lp_lower_bound(2, &[6.0, 6.0, 6.0], &Limits::default()).unwrap(), 12.0);
+/// ```
+pub fn lp_lower_bound(pads: usize, charge_times_min: &[f64], limits: &Limits) -> Result<f64> {
+    validate(pads, charge_times_min)?;
+    validate_limits(limits)?;
+    let (_, sorted) = sort_desc(charge_times_min);
+    let integral = all_integral(charge_times_min);
+    let lb = lower_bound_sorted(pads, &sorted, integral);
+    let positive = sorted.iter().take_while(|&&p| p > 0.0).count();
+    if pads >= positive {
+        return Ok(lb);
+    }
+    let p = &sorted[..positive];
+    let mut pad_of = vec![0; positive];
+    let ub = lpt::lpt_sorted(pads, p, &mut pad_of);
+    let mut budget = decision::Budget {
+        nodes: 0,
+        start: std::time::Instant::now(),
+        limits,
+    };
+    Ok(
+        match lp_bound::lp_lift(p, pads, lb, ub, integral, &mut budget) {
+            Some(c) if integral => lb.max(c + 1.0),
+            Some(c) => lb.max(c),
+            None => lb,
+        },
+    )
 }
 
 /// Largest pad load of an assignment (minutes), recomputed from the raw times.

@@ -1,0 +1,485 @@
+//! Bin-packing LP bound for the decision "do the drones fit on `k` pads of capacity `C`?"
+//! (Gilmore–Gomory column generation, clarabel for the restricted LP, an exact bounded knapsack
+//! for the pricing), rounded safely by Farley's bound in integer arithmetic. See
+//! `models/node_time.md`, "LP bound".
+//!
+//! Drone lengths are grouped into types `t` with length `w_t` and count `d_t`. A pattern `a` is
+//! a feasible pad content: `a_t` drones of type `t`, `0 <= a_t <= d_t`, `sum_t a_t w_t <= C`. The
+//! dual of the bin-packing LP is
+//!
+//! ```text
+//! maximise  sum_t d_t y_t   subject to  sum_t a_t y_t <= 1 for every pattern a,  y >= 0,
+//! ```
+//!
+//! solved over a growing set of patterns. For any `y >= 0`, with `v_t = floor(y_t 2^30)` and
+//! `V* = max_a sum_t a_t v_t` (the exact knapsack optimum, integers), every pad weighs at most
+//! `V*` and all drones weigh `sum_t d_t v_t`, so at least `ceil(sum_t d_t v_t / V*)` pads are
+//! needed (Farley 1990). That is the bound returned: whatever the LP solver's accuracy, it is a
+//! proof.
+
+use super::decision::{Budget, CAP_SLACK};
+use super::REL_TOL;
+use clarabel::algebra::CscMatrix;
+use clarabel::solver::{
+    DefaultSettings, DefaultSolver, IPSolver, NonnegativeConeT, SolverStatus, SupportedConeT,
+};
+
+/// Fixed-point scale of the dual values `v_t = floor(y_t SCALE)`.
+const SCALE: f64 = (1u64 << 30) as f64;
+
+/// Most column-generation iterations of one bound.
+const MAX_ITERATIONS: usize = 200;
+
+/// Largest `pieces x (C + 1)` table of the dynamic-programming pricing (whole minutes); larger
+/// knapsacks go to branch and bound.
+const DP_MAX_CELLS: usize = 1 << 23;
+
+/// Node limit of one branch-and-bound pricing; when it is reached, the fractional knapsack bound
+/// stands in for the optimum (still a valid `V*`, only weaker).
+const KNAPSACK_MAX_NODES: u64 = 200_000;
+
+/// Nodes of the shared budget one restricted LP solve counts as (about its time, against a node
+/// of bin completion: tens to hundreds of microseconds for tens of types and patterns).
+const LP_SOLVE_NODES: u64 = 20_000;
+
+/// Work units (table cells or knapsack nodes) that count as one node of the shared budget.
+const WORK_PER_NODE: u64 = 16;
+
+/// Result of [`lp_bins`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct LpBins {
+    /// Proven lower bound on the number of pads of capacity `C` that hold every drone.
+    pub bins: u64,
+    /// The restricted LP's last value (floating point, for reports only).
+    pub lp_value: f64,
+    /// Column-generation iterations run.
+    pub iterations: usize,
+}
+
+/// Drone types: distinct lengths (decreasing) and their counts.
+fn types_of(p: &[f64]) -> (Vec<f64>, Vec<u64>) {
+    let (mut w, mut d) = (Vec::new(), Vec::new());
+    for &x in p {
+        if w.last() == Some(&x) {
+            *d.last_mut().expect("a type") += 1;
+        } else {
+            w.push(x);
+            d.push(1);
+        }
+    }
+    (w, d)
+}
+
+/// Exact bounded knapsack: `max sum_t a_t v_t` over `0 <= a_t <= d_t`, `sum_t a_t w_t <= cap`.
+/// Returns (an upper bound on the optimum, which is the optimum unless the branch and bound hit
+/// its node limit; the best pattern found; work done).
+fn knapsack(w: &[f64], d: &[u64], v: &[u64], cap: f64, integral: bool) -> (u64, Vec<u64>, u64) {
+    // Binary pieces for the table: `c` copies of type t as one 0/1 item.
+    if integral && cap >= 0.0 {
+        let cap_i = cap.floor() as usize;
+        let mut pieces: Vec<(usize, u64, u64)> = Vec::new(); // (type, copies, value)
+        for t in 0..w.len() {
+            if v[t] == 0 {
+                continue;
+            }
+            let mut left = d[t].min((cap / w[t]).floor() as u64);
+            let mut c = 1;
+            while left > 0 {
+                let take = c.min(left);
+                pieces.push((t, take, take * v[t]));
+                left -= take;
+                c *= 2;
+            }
+        }
+        let cells = pieces.len().saturating_mul(cap_i + 1);
+        if cells <= DP_MAX_CELLS {
+            let words = (cap_i + 1).div_ceil(64);
+            let mut keep = vec![0u64; pieces.len() * words];
+            let mut dp = vec![0u64; cap_i + 1];
+            for (q, &(t, c, val)) in pieces.iter().enumerate() {
+                let wt = (w[t] as usize) * c as usize;
+                for x in (wt..=cap_i).rev() {
+                    let cand = dp[x - wt] + val;
+                    if cand > dp[x] {
+                        dp[x] = cand;
+                        keep[q * words + x / 64] |= 1 << (x % 64);
+                    }
+                }
+            }
+            let mut a = vec![0u64; w.len()];
+            let mut x = cap_i;
+            for (q, &(t, c, _)) in pieces.iter().enumerate().rev() {
+                if keep[q * words + x / 64] >> (x % 64) & 1 == 1 {
+                    a[t] += c;
+                    x -= (w[t] as usize) * c as usize;
+                }
+            }
+            return (dp[cap_i], a, cells as u64);
+        }
+    }
+    knapsack_bb(w, d, v, cap)
+}
+
+/// Branch and bound for [`knapsack`]: types by decreasing `v_t / w_t`, counts from the largest
+/// down, pruned by the fractional (Dantzig) bound with a margin for rounding.
+fn knapsack_bb(w: &[f64], d: &[u64], v: &[u64], cap: f64) -> (u64, Vec<u64>, u64) {
+    let mut order: Vec<usize> = (0..w.len()).filter(|&t| v[t] > 0).collect();
+    order.sort_by(|&a, &b| (v[b] as f64 / w[b]).total_cmp(&(v[a] as f64 / w[a])));
+    let frac = |from: usize, room: f64| -> f64 {
+        let mut room = room;
+        let mut s = 0.0;
+        for &t in &order[from..] {
+            let all = d[t] as f64 * w[t];
+            if all <= room {
+                s += d[t] as f64 * v[t] as f64;
+                room -= all;
+            } else {
+                s += v[t] as f64 * room / w[t];
+                break;
+            }
+        }
+        s
+    };
+    // Pruning is sound when the fractional bound, widened by its rounding, cannot reach best + 1.
+    let prunes = |bound: f64, best: u64| bound * (1.0 + 1e-9) + 1e-6 < (best + 1) as f64;
+    let root = frac(0, cap);
+    struct St<'a> {
+        order: &'a [usize],
+        w: &'a [f64],
+        d: &'a [u64],
+        v: &'a [u64],
+        a: Vec<u64>,
+        best: u64,
+        best_a: Vec<u64>,
+        nodes: u64,
+    }
+    fn dfs(
+        s: &mut St,
+        i: usize,
+        room: f64,
+        val: u64,
+        frac: &dyn Fn(usize, f64) -> f64,
+        prunes: &dyn Fn(f64, u64) -> bool,
+    ) {
+        if val > s.best {
+            s.best = val;
+            s.best_a.copy_from_slice(&s.a);
+        }
+        if i == s.order.len() || s.nodes >= KNAPSACK_MAX_NODES {
+            return;
+        }
+        s.nodes += 1;
+        if prunes(val as f64 + frac(i, room), s.best) {
+            return;
+        }
+        let t = s.order[i];
+        let most = s.d[t].min((room / s.w[t]).floor().max(0.0) as u64);
+        for c in (0..=most).rev() {
+            let used = c as f64 * s.w[t];
+            if used > room {
+                continue;
+            }
+            s.a[t] = c;
+            dfs(s, i + 1, room - used, val + c * s.v[t], frac, prunes);
+            s.a[t] = 0;
+            if s.nodes >= KNAPSACK_MAX_NODES {
+                break;
+            }
+        }
+    }
+    let mut st = St {
+        order: &order,
+        w,
+        d,
+        v,
+        a: vec![0; w.len()],
+        best: 0,
+        best_a: vec![0; w.len()],
+        nodes: 0,
+    };
+    dfs(&mut st, 0, cap, 0, &frac, &prunes);
+    let bound = if st.nodes >= KNAPSACK_MAX_NODES {
+        // Not proven: the root's fractional bound, rounded up with margin, bounds the optimum.
+        st.best.max((root * (1.0 + 1e-9)).ceil() as u64 + 1)
+    } else {
+        st.best
+    };
+    (bound, st.best_a, st.nodes)
+}
+
+/// Solves the restricted dual LP over `patterns`: `max d'y`, `A y <= 1`, `y >= 0`. Returns
+/// `y` and the objective, or `None` when clarabel does not solve it.
+fn restricted_dual(d: &[u64], patterns: &[Vec<u64>]) -> Option<(Vec<f64>, f64)> {
+    let nt = d.len();
+    let (mut ri, mut ci, mut vals) = (Vec::new(), Vec::new(), Vec::new());
+    for (r, a) in patterns.iter().enumerate() {
+        for (t, &c) in a.iter().enumerate() {
+            if c > 0 {
+                ri.push(r);
+                ci.push(t);
+                vals.push(c as f64);
+            }
+        }
+    }
+    let rows = patterns.len();
+    for t in 0..nt {
+        ri.push(rows + t);
+        ci.push(t);
+        vals.push(-1.0);
+    }
+    let a = CscMatrix::new_from_triplets(rows + nt, nt, ri, ci, vals);
+    let mut b = vec![1.0; rows];
+    b.extend(std::iter::repeat_n(0.0, nt));
+    let q: Vec<f64> = d.iter().map(|&x| -(x as f64)).collect();
+    let p = CscMatrix::new_from_triplets(nt, nt, Vec::new(), Vec::new(), Vec::new());
+    let cones: Vec<SupportedConeT<f64>> = vec![NonnegativeConeT(rows + nt)];
+    let settings = DefaultSettings {
+        verbose: false,
+        tol_gap_abs: 1e-9,
+        tol_gap_rel: 1e-9,
+        tol_feas: 1e-9,
+        ..DefaultSettings::default()
+    };
+    let mut solver = DefaultSolver::new(&p, &q, &a, &b, &cones, settings).ok()?;
+    solver.solve();
+    let s = &solver.solution;
+    match s.status {
+        SolverStatus::Solved | SolverStatus::AlmostSolved => {
+            let y: Vec<f64> = s.x.iter().map(|&x| x.max(0.0)).collect();
+            Some((y, -s.obj_val))
+        }
+        _ => None,
+    }
+}
+
+/// First-fit decreasing at capacity `cap`, as patterns over the types.
+fn ffd_patterns(w: &[f64], d: &[u64], cap: f64) -> Vec<Vec<u64>> {
+    let mut bins: Vec<(f64, Vec<u64>)> = Vec::new();
+    for t in 0..w.len() {
+        for _ in 0..d[t] {
+            match bins.iter_mut().find(|(load, _)| *load + w[t] <= cap) {
+                Some((load, a)) => {
+                    *load += w[t];
+                    a[t] += 1;
+                }
+                None => {
+                    let mut a = vec![0; w.len()];
+                    a[t] = 1;
+                    bins.push((w[t], a));
+                }
+            }
+        }
+    }
+    bins.into_iter().map(|(_, a)| a).collect()
+}
+
+/// Lower bound on the pads of capacity `cap` that hold the drones `p` (sorted decreasingly, all
+/// `> 0`) by the bin-packing LP; with a `target`, stops as soon as the bound exceeds it or the LP
+/// cannot reach it (without, runs to the LP optimum); counts its work on `budget` (checked
+/// between iterations).
+///
+/// `cap` is the capacity the patterns are checked against: the caller widens it for real-valued
+/// times (as bin completion does), so that every pattern within the true capacity is one here.
+/// `integral` allows the exact table pricing.
+///
+/// Complexity: at most [`MAX_ITERATIONS`] LP solves (interior point, polynomial) and knapsacks
+/// (`O(T C log n)` by table, or a branch and bound of at most [`KNAPSACK_MAX_NODES`] nodes).
+pub(crate) fn lp_bins(
+    p: &[f64],
+    cap: f64,
+    integral: bool,
+    target: Option<u64>,
+    budget: &mut Budget,
+) -> LpBins {
+    let none = LpBins {
+        bins: 0,
+        lp_value: 0.0,
+        iterations: 0,
+    };
+    if p.is_empty() {
+        return none;
+    }
+    if p[0] > cap {
+        return LpBins {
+            bins: u64::MAX,
+            lp_value: f64::INFINITY,
+            iterations: 0,
+        };
+    }
+    let (w, d) = types_of(p);
+    let nt = w.len();
+    let mut patterns: Vec<Vec<u64>> = (0..nt)
+        .map(|t| {
+            let mut a = vec![0; nt];
+            a[t] = d[t].min((cap / w[t]).floor() as u64).max(1);
+            a
+        })
+        .collect();
+    patterns.extend(ffd_patterns(&w, &d, cap));
+    let mut best = 0u64;
+    let mut lp_value = 0.0;
+    for it in 1..=MAX_ITERATIONS {
+        budget.nodes = budget.nodes.saturating_add(LP_SOLVE_NODES);
+        let Some((y, value)) = restricted_dual(&d, &patterns) else {
+            return LpBins {
+                bins: best,
+                lp_value,
+                iterations: it,
+            };
+        };
+        lp_value = value;
+        let v: Vec<u64> = y.iter().map(|&x| (x * SCALE).floor() as u64).collect();
+        let (vmax, a, work) = knapsack(&w, &d, &v, cap, integral);
+        budget.nodes = budget.nodes.saturating_add(work / WORK_PER_NODE);
+        let total: u128 = d.iter().zip(&v).map(|(&c, &x)| c as u128 * x as u128).sum();
+        if vmax > 0 {
+            let bins = total.div_ceil(vmax as u128);
+            best = best.max(u64::try_from(bins).unwrap_or(u64::MAX));
+        }
+        let out = LpBins {
+            bins: best,
+            lp_value,
+            iterations: it,
+        };
+        // Proven; or the restricted LP (an upper bound on the full LP) cannot exceed the target;
+        // or no pattern prices out (the LP is solved); or a limit.
+        if target.is_some_and(|k| best > k || value <= k as f64 + 1e-7)
+            || (vmax as f64) <= SCALE * (1.0 + 1e-7)
+            || patterns.iter().any(|q| *q == a)
+            || budget_spent(budget)
+        {
+            return out;
+        }
+        patterns.push(a);
+    }
+    LpBins {
+        bins: best,
+        lp_value,
+        iterations: MAX_ITERATIONS,
+    }
+}
+
+/// Whether the LP proves that the drones `p` (sorted decreasingly, all `> 0`) do not fit on `k`
+/// pads of capacity `c`: `nt > c`. Real-valued times are checked against `c (1 + CAP_SLACK)`.
+pub(crate) fn lp_refutes(p: &[f64], k: usize, c: f64, integral: bool, budget: &mut Budget) -> bool {
+    let widened = if integral { c } else { c * (1.0 + CAP_SLACK) };
+    lp_bins(p, widened, integral, Some(k as u64), budget).bins > k as u64
+}
+
+/// Largest `c` in `[lo, hi)` found by bisection with [`lp_refutes`], i.e. proven `nt > c`;
+/// `None` when the LP does not refute `lo`. Like `bound_lift`, any refuted `c` is a valid bound
+/// (feasibility is monotone in `c`).
+pub(crate) fn lp_lift(
+    p: &[f64],
+    k: usize,
+    lo: f64,
+    hi: f64,
+    integral: bool,
+    budget: &mut Budget,
+) -> Option<f64> {
+    if !lp_refutes(p, k, lo, integral, budget) {
+        return None;
+    }
+    let (mut fail, mut ok) = (lo, hi);
+    for _ in 0..60 {
+        if budget_spent(budget) {
+            break;
+        }
+        if integral {
+            if ok - fail <= 1.0 {
+                break;
+            }
+        } else if ok - fail <= REL_TOL * ok {
+            break;
+        }
+        let mid = if integral {
+            ((fail + ok) / 2.0).floor()
+        } else {
+            0.5 * (fail + ok)
+        };
+        if lp_refutes(p, k, mid, integral, budget) {
+            fail = mid;
+        } else {
+            ok = mid;
+        }
+    }
+    Some(fail)
+}
+
+fn budget_spent(budget: &Budget) -> bool {
+    budget
+        .limits
+        .node_limit
+        .is_some_and(|max| budget.nodes >= max)
+        || budget
+            .limits
+            .time_limit_s
+            .is_some_and(|t| budget.start.elapsed().as_secs_f64() >= t)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::node_time::Limits;
+    use std::time::Instant;
+
+    /// Table pricing and branch and bound agree on the knapsack optimum.
+    #[test]
+    fn table_and_branch_and_bound_agree() {
+        let w = [7.0, 5.0, 4.0, 3.0];
+        let d = [2, 3, 1, 4];
+        let v = [70, 52, 38, 31];
+        for cap in 0..=40 {
+            let (a, pa, _) = knapsack(&w, &d, &v, f64::from(cap), true);
+            let (b, _, _) = knapsack_bb(&w, &d, &v, f64::from(cap));
+            assert_eq!(a, b, "cap {cap}");
+            let weight: f64 = pa.iter().zip(&w).map(|(&c, &x)| c as f64 * x).sum();
+            let value: u64 = pa.iter().zip(&v).map(|(&c, &x)| c * x).sum();
+            assert!(weight <= f64::from(cap));
+            assert_eq!(value, a);
+        }
+    }
+
+    /// Five drones of 7, 5, 5, 3, 2 min on 2 pads (sum 22): every combinatorial bound stops at
+    /// 11 (root: `sum/2 = 11`; `L2(11) = 2`; the count bound and its lift do not exceed 2 pads),
+    /// but no split meets 11 (7 needs 4 more, which 5, 3, 2 cannot make), so `nt = 12`.
+    /// Hand-computed LP at `C = 11`: the maximal patterns are {7,3}, {7,2}, {5,5}, {5,3,2}; the
+    /// duals `y = (3/4, 1/2, 1/4, 1/4)` for (7, 5, 3, 2) give every pattern weight `<= 1` and the
+    /// drones weight `3/4 + 2/2 + 1/4 + 1/4 = 9/4`, and the primal `x{7,3} = x{7,2} = x{5,3,2} =
+    /// 1/2`, `x{5,5} = 3/4` covers every drone with `9/4` pads: the LP value is `9/4 > 2`, so the
+    /// LP proves `nt >= 12`.
+    #[test]
+    fn lp_bound_proves_an_optimum_above_every_combinatorial_bound() {
+        let p = [7.0, 5.0, 5.0, 3.0, 2.0];
+        let limits = Limits::default();
+        let mut budget = Budget {
+            nodes: 0,
+            start: Instant::now(),
+            limits: &limits,
+        };
+        let lb = crate::node_time::lower_bound_sorted(2, &p, true);
+        assert_eq!(lb, 11.0);
+        assert_eq!(crate::node_time::decision::l2_bins(&p, 11.0), 2);
+        assert_eq!(
+            crate::node_time::decision::bound_lift(&p, 2, lb, 12.0, true),
+            None
+        );
+        let r = lp_bins(&p, 11.0, true, None, &mut budget);
+        assert!((r.lp_value - 2.25).abs() < 1e-6, "{r:?}");
+        assert_eq!(r.bins, 3);
+        assert_eq!(lp_lift(&p, 2, lb, 12.0, true, &mut budget), Some(11.0));
+        assert_eq!(lp_bins(&p, 12.0, true, None, &mut budget).bins, 2);
+    }
+
+    #[test]
+    fn three_long_items_need_three_bins() {
+        let limits = Limits::default();
+        let mut budget = Budget {
+            nodes: 0,
+            start: Instant::now(),
+            limits: &limits,
+        };
+        let r = lp_bins(&[6.0, 6.0, 6.0], 10.0, true, Some(2), &mut budget);
+        assert_eq!(r.bins, 3);
+    }
+}

@@ -1,0 +1,238 @@
+//! Search for an assignment with every load within a target (whole minutes), aimed at the lower
+//! bound: iterated pairwise re-partitioning. See `models/node_time.md`, "Perfect-partition
+//! search".
+//!
+//! A step takes a pad with the largest load and looks for another pad such that the drones of
+//! both can be split into two sets that both fit the target, or at least lower the larger of the
+//! two loads: an exact two-way partition of their union by a subset-sum table (bitsets, whole
+//! minutes). When no pad pair improves, a random pair of pads is re-split at random among the
+//! splits that keep both loads within the current largest load (a kick), and the descent
+//! resumes. Any assignment it returns has its makespan recomputed by the caller.
+
+use super::decision::Budget;
+use rand::seq::SliceRandom;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+/// Table words that count as one node of the shared budget.
+const WORDS_PER_NODE: u64 = 64;
+
+/// Subset sums of a pad pair's drones, one bitset per prefix, for reconstruction.
+#[derive(Default)]
+struct PairTable {
+    /// `bits[q * words ..][s]`: sum `s` is reachable with the first `q` drones.
+    bits: Vec<u64>,
+    words: usize,
+}
+
+impl PairTable {
+    /// Builds the table of the drones `items` (lengths `p`) for sums `0..=half`; returns the work
+    /// in words.
+    fn build(&mut self, p: &[u64], items: &[usize], half: usize) -> u64 {
+        self.words = (half + 1).div_ceil(64);
+        let w = self.words;
+        self.bits.clear();
+        self.bits.resize((items.len() + 1) * w, 0);
+        self.bits[0] = 1;
+        for (q, &j) in items.iter().enumerate() {
+            let shift = p[j] as usize;
+            let (prev, next) = self.bits.split_at_mut((q + 1) * w);
+            let prev = &prev[q * w..];
+            let next = &mut next[..w];
+            next.copy_from_slice(prev);
+            let (ws, bs) = (shift / 64, shift % 64);
+            for k in (ws..w).rev() {
+                let mut x = prev[k - ws] << bs;
+                if bs > 0 && k > ws {
+                    x |= prev[k - ws - 1] >> (64 - bs);
+                }
+                next[k] |= x;
+            }
+            // Clear the bits beyond `half` in the last word.
+            let extra = w * 64 - (half + 1);
+            if extra > 0 {
+                next[w - 1] &= u64::MAX >> extra;
+            }
+        }
+        (items.len() * w) as u64
+    }
+
+    fn reachable(&self, q: usize, s: usize) -> bool {
+        self.bits[q * self.words + s / 64] >> (s % 64) & 1 == 1
+    }
+
+    /// A subset of `items` with sum `s` (reachable), as a flag per item.
+    fn subset(&self, p: &[u64], items: &[usize], mut s: usize) -> Vec<bool> {
+        let mut take = vec![false; items.len()];
+        for q in (0..items.len()).rev() {
+            if !self.reachable(q, s) {
+                take[q] = true;
+                s -= p[items[q]] as usize;
+            }
+        }
+        take
+    }
+}
+
+/// Looks for an assignment of the drones `p` (whole minutes, positive) on `m` pads with every
+/// load `<= target`, starting from `pad_of`; `seed` varies the kicks between calls. Returns the
+/// makespan found and writes the assignment into `pad_of` when it reaches the target; `None`
+/// (and `pad_of` unchanged) when the `work` budget (nodes of `budget`, also bounded by the
+/// caller's limits) runs out first.
+///
+/// Complexity: `O(r (L_max / 64))` words per pad pair tried, `r` the drones of the pair.
+pub(crate) fn aim_at(
+    m: usize,
+    p: &[f64],
+    target: f64,
+    pad_of: &mut [usize],
+    work: u64,
+    seed: u64,
+    budget: &mut Budget,
+) -> Option<f64> {
+    let n = p.len();
+    if m < 2 || n == 0 {
+        return None;
+    }
+    let pi: Vec<u64> = p.iter().map(|&x| x as u64).collect();
+    let target = target.floor() as u64;
+    let mut cur = pad_of.to_vec();
+    let mut loads = vec![0u64; m];
+    for (j, &i) in cur.iter().enumerate() {
+        loads[i] += pi[j];
+    }
+    let mut rng = ChaCha8Rng::seed_from_u64(0x5eed_0000 ^ seed);
+    let mut table = PairTable::default();
+    let stop_at = budget.nodes.saturating_add(work);
+    let mut spent = 0u64;
+    let mut others: Vec<usize> = (0..m).collect();
+    loop {
+        let lmax = *loads.iter().max().expect("pads");
+        if lmax <= target {
+            pad_of.copy_from_slice(&cur);
+            return Some(lmax as f64);
+        }
+        if budget.nodes >= stop_at || spent_limits(budget) {
+            return None;
+        }
+        // The pads with the largest load, one at random.
+        let tops: Vec<usize> = (0..m).filter(|&i| loads[i] == lmax).collect();
+        let i = tops[rng.random_range(0..tops.len())];
+        others.shuffle(&mut rng);
+        let mut improved = false;
+        for &j in &others {
+            if j == i {
+                continue;
+            }
+            let total = loads[i] + loads[j];
+            let half = (total / 2) as usize;
+            let items: Vec<usize> = (0..n).filter(|&x| cur[x] == i || cur[x] == j).collect();
+            let w = table.build(&pi, &items, half);
+            spent += w;
+            budget.nodes = budget.nodes.saturating_add(w / WORDS_PER_NODE);
+            let q = items.len();
+            // Sums s <= half: the split (s, total - s) has max total - s. Within the target:
+            // s >= total - target; pick at random among those (a few tries), else the largest s.
+            let lo = total.saturating_sub(target) as usize;
+            let mut s_best = None;
+            if lo <= half {
+                for _ in 0..4 {
+                    let s = rng.random_range(lo..=half);
+                    if let Some(x) = (s..=half).find(|&x| table.reachable(q, x)) {
+                        s_best = Some(x);
+                        break;
+                    }
+                }
+            }
+            let s = s_best.or_else(|| (0..=half).rev().find(|&x| table.reachable(q, x)));
+            let Some(s) = s else { continue };
+            if total - s as u64 >= lmax {
+                continue;
+            }
+            let take = table.subset(&pi, &items, s);
+            for (a, &x) in items.iter().enumerate() {
+                cur[x] = if take[a] { j } else { i };
+            }
+            loads[j] = s as u64;
+            loads[i] = total - s as u64;
+            improved = true;
+            break;
+        }
+        if improved {
+            continue;
+        }
+        // Kick: a random pair of pads re-split at random within the current largest load.
+        let a = rng.random_range(0..m);
+        let mut b = rng.random_range(0..m - 1);
+        if b >= a {
+            b += 1;
+        }
+        let total = loads[a] + loads[b];
+        let half = (total / 2) as usize;
+        let items: Vec<usize> = (0..n).filter(|&x| cur[x] == a || cur[x] == b).collect();
+        let w = table.build(&pi, &items, half);
+        spent += w;
+        budget.nodes = budget.nodes.saturating_add(w / WORDS_PER_NODE);
+        let lo = total.saturating_sub(lmax) as usize;
+        if lo > half {
+            continue;
+        }
+        let start = rng.random_range(lo..=half);
+        let q = items.len();
+        let s = (start..=half)
+            .find(|&x| table.reachable(q, x))
+            .or_else(|| (lo..start).rev().find(|&x| table.reachable(q, x)));
+        if let Some(s) = s {
+            let take = table.subset(&pi, &items, s);
+            for (c, &x) in items.iter().enumerate() {
+                cur[x] = if take[c] { b } else { a };
+            }
+            loads[b] = s as u64;
+            loads[a] = total - s as u64;
+        }
+        let _ = spent;
+    }
+}
+
+fn spent_limits(budget: &Budget) -> bool {
+    budget
+        .limits
+        .node_limit
+        .is_some_and(|max| budget.nodes >= max)
+        || budget
+            .limits
+            .time_limit_s
+            .is_some_and(|t| budget.start.elapsed().as_secs_f64() >= t)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::node_time::Limits;
+    use std::time::Instant;
+
+    /// 12 drones whose perfect split on 3 pads (load 30 each) LPT misses: the search finds one.
+    #[test]
+    fn finds_a_perfect_split_from_a_poor_start() {
+        let p = [
+            14.0, 13.0, 12.0, 11.0, 9.0, 8.0, 6.0, 5.0, 4.0, 3.0, 3.0, 2.0,
+        ];
+        assert_eq!(p.iter().sum::<f64>(), 90.0);
+        let mut pad_of = vec![0; p.len()];
+        pad_of[1] = 1;
+        pad_of[2] = 2;
+        let limits = Limits::default();
+        let mut budget = Budget {
+            nodes: 0,
+            start: Instant::now(),
+            limits: &limits,
+        };
+        let found = aim_at(3, &p, 30.0, &mut pad_of, 1_000_000, 1, &mut budget);
+        assert_eq!(found, Some(30.0));
+        let mut loads = [0.0; 3];
+        for (j, &i) in pad_of.iter().enumerate() {
+            loads[i] += p[j];
+        }
+        assert_eq!(loads, [30.0; 3]);
+    }
+}
