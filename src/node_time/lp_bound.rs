@@ -345,7 +345,7 @@ pub(crate) fn lp_bins(
         // or no pattern prices out (the LP is solved); or a limit.
         if target.is_some_and(|k| best > k || value <= k as f64 + 1e-7)
             || (vmax as f64) <= SCALE * (1.0 + 1e-7)
-            || patterns.iter().any(|q| *q == a)
+            || patterns.contains(&a)
             || budget_spent(budget)
         {
             return out;
