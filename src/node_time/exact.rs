@@ -336,6 +336,12 @@ fn run_assignment_search(
 /// from this): the decisions of small swarms end long before, so they never pay for either.
 const STALL_NODES: u64 = 100_000;
 
+/// Largest knapsack table (`drones x (C + 1)` cells, whole minutes) for which the LP bound is
+/// tried after the first slice; a larger one (an LP solve of tenths of a second) waits for the
+/// third slice, by which time bin completion has usually decided (u3 of the classical classes:
+/// 50 drones, 10 pads, times up to 10,000 min; `models/experiments/node_time.md`).
+const LP_EARLY_MAX_CELLS: f64 = (1u64 << 20) as f64;
+
 /// Whether the caller's node or time limit is reached.
 fn budget_spent(budget: &Budget) -> bool {
     budget
@@ -455,11 +461,17 @@ fn phase2(
             d
         } else {
             // Bin completion in slices, from STALL_NODES nodes, doubling. After the first slice
-            // the LP bound is tried at `c` once (not above a capacity where it failed); after
+            // (the third for a large knapsack table, LP_EARLY_MAX_CELLS) the LP bound is tried
+            // at `c` once (not above a capacity where it failed); after
             // every slice, with whole minutes, the perfect-partition search aims at `c` with as
             // many nodes as the slice. Bin completion resumes with its memo.
             let mut slice_nodes = STALL_NODES;
             let mut round = 0u64;
+            let lp_round = if integral && (c + 1.0) * p.len() as f64 > LP_EARLY_MAX_CELLS {
+                2
+            } else {
+                0
+            };
             loop {
                 let slice_limits = budget.limits_for(slice_nodes);
                 let mut slice = Budget {
@@ -472,7 +484,7 @@ fn phase2(
                 if d != Decision::Stopped || budget_spent(budget) {
                     break d;
                 }
-                if round == 0 && c_run < lp_failed_at {
+                if round == lp_round && c_run < lp_failed_at {
                     if lp_refutes(p, m, c, integral, budget) {
                         break Decision::DoesNotFit;
                     }
