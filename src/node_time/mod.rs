@@ -9,17 +9,31 @@
 //! nt = min over assignments a: J -> {1..k} of  max_i  sum_{j : a(j) = i} p_j
 //! ```
 //!
-//! Four methods, each in its own file:
-//! - [`exact()`] (`exact.rs`): combinatorial branch and bound, LPT as first upper bound,
-//!   then bin completion (`decision.rs`) or, for real-valued times with many drones per pad,
-//!   sequential partitioning (`partition.rs`); proven optimal unless a limit stops it
-//!   ([`exact_with`] picks the second search);
+//! Four methods:
+//! - [`exact()`] (`exact/`): combinatorial branch and bound (`exact/assignment.rs`), LPT as
+//!   first upper bound, then bin completion (`exact/completion.rs`) or, for real-valued times
+//!   with many drones per pad, sequential partitioning (`exact/partition.rs`); proven optimal
+//!   unless a limit stops it ([`exact_with`] picks the second search);
 //! - [`milp()`] (`milp.rs`): the assignment MILP with symmetry breaking on every enabled
 //!   [`MilpBackend`];
-//! - [`lpt()`] (`lpt.rs`): Graham's longest-processing-time list schedule, a
+//! - [`lpt()`] (`heuristics/lpt.rs`): Graham's longest-processing-time list schedule, a
 //!   `4/3 - 1/(3k)` approximation;
 //! - [`brute()`] (`brute.rs`): the paper's brute force over every assignment, refused
 //!   above [`brute::BRUTE_MAX_ASSIGNMENTS`] assignments.
+//!
+//! The files by role:
+//! - `mod.rs`: the shared types ([`Limits`], [`NodeTimeSolution`], [`REL_TOL`]), validation and
+//!   the public entry points;
+//! - `bounds/`: lower bounds: the root bound, the Martello–Toth `L2`, the two-class count bound
+//!   and their lift by bisection (`mod.rs`), the bin-packing LP bound (`lp.rs`);
+//! - `heuristics/`: LPT (`lpt.rs`), largest differencing (`ldm.rs`), the move/swap local search
+//!   (`local_search.rs`), the perfect-partition search (`perfect.rs`);
+//! - `search/`: what the exact searches share: the node and time budget with its one limit check
+//!   (`budget.rs`), the memo of failed states (`memo.rs`), the outcome of a decision query;
+//! - `exact/`: the phase policy and its tuning constants (`mod.rs`), the assignment branch and
+//!   bound (`assignment.rs`), bin completion (`completion.rs`), sequential partitioning
+//!   (`partition.rs`);
+//! - `milp.rs`, `brute.rs`: the cross-check solvers, independent of the exact search.
 //!
 //! Floating-point tolerance: charge times are `f64` minutes. Two makespans are equal when they
 //! differ by at most [`REL_TOL`] times the larger; "proven optimal" means no assignment has a makespan
@@ -41,18 +55,17 @@ use crate::error::{show, Error, Result, Violation};
 use crate::solver::{MilpBackend, SolveStatus};
 use serde::Serialize;
 
+mod bounds;
 pub mod brute;
-mod decision;
 pub mod exact;
-mod lp_bound;
-pub mod lpt;
+mod heuristics;
 pub mod milp;
-mod partition;
-mod perfect;
+mod search;
 
+pub(crate) use bounds::lower_bound_sorted;
 pub use brute::brute;
 pub use exact::{exact, exact_with, ExactSearch};
-pub use lpt::lpt;
+pub use heuristics::lpt;
 pub use milp::milp;
 
 /// Relative tolerance under which two makespans count as equal (`1e-9`).
@@ -274,14 +287,14 @@ pub fn lp_lower_bound(pads: usize, charge_times_min: &[f64], limits: &Limits) ->
     }
     let p = &sorted[..positive];
     let mut pad_of = vec![0; positive];
-    let ub = lpt::lpt_sorted(pads, p, &mut pad_of);
-    let mut budget = decision::Budget {
+    let ub = heuristics::lpt::lpt_sorted(pads, p, &mut pad_of);
+    let mut budget = search::Budget {
         nodes: 0,
         start: std::time::Instant::now(),
         limits,
     };
     Ok(
-        match lp_bound::lp_lift(p, pads, lb, ub, integral, &mut budget) {
+        match bounds::lp::lp_lift(p, pads, lb, ub, integral, &mut budget) {
             Some(c) if integral => lb.max(c + 1.0),
             Some(c) => lb.max(c),
             None => lb,
@@ -306,33 +319,6 @@ pub(crate) fn all_integral(charge_times_min: &[f64]) -> bool {
         && charge_times_min
             .iter()
             .all(|&p| p.fract() == 0.0 && p <= INTEGRAL_MAX_MIN)
-}
-
-/// Root lower bound on the optimal makespan for times sorted in decreasing order:
-/// `max(p_1, sum/k, max over t >= 1 with t*k < n of p_{tk-t+1} + ... + p_{tk+1})`
-/// (1-based; `t = 1` gives `p_k + p_{k+1}`), rounded up when `integral`.
-///
-/// The last family: among the `t*k + 1` longest jobs some pad holds at least `t + 1` (pigeonhole),
-/// and those weigh at least the `t + 1` shortest of them.
-pub(crate) fn lower_bound_sorted(pads: usize, sorted_desc: &[f64], integral: bool) -> f64 {
-    let n = sorted_desc.len();
-    if n == 0 {
-        return 0.0;
-    }
-    let total: f64 = sorted_desc.iter().sum();
-    let mut lb = sorted_desc[0].max(total / pads as f64);
-    let mut t = 1;
-    while t * pads < n {
-        let last = t * pads; // 0-based index of job t*k+1
-        let s: f64 = sorted_desc[last - t..=last].iter().sum();
-        lb = lb.max(s);
-        t += 1;
-    }
-    if integral {
-        // sum/k may be fractional; a whole-number optimum is at least its ceiling.
-        lb = (lb - 1e-9).ceil().max(0.0);
-    }
-    lb
 }
 
 /// Drone indices sorted by decreasing charge time (ties by index), and the sorted times.

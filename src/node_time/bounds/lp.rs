@@ -17,8 +17,8 @@
 //! needed (Farley 1990). That is the bound returned: whatever the LP solver's accuracy, it is a
 //! proof.
 
-use super::decision::{Budget, CAP_SLACK};
-use super::REL_TOL;
+use crate::node_time::search::{Budget, CAP_SLACK};
+use crate::node_time::REL_TOL;
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
     DefaultSettings, DefaultSolver, IPSolver, NonnegativeConeT, SolverStatus, SupportedConeT,
@@ -346,7 +346,7 @@ pub(crate) fn lp_bins(
         if target.is_some_and(|k| best > k || value <= k as f64 + 1e-7)
             || (vmax as f64) <= SCALE * (1.0 + 1e-7)
             || patterns.contains(&a)
-            || budget_spent(budget)
+            || budget.spent()
         {
             return out;
         }
@@ -382,7 +382,7 @@ pub(crate) fn lp_lift(
     }
     let (mut fail, mut ok) = (lo, hi);
     for _ in 0..60 {
-        if budget_spent(budget) {
+        if budget.spent() {
             break;
         }
         if integral {
@@ -404,17 +404,6 @@ pub(crate) fn lp_lift(
         }
     }
     Some(fail)
-}
-
-fn budget_spent(budget: &Budget) -> bool {
-    budget
-        .limits
-        .node_limit
-        .is_some_and(|max| budget.nodes >= max)
-        || budget
-            .limits
-            .time_limit_s
-            .is_some_and(|t| budget.start.elapsed().as_secs_f64() >= t)
 }
 
 #[cfg(test)]
@@ -459,9 +448,9 @@ mod tests {
         };
         let lb = crate::node_time::lower_bound_sorted(2, &p, true);
         assert_eq!(lb, 11.0);
-        assert_eq!(crate::node_time::decision::l2_bins(&p, 11.0), 2);
+        assert_eq!(crate::node_time::bounds::l2_bins(&p, 11.0), 2);
         assert_eq!(
-            crate::node_time::decision::bound_lift(&p, 2, lb, 12.0, true),
+            crate::node_time::bounds::bound_lift(&p, 2, lb, 12.0, true),
             None
         );
         let r = lp_bins(&p, 11.0, true, None, &mut budget);

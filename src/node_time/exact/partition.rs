@@ -21,8 +21,8 @@
 //! argument, and there the assignment search and bin completion explore up to `2^r` sets; the
 //! window queries see only the few sets whose load lies in the window.
 
-use super::decision::{Budget, Decision, WordHasher};
-use super::{le_tol, REL_TOL};
+use crate::node_time::search::{Budget, Decision, WordHasher};
+use crate::node_time::{le_tol, REL_TOL};
 use std::cell::RefCell;
 use std::cmp::Reverse;
 use std::collections::{BinaryHeap, HashMap};

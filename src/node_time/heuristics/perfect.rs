@@ -9,7 +9,7 @@
 //! splits that keep both loads within the current largest load (a kick), and the descent
 //! resumes. Any assignment it returns has its makespan recomputed by the caller.
 
-use super::decision::Budget;
+use crate::node_time::search::Budget;
 use rand::seq::SliceRandom;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -112,7 +112,7 @@ pub(crate) fn aim_at(
             pad_of.copy_from_slice(&cur);
             return Some(lmax as f64);
         }
-        if budget.nodes >= stop_at || spent_limits(budget) {
+        if budget.nodes >= stop_at || budget.spent() {
             return None;
         }
         // The pads with the largest load, one at random.
@@ -192,17 +192,6 @@ pub(crate) fn aim_at(
         }
         let _ = spent;
     }
-}
-
-fn spent_limits(budget: &Budget) -> bool {
-    budget
-        .limits
-        .node_limit
-        .is_some_and(|max| budget.nodes >= max)
-        || budget
-            .limits
-            .time_limit_s
-            .is_some_and(|t| budget.start.elapsed().as_secs_f64() >= t)
 }
 
 #[cfg(test)]

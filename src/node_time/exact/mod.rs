@@ -1,9 +1,9 @@
 //! Exact node time for P||Cmax in two phases (see `models/node_time.md`, "Exact method").
 //!
-//! Phase 1, the assignment branch and bound: jobs (drones) are taken in decreasing charge time
-//! `p_1 >= ... >= p_n`; a node of the search tree fixes the pads of jobs `1..j`. The search only
-//! looks for assignments strictly better than the incumbent `UB`, so every pad load must stay
-//! within the capacity
+//! Phase 1, the assignment branch and bound (`assignment.rs`): jobs (drones) are taken in
+//! decreasing charge time `p_1 >= ... >= p_n`; a node of the search tree fixes the pads of jobs
+//! `1..j`. The search only looks for assignments strictly better than the incumbent `UB`, so
+//! every pad load must stay within the capacity
 //!
 //! ```text
 //! cap = UB - 1            when every p_j is a whole number of minutes,
@@ -22,27 +22,31 @@
 //!   whole minutes, at least 5 per pad and an optimum expected above `sum/k`: sequential
 //!   partitioning (`partition.rs`), the fullest pad's set in increasing load, each set found by
 //!   meet in the middle or read from the cache of sets near `sum/k`;
-//! - otherwise (`decision.rs`): local search on the incumbent, the Martello–Toth `L2` and
-//!   two-class count bounds, and the decision version "do all jobs fit on `k` pads of capacity
-//!   `C`?" by bin completion, first at `C = LB` (or, when the optimum is expected above `sum/k`,
+//! - otherwise: local search on the incumbent (`heuristics/local_search.rs`), the Martello–Toth
+//!   `L2` and two-class count bounds (`bounds/`), and the decision version "do all jobs fit on
+//!   `k` pads of capacity `C`?" by bin completion (`completion.rs`), first at `C = LB` (or, when the optimum is expected above `sum/k`,
 //!   a little above it), then just below each new incumbent and at midpoints of the gap between
 //!   `LB` and `UB` (whole minutes: of the whole makespans not yet excluded).
 
-use super::decision::{bound_lift, local_search, BinCompletion, Budget, Decision, Memo, CAP_SLACK};
-use super::lp_bound::lp_refutes;
-use super::lpt::{ldm_sorted, lpt_sorted};
-use super::partition::{partition, PARTITION_MAX_DRONES};
-use super::perfect::aim_at;
+mod assignment;
+mod completion;
+mod partition;
+
+use super::bounds::bound_lift;
+use super::bounds::lp::lp_refutes;
+use super::heuristics::lpt::lpt_sorted;
+use super::heuristics::{aim_at, ldm_sorted, local_search};
+use super::search::{Budget, Decision, Memo, CAP_SLACK};
 use super::{
     all_integral, elapsed_ms, le_tol, lists_from_pad_of, lower_bound_sorted, one_per_pad,
     sort_desc, validate, validate_limits, Limits, NodeTimeMethod, NodeTimeSolution, REL_TOL,
 };
 use crate::error::Result;
 use crate::solver::SolveStatus;
+use assignment::run_assignment_search;
+use completion::BinCompletion;
+use partition::{partition, PARTITION_MAX_DRONES};
 use std::time::Instant;
-
-/// How often (in nodes) the search reads the clock.
-const CLOCK_EVERY_NODES: u64 = 1024;
 
 /// Nodes of the assignment search before the decision version takes over (phase 1).
 const PHASE1_NODES: u64 = 2000;
@@ -95,244 +99,8 @@ const PARTITION_SWITCH_DRONES_PER_PAD: usize = 6;
 /// instance suits partitioning (75,000 queries; on another 200, 52,000 queries and 780,000 nodes).
 const PARTITION_SWITCH_NODES: u64 = 1_000_000;
 
-/// Depth-first branch and bound over the positive jobs, sorted decreasingly.
-struct Search<'a> {
-    /// `p[j]`, decreasing, all > 0.
-    p: &'a [f64],
-    /// `rem[j] = p[j] + ... + p[n-1]`.
-    rem: Vec<f64>,
-    /// Number of pads `m` in use.
-    m: usize,
-    integral: bool,
-    /// Root lower bound.
-    lb: f64,
-    /// Incumbent makespan.
-    ub: f64,
-    /// Pad of each sorted job in the incumbent.
-    best: Vec<usize>,
-    /// Largest load an improving assignment may have.
-    cap: f64,
-    loads: Vec<f64>,
-    pad_of: Vec<usize>,
-    /// Load of the pad of job `j` before job `j` was put on it (exact restore on backtrack).
-    prev: Vec<f64>,
-    /// Candidate pads of job `j`: `cands[j*m .. j*m + ncand[j]]`, increasing load.
-    cands: Vec<usize>,
-    ncand: Vec<usize>,
-    /// Whether job `j`'s pad was fixed by dominance (one candidate, no branching).
-    forced: Vec<bool>,
-    /// Next candidate of job `j` to try.
-    next: Vec<usize>,
-    nodes: u64,
-}
-
-impl Search<'_> {
-    fn cap_for(&self, ub: f64) -> f64 {
-        if self.integral {
-            ub - 1.0
-        } else {
-            ub - REL_TOL * ub
-        }
-    }
-
-    fn proven(&self) -> bool {
-        if self.integral {
-            self.ub <= self.lb
-        } else {
-            le_tol(self.ub, self.lb)
-        }
-    }
-
-    /// Fills the candidate list of job `j` under the current capacity.
-    fn expand(&mut self, j: usize) {
-        let m = self.m;
-        let pj = self.p[j];
-        let p_min = self.p[self.p.len() - 1];
-        let cap = self.cap;
-        self.ncand[j] = 0;
-        self.next[j] = 0;
-        self.forced[j] = false;
-        // Useful slack bound.
-        let mut useful = 0.0;
-        for &l in &self.loads {
-            let s = cap - l;
-            if s >= p_min {
-                useful += s;
-            }
-        }
-        if useful < self.rem[j] {
-            return;
-        }
-        let n = self.p.len();
-        // Two shortest jobs after j: a pad whose slack is below their sum takes at most one more.
-        let two_shortest = if n >= j + 3 {
-            self.p[n - 1] + self.p[n - 2]
-        } else {
-            f64::INFINITY
-        };
-        // Identical consecutive jobs: job j goes to a pad at least as loaded as the one job j-1
-        // went to (before it), unless job j-1 was placed by dominance.
-        let floor = if j > 0 && pj == self.p[j - 1] && !self.forced[j - 1] {
-            self.prev[j - 1]
-        } else {
-            f64::NEG_INFINITY
-        };
-        let base = j * m;
-        let mut count = 0;
-        for i in 0..m {
-            let l = self.loads[i];
-            if l + pj > cap || l < floor {
-                continue;
-            }
-            // Dominance: pad i fits job j and can take at most one later job (<= p_j): put j
-            // there and branch no further.
-            if cap - l < two_shortest {
-                self.cands[base] = i;
-                self.ncand[j] = 1;
-                self.forced[j] = true;
-                return;
-            }
-            // Symmetry: pads with equal load lead to the same subtrees.
-            if self.cands[base..base + count]
-                .iter()
-                .any(|&c| self.loads[c] == l)
-            {
-                continue;
-            }
-            // Insert keeping increasing load.
-            let mut pos = count;
-            while pos > 0 && self.loads[self.cands[base + pos - 1]] > l {
-                self.cands[base + pos] = self.cands[base + pos - 1];
-                pos -= 1;
-            }
-            self.cands[base + pos] = i;
-            count += 1;
-        }
-        self.ncand[j] = count;
-    }
-
-    /// Runs the search; returns `true` when it finished (proof complete), `false` when a limit
-    /// stopped it.
-    fn run(&mut self, start: Instant, limits: &Limits) -> bool {
-        let n = self.p.len();
-        let mut j = 0;
-        self.expand(0);
-        loop {
-            // Take the next candidate of job j that still fits under the (possibly lowered) cap.
-            let mut placed = false;
-            while self.next[j] < self.ncand[j] {
-                let i = self.cands[j * self.m + self.next[j]];
-                self.next[j] += 1;
-                if self.loads[i] + self.p[j] > self.cap {
-                    continue;
-                }
-                self.prev[j] = self.loads[i];
-                self.loads[i] += self.p[j];
-                self.pad_of[j] = i;
-                placed = true;
-                break;
-            }
-            if placed {
-                self.nodes += 1;
-                if j + 1 == n {
-                    // Leaf: every load is within cap < UB, a strictly better incumbent.
-                    self.ub = self.loads.iter().copied().fold(0.0, f64::max);
-                    self.best.copy_from_slice(&self.pad_of);
-                    if self.proven() {
-                        return true;
-                    }
-                    self.cap = self.cap_for(self.ub);
-                    self.loads[self.pad_of[j]] = self.prev[j];
-                    if self.limit_hit(start, limits) {
-                        return false;
-                    }
-                    continue;
-                }
-                if self.limit_hit(start, limits) {
-                    return false;
-                }
-                j += 1;
-                self.expand(j);
-                continue;
-            }
-            // A dominance decision holds only while the forced pad still fits job j: once a
-            // better incumbent lowered the capacity below that, branch over the other pads.
-            if self.forced[j] {
-                let i = self.cands[j * self.m];
-                if self.loads[i] + self.p[j] > self.cap {
-                    self.expand(j);
-                    continue;
-                }
-            }
-            // Job j exhausted: backtrack.
-            if j == 0 {
-                return true;
-            }
-            j -= 1;
-            self.loads[self.pad_of[j]] = self.prev[j];
-        }
-    }
-
-    fn limit_hit(&self, start: Instant, limits: &Limits) -> bool {
-        if let Some(max_nodes) = limits.node_limit {
-            if self.nodes >= max_nodes {
-                return true;
-            }
-        }
-        if let Some(t) = limits.time_limit_s {
-            if self.nodes.is_multiple_of(CLOCK_EVERY_NODES) && start.elapsed().as_secs_f64() >= t {
-                return true;
-            }
-        }
-        false
-    }
-}
-
-/// Runs the assignment branch and bound from incumbent `ub` (pads in `best`, updated in place)
-/// with the node counter starting at `nodes0`; returns (proof complete, incumbent, nodes).
-#[allow(clippy::too_many_arguments)]
-fn run_assignment_search(
-    m: usize,
-    p: &[f64],
-    integral: bool,
-    lb: f64,
-    ub: f64,
-    best: &mut [usize],
-    start: Instant,
-    limits: &Limits,
-    nodes0: u64,
-) -> (bool, f64, u64) {
-    let n = p.len();
-    let mut rem = vec![0.0; n + 1];
-    for j in (0..n).rev() {
-        rem[j] = rem[j + 1] + p[j];
-    }
-    let mut search = Search {
-        p,
-        rem,
-        m,
-        integral,
-        lb,
-        ub,
-        best: best.to_vec(),
-        cap: 0.0,
-        loads: vec![0.0; m],
-        pad_of: vec![0; n],
-        prev: vec![0.0; n],
-        cands: vec![0; n * m],
-        ncand: vec![0; n],
-        forced: vec![false; n],
-        next: vec![0; n],
-        nodes: nodes0,
-    };
-    search.cap = search.cap_for(ub);
-    let done = search.run(start, limits);
-    best.copy_from_slice(&search.best);
-    (done, search.ub, search.nodes)
-}
-
-/// Nodes one bin-completion decision runs before the LP bound (`lp_bound.rs`) and the
-/// perfect-partition search (`perfect.rs`) are tried at its capacity (then in slices doubling
+/// Nodes one bin-completion decision runs before the LP bound (`bounds/lp.rs`) and the
+/// perfect-partition search (`heuristics/perfect.rs`) are tried at its capacity (then in slices doubling
 /// from this): the decisions of small swarms end long before, so they never pay for either.
 const STALL_NODES: u64 = 100_000;
 
@@ -341,18 +109,6 @@ const STALL_NODES: u64 = 100_000;
 /// third slice, by which time bin completion has usually decided (u3 of the classical classes:
 /// 50 drones, 10 pads, times up to 10,000 min; `models/experiments/node_time.md`).
 const LP_EARLY_MAX_CELLS: f64 = (1u64 << 20) as f64;
-
-/// Whether the caller's node or time limit is reached.
-fn budget_spent(budget: &Budget) -> bool {
-    budget
-        .limits
-        .node_limit
-        .is_some_and(|max| budget.nodes >= max)
-        || budget
-            .limits
-            .time_limit_s
-            .is_some_and(|t| budget.start.elapsed().as_secs_f64() >= t)
-}
 
 /// Largest load of the assignment `pad_of` of the sorted drones `p`.
 fn makespan_sorted(m: usize, p: &[f64], pad_of: &[usize]) -> f64 {
@@ -454,7 +210,7 @@ fn phase2(
             };
             let d = search.decide(&mut trial);
             budget.nodes = trial.nodes;
-            if d == Decision::Stopped && !budget_spent(budget) {
+            if d == Decision::Stopped && !budget.spent() {
                 memo = search.into_memo();
                 continue;
             }
@@ -481,14 +237,14 @@ fn phase2(
                 };
                 let d = search.decide(&mut slice);
                 budget.nodes = slice.nodes;
-                if d != Decision::Stopped || budget_spent(budget) {
+                if d != Decision::Stopped || budget.spent() {
                     break d;
                 }
                 if round == lp_round && c_run < lp_failed_at {
                     if lp_refutes(p, m, c, integral, budget) {
                         break Decision::DoesNotFit;
                     }
-                    if !budget_spent(budget) {
+                    if !budget.spent() {
                         lp_failed_at = c_run;
                     }
                 }
@@ -499,7 +255,7 @@ fn phase2(
                         break Decision::Fits;
                     }
                 }
-                if budget_spent(budget) {
+                if budget.spent() {
                     break Decision::Stopped;
                 }
                 round += 1;
@@ -655,7 +411,7 @@ pub enum ExactSearch {
     /// drones per pad; bin completion otherwise (what [`exact()`] does).
     #[default]
     Auto,
-    /// Bin completion under bisection of the makespan (`decision.rs`).
+    /// Bin completion under bisection of the makespan (`completion.rs`).
     BinCompletion,
     /// Sequential partitioning (`partition.rs`); bin completion above 40 drones with positive
     /// charge time.
@@ -830,7 +586,7 @@ pub(crate) fn exact_phased(
             let pad = &mut pad_sorted[..positive];
             (finished, lb, _) = partition(m, p, lb, ub, pad, &mut part_budget);
             budget.nodes = part_budget.nodes;
-            if !finished && switch && !budget_spent(&budget) {
+            if !finished && switch && !budget.spent() {
                 (finished, lb, _) = phase2(m, p, integral, lb, ub, pad, &mut budget);
             }
         } else if !finished && !out_of_budget {

@@ -1,0 +1,60 @@
+//! Node and time budget shared by every search of one solve.
+
+use crate::node_time::Limits;
+use std::time::Instant;
+
+/// How often (in nodes) the search reads the clock.
+pub(crate) const CLOCK_EVERY_NODES: u64 = 1024;
+
+/// Node and time budget shared by every search of one solve.
+pub(crate) struct Budget<'l> {
+    /// Nodes counted so far (all phases).
+    pub nodes: u64,
+    /// Start of the solve.
+    pub start: Instant,
+    /// The caller's limits.
+    pub limits: &'l Limits,
+}
+
+impl Budget<'_> {
+    /// The caller's limits with at most `extra` nodes beyond those spent so far: the budget of a
+    /// sub-search that may stop early and hand back.
+    pub(crate) fn limits_for(&self, extra: u64) -> Limits {
+        Limits {
+            time_limit_s: self.limits.time_limit_s,
+            node_limit: Some(
+                self.limits
+                    .node_limit
+                    .unwrap_or(u64::MAX)
+                    .min(self.nodes.saturating_add(extra)),
+            ),
+        }
+    }
+
+    /// Whether the caller's node or time limit is reached (the clock read every time).
+    pub(crate) fn spent(&self) -> bool {
+        self.limits.node_limit.is_some_and(|max| self.nodes >= max)
+            || self
+                .limits
+                .time_limit_s
+                .is_some_and(|t| self.start.elapsed().as_secs_f64() >= t)
+    }
+
+    /// Counts one placement; true when a limit is reached.
+    pub(crate) fn tick(&mut self) -> bool {
+        self.nodes += 1;
+        if let Some(max_nodes) = self.limits.node_limit {
+            if self.nodes >= max_nodes {
+                return true;
+            }
+        }
+        if let Some(t) = self.limits.time_limit_s {
+            if self.nodes.is_multiple_of(CLOCK_EVERY_NODES)
+                && self.start.elapsed().as_secs_f64() >= t
+            {
+                return true;
+            }
+        }
+        false
+    }
+}

@@ -1,0 +1,25 @@
+//! What every search of one exact solve shares: the node and time [`Budget`] with its one limit
+//! check, the [`Memo`] of failed bin-completion states, and the [`Decision`] outcome of a
+//! capacity query "do all drones fit on `k` pads with every load `<= C`?".
+
+mod budget;
+mod memo;
+
+pub(crate) use budget::{Budget, CLOCK_EVERY_NODES};
+pub(crate) use memo::{Memo, WordHasher, MEMO_MAX_STATES};
+
+/// Real-valued times are checked against `C (1 + CAP_SLACK)`: exact arithmetic would fill the
+/// last pad to exactly its share of the waste, and rounding must not turn that into a failure.
+/// A failure then proves `nt > C`; a success returns an assignment whose makespan is recomputed.
+pub(crate) const CAP_SLACK: f64 = 1e-11;
+
+/// Outcome of a decision search.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Decision {
+    /// Every drone fits; the pads are in the search's `pad_of`.
+    Fits,
+    /// Proven: no assignment has every load `<= C`.
+    DoesNotFit,
+    /// A node or time limit stopped the search.
+    Stopped,
+}
