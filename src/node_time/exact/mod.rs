@@ -218,7 +218,8 @@ fn phase2(
         } else {
             // Bin completion in slices, from STALL_NODES nodes, doubling. After the first slice
             // (the third for a large knapsack table, LP_EARLY_MAX_CELLS) the LP bound is tried
-            // at `c` once (not above a capacity where it failed); after
+            // at `c` once (not above a capacity where it failed); at the lower bound itself,
+            // after
             // every slice, with whole minutes, the perfect-partition search aims at `c` with as
             // many nodes as the slice. Bin completion resumes with its memo.
             let mut slice_nodes = STALL_NODES;
@@ -248,7 +249,7 @@ fn phase2(
                         lp_failed_at = c_run;
                     }
                 }
-                if integral {
+                if integral && c <= lb {
                     let mut trial = pad_of.to_vec();
                     if aim_at(m, p, c, &mut trial, slice_nodes, round, budget).is_some() {
                         aimed = Some(trial);
