@@ -219,9 +219,8 @@ fn phase2(
             // Bin completion in slices, from STALL_NODES nodes, doubling. After the first slice
             // (the third for a large knapsack table, LP_EARLY_MAX_CELLS) the LP bound is tried
             // at `c` once (not above a capacity where it failed); at the lower bound itself,
-            // after
-            // every slice, with whole minutes, the perfect-partition search aims at `c` with as
-            // many nodes as the slice. Bin completion resumes with its memo.
+            // after every slice, with whole minutes, the perfect-partition search aims at `c`
+            // with as many nodes as the slice. Bin completion resumes with its memo.
             let mut slice_nodes = STALL_NODES;
             let mut round = 0u64;
             let lp_round = if integral && (c + 1.0) * p.len() as f64 > LP_EARLY_MAX_CELLS {
