@@ -18,7 +18,6 @@
 //! proof.
 
 use crate::node_time::search::{Budget, CAP_SLACK};
-use crate::node_time::REL_TOL;
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
     DefaultSettings, DefaultSolver, IPSolver, NonnegativeConeT, SolverStatus, SupportedConeT,
@@ -380,30 +379,9 @@ pub(crate) fn lp_lift(
     if !lp_refutes(p, k, lo, integral, budget) {
         return None;
     }
-    let (mut fail, mut ok) = (lo, hi);
-    for _ in 0..60 {
-        if budget.spent() {
-            break;
-        }
-        if integral {
-            if ok - fail <= 1.0 {
-                break;
-            }
-        } else if ok - fail <= REL_TOL * ok {
-            break;
-        }
-        let mid = if integral {
-            ((fail + ok) / 2.0).floor()
-        } else {
-            0.5 * (fail + ok)
-        };
-        if lp_refutes(p, k, mid, integral, budget) {
-            fail = mid;
-        } else {
-            ok = mid;
-        }
-    }
-    Some(fail)
+    Some(super::largest_refuted(lo, hi, integral, |c| {
+        (!budget.spent()).then(|| lp_refutes(p, k, c, integral, budget))
+    }))
 }
 
 #[cfg(test)]

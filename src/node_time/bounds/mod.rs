@@ -243,7 +243,21 @@ pub(crate) fn bound_lift(p: &[f64], k: usize, lo: f64, hi: f64, integral: bool) 
     if pairs.is_empty() && l2_bins(p, widen(lo)) <= k {
         return None;
     }
-    let (mut fail, mut ok) = (lo, hi);
+    Some(largest_refuted(lo, hi, integral, |c| {
+        Some(proves(widen(c)))
+    }))
+}
+
+/// Largest capacity found refuted by bisection in `[fail, ok)`, `fail` known refuted: stops at a
+/// width of 1 min (whole minutes, bisecting at whole minutes) or `REL_TOL` relative, after 60
+/// steps, or when `refutes` returns `None` (a spent budget). Feasibility is monotone in the
+/// capacity, so any refuted capacity is a valid lower bound.
+pub(crate) fn largest_refuted(
+    mut fail: f64,
+    mut ok: f64,
+    integral: bool,
+    mut refutes: impl FnMut(f64) -> Option<bool>,
+) -> f64 {
     for _ in 0..60 {
         if integral {
             if ok - fail <= 1.0 {
@@ -257,13 +271,13 @@ pub(crate) fn bound_lift(p: &[f64], k: usize, lo: f64, hi: f64, integral: bool) 
         } else {
             0.5 * (fail + ok)
         };
-        if proves(widen(mid)) {
-            fail = mid;
-        } else {
-            ok = mid;
+        match refutes(mid) {
+            Some(true) => fail = mid,
+            Some(false) => ok = mid,
+            None => break,
         }
     }
-    Some(fail)
+    fail
 }
 
 #[cfg(test)]
