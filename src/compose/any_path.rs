@@ -4,7 +4,7 @@
 //! resource-constrained shortest-path search from `u`. See models/compose.md, "Optimal route",
 //! "Any hop path".
 
-use super::optimal::{improves, relax, BestArc};
+use super::optimal::{improves, least_unsettled, relax, BestArc};
 use super::plan::{Plan, PlanOutcome, RouteOptimality};
 use super::{HopEnd, HopPaths, Planner};
 use crate::eaas::{SharingPolicy, ENERGY_TOL_MAH};
@@ -182,16 +182,7 @@ impl Planner<'_> {
         let mut settled = vec![false; n];
         cost_min[source] = 0.0;
         loop {
-            let mut next: Option<usize> = None;
-            for v in 0..n {
-                if settled[v] || !cost_min[v].is_finite() {
-                    continue;
-                }
-                if next.is_none_or(|u| cost_min[v] < cost_min[u]) {
-                    next = Some(v);
-                }
-            }
-            let Some(u) = next else {
+            let Some(u) = least_unsettled(&cost_min, &settled) else {
                 // The shortest path does not fly (else the search would have reached the
                 // destination): its first failure.
                 let flight = self.fly(&direct, &full, SharingPolicy::None, HopEnd::NoStop)?;

@@ -102,18 +102,8 @@ impl Planner<'_> {
         let mut settled = vec![false; n];
         cost_min[source] = 0.0;
         loop {
-            // The unsettled node of least cost, the lowest index among equals.
-            let mut next: Option<usize> = None;
-            for v in 0..n {
-                // Only the source, the destination and nodes with pads ever get a finite cost.
-                if settled[v] || !cost_min[v].is_finite() {
-                    continue;
-                }
-                if next.is_none_or(|u| cost_min[v] < cost_min[u]) {
-                    next = Some(v);
-                }
-            }
-            let Some(u) = next else {
+            // Only the source, the destination and nodes with pads ever get a finite cost.
+            let Some(u) = least_unsettled(&cost_min, &settled) else {
                 plan.route_optimality = Some(optimality);
                 return Ok(plan.fail(PlanOutcome::NoStopSequence {
                     from: graph.id_of(source).to_string(),
@@ -263,6 +253,21 @@ impl Planner<'_> {
 /// cost is then above `limit`, never equal to it, so arcs of equal cost are always flown.
 fn beyond(bound_min: f64, limit_min: f64) -> bool {
     bound_min > limit_min
+}
+
+/// The unsettled node of least finite cost, the lowest index among equals; `None` when every
+/// node of finite cost is settled. O(n).
+pub(super) fn least_unsettled(cost_min: &[f64], settled: &[bool]) -> Option<usize> {
+    let mut next: Option<usize> = None;
+    for v in 0..cost_min.len() {
+        if settled[v] || !cost_min[v].is_finite() {
+            continue;
+        }
+        if next.is_none_or(|u| cost_min[v] < cost_min[u]) {
+            next = Some(v);
+        }
+    }
+    next
 }
 
 /// Keeps `arc` into `v` (if the hop flew) as the best arc into `v` when its cost, the tail's
