@@ -167,7 +167,9 @@ impl<'a> BinCompletion<'a> {
     }
 
     /// Chooses which of `cand[pos..]` join pad `b`, whose room is `r`; `min_out` is the shortest
-    /// fitting drone left out so far (the pad must end up with less room than that).
+    /// fitting drone left out so far (the pad must end up with less room than that). Taking a
+    /// drone recurses, leaving it out loops, so the recursion is at most one frame per drone
+    /// placed and two per pad: `n + 2 k` deep.
     #[allow(clippy::too_many_arguments)]
     fn complete(
         &mut self,
@@ -177,45 +179,47 @@ impl<'a> BinCompletion<'a> {
         suffix: &[f64],
         mut pos: usize,
         r: f64,
-        min_out: f64,
+        mut min_out: f64,
         budget: &mut Budget,
     ) -> Decision {
-        // Drones too long for the room are left out; they stay too long for any smaller room.
-        while pos < cand.len() && self.p[cand[pos]] > r {
-            pos += 1;
-        }
-        // Even taking every remaining candidate, the pad wastes more than allowed, or a drone left
-        // out would still fit (the pad is not maximal).
-        let least_room = r - suffix[pos];
-        if least_room > waste + self.tol || min_out <= least_room - self.tol {
-            return Decision::DoesNotFit;
-        }
-        if pos == cand.len() {
-            if self.dominated(cand, r) {
+        loop {
+            // Drones too long for the room are left out; they stay too long for any smaller room.
+            while pos < cand.len() && self.p[cand[pos]] > r {
+                pos += 1;
+            }
+            // Even taking every remaining candidate, the pad wastes more than allowed, or a drone
+            // left out would still fit (the pad is not maximal).
+            let least_room = r - suffix[pos];
+            if least_room > waste + self.tol || min_out <= least_room - self.tol {
                 return Decision::DoesNotFit;
             }
-            return self.fill_pad(b + 1, waste - r, budget);
+            if pos == cand.len() {
+                if self.dominated(cand, r) {
+                    return Decision::DoesNotFit;
+                }
+                return self.fill_pad(b + 1, waste - r, budget);
+            }
+            let j = cand[pos];
+            let v = self.p[j];
+            // Take drone j.
+            self.set(j, true);
+            self.pad_of[j] = b;
+            let out = if budget.tick() {
+                Decision::Stopped
+            } else {
+                self.complete(b, waste, cand, suffix, pos + 1, r - v, min_out, budget)
+            };
+            self.set(j, false);
+            if out != Decision::DoesNotFit {
+                return out;
+            }
+            // Leave drone j out, and with it every later drone of the same length (taking a later
+            // copy instead of j gives the same pad).
+            pos += 1;
+            while pos < cand.len() && self.p[cand[pos]] == v {
+                pos += 1;
+            }
+            min_out = min_out.min(v);
         }
-        let j = cand[pos];
-        let v = self.p[j];
-        // Take drone j.
-        self.set(j, true);
-        self.pad_of[j] = b;
-        let out = if budget.tick() {
-            Decision::Stopped
-        } else {
-            self.complete(b, waste, cand, suffix, pos + 1, r - v, min_out, budget)
-        };
-        self.set(j, false);
-        if out != Decision::DoesNotFit {
-            return out;
-        }
-        // Leave drone j out, and with it every later drone of the same length (taking a later
-        // copy instead of j gives the same pad).
-        let mut q = pos + 1;
-        while q < cand.len() && self.p[cand[q]] == v {
-            q += 1;
-        }
-        self.complete(b, waste, cand, suffix, q, r, min_out.min(v), budget)
     }
 }

@@ -51,9 +51,9 @@ use std::time::Instant;
 /// Nodes of the assignment search before the decision version takes over (phase 1).
 const PHASE1_NODES: u64 = 2000;
 
-/// Largest `n k` for the bin-completion search (its recursion depth is at most `n k`); larger
-/// instances continue with the assignment search.
-const DECISION_MAX_NK: usize = 3000;
+/// Deepest recursion of the bin-completion search, `n + 2 k` frames (`completion.rs`), kept well
+/// within a 2 MiB thread stack; larger instances continue with the assignment search.
+const DECISION_MAX_DEPTH: usize = 3000;
 
 /// Real-valued times go to sequential partitioning with more than this many drones per pad.
 const PARTITION_REAL_DRONES_PER_PAD: usize = 4;
@@ -144,7 +144,7 @@ fn phase2(
     if proven(ub, lb) {
         return (true, lb, ub);
     }
-    if p.len() * m > DECISION_MAX_NK {
+    if p.len() + 2 * m > DECISION_MAX_DEPTH {
         let (done, new_ub, nodes) = run_assignment_search(
             m,
             p,
@@ -808,6 +808,35 @@ mod tests {
             assert!(s.makespan_min <= by_ldm * (1.0 + 1e-12), "case {case}");
             assert!(s.lower_bound_min <= s.makespan_min, "case {case}");
         }
+    }
+
+    /// Bin completion at its deepest allowed recursion (`n + 2k = DECISION_MAX_DEPTH`: 2,920
+    /// drones of 1 min on 40 pads of capacity 73, every pad filled by 73 recursive takes) on a
+    /// thread with a 2 MiB stack, the default of spawned threads: no overflow, and the packing
+    /// found puts exactly 73 drones on each pad.
+    #[test]
+    fn bin_completion_at_the_deepest_recursion_fits_a_two_mib_stack() {
+        let (k, n) = (40, DECISION_MAX_DEPTH - 80);
+        let loads = std::thread::Builder::new()
+            .stack_size(2 << 20)
+            .spawn(move || {
+                let p = vec![1.0; n];
+                let limits = Limits::default();
+                let mut budget = Budget {
+                    nodes: 0,
+                    start: Instant::now(),
+                    limits: &limits,
+                };
+                let mut search = BinCompletion::new(&p, k, 73.0, true, Memo::default());
+                assert_eq!(search.decide(&mut budget), Decision::Fits);
+                let mut loads = vec![0usize; k];
+                search.pad_of.iter().for_each(|&i| loads[i] += 1);
+                loads
+            })
+            .expect("thread")
+            .join()
+            .expect("no stack overflow");
+        assert_eq!(loads, vec![73; 40]);
     }
 
     /// The expected excess on a case worked by hand: times 1, 2, 3, 4 on 2 pads at a resolution
