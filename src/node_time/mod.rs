@@ -294,7 +294,7 @@ pub fn lp_lower_bound(pads: usize, charge_times_min: &[f64], limits: &Limits) ->
         limits,
     };
     Ok(
-        match bounds::lp::lp_lift(p, pads, lb, ub, integral, &mut budget) {
+        match bounds::lp::LpBound::new(p, integral).lift(pads, lb, ub, &mut budget) {
             Some(c) if integral => lb.max(c + 1.0),
             Some(c) => lb.max(c),
             None => lb,

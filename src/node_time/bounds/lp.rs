@@ -18,7 +18,9 @@
 //! proof.
 
 use crate::node_time::search::{Budget, CAP_SLACK};
+use crate::node_time::REL_TOL;
 use clarabel::algebra::CscMatrix;
+use std::collections::HashSet;
 use clarabel::solver::{
     DefaultSettings, DefaultSolver, IPSolver, NonnegativeConeT, SolverStatus, SupportedConeT,
 };
@@ -43,6 +45,9 @@ const LP_SOLVE_NODES: u64 = 20_000;
 
 /// Work units (table cells or knapsack nodes) that count as one node of the shared budget.
 const WORK_PER_NODE: u64 = 16;
+
+/// Most patterns an [`LpBound`] keeps for later capacities.
+const POOL_MAX_PATTERNS: usize = 4000;
 
 /// Result of [`lp_bins`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -69,27 +74,50 @@ fn types_of(p: &[f64]) -> (Vec<f64>, Vec<u64>) {
     (w, d)
 }
 
+/// Binary pieces of the table pricing: `c` copies of type `t` as one 0/1 item (type, copies,
+/// value), copies `1, 2, 4, ...` up to the count that fits `cap`.
+fn pieces_of(w: &[f64], d: &[u64], v: &[u64], cap: f64) -> Vec<(usize, u64, u64)> {
+    let mut pieces = Vec::new();
+    for t in 0..w.len() {
+        if v[t] == 0 {
+            continue;
+        }
+        let mut left = d[t].min((cap / w[t]).floor() as u64);
+        let mut c = 1;
+        while left > 0 {
+            let take = c.min(left);
+            pieces.push((t, take, take * v[t]));
+            left -= take;
+            c *= 2;
+        }
+    }
+    pieces
+}
+
+/// The knapsack optimum `V*(x)` of [`knapsack`] for every capacity `x` in `0..=cap` (whole
+/// minutes) from one table; `None` when the table would exceed [`DP_MAX_CELLS`].
+fn values_by_capacity(w: &[f64], d: &[u64], v: &[u64], cap: usize) -> Option<Vec<u64>> {
+    let pieces = pieces_of(w, d, v, cap as f64);
+    if pieces.len().saturating_mul(cap + 1) > DP_MAX_CELLS {
+        return None;
+    }
+    let mut dp = vec![0u64; cap + 1];
+    for &(t, c, val) in &pieces {
+        let wt = (w[t] as usize) * c as usize;
+        for x in (wt..=cap).rev() {
+            dp[x] = dp[x].max(dp[x - wt] + val);
+        }
+    }
+    Some(dp)
+}
+
 /// Exact bounded knapsack: `max sum_t a_t v_t` over `0 <= a_t <= d_t`, `sum_t a_t w_t <= cap`.
 /// Returns (an upper bound on the optimum, which is the optimum unless the branch and bound hit
 /// its node limit; the best pattern found; work done).
 fn knapsack(w: &[f64], d: &[u64], v: &[u64], cap: f64, integral: bool) -> (u64, Vec<u64>, u64) {
-    // Binary pieces for the table: `c` copies of type t as one 0/1 item.
     if integral && cap >= 0.0 {
         let cap_i = cap.floor() as usize;
-        let mut pieces: Vec<(usize, u64, u64)> = Vec::new(); // (type, copies, value)
-        for t in 0..w.len() {
-            if v[t] == 0 {
-                continue;
-            }
-            let mut left = d[t].min((cap / w[t]).floor() as u64);
-            let mut c = 1;
-            while left > 0 {
-                let take = c.min(left);
-                pieces.push((t, take, take * v[t]));
-                left -= take;
-                c *= 2;
-            }
-        }
+        let pieces = pieces_of(w, d, v, cap);
         let cells = pieces.len().saturating_mul(cap_i + 1);
         if cells <= DP_MAX_CELLS {
             let words = (cap_i + 1).div_ceil(64);
@@ -272,116 +300,232 @@ fn ffd_patterns(w: &[f64], d: &[u64], cap: f64) -> Vec<Vec<u64>> {
     bins.into_iter().map(|(_, a)| a).collect()
 }
 
-/// Lower bound on the pads of capacity `cap` that hold the drones `p` (sorted decreasingly, all
-/// `> 0`) by the bin-packing LP; with a `target`, stops as soon as the bound exceeds it or the LP
-/// cannot reach it (without, runs to the LP optimum); counts its work on `budget` (checked
-/// between iterations).
-///
-/// `cap` is the capacity the patterns are checked against: the caller widens it for real-valued
-/// times (as bin completion does), so that every pattern within the true capacity is one here.
-/// `integral` allows the exact table pricing.
-///
-/// Complexity: at most [`MAX_ITERATIONS`] LP solves (interior point, polynomial) and knapsacks
-/// (`O(T C log n)` by table, or a branch and bound of at most [`KNAPSACK_MAX_NODES`] nodes).
-pub(crate) fn lp_bins(
-    p: &[f64],
-    cap: f64,
+/// The bin-packing LP of one set of drones, asked at several capacities (the bisection of
+/// [`LpBound::lift`], the decisions of bin completion): every pattern priced is kept in a pool
+/// and starts the restricted LP of any later capacity at least its weight.
+pub(crate) struct LpBound {
+    /// Type lengths, decreasing.
+    w: Vec<f64>,
+    /// Type counts.
+    d: Vec<u64>,
+    /// Whole minutes (the table pricing applies).
     integral: bool,
-    target: Option<u64>,
-    budget: &mut Budget,
-) -> LpBins {
-    let none = LpBins {
-        bins: 0,
-        lp_value: 0.0,
-        iterations: 0,
-    };
-    if p.is_empty() {
-        return none;
+    /// Patterns priced so far, with their weights `sum_t a_t w_t`.
+    pool: Vec<(Vec<u64>, f64)>,
+    /// The dual `y` of the best Farley bound of the last [`LpBound::bins`].
+    best_dual: Option<Vec<f64>>,
+}
+
+impl LpBound {
+    /// The LP of the drones `p` (sorted decreasingly, all `> 0`); `integral` allows the exact
+    /// table pricing.
+    pub(crate) fn new(p: &[f64], integral: bool) -> Self {
+        let (w, d) = types_of(p);
+        LpBound {
+            w,
+            d,
+            integral,
+            pool: Vec::new(),
+            best_dual: None,
+        }
     }
-    if p[0] > cap {
-        return LpBins {
-            bins: u64::MAX,
-            lp_value: f64::INFINITY,
+
+    fn weight(&self, a: &[u64]) -> f64 {
+        a.iter().zip(&self.w).map(|(&c, &x)| c as f64 * x).sum()
+    }
+
+    /// Lower bound on the pads of capacity `cap` that hold the drones; with a `target`, stops
+    /// as soon as the bound exceeds it or the LP cannot reach it (without, runs to the LP
+    /// optimum); counts its work on `budget` (checked between iterations).
+    ///
+    /// `cap` is the capacity the patterns are checked against: the caller widens it for
+    /// real-valued times (as bin completion does), so that every pattern within the true
+    /// capacity is one here.
+    ///
+    /// Complexity: at most [`MAX_ITERATIONS`] LP solves (interior point, polynomial) and one
+    /// knapsack each (`O(T C log n)` by table, or a branch and bound of at most
+    /// [`KNAPSACK_MAX_NODES`] nodes).
+    pub(crate) fn bins(&mut self, cap: f64, target: Option<u64>, budget: &mut Budget) -> LpBins {
+        let mut best_dual = None;
+        let out = self.column_generation(cap, target, budget, &mut best_dual);
+        self.best_dual = best_dual.map(|(y, _)| y);
+        out
+    }
+
+    /// [`LpBound::bins`], leaving the best Farley dual and its bound in `best_dual`.
+    fn column_generation(
+        &mut self,
+        cap: f64,
+        target: Option<u64>,
+        budget: &mut Budget,
+        best_dual: &mut Option<(Vec<f64>, f64)>,
+    ) -> LpBins {
+        let none = LpBins {
+            bins: 0,
+            lp_value: 0.0,
             iterations: 0,
         };
-    }
-    let (w, d) = types_of(p);
-    let nt = w.len();
-    let mut patterns: Vec<Vec<u64>> = (0..nt)
-        .map(|t| {
-            let mut a = vec![0; nt];
-            a[t] = d[t].min((cap / w[t]).floor() as u64).max(1);
-            a
-        })
-        .collect();
-    patterns.extend(ffd_patterns(&w, &d, cap));
-    let mut best = 0u64;
-    let mut lp_value = 0.0;
-    for it in 1..=MAX_ITERATIONS {
-        budget.nodes = budget.nodes.saturating_add(LP_SOLVE_NODES);
-        let Some((y, value)) = restricted_dual(&d, &patterns) else {
+        let nt = self.w.len();
+        if nt == 0 {
+            return none;
+        }
+        if self.w[0] > cap {
             return LpBins {
+                bins: u64::MAX,
+                lp_value: f64::INFINITY,
+                iterations: 0,
+            };
+        }
+        let (w, d) = (self.w.clone(), self.d.clone());
+        let mut patterns: Vec<Vec<u64>> = (0..nt)
+            .map(|t| {
+                let mut a = vec![0; nt];
+                a[t] = d[t].min((cap / w[t]).floor() as u64).max(1);
+                a
+            })
+            .collect();
+        patterns.extend(ffd_patterns(&w, &d, cap));
+        patterns.extend(
+            self.pool
+                .iter()
+                .filter(|(_, weight)| *weight <= cap)
+                .map(|(a, _)| a.clone()),
+        );
+        let mut seen: HashSet<Vec<u64>> = patterns.iter().cloned().collect();
+        let mut best = 0u64;
+        let mut lp_value = 0.0;
+        let total_of = |v: &[u64]| -> u128 {
+            d.iter().zip(v).map(|(&c, &x)| c as u128 * x as u128).sum()
+        };
+        for it in 1..=MAX_ITERATIONS {
+            budget.nodes = budget.nodes.saturating_add(LP_SOLVE_NODES);
+            let Some((y_lp, value)) = restricted_dual(&d, &patterns) else {
+                return LpBins {
+                    bins: best,
+                    lp_value,
+                    iterations: it,
+                };
+            };
+            lp_value = value;
+            // The restricted LP (an upper bound on the full LP) cannot exceed the target.
+            if target.is_some_and(|k| value <= k as f64 + 1e-7) {
+                return LpBins {
+                    bins: best,
+                    lp_value,
+                    iterations: it,
+                };
+            }
+            let v: Vec<u64> = y_lp.iter().map(|&x| (x * SCALE).floor() as u64).collect();
+            let (vmax, a, work) = knapsack(&w, &d, &v, cap, self.integral);
+            budget.nodes = budget.nodes.saturating_add(work / WORK_PER_NODE);
+            if vmax > 0 {
+                let total = total_of(&v);
+                let bins = total.div_ceil(vmax as u128);
+                best = best.max(u64::try_from(bins).unwrap_or(u64::MAX));
+                let farley = total as f64 / vmax as f64;
+                if best_dual.as_ref().is_none_or(|(_, f)| farley > *f) {
+                    *best_dual = Some((y_lp, farley));
+                }
+            }
+            // The pattern enters when it prices out (`V* > 1` in fixed point) and is new.
+            let column = ((vmax as f64) > SCALE * (1.0 + 1e-7) && !seen.contains(&a)).then_some(a);
+            let out = LpBins {
                 bins: best,
                 lp_value,
                 iterations: it,
             };
-        };
-        lp_value = value;
-        let v: Vec<u64> = y.iter().map(|&x| (x * SCALE).floor() as u64).collect();
-        let (vmax, a, work) = knapsack(&w, &d, &v, cap, integral);
-        budget.nodes = budget.nodes.saturating_add(work / WORK_PER_NODE);
-        let total: u128 = d.iter().zip(&v).map(|(&c, &x)| c as u128 * x as u128).sum();
-        if vmax > 0 {
-            let bins = total.div_ceil(vmax as u128);
-            best = best.max(u64::try_from(bins).unwrap_or(u64::MAX));
+            // Proven; or no pattern prices out (the LP is solved); or a limit.
+            if target.is_some_and(|k| best > k) || budget.spent() {
+                return out;
+            }
+            let Some(a) = column else { return out };
+            seen.insert(a.clone());
+            if self.pool.len() < POOL_MAX_PATTERNS {
+                self.pool.push((a.clone(), self.weight(&a)));
+            }
+            patterns.push(a);
         }
-        let out = LpBins {
+        LpBins {
             bins: best,
             lp_value,
-            iterations: it,
-        };
-        // Proven; or the restricted LP (an upper bound on the full LP) cannot exceed the target;
-        // or no pattern prices out (the LP is solved); or a limit.
-        if target.is_some_and(|k| best > k || value <= k as f64 + 1e-7)
-            || (vmax as f64) <= SCALE * (1.0 + 1e-7)
-            || patterns.contains(&a)
-            || budget.spent()
-        {
-            return out;
+            iterations: MAX_ITERATIONS,
         }
-        patterns.push(a);
     }
-    LpBins {
-        bins: best,
-        lp_value,
-        iterations: MAX_ITERATIONS,
+
+    /// Whether the LP proves that the drones do not fit on `k` pads of capacity `c`: `nt > c`.
+    /// Real-valued times are checked against `c (1 + CAP_SLACK)`.
+    pub(crate) fn refutes(&mut self, k: usize, c: f64, budget: &mut Budget) -> bool {
+        let widened = if self.integral {
+            c
+        } else {
+            c * (1.0 + CAP_SLACK)
+        };
+        self.bins(widened, Some(k as u64), budget).bins > k as u64
+    }
+
+    /// Largest `c` in `[lo, hi)` found by bisection with [`LpBound::refutes`], i.e. proven
+    /// `nt > c`; `None` when the LP does not refute `lo`. Like `bound_lift`, any refuted `c` is
+    /// a valid bound (feasibility is monotone in `c`). With whole minutes, each refutation's best
+    /// dual is first tried at every larger capacity at once ([`LpBound::dual_reach`]), which
+    /// replaces most LP solves of the bisection.
+    pub(crate) fn lift(&mut self, k: usize, lo: f64, hi: f64, budget: &mut Budget) -> Option<f64> {
+        if !self.refutes(k, lo, budget) {
+            return None;
+        }
+        let (mut fail, mut ok) = (lo, hi);
+        for _ in 0..60 {
+            if let Some(c) = self.dual_reach(k, fail, ok) {
+                fail = fail.max(c);
+            }
+            let width_left = if self.integral {
+                ok - fail > 1.0
+            } else {
+                ok - fail > REL_TOL * ok
+            };
+            if !width_left || budget.spent() {
+                break;
+            }
+            let mid = if self.integral {
+                ((fail + ok) / 2.0).floor()
+            } else {
+                0.5 * (fail + ok)
+            };
+            if self.refutes(k, mid, budget) {
+                fail = mid;
+            } else {
+                ok = mid;
+            }
+        }
+        Some(fail)
+    }
+
+    /// Largest capacity `c` in `[from, below)` at which the last best Farley dual `v` still
+    /// proves more than `k` pads: `ceil(sum_t d_t v_t / V*(c)) > k`, with `V*(c)` for every
+    /// `c` from one knapsack table (whole minutes). `None` without a dual, for real-valued times,
+    /// or when the table is too large.
+    fn dual_reach(&self, k: usize, from: f64, below: f64) -> Option<f64> {
+        let y = self.best_dual.as_ref()?;
+        if !self.integral || below <= from + 1.0 {
+            return None;
+        }
+        let v: Vec<u64> = y.iter().map(|&x| (x * SCALE).floor() as u64).collect();
+        let total: u128 = self.d.iter().zip(&v).map(|(&c, &x)| c as u128 * x as u128).sum();
+        let top = (below - 1.0) as usize;
+        let values = values_by_capacity(&self.w, &self.d, &v, top)?;
+        let refuted = |x: usize| values[x] > 0 && total.div_ceil(values[x] as u128) > k as u128;
+        // `V*` grows with the capacity, so the refuted capacities are a prefix.
+        (from as usize..=top)
+            .take_while(|&x| refuted(x))
+            .last()
+            .map(|x| x as f64)
     }
 }
 
-/// Whether the LP proves that the drones `p` (sorted decreasingly, all `> 0`) do not fit on `k`
-/// pads of capacity `c`: `nt > c`. Real-valued times are checked against `c (1 + CAP_SLACK)`.
-pub(crate) fn lp_refutes(p: &[f64], k: usize, c: f64, integral: bool, budget: &mut Budget) -> bool {
-    let widened = if integral { c } else { c * (1.0 + CAP_SLACK) };
-    lp_bins(p, widened, integral, Some(k as u64), budget).bins > k as u64
-}
-
-/// Largest `c` in `[lo, hi)` found by bisection with [`lp_refutes`], i.e. proven `nt > c`;
-/// `None` when the LP does not refute `lo`. Like `bound_lift`, any refuted `c` is a valid bound
-/// (feasibility is monotone in `c`).
-pub(crate) fn lp_lift(
-    p: &[f64],
-    k: usize,
-    lo: f64,
-    hi: f64,
-    integral: bool,
-    budget: &mut Budget,
-) -> Option<f64> {
-    if !lp_refutes(p, k, lo, integral, budget) {
-        return None;
-    }
-    Some(super::largest_refuted(lo, hi, integral, |c| {
-        (!budget.spent()).then(|| lp_refutes(p, k, c, integral, budget))
-    }))
+/// Lower bound on the pads of capacity `cap` that hold the drones `p` (sorted decreasingly, all
+/// `> 0`) by the bin-packing LP, asked once ([`LpBound::bins`]).
+#[cfg(test)]
+fn lp_bins(p: &[f64], cap: f64, integral: bool, target: Option<u64>, budget: &mut Budget) -> LpBins {
+    LpBound::new(p, integral).bins(cap, target, budget)
 }
 
 #[cfg(test)]
@@ -434,8 +578,34 @@ mod tests {
         let r = lp_bins(&p, 11.0, true, None, &mut budget);
         assert!((r.lp_value - 2.25).abs() < 1e-6, "{r:?}");
         assert_eq!(r.bins, 3);
-        assert_eq!(lp_lift(&p, 2, lb, 12.0, true, &mut budget), Some(11.0));
+        assert_eq!(
+            LpBound::new(&p, true).lift(2, lb, 12.0, &mut budget),
+            Some(11.0)
+        );
         assert_eq!(lp_bins(&p, 12.0, true, None, &mut budget).bins, 2);
+    }
+
+    /// One [`LpBound`] asked first at 12 then at 11 on the drones above: the pool holds patterns
+    /// of weight 12 ({7, 5}, {7, 3, 2}, {5, 5, 2}), which must not enter the LP at 11, where
+    /// the hand-computed value is still 9/4 (3 pads). The best dual at 11, `y = (3/4, 1/2, 1/4,
+    /// 1/4)`, weighs every pattern of capacity 12 at most 5/4 (each of the three above), so at
+    /// 12 it proves only `ceil((9/4) / (5/4)) = 2` pads: it reaches no capacity beyond 11.
+    #[test]
+    fn the_pool_keeps_heavier_patterns_out_and_the_dual_reaches_no_further() {
+        let p = [7.0, 5.0, 5.0, 3.0, 2.0];
+        let limits = Limits::default();
+        let mut budget = Budget {
+            nodes: 0,
+            start: Instant::now(),
+            limits: &limits,
+        };
+        let mut lp = LpBound::new(&p, true);
+        assert_eq!(lp.bins(12.0, None, &mut budget).bins, 2);
+        assert!(lp.pool.iter().any(|(_, weight)| *weight == 12.0));
+        let at_11 = lp.bins(11.0, None, &mut budget);
+        assert!((at_11.lp_value - 2.25).abs() < 1e-6, "{at_11:?}");
+        assert_eq!(at_11.bins, 3);
+        assert_eq!(lp.dual_reach(2, 11.0, 13.0), Some(11.0));
     }
 
     #[test]

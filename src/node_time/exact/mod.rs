@@ -33,7 +33,7 @@ mod completion;
 mod partition;
 
 use super::bounds::bound_lift;
-use super::bounds::lp::lp_refutes;
+use super::bounds::lp::LpBound;
 use super::heuristics::lpt::lpt_sorted;
 use super::heuristics::{aim_at, ldm_sorted, local_search};
 use super::search::{Budget, Decision, Memo, CAP_SLACK};
@@ -105,10 +105,14 @@ const PARTITION_SWITCH_NODES: u64 = 1_000_000;
 const STALL_NODES: u64 = 100_000;
 
 /// Largest knapsack table (`drones x (C + 1)` cells, whole minutes) for which the LP bound is
-/// tried after the first slice; a larger one (an LP solve of tenths of a second) waits for the
-/// third slice, by which time bin completion has usually decided (u3 of the classical classes:
-/// 50 drones, 10 pads, times up to 10,000 min; `models/experiments/node_time.md`).
+/// tried after the first slice; a larger one (an LP solve of tenths of a second) waits for
+/// slice [`LP_LATE_SLICE`], by which time bin completion has usually decided (u3 of the
+/// classical classes: 50 drones, 10 pads, times up to 10,000 min; `models/experiments/
+/// node_time.md`).
 const LP_EARLY_MAX_CELLS: f64 = (1u64 << 20) as f64;
+
+/// The slice (counted from 0) after which the LP bound is tried on a large knapsack table.
+const LP_LATE_SLICE: u64 = 2;
 
 /// Largest load of the assignment `pad_of` of the sorted drones `p`.
 fn makespan_sorted(m: usize, p: &[f64], pad_of: &[usize]) -> f64 {
@@ -164,8 +168,11 @@ fn phase2(
     let mut guess = first_guess(m, p, integral, lb, ub);
     let mut memo = Memo::default();
     let mut memo_cap = f64::INFINITY;
-    // Smallest capacity at which the LP bound did not refute (it cannot refute any larger one).
+    // Smallest capacity at which the LP bound did not refute (it cannot refute any larger one),
+    // and the largest it refuted.
+    let mut lp = LpBound::new(p, integral);
     let mut lp_failed_at = f64::INFINITY;
+    let mut lp_refuted: Option<f64> = None;
     for _ in 0..10_000 {
         if proven(ub, lb) {
             return (true, lb, ub);
@@ -224,7 +231,7 @@ fn phase2(
             let mut slice_nodes = STALL_NODES;
             let mut round = 0u64;
             let lp_round = if integral && (c + 1.0) * p.len() as f64 > LP_EARLY_MAX_CELLS {
-                2
+                LP_LATE_SLICE
             } else {
                 0
             };
@@ -241,7 +248,10 @@ fn phase2(
                     break d;
                 }
                 if round == lp_round && c_run < lp_failed_at {
-                    if lp_refutes(p, m, c, integral, budget) {
+                    // Refuted at `c`: the bisection up to the incumbent lifts the bound at once
+                    // (and proves the incumbent when it refutes just below it).
+                    if let Some(fail) = lp.lift(m, c, ub, budget) {
+                        lp_refuted = Some(fail);
                         break Decision::DoesNotFit;
                     }
                     if !budget.spent() {
@@ -276,7 +286,12 @@ fn phase2(
                 }
             }
             Decision::DoesNotFit => {
-                lb = if integral { c + 1.0 } else { lb.max(c) };
+                let refuted = lp_refuted.take().map_or(c, |f| f.max(c));
+                lb = if integral {
+                    lb.max(refuted + 1.0)
+                } else {
+                    lb.max(refuted)
+                };
             }
             Decision::Stopped => return (false, lb, ub),
         }
