@@ -32,8 +32,10 @@ const SCALE: f64 = (1u64 << 30) as f64;
 const MAX_ITERATIONS: usize = 200;
 
 /// Largest `pieces x (C + 1)` table of the dynamic-programming pricing (whole minutes); larger
-/// knapsacks go to branch and bound.
-const DP_MAX_CELLS: usize = 1 << 23;
+/// knapsacks go to branch and bound. `2^24` cells (a 2 MiB bit table for the pattern) admits 100
+/// drones with times near 10,000 min (nu3 of the classical classes, `C` about 94,000), where the
+/// branch and bound stops at its node limit and its fractional bound proves nothing.
+const DP_MAX_CELLS: usize = 1 << 24;
 
 /// Node limit of one branch-and-bound pricing; when it is reached, the fractional knapsack bound
 /// stands in for the optimum (still a valid `V*`, only weaker).
