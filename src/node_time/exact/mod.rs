@@ -259,10 +259,19 @@ fn phase2(
                     }
                 }
                 if integral && c <= lb {
+                    // It starts from the incumbent, so each slice goes on from the best
+                    // assignment the earlier ones met.
                     let mut trial = pad_of.to_vec();
                     if aim_at(m, p, c, &mut trial, slice_nodes, round, budget).is_some() {
-                        aimed = Some(trial);
-                        break Decision::Fits;
+                        let found = makespan_sorted(m, p, &trial);
+                        if found <= c {
+                            aimed = Some(trial);
+                            break Decision::Fits;
+                        }
+                        if found < ub {
+                            ub = found;
+                            pad_of.copy_from_slice(&trial);
+                        }
                     }
                 }
                 if budget.spent() {
