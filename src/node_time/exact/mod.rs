@@ -111,8 +111,11 @@ const STALL_NODES: u64 = 100_000;
 /// node_time.md`).
 const LP_EARLY_MAX_CELLS: f64 = (1u64 << 20) as f64;
 
-/// The slice (counted from 0) after which the LP bound is tried on a large knapsack table.
-const LP_LATE_SLICE: u64 = 2;
+/// The slice (counted from 0) after which the LP bound is tried on a large knapsack table: after
+/// slice 5 (6.3 million nodes in all, about a fifth of a second) u3 50x10 proves every instance within
+/// 182 ms where after slice 2 one took a full second, and the classes that need the LP (nu2,
+/// nu3) wait a fraction of their seconds (`models/experiments/node_time.md`).
+const LP_LATE_SLICE: u64 = 5;
 
 /// Largest load of the assignment `pad_of` of the sorted drones `p`.
 fn makespan_sorted(m: usize, p: &[f64], pad_of: &[usize]) -> f64 {
@@ -224,7 +227,7 @@ fn phase2(
             d
         } else {
             // Bin completion in slices, from STALL_NODES nodes, doubling. After the first slice
-            // (the third for a large knapsack table, LP_EARLY_MAX_CELLS) the LP bound is tried
+            // (the sixth for a large knapsack table, LP_EARLY_MAX_CELLS) the LP bound is tried
             // at `c` once (not above a capacity where it failed); at the lower bound itself,
             // after every slice, with whole minutes, the perfect-partition search aims at `c`
             // with as many nodes as the slice. Bin completion resumes with its memo.
