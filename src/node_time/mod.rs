@@ -288,11 +288,7 @@ pub fn lp_lower_bound(pads: usize, charge_times_min: &[f64], limits: &Limits) ->
     let p = &sorted[..positive];
     let mut pad_of = vec![0; positive];
     let ub = heuristics::lpt::lpt_sorted(pads, p, &mut pad_of);
-    let mut budget = search::Budget {
-        nodes: 0,
-        start: std::time::Instant::now(),
-        limits,
-    };
+    let mut budget = search::Budget::new(limits);
     Ok(
         match bounds::lp::LpBound::new(p, integral).lift(pads, lb, ub, &mut budget) {
             Some(c) if integral => lb.max(c + 1.0),

@@ -534,7 +534,6 @@ fn lp_bins(p: &[f64], cap: f64, integral: bool, target: Option<u64>, budget: &mu
 mod tests {
     use super::*;
     use crate::node_time::Limits;
-    use std::time::Instant;
 
     /// Table pricing and branch and bound agree on the knapsack optimum.
     #[test]
@@ -565,11 +564,7 @@ mod tests {
     fn lp_bound_proves_an_optimum_above_every_combinatorial_bound() {
         let p = [7.0, 5.0, 5.0, 3.0, 2.0];
         let limits = Limits::default();
-        let mut budget = Budget {
-            nodes: 0,
-            start: Instant::now(),
-            limits: &limits,
-        };
+        let mut budget = Budget::new(&limits);
         let lb = crate::node_time::lower_bound_sorted(2, &p, true);
         assert_eq!(lb, 11.0);
         assert_eq!(crate::node_time::bounds::l2_bins(&p, 11.0), 2);
@@ -596,11 +591,7 @@ mod tests {
     fn the_pool_keeps_heavier_patterns_out_and_the_dual_reaches_no_further() {
         let p = [7.0, 5.0, 5.0, 3.0, 2.0];
         let limits = Limits::default();
-        let mut budget = Budget {
-            nodes: 0,
-            start: Instant::now(),
-            limits: &limits,
-        };
+        let mut budget = Budget::new(&limits);
         let mut lp = LpBound::new(&p, true);
         assert_eq!(lp.bins(12.0, None, &mut budget).bins, 2);
         assert!(lp.pool.iter().any(|(_, weight)| *weight == 12.0));
@@ -613,11 +604,7 @@ mod tests {
     #[test]
     fn three_long_items_need_three_bins() {
         let limits = Limits::default();
-        let mut budget = Budget {
-            nodes: 0,
-            start: Instant::now(),
-            limits: &limits,
-        };
+        let mut budget = Budget::new(&limits);
         let r = lp_bins(&[6.0, 6.0, 6.0], 10.0, true, Some(2), &mut budget);
         assert_eq!(r.bins, 3);
     }

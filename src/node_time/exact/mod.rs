@@ -849,11 +849,7 @@ mod tests {
             .spawn(move || {
                 let p = vec![1.0; n];
                 let limits = Limits::default();
-                let mut budget = Budget {
-                    nodes: 0,
-                    start: Instant::now(),
-                    limits: &limits,
-                };
+                let mut budget = Budget::new(&limits);
                 let mut search = BinCompletion::new(&p, k, 73.0, true, Memo::default());
                 assert_eq!(search.decide(&mut budget), Decision::Fits);
                 let mut loads = vec![0usize; k];

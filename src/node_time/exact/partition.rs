@@ -876,11 +876,7 @@ mod tests {
         p.sort_by(|a, b| b.total_cmp(a));
         let total: f64 = p.iter().sum();
         let limits = crate::node_time::Limits::default();
-        let mut budget = Budget {
-            nodes: 0,
-            start: std::time::Instant::now(),
-            limits: &limits,
-        };
+        let mut budget = Budget::new(&limits);
         let mut search = Partition::new(&p, ListPair::default(), total / 2.0);
         let decision = search.fits((1 << 24) - 1, 2, 0.6 * total, &mut budget);
         assert_eq!(decision, Decision::Fits);

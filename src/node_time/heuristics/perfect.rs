@@ -203,11 +203,11 @@ pub(crate) fn aim_at(
 mod tests {
     use super::*;
     use crate::node_time::Limits;
-    use std::time::Instant;
 
-    /// 12 drones whose perfect split on 3 pads (load 30 each) LPT misses: the search finds one.
-    #[test]
-    fn finds_a_perfect_split_from_a_poor_start() {
+    /// 12 drones of 90 min in all, with a perfect split on 3 pads (30 each: 14 + 12 + 4,
+    /// 13 + 9 + 8, 11 + 6 + 5 + 3 + 3 + 2) that LPT misses, and a poor start: every drone on
+    /// pad 0 but the second and third (loads 63, 13, 12).
+    fn poor_start() -> ([f64; 12], Vec<usize>) {
         let p = [
             14.0, 13.0, 12.0, 11.0, 9.0, 8.0, 6.0, 5.0, 4.0, 3.0, 3.0, 2.0,
         ];
@@ -215,46 +215,40 @@ mod tests {
         let mut pad_of = vec![0; p.len()];
         pad_of[1] = 1;
         pad_of[2] = 2;
-        let limits = Limits::default();
-        let mut budget = Budget {
-            nodes: 0,
-            start: Instant::now(),
-            limits: &limits,
-        };
-        let found = aim_at(3, &p, 30.0, &mut pad_of, 1_000_000, 1, &mut budget);
-        assert_eq!(found, Some(30.0));
-        let mut loads = [0.0; 3];
-        for (j, &i) in pad_of.iter().enumerate() {
-            loads[i] += p[j];
-        }
-        assert_eq!(loads, [30.0; 3]);
+        (p, pad_of)
     }
 
-    /// A target below `sum/k` (29 for the 90 min above on 3 pads) cannot be reached: the search
-    /// runs out its budget and hands back the best assignment met, the perfect split at 30
-    /// (hand-checked in the test above), better than the start's 52; started from that perfect
-    /// split, nothing better exists, so it returns `None` and leaves the assignment alone.
-    #[test]
-    fn an_unreachable_target_returns_the_best_assignment_met() {
-        let p = [
-            14.0, 13.0, 12.0, 11.0, 9.0, 8.0, 6.0, 5.0, 4.0, 3.0, 3.0, 2.0,
-        ];
-        let mut pad_of = vec![0; p.len()];
-        pad_of[1] = 1;
-        pad_of[2] = 2;
-        let limits = Limits::default();
-        let mut budget = Budget {
-            nodes: 0,
-            start: Instant::now(),
-            limits: &limits,
-        };
-        let found = aim_at(3, &p, 29.0, &mut pad_of, 20_000, 1, &mut budget);
-        assert_eq!(found, Some(30.0));
+    fn loads_of(p: &[f64], pad_of: &[usize]) -> [f64; 3] {
         let mut loads = [0.0; 3];
         for (j, &i) in pad_of.iter().enumerate() {
             loads[i] += p[j];
         }
-        assert_eq!(loads, [30.0; 3]);
+        loads
+    }
+
+    /// From the poor start, the search finds a perfect split.
+    #[test]
+    fn finds_a_perfect_split_from_a_poor_start() {
+        let (p, mut pad_of) = poor_start();
+        let limits = Limits::default();
+        let mut budget = Budget::new(&limits);
+        let found = aim_at(3, &p, 30.0, &mut pad_of, 1_000_000, 1, &mut budget);
+        assert_eq!(found, Some(30.0));
+        assert_eq!(loads_of(&p, &pad_of), [30.0; 3]);
+    }
+
+    /// A target below `sum/k` (29 for the drones above) cannot be reached: the search runs out
+    /// its budget and hands back the best assignment met, a perfect split at 30, better than
+    /// the start's 63; started from that perfect split, nothing better exists, so it returns
+    /// `None` and leaves the assignment alone.
+    #[test]
+    fn an_unreachable_target_returns_the_best_assignment_met() {
+        let (p, mut pad_of) = poor_start();
+        let limits = Limits::default();
+        let mut budget = Budget::new(&limits);
+        let found = aim_at(3, &p, 29.0, &mut pad_of, 20_000, 1, &mut budget);
+        assert_eq!(found, Some(30.0));
+        assert_eq!(loads_of(&p, &pad_of), [30.0; 3]);
         let perfect = pad_of.clone();
         assert_eq!(
             aim_at(3, &p, 29.0, &mut pad_of, 20_000, 2, &mut budget),

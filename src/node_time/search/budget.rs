@@ -16,7 +16,16 @@ pub(crate) struct Budget<'l> {
     pub limits: &'l Limits,
 }
 
-impl Budget<'_> {
+impl<'l> Budget<'l> {
+    /// A budget starting now with no node counted, under `limits`.
+    pub(crate) fn new(limits: &'l Limits) -> Self {
+        Budget {
+            nodes: 0,
+            start: Instant::now(),
+            limits,
+        }
+    }
+
     /// The caller's limits with at most `extra` nodes beyond those spent so far: the budget of a
     /// sub-search that may stop early and hand back.
     pub(crate) fn limits_for(&self, extra: u64) -> Limits {
