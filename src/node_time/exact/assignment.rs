@@ -2,7 +2,7 @@
 //! method"). Jobs are taken in decreasing charge time; a node fixes the pads of jobs `1..j`,
 //! pads within the capacity below the incumbent, pruned by the useful slack, one pad per load.
 
-use crate::node_time::search::CLOCK_EVERY_NODES;
+use crate::node_time::search::{Budget, SearchOutcome, CLOCK_EVERY_NODES};
 use crate::node_time::{le_tol, Limits, REL_TOL};
 use std::time::Instant;
 
@@ -199,9 +199,8 @@ impl Search<'_> {
     }
 }
 
-/// Runs the assignment branch and bound from incumbent `ub` (pads in `best`, updated in place)
-/// with the node counter starting at `nodes0`; returns (proof complete, incumbent, nodes).
-#[allow(clippy::too_many_arguments)]
+/// Runs the assignment branch and bound from incumbent `ub` (pads in `best`, updated in place),
+/// counting its nodes on `budget`; the outcome's lower bound is `lb` (or the incumbent, proven).
 pub(super) fn run_assignment_search(
     m: usize,
     p: &[f64],
@@ -209,10 +208,8 @@ pub(super) fn run_assignment_search(
     lb: f64,
     ub: f64,
     best: &mut [usize],
-    start: Instant,
-    limits: &Limits,
-    nodes0: u64,
-) -> (bool, f64, u64) {
+    budget: &mut Budget,
+) -> SearchOutcome {
     let n = p.len();
     let mut rem = vec![0.0; n + 1];
     for j in (0..n).rev() {
@@ -234,10 +231,15 @@ pub(super) fn run_assignment_search(
         ncand: vec![0; n],
         forced: vec![false; n],
         next: vec![0; n],
-        nodes: nodes0,
+        nodes: budget.nodes,
     };
     search.cap = search.cap_for(ub);
-    let done = search.run(start, limits);
+    let done = search.run(budget.start, budget.limits);
     best.copy_from_slice(&search.best);
-    (done, search.ub, search.nodes)
+    budget.nodes = search.nodes;
+    SearchOutcome {
+        proven: done,
+        lower_bound_min: if done { search.ub } else { lb },
+        incumbent_min: search.ub,
+    }
 }

@@ -36,7 +36,7 @@ use super::bounds::bound_lift;
 use super::bounds::lp::LpBound;
 use super::heuristics::lpt::lpt_sorted;
 use super::heuristics::{aim_at, ldm_sorted, local_search};
-use super::search::{Budget, Decision, Memo, CAP_SLACK};
+use super::search::{Budget, Decision, Memo, SearchOutcome, CAP_SLACK};
 use super::{
     all_integral, elapsed_ms, le_tol, lists_from_pad_of, lower_bound_sorted, one_per_pad,
     sort_desc, validate, validate_limits, Limits, NodeTimeMethod, NodeTimeSolution, REL_TOL,
@@ -127,8 +127,8 @@ fn makespan_sorted(m: usize, p: &[f64], pad_of: &[usize]) -> f64 {
 }
 
 /// Phase 2: local search on the incumbent, the `L2` and count bounds, then the decision version
-/// from the lower bound up (whole minutes) or by bisection (real minutes). Returns (proven, lower
-/// bound, incumbent makespan); `pad_of` holds the incumbent.
+/// from the lower bound up (whole minutes) or by bisection (real minutes); `pad_of` holds the
+/// incumbent.
 fn phase2(
     m: usize,
     p: &[f64],
@@ -137,8 +137,13 @@ fn phase2(
     mut ub: f64,
     pad_of: &mut [usize],
     budget: &mut Budget,
-) -> (bool, f64, f64) {
+) -> SearchOutcome {
     let proven = |ub: f64, lb: f64| if integral { ub <= lb } else { le_tol(ub, lb) };
+    let outcome = |proven: bool, lb: f64, ub: f64| SearchOutcome {
+        proven,
+        lower_bound_min: lb,
+        incumbent_min: ub,
+    };
     let mut trial = pad_of.to_vec();
     let improved = local_search(m, p, &mut trial);
     if improved < ub {
@@ -149,22 +154,11 @@ fn phase2(
         lb = lb.max(if integral { fail + 1.0 } else { fail });
     }
     if proven(ub, lb) {
-        return (true, lb, ub);
+        return outcome(true, lb, ub);
     }
     if p.len() + 2 * m > DECISION_MAX_DEPTH {
-        let (done, new_ub, nodes) = run_assignment_search(
-            m,
-            p,
-            integral,
-            lb,
-            ub,
-            pad_of,
-            budget.start,
-            budget.limits,
-            budget.nodes,
-        );
-        budget.nodes = nodes;
-        return (done, lb, new_ub);
+        let found = run_assignment_search(m, p, integral, lb, ub, pad_of, budget);
+        return outcome(found.proven, lb, found.incumbent_min);
     }
     let mut first = true;
     let mut try_proof = false;
@@ -178,7 +172,7 @@ fn phase2(
     let mut lp_refuted: Option<f64> = None;
     for _ in 0..10_000 {
         if proven(ub, lb) {
-            return (true, lb, ub);
+            return outcome(true, lb, ub);
         }
         // First the bound itself; after a new incumbent, just below it (the proof that ends the
         // search); else the midpoint of the gap (whole minutes: of the makespans not excluded).
@@ -305,11 +299,11 @@ fn phase2(
                     lb.max(refuted)
                 };
             }
-            Decision::Stopped => return (false, lb, ub),
+            Decision::Stopped => return outcome(false, lb, ub),
         }
         memo = search.into_memo();
     }
-    (proven(ub, lb), lb, ub)
+    outcome(proven(ub, lb), lb, ub)
 }
 
 /// The first capacity bin completion tries when the bound `lb` is `sum/k` itself (not lifted by
@@ -558,24 +552,27 @@ pub(crate) fn exact_phased(
                     .map_or(phase1_nodes, |l| l.min(phase1_nodes)),
             ),
         };
-        let (done, new_ub, nodes) = if phase1_nodes > 0 {
-            run_assignment_search(
+        if phase1_nodes > 0 {
+            let mut phase1_budget = Budget {
+                nodes: 0,
+                start,
+                limits: &phase1,
+            };
+            let found = run_assignment_search(
                 m,
                 p,
                 integral,
                 lb,
                 ub,
                 &mut pad_sorted[..positive],
-                start,
-                &phase1,
-                0,
-            )
+                &mut phase1_budget,
+            );
+            ub = found.incumbent_min;
+            budget.nodes = phase1_budget.nodes;
+            finished = found.proven;
         } else {
-            (false, ub, 0)
-        };
-        ub = new_ub;
-        budget.nodes = nodes;
-        finished = done;
+            finished = false;
+        }
         if !finished
             && !integral
             && positive > PARTITION_MAX_DRONES
@@ -591,7 +588,7 @@ pub(crate) fn exact_phased(
             }
         }
 
-        let out_of_budget = limits.node_limit.is_some_and(|l| nodes >= l)
+        let out_of_budget = limits.node_limit.is_some_and(|l| budget.nodes >= l)
             || limits
                 .time_limit_s
                 .is_some_and(|t| start.elapsed().as_secs_f64() >= t);
@@ -611,13 +608,15 @@ pub(crate) fn exact_phased(
                 limits: &part_limits,
             };
             let pad = &mut pad_sorted[..positive];
-            (finished, lb, _) = partition(m, p, lb, ub, pad, &mut part_budget);
+            let found = partition(m, p, lb, ub, pad, &mut part_budget);
+            (finished, lb) = (found.proven, found.lower_bound_min);
             budget.nodes = part_budget.nodes;
             if !finished && switch && !budget.spent() {
-                (finished, lb, _) = phase2(m, p, integral, lb, ub, pad, &mut budget);
+                let found = phase2(m, p, integral, lb, ub, pad, &mut budget);
+                (finished, lb) = (found.proven, found.lower_bound_min);
             }
         } else if !finished && !out_of_budget {
-            (finished, lb, _) = phase2(
+            let found = phase2(
                 m,
                 p,
                 integral,
@@ -626,6 +625,7 @@ pub(crate) fn exact_phased(
                 &mut pad_sorted[..positive],
                 &mut budget,
             );
+            (finished, lb) = (found.proven, found.lower_bound_min);
         }
     }
     let mut pad_of = vec![0; n];

@@ -21,7 +21,7 @@
 //! argument, and there the assignment search and bin completion explore up to `2^r` sets; the
 //! window queries see only the few sets whose load lies in the window.
 
-use crate::node_time::search::{Budget, Decision, WordHasher};
+use crate::node_time::search::{Budget, Decision, SearchOutcome, WordHasher};
 use crate::node_time::{le_tol, REL_TOL};
 use std::cell::RefCell;
 use std::cmp::Reverse;
@@ -646,12 +646,21 @@ thread_local! {
     static KEPT_LISTS: RefCell<Vec<ListPair>> = const { RefCell::new(Vec::new()) };
 }
 
+/// The outcome (proven, lower bound, incumbent makespan) of a partitioning search.
+fn outcome(proven: bool, lower_bound_min: f64, incumbent_min: f64) -> SearchOutcome {
+    SearchOutcome {
+        proven,
+        lower_bound_min,
+        incumbent_min,
+    }
+}
+
 /// Exact node time by sequential partitioning for the drones `p` (decreasing, positive, at most
 /// [`PARTITION_MAX_DRONES`]) on `m >= 2` pads, from the lower bound `lb` and the incumbent `ub`
 /// (pads in `pad_of`, replaced when a better assignment is found).
 ///
-/// Returns (proven, lower bound, incumbent makespan). The lower bound is the load of the fullest
-/// pad tried last: every set with a smaller load failed to complete.
+/// The outcome's lower bound is the load of the fullest pad tried last: every set with a smaller
+/// load failed to complete.
 pub(crate) fn partition(
     m: usize,
     p: &[f64],
@@ -659,7 +668,7 @@ pub(crate) fn partition(
     ub: f64,
     pad_of: &mut [usize],
     budget: &mut Budget,
-) -> (bool, f64, f64) {
+) -> SearchOutcome {
     let take = || KEPT_LISTS.with(|kept| kept.borrow_mut().pop().unwrap_or_default());
     let mut top = take();
     let mut search = Partition::new(p, take(), lb);
@@ -685,7 +694,7 @@ fn partition_in(
     budget: &mut Budget,
     lists: &mut ListPair,
     search: &mut Partition,
-) -> (bool, f64, f64) {
+) -> SearchOutcome {
     let p = search.p;
     let n = p.len();
     debug_assert!(n <= PARTITION_MAX_DRONES && m >= 2);
@@ -716,7 +725,7 @@ fn partition_in(
             search.pads.push(mask);
             if search.fits(all & !mask, 1, s, budget) == Decision::Fits {
                 let found = take_found(&search.pads, pad_of);
-                return (true, found.min(s), found);
+                return outcome(true, found.min(s), found);
             }
             search.pads.clear();
         }
@@ -760,7 +769,7 @@ fn partition_in(
             idx += 1;
             if le_tol(ub, s) {
                 // Every assignment whose fullest pad is below s failed: ub is within REL_TOL.
-                return (true, lb.max(s.min(ub)), ub);
+                return outcome(true, lb.max(s.min(ub)), ub);
             }
             lb = lb.max(s * (1.0 - SLACK));
             search.pads.clear();
@@ -769,10 +778,10 @@ fn partition_in(
             match search.fits_cached(all & !mask, m - 1, cap, total - s, budget) {
                 Decision::Fits => {
                     let found = take_found(&search.pads, pad_of);
-                    return (true, lb, found);
+                    return outcome(true, lb, found);
                 }
                 Decision::DoesNotFit => {}
-                Decision::Stopped => return (false, lb, ub),
+                Decision::Stopped => return outcome(false, lb, ub),
             }
         }
         // Every set below hi failed.
@@ -781,7 +790,7 @@ fn partition_in(
         width *= 4.0;
     }
     // Every set was tried: the incumbent is optimal.
-    (true, ub, ub)
+    outcome(true, ub, ub)
 }
 
 #[cfg(test)]

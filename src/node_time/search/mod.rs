@@ -13,6 +13,16 @@ pub(crate) use memo::{Memo, WordHasher, MEMO_MAX_STATES};
 /// A failure then proves `nt > C`; a success returns an assignment whose makespan is recomputed.
 pub(crate) const CAP_SLACK: f64 = 1e-11;
 
+/// Outcome of one exact search (the assignment branch and bound, sequential partitioning, the
+/// search over capacities): whether it proved its incumbent optimal, the best lower bound it
+/// proved and the incumbent's makespan (minutes).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct SearchOutcome {
+    pub proven: bool,
+    pub lower_bound_min: f64,
+    pub incumbent_min: f64,
+}
+
 /// Outcome of a decision search.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Decision {
