@@ -20,10 +20,10 @@
 use crate::node_time::search::{Budget, CAP_SLACK};
 use crate::node_time::REL_TOL;
 use clarabel::algebra::CscMatrix;
-use std::collections::HashSet;
 use clarabel::solver::{
     DefaultSettings, DefaultSolver, IPSolver, NonnegativeConeT, SolverStatus, SupportedConeT,
 };
+use std::collections::HashSet;
 
 /// Fixed-point scale of the dual values `v_t = floor(y_t SCALE)`.
 const SCALE: f64 = (1u64 << 30) as f64;
@@ -396,9 +396,8 @@ impl LpBound {
         let mut seen: HashSet<Vec<u64>> = patterns.iter().cloned().collect();
         let mut best = 0u64;
         let mut lp_value = 0.0;
-        let total_of = |v: &[u64]| -> u128 {
-            d.iter().zip(v).map(|(&c, &x)| c as u128 * x as u128).sum()
-        };
+        let total_of =
+            |v: &[u64]| -> u128 { d.iter().zip(v).map(|(&c, &x)| c as u128 * x as u128).sum() };
         for it in 1..=MAX_ITERATIONS {
             budget.nodes = budget.nodes.saturating_add(LP_SOLVE_NODES);
             let Some((y_lp, value)) = restricted_dual(&d, &patterns) else {
@@ -511,7 +510,12 @@ impl LpBound {
             return None;
         }
         let v: Vec<u64> = y.iter().map(|&x| (x * SCALE).floor() as u64).collect();
-        let total: u128 = self.d.iter().zip(&v).map(|(&c, &x)| c as u128 * x as u128).sum();
+        let total: u128 = self
+            .d
+            .iter()
+            .zip(&v)
+            .map(|(&c, &x)| c as u128 * x as u128)
+            .sum();
         let top = (below - 1.0) as usize;
         let values = values_by_capacity(&self.w, &self.d, &v, top)?;
         let refuted = |x: usize| values[x] > 0 && total.div_ceil(values[x] as u128) > k as u128;
@@ -526,7 +530,13 @@ impl LpBound {
 /// Lower bound on the pads of capacity `cap` that hold the drones `p` (sorted decreasingly, all
 /// `> 0`) by the bin-packing LP, asked once ([`LpBound::bins`]).
 #[cfg(test)]
-fn lp_bins(p: &[f64], cap: f64, integral: bool, target: Option<u64>, budget: &mut Budget) -> LpBins {
+fn lp_bins(
+    p: &[f64],
+    cap: f64,
+    integral: bool,
+    target: Option<u64>,
+    budget: &mut Budget,
+) -> LpBins {
     LpBound::new(p, integral).bins(cap, target, budget)
 }
 
