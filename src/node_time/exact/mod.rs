@@ -112,9 +112,9 @@ const STALL_NODES: u64 = 100_000;
 const LP_EARLY_MAX_CELLS: f64 = (1u64 << 20) as f64;
 
 /// The slice (counted from 0) after which the LP bound is tried on a large knapsack table: after
-/// slice 5 (6.3 million nodes in all, about a fifth of a second) u3 50x10 proves every instance within
-/// 182 ms where after slice 2 one took a full second, and the classes that need the LP (nu2,
-/// nu3) wait a fraction of their seconds (`models/experiments/node_time.md`).
+/// slice 5 (6.3 million nodes in all, about a fifth of a second) u3 50x10 proves every instance
+/// within 182 ms where after slice 2 one took a full second, and the classes that need the LP
+/// (nu2, nu3) wait a fraction of their seconds (`models/experiments/node_time.md`).
 const LP_LATE_SLICE: u64 = 5;
 
 /// Largest load of the assignment `pad_of` of the sorted drones `p`.
