@@ -165,9 +165,10 @@ fn phase2(
     let mut guess = first_guess(m, p, integral, lb, ub);
     let mut memo = Memo::default();
     let mut memo_cap = f64::INFINITY;
-    // Smallest capacity at which the LP bound did not refute (it cannot refute any larger one),
-    // and the largest it refuted.
-    let mut lp = LpBound::new(p, integral);
+    // The LP, built at its first use (small swarms never stall, so never pay for it); the
+    // smallest capacity at which it did not refute (it cannot refute any larger one), and the
+    // largest it refuted.
+    let mut lp: Option<LpBound> = None;
     let mut lp_failed_at = f64::INFINITY;
     let mut lp_refuted: Option<f64> = None;
     for _ in 0..10_000 {
@@ -247,6 +248,7 @@ fn phase2(
                 if round == lp_round && c_run < lp_failed_at {
                     // Refuted at `c`: the bisection up to the incumbent lifts the bound at once
                     // (and proves the incumbent when it refutes just below it).
+                    let lp = lp.get_or_insert_with(|| LpBound::new(p, integral));
                     if let Some(fail) = lp.lift(m, c, ub, budget) {
                         lp_refuted = Some(fail);
                         break Decision::DoesNotFit;
