@@ -15,6 +15,9 @@
 //! - `bound`: the optimum equals the simple lower bound `max(ceil(sum/m), p_max, p_m + p_{m+1})`
 //!   (times sorted descending), computed here, so no search is needed to trust it;
 //! - `brute`: the paper's brute force agrees (only where `m^n <= 1e8`);
+//! - `card`: the optimum equals the cardinality bound (`models/node_time.md`, "Lower bounds
+//!   (root)"), written out here separately from the solver's code: for the `N` longest jobs and
+//!   `s` pads, the `s` pads holding the most of them hold at least `s floor(N/m) + min(s, N mod m)`;
 //! - `milp`: the assignment MILP on the default backend agrees (only `n <= 12`, 60 s limit);
 //! - `lp`: the bin-packing LP bound (`node_time::lp_lower_bound`, column generation rounded by
 //!   Farley's bound, 60 s limit) equals the optimum, a second proof of the lower bound,
@@ -89,6 +92,26 @@ fn simple_bound(times: &[f64], m: usize) -> f64 {
     lb
 }
 
+/// The cardinality bound, computed directly: for each `N`, the `N` longest times in increasing
+/// order; for each `s` in `1..=m`, the `s` pads holding the most of them hold at least
+/// `h = s floor(N/m) + min(s, N mod m)`, which weigh at least the `h` shortest, so one pad at least
+/// `ceil(that / s)` (whole-number times).
+fn cardinality_bound(times: &[f64], m: usize) -> f64 {
+    let mut t = times.to_vec();
+    t.sort_by(|a, b| b.total_cmp(a));
+    let mut lb = 0.0_f64;
+    for big in 1..=t.len() {
+        let mut longest: Vec<f64> = t[..big].to_vec();
+        longest.reverse();
+        for s in 1..=m.min(big) {
+            let h = s * (big / m) + s.min(big % m);
+            let weight: f64 = longest[..h].iter().sum();
+            lb = lb.max((weight / s as f64).ceil());
+        }
+    }
+    lb
+}
+
 fn arg<'a>(args: &'a [String], key: &str) -> Option<&'a str> {
     args.iter()
         .position(|a| a == key)
@@ -130,7 +153,7 @@ fn main() {
         seed0 + reps - 1
     );
     println!(
-        "{:<11} {:>4} {:>3} {:>6} {:>10} {:>10} {:>5} {:>5} {:>5} {:>5} {:>5} {:>5}  open (lb..ub)",
+        "{:<11} {:>4} {:>3} {:>6} {:>10} {:>10} {:>5} {:>5} {:>5} {:>5} {:>5} {:>5} {:>5}  open (lb..ub)",
         "class",
         "n",
         "m",
@@ -139,6 +162,7 @@ fn main() {
         "worst_ms",
         "bound",
         "brute",
+        "card",
         "milp",
         "lp",
         "unchk",
@@ -150,7 +174,8 @@ fn main() {
         let rows = sizes.clone().unwrap_or_else(|| default_sizes(class));
         for (n, m) in rows {
             let mut ms = Vec::new();
-            let (mut proven, mut by_bound, mut by_brute, mut by_milp, mut by_lp) = (0, 0, 0, 0, 0);
+            let (mut proven, mut by_bound, mut by_brute, mut by_card) = (0, 0, 0, 0);
+            let (mut by_milp, mut by_lp) = (0, 0);
             let (mut unchecked, mut wrong) = (0, 0);
             let mut open = Vec::new();
             for seed in seed0..seed0 + reps {
@@ -196,6 +221,14 @@ fn main() {
                     }
                 } else if s.makespan_min == lb {
                     by_bound += 1;
+                } else if s.makespan_min < cardinality_bound(&times, m) {
+                    wrong += 1;
+                    println!(
+                        "WRONG {class} {n}x{m} seed {seed}: {} below the cardinality bound",
+                        s.makespan_min
+                    );
+                } else if s.makespan_min == cardinality_bound(&times, m) {
+                    by_card += 1;
                 } else if n <= 12 {
                     let l =
                         milp(m, &times, MilpBackend::default(), &milp_limits).expect("milp runs");
@@ -227,7 +260,7 @@ fn main() {
             }
             let worst = ms.iter().copied().fold(0.0, f64::max);
             println!(
-                "{:<11} {:>4} {:>3} {:>3}/{:<2} {:>10.2} {:>10.2} {:>5} {:>5} {:>5} {:>5} {:>5} {:>5}  {}",
+                "{:<11} {:>4} {:>3} {:>3}/{:<2} {:>10.2} {:>10.2} {:>5} {:>5} {:>5} {:>5} {:>5} {:>5} {:>5}  {}",
                 class.name(),
                 n,
                 m,
@@ -237,6 +270,7 @@ fn main() {
                 worst,
                 by_bound,
                 by_brute,
+                by_card,
                 by_milp,
                 by_lp,
                 unchecked,

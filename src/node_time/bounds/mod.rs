@@ -34,6 +34,41 @@ pub(crate) fn lower_bound_sorted(pads: usize, sorted_desc: &[f64], integral: boo
     lb
 }
 
+/// Cardinality bound on the makespan for times sorted in decreasing order: for the `N` longest
+/// drones `B` and `s` pads (`1 <= s <= k`), the `s` pads that hold the most of `B` hold at least
+/// `h = s floor(N/k) + min(s, N mod k)` of them (the counts of a balanced assignment), so they
+/// weigh at least the `h` shortest drones of `B`, and one of them at least a share `1/s` of
+/// that. The bound is the largest such share over `N` and `s`, rounded up when `integral`.
+///
+/// It contains the root bound ([`lower_bound_sorted`]: `N = 1` gives `p_1`, `N = n, s = k` the
+/// volume, `N = t k + 1, s = 1` the pigeonhole family) and widens it: when most pads must hold
+/// the same number of long drones, the bound is their average, while the pads that hold one
+/// fewer absorb the longest drones and every short one (Frangioni et al.'s non-uniform classes,
+/// where it is the optimum). See `models/node_time.md`, "Lower bounds (root)".
+///
+/// Complexity `O(n k)`.
+pub(crate) fn cardinality_bound(pads: usize, sorted_desc: &[f64], integral: bool) -> f64 {
+    let n = sorted_desc.len();
+    // prefix[i] = p_1 + ... + p_i; the `h` shortest of the `N` longest weigh prefix[N] - prefix[N - h].
+    let mut prefix = Vec::with_capacity(n + 1);
+    prefix.push(0.0);
+    for &x in sorted_desc {
+        prefix.push(prefix.last().copied().unwrap_or(0.0) + x);
+    }
+    let mut lb = 0.0_f64;
+    for big in 1..=n {
+        let (each, extra) = (big / pads, big % pads);
+        for s in 1..=pads.min(big) {
+            let held = s * each + s.min(extra);
+            lb = lb.max((prefix[big] - prefix[big - held]) / s as f64);
+        }
+    }
+    if integral {
+        lb = (lb - 1e-9).ceil().max(0.0);
+    }
+    lb
+}
+
 /// Martello–Toth lower bound `L2` on the number of bins of capacity `cap` that hold items `p`
 /// (sorted decreasingly, all `> 0`).
 ///
@@ -470,5 +505,81 @@ mod tests {
         let s = crate::node_time::exact(9, &times, &crate::node_time::Limits::default()).unwrap();
         assert_eq!(s.status, crate::solver::SolveStatus::Optimal);
         assert!((s.makespan_min - pad).abs() <= 1e-9 * pad);
+    }
+
+    /// Eight drones of 10, 10, 9, 9, 8, 8, 5, 4 min (63 in all) on 3 pads. The two pads that hold
+    /// the most drones hold at least 6 (3 + 3 + 2 is the most balanced), which weigh at least the
+    /// six shortest, 4 + 5 + 8 + 8 + 9 + 9 = 43, so one of them at least 21.5, i.e. 22 (whole
+    /// minutes). The root bound says 21 (the volume, and `p_5 + p_6 + p_7`), and neither `L2`
+    /// nor the count bound refutes 21. The optimum is 22 ({10, 10}, {9, 8, 5}, {9, 8, 4}), by
+    /// brute force.
+    #[test]
+    fn cardinality_bound_averages_the_pads_that_must_hold_three() {
+        let p = [10.0, 10.0, 9.0, 9.0, 8.0, 8.0, 5.0, 4.0];
+        assert_eq!(cardinality_bound(3, &p, true), 22.0);
+        assert_eq!(cardinality_bound(3, &p, false), 21.5);
+        assert_eq!(lower_bound_sorted(3, &p, true), 21.0);
+        assert_eq!(bound_lift(&p, 3, 21.0, 22.0, true), None);
+        let limits = crate::node_time::Limits::default();
+        let opt = crate::node_time::brute::brute(3, &p, &limits).unwrap();
+        assert_eq!(opt.makespan_min, 22.0);
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(2000))]
+
+        /// The cardinality bound never exceeds the optimum (brute force) on up to 9 drones, whole
+        /// or real minutes, from a wide range or a narrow one near 100 (few drones per pad, where
+        /// the counts bind), and never falls below the root bound it contains.
+        #[test]
+        fn cardinality_bound_never_exceeds_the_brute_force_optimum(
+            pads in 2usize..=4,
+            base in proptest::collection::vec(1u32..=40, 2..=9),
+            frac in proptest::collection::vec(0.0f64..1.0, 9),
+            real in proptest::bool::ANY,
+            narrow in proptest::bool::ANY,
+        ) {
+            let mut p: Vec<f64> = base
+                .iter()
+                .zip(&frac)
+                .map(|(&w, &f)| {
+                    let w = if narrow { 80.0 + f64::from(w) / 2.0 } else { f64::from(w) };
+                    if real { w + f } else { w.floor() }
+                })
+                .collect();
+            p.sort_by(|a, b| b.total_cmp(a));
+            let limits = crate::node_time::Limits::default();
+            let opt = crate::node_time::brute::brute(pads, &p, &limits).unwrap().makespan_min;
+            let cb = cardinality_bound(pads, &p, !real);
+            proptest::prop_assert!(cb <= opt * (1.0 + 1e-12), "{cb} > {opt}: {pads} pads {p:?}");
+            let root = lower_bound_sorted(pads, &p, !real);
+            proptest::prop_assert!(cb >= root * (1.0 - 1e-12), "{cb} < root {root}");
+        }
+    }
+
+    /// The bound is the optimum, and above the root bound, on many narrow random cases (3 to 9
+    /// drones of 80 to 100 whole minutes on 2 to 4 pads), so the test above is not vacuous.
+    #[test]
+    fn cardinality_bound_is_often_the_optimum_above_the_root_bound() {
+        let mut rng = ChaCha8Rng::seed_from_u64(190);
+        let limits = crate::node_time::Limits::default();
+        let mut tight_above_root = 0;
+        for _ in 0..500 {
+            let pads = rng.random_range(2..=4);
+            let n = rng.random_range(3..=9);
+            let mut p: Vec<f64> = (0..n)
+                .map(|_| f64::from(rng.random_range(80..=100)))
+                .collect();
+            p.sort_by(|a, b| b.total_cmp(a));
+            let opt = crate::node_time::brute::brute(pads, &p, &limits)
+                .unwrap()
+                .makespan_min;
+            let cb = cardinality_bound(pads, &p, true);
+            assert!(cb <= opt, "{cb} > {opt}: {pads} pads {p:?}");
+            if cb == opt && cb > lower_bound_sorted(pads, &p, true) {
+                tight_above_root += 1;
+            }
+        }
+        assert!(tight_above_root >= 20, "{tight_above_root}");
     }
 }

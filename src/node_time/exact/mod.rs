@@ -32,8 +32,8 @@ mod assignment;
 mod completion;
 mod partition;
 
-use super::bounds::bound_lift;
 use super::bounds::lp::LpBound;
+use super::bounds::{bound_lift, cardinality_bound};
 use super::heuristics::lpt::lpt_sorted;
 use super::heuristics::{aim_at, ldm_sorted, local_search};
 use super::search::{Budget, Decision, Memo, SearchOutcome, CAP_SLACK};
@@ -574,6 +574,12 @@ pub(crate) fn exact_phased(
             finished = found.proven;
         } else {
             finished = false;
+        }
+        if !finished {
+            // The cardinality bound, `O(n^2 / k)`: after phase 1, so that the small swarms it
+            // proves never pay for it.
+            lb = lb.max(cardinality_bound(m, p, integral));
+            finished = proven(ub, lb);
         }
         if !finished
             && !integral
