@@ -31,6 +31,7 @@
 mod assignment;
 mod completion;
 mod partition;
+mod repack;
 
 use super::bounds::lp::LpBound;
 use super::bounds::{bound_lift, cardinality_bound};
@@ -46,6 +47,7 @@ use crate::solver::SolveStatus;
 use assignment::run_assignment_search;
 use completion::BinCompletion;
 use partition::{partition, PARTITION_MAX_DRONES};
+use repack::repack;
 use std::time::Instant;
 
 /// Nodes of the assignment search before the decision version takes over (phase 1).
@@ -117,6 +119,15 @@ const LP_EARLY_MAX_CELLS: f64 = (1u64 << 20) as f64;
 /// (nu2, nu3) wait a fraction of their seconds (`models/experiments/node_time.md`).
 const LP_LATE_SLICE: u64 = 5;
 
+/// Expected excess of the optimum over `sum/k` (whole minutes, `expected_excess` at a resolution
+/// of 1 min) below which a perfect assignment (every load at `ceil(sum/k)` or below) is expected:
+/// sequential partitioning is not chosen, and the LP bound on a large knapsack table
+/// ([`LP_EARLY_MAX_CELLS`]) is not tried at `ceil(sum/k)`, which it could only refute if no such
+/// assignment existed (u3 100x25 of the classical classes: 2.3 s of column generation that never
+/// proved anything; on small tables, l2 and l5 at 100x40, the LP is cheap and does refute
+/// `ceil(sum/k)` where the estimate is wrong; `models/experiments/node_time.md`).
+const PERFECT_EXCESS_MAX_MIN: f64 = 0.5;
+
 /// Largest load of the assignment `pad_of` of the sorted drones `p`.
 fn makespan_sorted(m: usize, p: &[f64], pad_of: &[usize]) -> f64 {
     let mut loads = vec![0.0_f64; m];
@@ -171,6 +182,13 @@ fn phase2(
     let mut lp: Option<LpBound> = None;
     let mut lp_failed_at = f64::INFINITY;
     let mut lp_refuted: Option<f64> = None;
+    let volume = p.iter().sum::<f64>() / m as f64;
+    let volume = if integral {
+        (volume - 1e-9).ceil()
+    } else {
+        volume
+    };
+    let skip_lp_at_volume = integral && expected_excess(p, m, 1.0) < PERFECT_EXCESS_MAX_MIN;
     for _ in 0..10_000 {
         if proven(ub, lb) {
             return outcome(true, lb, ub);
@@ -223,9 +241,11 @@ fn phase2(
         } else {
             // Bin completion in slices, from STALL_NODES nodes, doubling. After the first slice
             // (the sixth for a large knapsack table, LP_EARLY_MAX_CELLS) the LP bound is tried
-            // at `c` once (not above a capacity where it failed); at the lower bound itself,
-            // after every slice, with whole minutes, the perfect-partition search aims at `c`
-            // with as many nodes as the slice. Bin completion resumes with its memo.
+            // at `c` once (not above a capacity where it failed, nor on a large table at
+            // `ceil(sum/k)` when a perfect assignment is expected); at the lower bound itself, after every slice,
+            // with whole minutes, the perfect-partition search aims at `c` with as many nodes
+            // as the slice, then the repacking of pad groups with as many again. Bin completion
+            // resumes with its memo.
             let mut slice_nodes = STALL_NODES;
             let mut round = 0u64;
             let lp_round = if integral && (c + 1.0) * p.len() as f64 > LP_EARLY_MAX_CELLS {
@@ -245,7 +265,8 @@ fn phase2(
                 if d != Decision::Stopped || budget.spent() {
                     break d;
                 }
-                if round == lp_round && c_run < lp_failed_at {
+                let lp_hopeless = skip_lp_at_volume && c <= volume && lp_round == LP_LATE_SLICE;
+                if round == lp_round && c_run < lp_failed_at && !lp_hopeless {
                     // Refuted at `c`: the bisection up to the incumbent lifts the bound at once
                     // (and proves the incumbent when it refutes just below it).
                     let lp = lp.get_or_insert_with(|| LpBound::new(p, integral));
@@ -261,7 +282,10 @@ fn phase2(
                     // It starts from the incumbent, so each slice goes on from the best
                     // assignment the earlier ones met.
                     let mut trial = pad_of.to_vec();
-                    if aim_at(m, p, c, &mut trial, slice_nodes, round, budget).is_some() {
+                    let aimed_at = aim_at(m, p, c, &mut trial, slice_nodes, round, budget);
+                    let repacked = aimed_at.is_none_or(|x| x > c)
+                        && repack(m, p, c, &mut trial, slice_nodes, round, budget).is_some();
+                    if aimed_at.is_some() || repacked {
                         let found = makespan_sorted(m, p, &trial);
                         if found <= c {
                             aimed = Some(trial);
@@ -349,7 +373,7 @@ fn use_partition(m: usize, times: &[f64], positive: usize, integral: bool) -> bo
         return false;
     }
     let p: Vec<f64> = times.iter().copied().filter(|&t| t > 0.0).collect();
-    expected_excess(&p, m, 1.0) >= 0.5
+    expected_excess(&p, m, 1.0) >= PERFECT_EXCESS_MAX_MIN
 }
 
 /// How many of the positive `times` equal an earlier one.
