@@ -242,9 +242,9 @@ fn phase2(
             // Bin completion in slices, from STALL_NODES nodes, doubling. After the first slice
             // (the sixth for a large knapsack table, LP_EARLY_MAX_CELLS) the LP bound is tried
             // at `c` once (not above a capacity where it failed, nor on a large table at
-            // `ceil(sum/k)` when a perfect assignment is expected); at the lower bound itself, after every slice,
-            // with whole minutes, the perfect-partition search aims at `c` with as many nodes
-            // as the slice, then the repacking of pad groups with as many again. Bin completion
+            // `ceil(sum/k)` when a perfect assignment is expected); after every slice, with
+            // whole minutes, the perfect-partition search aims at `c` with as many nodes as the
+            // slice, then the repacking of pad groups with as many again. Bin completion
             // resumes with its memo.
             let mut slice_nodes = STALL_NODES;
             let mut round = 0u64;
@@ -278,7 +278,7 @@ fn phase2(
                         lp_failed_at = c_run;
                     }
                 }
-                if integral && c <= lb {
+                if integral {
                     // It starts from the incumbent, so each slice goes on from the best
                     // assignment the earlier ones met.
                     let mut trial = pad_of.to_vec();
