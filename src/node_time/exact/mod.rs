@@ -128,6 +128,13 @@ const LP_LATE_SLICE: u64 = 5;
 /// `ceil(sum/k)` where the estimate is wrong; `models/experiments/node_time.md`).
 const PERFECT_EXCESS_MAX_MIN: f64 = 0.5;
 
+/// Most drones per pad (on average) for which a stalled decision repacks pad groups
+/// (`repack.rs`) after the perfect-partition search: with four per pad a pair of pads has 256
+/// splits and the pairwise search stalls (u3 and u2 at 100x25 of the classical classes); with
+/// five (u3 50x10) the pairwise search reaches the bound alone, and repacking only delays it
+/// (15–20% longer on four of ten instances, `models/experiments/node_time.md`).
+const REPACK_MAX_DRONES_PER_PAD: usize = 4;
+
 /// Largest load of the assignment `pad_of` of the sorted drones `p`.
 fn makespan_sorted(m: usize, p: &[f64], pad_of: &[usize]) -> f64 {
     let mut loads = vec![0.0_f64; m];
@@ -284,6 +291,7 @@ fn phase2(
                     let mut trial = pad_of.to_vec();
                     let aimed_at = aim_at(m, p, c, &mut trial, slice_nodes, round, budget);
                     let repacked = aimed_at.is_none_or(|x| x > c)
+                        && p.len() <= REPACK_MAX_DRONES_PER_PAD * m
                         && repack(m, p, c, &mut trial, slice_nodes, round, budget).is_some();
                     if aimed_at.is_some() || repacked {
                         let found = makespan_sorted(m, p, &trial);
