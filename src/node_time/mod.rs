@@ -24,15 +24,16 @@
 //! The files by role:
 //! - `mod.rs`: the shared types ([`Limits`], [`NodeTimeSolution`], [`REL_TOL`]), validation and
 //!   the public entry points;
-//! - `bounds/`: lower bounds: the root bound, the Martello–Toth `L2`, the two-class count bound
-//!   and their lift by bisection (`mod.rs`), the bin-packing LP bound (`lp.rs`);
+//! - `bounds/`: lower bounds: the root bound, the cardinality bound, the Martello–Toth `L2`, the
+//!   two-class count bound and their lift by bisection (`mod.rs`), the bin-packing LP bound
+//!   (`lp.rs`);
 //! - `heuristics/`: LPT (`lpt.rs`), largest differencing (`ldm.rs`), the move/swap local search
 //!   (`local_search.rs`), the perfect-partition search (`perfect.rs`);
 //! - `search/`: what the exact searches share: the node and time budget with its one limit check
 //!   (`budget.rs`), the memo of failed states (`memo.rs`), the outcome of a decision query;
 //! - `exact/`: the phase policy and its tuning constants (`mod.rs`), the assignment branch and
 //!   bound (`assignment.rs`), bin completion (`completion.rs`), sequential partitioning
-//!   (`partition.rs`);
+//!   (`partition.rs`), the repacking of pad groups by bin completion (`repack.rs`);
 //! - `milp.rs`, `brute.rs`: the cross-check solvers, independent of the exact search.
 //!
 //! Floating-point tolerance: charge times are `f64` minutes. Two makespans are equal when they

@@ -1,6 +1,7 @@
-//! Lower bounds on the node time: the root bound `max(p_1, sum/k, ...)`, the Martello–Toth `L2`
-//! and a two-class count bin-packing bound, their lift by bisection, and the bin-packing LP bound
-//! (`lp.rs`). See `models/node_time.md`, "Decision version" and "LP bound".
+//! Lower bounds on the node time: the root bound `max(p_1, sum/k, ...)`, the cardinality bound
+//! that widens it, the Martello–Toth `L2` and a two-class count bin-packing bound, their lift by
+//! bisection, and the bin-packing LP bound (`lp.rs`). See `models/node_time.md`, "Lower bounds
+//! (root)", "Decision version" and "LP bound".
 
 pub(crate) mod lp;
 
