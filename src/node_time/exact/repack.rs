@@ -117,29 +117,8 @@ pub(crate) fn repack(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::node_time::heuristics::cases::{loads_of, poor_start};
     use crate::node_time::Limits;
-
-    /// 12 drones of 90 min in all on 3 pads, decreasing, with a perfect split at 30 (14 + 12 + 4,
-    /// 13 + 9 + 8, 11 + 6 + 5 + 3 + 3 + 2), from a poor start: every drone on pad 0 but the
-    /// second and third (loads 63, 13, 12).
-    fn poor_start() -> ([f64; 12], Vec<usize>) {
-        let p = [
-            14.0, 13.0, 12.0, 11.0, 9.0, 8.0, 6.0, 5.0, 4.0, 3.0, 3.0, 2.0,
-        ];
-        assert_eq!(p.iter().sum::<f64>(), 90.0);
-        let mut pad_of = vec![0; p.len()];
-        pad_of[1] = 1;
-        pad_of[2] = 2;
-        (p, pad_of)
-    }
-
-    fn loads_of(p: &[f64], pad_of: &[usize]) -> [f64; 3] {
-        let mut loads = [0.0; 3];
-        for (j, &i) in pad_of.iter().enumerate() {
-            loads[i] += p[j];
-        }
-        loads
-    }
 
     /// With three pads one move repacks them all: the perfect split is found, every drone
     /// placed once.

@@ -12,3 +12,5 @@ pub(crate) use ldm::ldm_sorted;
 pub(crate) use local_search::local_search;
 pub use lpt::lpt;
 pub(crate) use perfect::aim_at;
+#[cfg(test)]
+pub(crate) use perfect::cases;

@@ -199,15 +199,14 @@ pub(crate) fn aim_at(
     }
 }
 
+/// A small case shared by the tests of the searches aimed at a target (here and
+/// `exact/repack.rs`).
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::node_time::Limits;
-
+pub(crate) mod cases {
     /// 12 drones of 90 min in all, with a perfect split on 3 pads (30 each: 14 + 12 + 4,
     /// 13 + 9 + 8, 11 + 6 + 5 + 3 + 3 + 2) that LPT misses, and a poor start: every drone on
     /// pad 0 but the second and third (loads 63, 13, 12).
-    fn poor_start() -> ([f64; 12], Vec<usize>) {
+    pub(crate) fn poor_start() -> ([f64; 12], Vec<usize>) {
         let p = [
             14.0, 13.0, 12.0, 11.0, 9.0, 8.0, 6.0, 5.0, 4.0, 3.0, 3.0, 2.0,
         ];
@@ -218,13 +217,21 @@ mod tests {
         (p, pad_of)
     }
 
-    fn loads_of(p: &[f64], pad_of: &[usize]) -> [f64; 3] {
+    /// Loads of the 3 pads of `pad_of`.
+    pub(crate) fn loads_of(p: &[f64], pad_of: &[usize]) -> [f64; 3] {
         let mut loads = [0.0; 3];
         for (j, &i) in pad_of.iter().enumerate() {
             loads[i] += p[j];
         }
         loads
     }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::cases::{loads_of, poor_start};
+    use super::*;
+    use crate::node_time::Limits;
 
     /// From the poor start, the search finds a perfect split.
     #[test]
