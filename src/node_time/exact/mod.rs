@@ -260,6 +260,7 @@ fn phase2(
             } else {
                 0
             };
+            let lp_hopeless = skip_lp_at_volume && c <= volume && lp_round == LP_LATE_SLICE;
             loop {
                 let slice_limits = budget.limits_for(slice_nodes);
                 let mut slice = Budget {
@@ -272,7 +273,6 @@ fn phase2(
                 if d != Decision::Stopped || budget.spent() {
                     break d;
                 }
-                let lp_hopeless = skip_lp_at_volume && c <= volume && lp_round == LP_LATE_SLICE;
                 if round == lp_round && c_run < lp_failed_at && !lp_hopeless {
                     // Refuted at `c`: the bisection up to the incumbent lifts the bound at once
                     // (and proves the incumbent when it refutes just below it).
@@ -608,7 +608,7 @@ pub(crate) fn exact_phased(
             finished = false;
         }
         if !finished {
-            // The cardinality bound, `O(n^2 / k)`: after phase 1, so that the small swarms it
+            // The cardinality bound, `O(n k)`: after phase 1, so that the small swarms it
             // proves never pay for it.
             lb = lb.max(cardinality_bound(m, p, integral));
             finished = proven(ub, lb);
