@@ -434,3 +434,37 @@ fn a_request_of_identical_packages_proves_every_stop() {
         "{cross_checked} of {stops} cross-checked"
     );
 }
+
+#[test]
+fn baseline_costs_of_another_swarm_are_refused_with_e0018() {
+    let paper = paper_195();
+    let context = Context::new(&paper.network, &paper.graph, &paper.profile);
+    let swarm_of = |packages: usize| {
+        context
+            .swarm_for(&request(packages), Positioning::LocationAware, Some(0))
+            .unwrap()
+            .swarm
+    };
+    let (two, three) = (swarm_of(2), swarm_of(3));
+    let planner_two = Planner::new(&paper.graph, &paper.profile, &two, SharingPolicy::Pb);
+    let planner_three = Planner::new(&paper.graph, &paper.profile, &three, SharingPolicy::Pb);
+    let costs_three = planner_three.baseline_costs().unwrap();
+    let (source, destination) = (
+        paper.graph.index_of("n010").unwrap(),
+        paper.graph.index_of("n168").unwrap(),
+    );
+    let err = planner_two
+        .compose_with_baseline_costs(source, destination, RouteMethod::Dijkstra, &costs_three)
+        .unwrap_err();
+    assert_eq!(err.exit_code(), 2);
+    assert!(err.to_string().contains("E0018"), "{err}");
+    // The costs of its own swarm are accepted and give the plan of `compose`.
+    let own = planner_two.baseline_costs().unwrap();
+    let with_costs = planner_two
+        .compose_with_baseline_costs(source, destination, RouteMethod::Dijkstra, &own)
+        .unwrap();
+    let plain = planner_two
+        .compose(source, destination, RouteMethod::Dijkstra)
+        .unwrap();
+    assert_eq!(with_costs.dt_min, plain.dt_min);
+}

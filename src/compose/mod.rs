@@ -144,10 +144,7 @@ impl Planner<'_> {
     ///   with the same swarm and node limit; used only by the fixed-route methods.
     ///
     /// # Errors
-    /// As [`Planner::compose`].
-    ///
-    /// # Panics
-    /// When `costs` belong to another swarm.
+    /// As [`Planner::compose`]; E0018 when `costs` belong to another swarm.
     ///
     /// # Complexity
     /// As [`Planner::compose`], without the edge costs of the fixed routes: Dijkstra O(|E| log |V|);
@@ -159,10 +156,14 @@ impl Planner<'_> {
         method: RouteMethod,
         costs: &BaselineCosts,
     ) -> crate::error::Result<Plan> {
-        assert!(
-            costs.swarm() == self.swarm(),
-            "baseline costs of another swarm"
-        );
+        if costs.swarm() != self.swarm() {
+            return Err(crate::error::Error::invalid(
+                "E0018",
+                "costs",
+                "the baseline costs were computed for another swarm",
+                "compute them with Planner::baseline_costs of a planner with this planner's swarm",
+            ));
+        }
         self.compose_with(source, destination, method, Some(costs))
     }
 
