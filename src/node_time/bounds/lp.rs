@@ -23,6 +23,8 @@ use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
     DefaultSettings, DefaultSolver, IPSolver, NonnegativeConeT, SolverStatus, SupportedConeT,
 };
+use rand::Rng;
+use rand_chacha::ChaCha8Rng;
 use std::collections::HashSet;
 
 /// Fixed-point scale of the dual values `v_t = floor(y_t SCALE)`.
@@ -47,6 +49,10 @@ const LP_SOLVE_NODES: u64 = 20_000;
 
 /// Work units (table cells or knapsack nodes) that count as one node of the shared budget.
 const WORK_PER_NODE: u64 = 16;
+
+/// Tolerance of the dive on the LP's floating-point values (pattern values read as whole
+/// pads, the residual LP against the pads left); the dive is a heuristic, its pads are checked.
+const DIVE_LP_TOL: f64 = 1e-6;
 
 /// Most patterns an [`LpBound`] keeps for later capacities.
 const POOL_MAX_PATTERNS: usize = 4000;
@@ -237,8 +243,9 @@ fn knapsack_bb(w: &[f64], d: &[u64], v: &[u64], cap: f64) -> (u64, Vec<u64>, u64
 }
 
 /// Solves the restricted dual LP over `patterns`: `max d'y`, `A y <= 1`, `y >= 0`. Returns
-/// `y` and the objective, or `None` when clarabel does not solve it.
-fn restricted_dual(d: &[u64], patterns: &[Vec<u64>]) -> Option<(Vec<f64>, f64)> {
+/// `y`, the objective and the primal pattern values `x` (the multipliers of `A y <= 1`: `min
+/// 1'x`, `A'x >= d`, `x >= 0`), or `None` when clarabel does not solve it.
+fn restricted_dual(d: &[u64], patterns: &[Vec<u64>]) -> Option<(Vec<f64>, f64, Vec<f64>)> {
     let nt = d.len();
     let (mut ri, mut ci, mut vals) = (Vec::new(), Vec::new(), Vec::new());
     for (r, a) in patterns.iter().enumerate() {
@@ -275,7 +282,8 @@ fn restricted_dual(d: &[u64], patterns: &[Vec<u64>]) -> Option<(Vec<f64>, f64)> 
     match s.status {
         SolverStatus::Solved | SolverStatus::AlmostSolved => {
             let y: Vec<f64> = s.x.iter().map(|&x| x.max(0.0)).collect();
-            Some((y, -s.obj_val))
+            let x: Vec<f64> = s.z[..rows].iter().map(|&z| z.max(0.0)).collect();
+            Some((y, -s.obj_val, x))
         }
         _ => None,
     }
@@ -302,6 +310,21 @@ fn ffd_patterns(w: &[f64], d: &[u64], cap: f64) -> Vec<Vec<u64>> {
     bins.into_iter().map(|(_, a)| a).collect()
 }
 
+/// Fixes one pad of pattern `a` cut to the drones `left` (a pattern of the covering LP may hold
+/// more of a type than remain): pushes it to `fixed` and takes its drones from `left`. Returns
+/// whether the pad holds any drone.
+fn take(a: &[u64], left: &mut [u64], fixed: &mut Vec<Vec<u64>>) -> bool {
+    let cut: Vec<u64> = a.iter().zip(left.iter()).map(|(&c, &l)| c.min(l)).collect();
+    if cut.iter().all(|&c| c == 0) {
+        return false;
+    }
+    for (l, &c) in left.iter_mut().zip(&cut) {
+        *l -= c;
+    }
+    fixed.push(cut);
+    true
+}
+
 /// The bin-packing LP of one set of drones, asked at several capacities (the bisection of
 /// [`LpBound::lift`], the decisions of bin completion): every pattern priced is kept in a pool
 /// and starts the restricted LP of any later capacity at least its weight.
@@ -316,6 +339,8 @@ pub(crate) struct LpBound {
     pool: Vec<(Vec<u64>, f64)>,
     /// The dual `y` of the best Farley bound of the last [`LpBound::bins`].
     best_dual: Option<Vec<f64>>,
+    /// The patterns and primal values `x` of the last restricted LP solved.
+    primal: Option<(Vec<Vec<u64>>, Vec<f64>)>,
 }
 
 impl LpBound {
@@ -329,6 +354,7 @@ impl LpBound {
             integral,
             pool: Vec::new(),
             best_dual: None,
+            primal: None,
         }
     }
 
@@ -400,7 +426,7 @@ impl LpBound {
             |v: &[u64]| -> u128 { d.iter().zip(v).map(|(&c, &x)| c as u128 * x as u128).sum() };
         for it in 1..=MAX_ITERATIONS {
             budget.nodes = budget.nodes.saturating_add(LP_SOLVE_NODES);
-            let Some((y_lp, value)) = restricted_dual(&d, &patterns) else {
+            let Some((y_lp, value, x_lp)) = restricted_dual(&d, &patterns) else {
                 return LpBins {
                     bins: best,
                     lp_value,
@@ -408,6 +434,7 @@ impl LpBound {
                 };
             };
             lp_value = value;
+            self.primal = Some((patterns.clone(), x_lp));
             // The restricted LP (an upper bound on the full LP) cannot exceed the target.
             if target.is_some_and(|k| value <= k as f64 + 1e-7) {
                 return LpBins {
@@ -498,6 +525,94 @@ impl LpBound {
             }
         }
         Some(fail)
+    }
+
+    /// LP diving towards an assignment on `k` pads of capacity `cap`: solve the LP of the
+    /// drones not yet placed to its optimum, fix as pads the patterns it uses at least once
+    /// (the one it uses most when none is), and repeat on the rest. Returns the pads fixed, in
+    /// order, as counts per type (each of weight `<= cap`, at most `k`), and whether they hold
+    /// every drone; it stops early when a residual LP needs more pads than are left or on a
+    /// limit. A heuristic: an incomplete dive proves nothing.
+    ///
+    /// Complexity: at most `k` rounds, each a column generation ([`LpBound::bins`]) warm-started
+    /// from the pool.
+    pub(crate) fn dive(
+        &self,
+        k: usize,
+        cap: f64,
+        rng: Option<&mut ChaCha8Rng>,
+        budget: &mut Budget,
+    ) -> (Vec<Vec<u64>>, bool) {
+        let mut rng = rng;
+        let mut fixed: Vec<Vec<u64>> = Vec::new();
+        let mut left = self.d.clone();
+        let mut residual = LpBound {
+            w: self.w.clone(),
+            d: left.clone(),
+            integral: self.integral,
+            pool: self
+                .pool
+                .iter()
+                .filter(|(_, weight)| *weight <= cap)
+                .cloned()
+                .collect(),
+            best_dual: None,
+            primal: None,
+        };
+        while left.iter().any(|&c| c > 0) {
+            let pads_left = (k - fixed.len()) as u64;
+            if pads_left == 0 || budget.spent() {
+                return (fixed, false);
+            }
+            residual.d.clone_from(&left);
+            residual
+                .pool
+                .retain(|(a, _)| a.iter().zip(&left).all(|(&c, &l)| c <= l));
+            // Column generation stops as soon as the restricted LP needs at most the pads left:
+            // its solution, feasible for the full LP, guides the dive as well as an optimal
+            // one and costs a fraction (one iteration per round against up to a hundred).
+            let r = residual.bins(cap, Some(pads_left), budget);
+            if r.bins > pads_left || r.lp_value > pads_left as f64 + DIVE_LP_TOL {
+                return (fixed, false);
+            }
+            let Some((patterns, x)) = residual.primal.take() else {
+                return (fixed, false);
+            };
+            let mut took = false;
+            for (q, a) in patterns.iter().enumerate() {
+                for _ in 0..(x[q] + DIVE_LP_TOL).floor() as u64 {
+                    took |= take(a, &mut left, &mut fixed);
+                }
+            }
+            if !took {
+                let most = match rng.as_deref_mut() {
+                    // A pattern drawn with probability proportional to its value.
+                    Some(rng) => {
+                        let total: f64 = x.iter().sum();
+                        let mut at = rng.random::<f64>() * total;
+                        (0..patterns.len()).find(|&q| {
+                            at -= x[q];
+                            at <= 0.0 && x[q] > 0.0
+                        })
+                    }
+                    None => (0..patterns.len()).max_by(|&a, &b| x[a].total_cmp(&x[b])),
+                };
+                if !most.is_some_and(|q| take(&patterns[q], &mut left, &mut fixed)) {
+                    return (fixed, false);
+                }
+            }
+            if fixed.len() > k {
+                fixed.truncate(k);
+                return (fixed, false);
+            }
+        }
+        (fixed, true)
+    }
+
+    /// Type counts `d_t` of the drones (types by decreasing length: the drones of type `t` are
+    /// the `d_t` consecutive ones after those of the earlier types).
+    pub(crate) fn counts(&self) -> &[u64] {
+        &self.d
     }
 
     /// Largest capacity `c` in `[from, below)` at which the last best Farley dual `v` still
@@ -609,6 +724,33 @@ mod tests {
         assert!((at_11.lp_value - 2.25).abs() < 1e-6, "{at_11:?}");
         assert_eq!(at_11.bins, 3);
         assert_eq!(lp.dual_reach(2, 11.0, 13.0), Some(11.0));
+    }
+
+    /// Drones 6, 6, 5, 5, 4, 4 on 3 pads of 10 (types 6, 5, 4, two each). The drones weigh 30 =
+    /// 3 x 10, so an LP solution of value 3 uses only full patterns, {6, 4} and {5, 5}, and
+    /// covering the types needs `x{6,4} = 2`, `x{5,5} = 1`: the dive fixes exactly those pads.
+    #[test]
+    fn the_dive_fixes_the_whole_patterns_of_an_integral_lp() {
+        let p = [6.0, 6.0, 5.0, 5.0, 4.0, 4.0];
+        let limits = Limits::default();
+        let mut budget = Budget::new(&limits);
+        let lp = LpBound::new(&p, true);
+        let (mut pads, complete) = lp.dive(3, 10.0, None, &mut budget);
+        assert!(complete);
+        pads.sort();
+        assert_eq!(pads, vec![vec![0, 2, 0], vec![1, 0, 1], vec![1, 0, 1]]);
+    }
+
+    /// On the hand-computed case above (LP value 9/4 at capacity 11), two pads are fewer than
+    /// the LP needs: the dive fixes nothing and says it is incomplete.
+    #[test]
+    fn the_dive_stops_where_the_lp_needs_more_pads() {
+        let p = [7.0, 5.0, 5.0, 3.0, 2.0];
+        let limits = Limits::default();
+        let mut budget = Budget::new(&limits);
+        let (pads, complete) = LpBound::new(&p, true).dive(2, 11.0, None, &mut budget);
+        assert!(!complete);
+        assert!(pads.is_empty(), "{pads:?}");
     }
 
     #[test]

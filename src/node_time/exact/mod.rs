@@ -30,6 +30,7 @@
 
 mod assignment;
 mod completion;
+mod dive;
 mod partition;
 mod repack;
 
@@ -46,6 +47,7 @@ use crate::error::Result;
 use crate::solver::SolveStatus;
 use assignment::run_assignment_search;
 use completion::BinCompletion;
+use dive::lp_dive;
 use partition::{partition, PARTITION_MAX_DRONES};
 use repack::repack;
 use std::time::Instant;
@@ -127,6 +129,14 @@ const LP_LATE_SLICE: u64 = 5;
 /// proved anything; on small tables, l2 and l5 at 100x40, the LP is cheap and does refute
 /// `ceil(sum/k)` where the estimate is wrong; `models/experiments/node_time.md`).
 const PERFECT_EXCESS_MAX_MIN: f64 = 0.5;
+
+/// Nodes of an LP dive (`dive.rs`) per node of the slice after which it runs. Its nodes are
+/// mostly restricted LP solves, counted 20,000 each (`bounds/lp.rs`), and run about ten times as
+/// fast per node as bin completion's; with 16 the first dive of l6 100x40 of the classical
+/// classes (0.7 to 1.2 million nodes) completes after the first slice, and one that finds
+/// nothing costs u2 100x25, where the perfect-partition search answers, no measurable time
+/// (`models/experiments/node_time.md`).
+const DIVE_SLICE_FACTOR: u64 = 16;
 
 /// Most drones per pad (on average) for which a stalled decision repacks pad groups
 /// (`repack.rs`) after the perfect-partition search: with four per pad a pair of pads has 256
@@ -251,8 +261,8 @@ fn phase2(
             // at `c` once (not above a capacity where it failed, nor on a large table at
             // `ceil(sum/k)` when a perfect assignment is expected); after every slice, with
             // whole minutes, the perfect-partition search aims at `c` with as many nodes as the
-            // slice, then the repacking of pad groups with as many again. Bin completion
-            // resumes with its memo.
+            // slice, then the repacking of pad groups with as many again, then, once the LP has
+            // failed to refute `c`, an LP dive (`dive.rs`). Bin completion resumes with its memo.
             let mut slice_nodes = STALL_NODES;
             let mut round = 0u64;
             let lp_round = if integral && (c + 1.0) * p.len() as f64 > LP_EARLY_MAX_CELLS {
@@ -261,6 +271,7 @@ fn phase2(
                 0
             };
             let lp_hopeless = skip_lp_at_volume && c <= volume && lp_round == LP_LATE_SLICE;
+            let mut dives = 0u64;
             loop {
                 let slice_limits = budget.limits_for(slice_nodes);
                 let mut slice = Budget {
@@ -303,6 +314,26 @@ fn phase2(
                             ub = found;
                             pad_of.copy_from_slice(&trial);
                         }
+                    }
+                }
+                // Not refuted at `c` by the LP: a dive guided by its patterns, with
+                // DIVE_SLICE_FACTOR times the slice's nodes; one cut short by them is run again
+                // (same seed) in the next slice.
+                if let Some(lp) = lp.as_mut().filter(|_| integral && c_run >= lp_failed_at) {
+                    let limits = budget.limits_for(slice_nodes.saturating_mul(DIVE_SLICE_FACTOR));
+                    let mut sub = Budget {
+                        nodes: budget.nodes,
+                        start: budget.start,
+                        limits: &limits,
+                    };
+                    let dived = lp_dive(m, p, c, dives, lp, &mut sub);
+                    if !sub.spent() {
+                        dives += 1;
+                    }
+                    budget.nodes = sub.nodes;
+                    if let Some(trial) = dived.filter(|t| makespan_sorted(m, p, t) <= c) {
+                        aimed = Some(trial);
+                        break Decision::Fits;
                     }
                 }
                 if budget.spent() {
