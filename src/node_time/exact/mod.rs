@@ -130,12 +130,12 @@ const LP_LATE_SLICE: u64 = 5;
 /// `ceil(sum/k)` where the estimate is wrong; `models/experiments/node_time.md`).
 const PERFECT_EXCESS_MAX_MIN: f64 = 0.5;
 
-/// Nodes of an LP dive (`dive.rs`) per node of the slice after which it runs. Its nodes are
-/// mostly restricted LP solves, counted 20,000 each (`bounds/lp.rs`), and run about ten times as
-/// fast per node as bin completion's; with 16 the first dive of l6 100x40 of the classical
-/// classes (0.7 to 1.2 million nodes) completes after the first slice, and one that finds
-/// nothing costs u2 100x25, where the perfect-partition search answers, no measurable time
-/// (`models/experiments/node_time.md`).
+/// Nodes of an LP dive (`dive.rs`) per node of the slice after which it runs (mostly restricted
+/// LP solves, counted 20,000 each, `bounds/lp.rs`). With 16 the first dive of l6 100x40 of the
+/// classical classes (0.7 to 1.2 million nodes, 50 to 100 ms) ends after the first slice
+/// (100,000 nodes) instead of the fourth or fifth, which took l6 seeds 2 and 3 from 0.5–0.9 s
+/// to 2–3 s; on u2 100x25, where the dive finds nothing and the perfect-partition search
+/// answers, the times stay within their spread (`models/experiments/node_time.md`).
 const DIVE_SLICE_FACTOR: u64 = 16;
 
 /// Most drones per pad (on average) for which a stalled decision repacks pad groups
