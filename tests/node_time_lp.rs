@@ -161,7 +161,7 @@ fn the_cardinality_bound_proves_a_non_uniform_instance_at_once() {
     assert_eq!(bound, 94063);
     let limits = Limits {
         time_limit_s: None,
-        node_limit: Some(20_000_000),
+        node_limit: Some(5_000_000),
     };
     let e = exact(10, &t, &limits).unwrap();
     assert_eq!(e.status, SolveStatus::Optimal);

@@ -25,7 +25,7 @@ use clarabel::solver::{
 };
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
 
 /// Fixed-point scale of the dual values `v_t = floor(y_t SCALE)`.
 const SCALE: f64 = (1u64 << 30) as f64;
@@ -434,9 +434,9 @@ impl LpBound {
                 };
             };
             lp_value = value;
-            self.primal = Some((patterns.clone(), x_lp));
             // The restricted LP (an upper bound on the full LP) cannot exceed the target.
             if target.is_some_and(|k| value <= k as f64 + 1e-7) {
+                self.primal = Some((patterns, x_lp));
                 return LpBins {
                     bins: best,
                     lp_value,
@@ -528,8 +528,9 @@ impl LpBound {
     }
 
     /// LP diving towards an assignment on `k` pads of capacity `cap`: solve the LP of the
-    /// drones not yet placed to its optimum, fix as pads the patterns it uses at least once
-    /// (the one it uses most when none is), and repeat on the rest. Returns the pads fixed, in
+    /// drones not yet placed until its restricted LP needs at most the pads left, fix as pads
+    /// the patterns it uses at least once (when none is, the one it uses most, or with `rng` one
+    /// drawn with probability proportional to its value), and repeat on the rest. Returns the pads fixed, in
     /// order, as counts per type (each of weight `<= cap`, at most `k`), and whether they hold
     /// every drone; it stops early when a residual LP needs more pads than are left or on a
     /// limit. A heuristic: an incomplete dive proves nothing.
@@ -578,10 +579,23 @@ impl LpBound {
             let Some((patterns, x)) = residual.primal.take() else {
                 return (fixed, false);
             };
+            // The restricted LP may hold a pattern more than once (a single type that is also a
+            // first-fit pad, a pool pattern): its values are summed.
+            let mut value_of: HashMap<&[u64], f64> = HashMap::new();
+            for (a, &v) in patterns.iter().zip(&x) {
+                *value_of.entry(a.as_slice()).or_default() += v;
+            }
+            let (patterns, x): (Vec<&[u64]>, Vec<f64>) = patterns
+                .iter()
+                .filter_map(|a| value_of.remove(a.as_slice()).map(|v| (a.as_slice(), v)))
+                .unzip();
             let mut took = false;
             for (q, a) in patterns.iter().enumerate() {
                 for _ in 0..(x[q] + DIVE_LP_TOL).floor() as u64 {
-                    took |= take(a, &mut left, &mut fixed);
+                    if !take(a, &mut left, &mut fixed) {
+                        break;
+                    }
+                    took = true;
                 }
             }
             if !took {
@@ -597,7 +611,7 @@ impl LpBound {
                     }
                     None => (0..patterns.len()).max_by(|&a, &b| x[a].total_cmp(&x[b])),
                 };
-                if !most.is_some_and(|q| take(&patterns[q], &mut left, &mut fixed)) {
+                if !most.is_some_and(|q| take(patterns[q], &mut left, &mut fixed)) {
                     return (fixed, false);
                 }
             }

@@ -134,8 +134,9 @@ const PERFECT_EXCESS_MAX_MIN: f64 = 0.5;
 /// LP solves, counted 20,000 each, `bounds/lp.rs`). With 16 the first dive of l6 100x40 of the
 /// classical classes (0.7 to 1.2 million nodes, 50 to 100 ms) ends after the first slice
 /// (100,000 nodes) instead of the fourth or fifth, which took l6 seeds 2 and 3 from 0.5–0.9 s
-/// to 2–3 s; on u2 100x25, where the dive finds nothing and the perfect-partition search
-/// answers, the times stay within their spread (`models/experiments/node_time.md`).
+/// to 2–3 s; on u2 100x25, where the perfect-partition search answers before the dive does,
+/// the times stay within their spread (`models/experiments/node_time.md`). The budget is
+/// checked between LP solves, so a dive may pass it by one solve and its pricing.
 const DIVE_SLICE_FACTOR: u64 = 16;
 
 /// Most drones per pad (on average) for which a stalled decision repacks pad groups
