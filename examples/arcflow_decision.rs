@@ -14,7 +14,8 @@
 //! `(u, u + w)` places a drone of length `w` on a pad loaded `u`, only from loads reachable with
 //! drones at least as long (every pad's drones, longest first, follow such arcs); loss arcs
 //! `(u, CAP)` close a pad. Variables: the integer flow on every arc and the number of pads `z`;
-//! constraints: `z` leaves 0, `z` enters `CAP`, flow is conserved at every other node, and the
+//! constraints: `z` leaves 0, `z` enters `CAP`, flow is conserved at every other reachable load
+//! (an arc may end at a load no drones reach, which no arc leaves: it carries no flow), and the
 //! arcs of each length carry at least the drones of that length; objective `min z`. When `z <= PADS`,
 //! the flow is split into `z` paths from 0 to `CAP` (one per pad), the drones are dealt to them,
 //! and every pad's load is recomputed from the generated times: the fit is checked here, not
@@ -23,7 +24,9 @@
 
 #[cfg(feature = "highs")]
 fn main() {
-    use good_lp::{constraint, highs, variable, variables, Expression, Solution, SolverModel};
+    use good_lp::{
+        constraint, highs, variable, variables, Expression, Solution, SolutionStatus, SolverModel,
+    };
     use std::collections::BTreeMap;
     use swarmplan::generate::pcmax::{generate_pcmax, PcmaxClass, PcmaxParams};
 
@@ -138,6 +141,10 @@ fn main() {
         std::process::exit(1)
     });
     let seconds = start.elapsed().as_secs_f64();
+    if !matches!(solution.status(), SolutionStatus::Optimal) {
+        println!("not decided: HiGHS stopped before proving its MILP optimal ({seconds:.1} s)");
+        return;
+    }
     let bins = solution.value(z).round() as usize;
     if bins > pads {
         println!(
