@@ -4,6 +4,7 @@
 use proptest::prelude::*;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use swarmplan::generate::pcmax::{generate_pcmax, PcmaxClass, PcmaxParams};
 use swarmplan::node_time::{brute, exact, lp_lower_bound, makespan_of, Limits};
 use swarmplan::solver::SolveStatus;
 
@@ -143,30 +144,40 @@ fn a_non_uniform_instance_is_proven_within_the_limit() {
 /// after 21 s of column generation. Now the exact method proves it under a node limit.
 #[test]
 fn the_cardinality_bound_proves_a_non_uniform_instance_at_once() {
-    use swarmplan::generate::pcmax::{generate_pcmax, PcmaxClass, PcmaxParams};
-    let file = generate_pcmax(&PcmaxParams {
-        class: PcmaxClass::Nu3,
-        jobs: 100,
-        pads: 10,
-        seed: 1,
-    })
-    .unwrap();
-    let t: Vec<f64> = file.charge_times_min.iter().map(|&x| x as f64).collect();
-    let mut long: Vec<u64> = file.charge_times_min.clone();
+    let t = generated(PcmaxClass::Nu3, 100, 10, 1);
+    let mut long: Vec<u64> = t.iter().map(|&x| x as u64).collect();
     long.sort_unstable();
     let long = &long[2..];
     assert!(long[0] >= 9000 && long.len() == 98);
     assert!(long[..11].iter().sum::<u64>() > 95_000);
     let bound = long[..80].iter().sum::<u64>().div_ceil(8);
     assert_eq!(bound, 94063);
+    assert_proven_under(10, &t, 5_000_000, bound as f64);
+}
+
+/// Charge times [min] of a generated benchmark instance.
+fn generated(class: PcmaxClass, jobs: usize, pads: usize, seed: u64) -> Vec<f64> {
+    let params = PcmaxParams {
+        class,
+        jobs,
+        pads,
+        seed,
+    };
+    let file = generate_pcmax(&params).unwrap();
+    file.charge_times_min.iter().map(|&x| x as f64).collect()
+}
+
+/// The exact method proves `optimum` on `pads` pads within `nodes` nodes, with an assignment
+/// whose recomputed makespan is its own.
+fn assert_proven_under(pads: usize, t: &[f64], nodes: u64, optimum: f64) {
     let limits = Limits {
         time_limit_s: None,
-        node_limit: Some(5_000_000),
+        node_limit: Some(nodes),
     };
-    let e = exact(10, &t, &limits).unwrap();
+    let e = exact(pads, t, &limits).unwrap();
     assert_eq!(e.status, SolveStatus::Optimal);
-    assert_eq!(makespan_of(&t, &e.assignment), e.makespan_min);
-    assert_eq!(e.makespan_min, bound as f64);
+    assert_eq!(makespan_of(t, &e.assignment), e.makespan_min);
+    assert_eq!(e.makespan_min, optimum);
 }
 
 /// Lawrinenko's class 6 (lengths 100 to 400 min) with 100 drones on 40 pads, seed 2. The LP
@@ -176,22 +187,7 @@ fn the_cardinality_bound_proves_a_non_uniform_instance_at_once() {
 /// it open); the LP dive reaches 618 and the exact method proves it under a node limit.
 #[test]
 fn the_lp_dive_reaches_the_lp_bound_of_a_lawrinenko_instance() {
-    use swarmplan::generate::pcmax::{generate_pcmax, PcmaxClass, PcmaxParams};
-    let file = generate_pcmax(&PcmaxParams {
-        class: PcmaxClass::L6,
-        jobs: 100,
-        pads: 40,
-        seed: 2,
-    })
-    .unwrap();
-    let t: Vec<f64> = file.charge_times_min.iter().map(|&x| x as f64).collect();
+    let t = generated(PcmaxClass::L6, 100, 40, 2);
     assert_eq!(lp_lower_bound(40, &t, &Limits::default()).unwrap(), 618.0);
-    let limits = Limits {
-        time_limit_s: None,
-        node_limit: Some(20_000_000),
-    };
-    let e = exact(40, &t, &limits).unwrap();
-    assert_eq!(e.status, SolveStatus::Optimal);
-    assert_eq!(makespan_of(&t, &e.assignment), e.makespan_min);
-    assert_eq!(e.makespan_min, 618.0);
+    assert_proven_under(40, &t, 20_000_000, 618.0);
 }
