@@ -30,7 +30,7 @@ pub(crate) fn lp_dive(
     p: &[f64],
     cap: f64,
     attempt: u64,
-    lp: &mut LpBound,
+    lp: &LpBound,
     budget: &mut Budget,
 ) -> Option<Vec<usize>> {
     let mut rng = ChaCha8Rng::seed_from_u64(0xd1e5_0000 ^ attempt);
@@ -149,7 +149,7 @@ mod tests {
             p.sort_by(|a, b| b.total_cmp(a));
             let opt = optimum_by_bin_completion(m, &p);
             let mut budget = Budget::new(&limits);
-            let mut lp = LpBound::new(&p, true);
+            let lp = LpBound::new(&p, true);
             // The dive alone: its pads, when complete, hold every drone within `opt`.
             let (pads, complete) = lp.dive(m, opt, None, &mut budget);
             if complete {
@@ -168,13 +168,12 @@ mod tests {
                 assert!(pads.len() <= m);
                 dived += 1;
             }
-            if let Some(pad_of) = (0..3).find_map(|a| lp_dive(m, &p, opt, a, &mut lp, &mut budget))
-            {
+            if let Some(pad_of) = (0..3).find_map(|a| lp_dive(m, &p, opt, a, &lp, &mut budget)) {
                 let got = makespan(m, &p, &pad_of).expect("every drone on a pad");
                 assert!(got <= opt, "{got} above {opt} for {p:?} on {m}");
                 found += 1;
             }
-            let below = (0..3).find_map(|a| lp_dive(m, &p, opt - 1.0, a, &mut lp, &mut budget));
+            let below = (0..3).find_map(|a| lp_dive(m, &p, opt - 1.0, a, &lp, &mut budget));
             assert_eq!(below, None, "{p:?} on {m} pads below {opt}");
         }
         // Measured: the dive alone completes on 116 of the 120, with the completions all 120.

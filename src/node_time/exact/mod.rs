@@ -320,7 +320,7 @@ fn phase2(
                 // Not refuted at `c` by the LP: a dive guided by its patterns, with
                 // DIVE_SLICE_FACTOR times the slice's nodes; one cut short by them is run again
                 // (same seed) in the next slice.
-                if let Some(lp) = lp.as_mut().filter(|_| integral && c_run >= lp_failed_at) {
+                if let Some(lp) = lp.as_ref().filter(|_| integral && c_run >= lp_failed_at) {
                     let limits = budget.limits_for(slice_nodes.saturating_mul(DIVE_SLICE_FACTOR));
                     let mut sub = Budget {
                         nodes: budget.nodes,
