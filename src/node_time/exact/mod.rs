@@ -30,6 +30,7 @@
 
 mod assignment;
 mod completion;
+mod cover;
 mod dive;
 mod partition;
 mod repack;
@@ -47,6 +48,7 @@ use crate::error::Result;
 use crate::solver::SolveStatus;
 use assignment::run_assignment_search;
 use completion::BinCompletion;
+use cover::cover_at;
 use dive::lp_dive;
 use partition::{partition, PARTITION_MAX_DRONES};
 use repack::repack;
@@ -145,6 +147,12 @@ const DIVE_SLICE_FACTOR: u64 = 16;
 /// five (u3 50x10) the pairwise search reaches the bound alone, and repacking only delays it
 /// (15–20% longer on four of ten instances, `models/experiments/node_time.md`).
 const REPACK_MAX_DRONES_PER_PAD: usize = 4;
+
+/// Most drones per pad (on average) for which a stalled decision tries the exact front and
+/// covered tail (`cover.rs`) after the repacking, with as many nodes as the slice: with four per
+/// pad (u3 100x25 of the classical classes) it finds the perfect assignments the other searches
+/// miss; with more, a tail's patterns multiply (`models/experiments/node_time.md`).
+const COVER_MAX_DRONES_PER_PAD: usize = 4;
 
 /// Largest load of the assignment `pad_of` of the sorted drones `p`.
 fn makespan_sorted(m: usize, p: &[f64], pad_of: &[usize]) -> f64 {
@@ -314,6 +322,13 @@ fn phase2(
                         if found < ub {
                             ub = found;
                             pad_of.copy_from_slice(&trial);
+                        }
+                    }
+                    if p.len() <= COVER_MAX_DRONES_PER_PAD * m {
+                        let covered = cover_at(m, p, c, slice_nodes, round, budget);
+                        if let Some(trial) = covered.filter(|t| makespan_sorted(m, p, t) <= c) {
+                            aimed = Some(trial);
+                            break Decision::Fits;
                         }
                     }
                 }
