@@ -279,7 +279,7 @@ impl Cover {
             }
         }
         let mut all = vec![u64::MAX; words];
-        if patterns.len() % 64 != 0 {
+        if !patterns.len().is_multiple_of(64) {
             all[words - 1] = (1u64 << (patterns.len() % 64)) - 1;
         }
         let mut open = vec![vec![0u64; words]; pads + 1];

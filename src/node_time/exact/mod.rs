@@ -270,8 +270,9 @@ fn phase2(
             // at `c` once (not above a capacity where it failed, nor on a large table at
             // `ceil(sum/k)` when a perfect assignment is expected); after every slice, with
             // whole minutes, the perfect-partition search aims at `c` with as many nodes as the
-            // slice, then the repacking of pad groups with as many again, then, once the LP has
-            // failed to refute `c`, an LP dive (`dive.rs`). Bin completion resumes with its memo.
+            // slice, then the repacking of pad groups with as many again, then the exact front and
+            // covered tail (`cover.rs`) with as many again, then, once the LP has failed to
+            // refute `c`, an LP dive (`dive.rs`). Bin completion resumes with its memo.
             let mut slice_nodes = STALL_NODES;
             let mut round = 0u64;
             let lp_round = if integral && (c + 1.0) * p.len() as f64 > LP_EARLY_MAX_CELLS {
