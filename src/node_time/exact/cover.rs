@@ -1,10 +1,11 @@
 //! Search for an assignment with every load within a target `C` (whole minutes) where the total
 //! slack `k C - sum` is a few minutes: exact front pads, then an exact cover of the tail. See
-//! `models/node_time.md`, "Perfect-partition search: exact front and covered tail".
+//! `models/node_time.md`, "Upper bound: exact front and covered tail".
 //!
 //! With the slack `s = k C - sum`, every pad of such an assignment carries between `C - s` and
 //! `C`. One attempt fills all but `t` pads (the front) to exactly `C`, each with drones drawn at
-//! random and closed by a drone of exactly the room left; the `t` tail pads keep the whole slack
+//! random (every second attempt, the longest drone left and drones drawn at random) and closed by
+//! a drone of exactly the room left; the `t` tail pads keep the whole slack
 //! `s`. The tail is then decided exactly: every set of tail drones with a sum in `[C - s, C]` is
 //! listed (a pattern), and a search picks disjoint patterns that cover every tail drone, always
 //! branching on the drone in the fewest patterns still open (Knuth's exact cover, on bitsets).
@@ -69,8 +70,11 @@ pub(crate) fn cover_at(
     let stop_at = budget.nodes.saturating_add(work);
     let mut used = vec![false; n];
     let mut pad_of = vec![usize::MAX; n];
+    let mut attempt = 0u64;
     while budget.nodes < stop_at && !budget.spent() {
         used.fill(false);
+        let longest_first = attempt % 2 == 1;
+        attempt += 1;
         let mut left = n;
         let mut front_ok = true;
         for pad in 0..m - tail_pads {
@@ -84,6 +88,7 @@ pub(crate) fn cover_at(
                     &pi,
                     cap,
                     size,
+                    longest_first,
                     pad,
                     &mut used,
                     &mut pad_of,
@@ -129,14 +134,16 @@ pub(crate) fn cover_at(
     None
 }
 
-/// Fills front pad `pad` to exactly `cap` with `size` drones: `size - 1` unused drones drawn at
-/// random, closed by an unused drone of exactly the room left. True when it did within
+/// Fills front pad `pad` to exactly `cap` with `size` drones: `size - 1` unused drones (with
+/// `longest_first`, the longest unused drone and `size - 2` drawn at random; else all drawn),
+/// closed by an unused drone of exactly the room left. True when it did within
 /// [`FRONT_PAD_ATTEMPTS`] draws.
 #[allow(clippy::too_many_arguments)]
 fn fill_front_pad(
     pi: &[u64],
     cap: u64,
     size: usize,
+    longest_first: bool,
     pad: usize,
     used: &mut [bool],
     pad_of: &mut [usize],
@@ -152,6 +159,11 @@ fn fill_front_pad(
         }
         taken.clear();
         let mut load = 0u64;
+        if longest_first && size >= 2 {
+            let longest = used.iter().position(|&u| !u).expect("size <= drones left");
+            taken.push(longest);
+            load += pi[longest];
+        }
         while taken.len() + 1 < size {
             let j = rng.random_range(0..n);
             if used[j] || taken.contains(&j) {
