@@ -9,8 +9,10 @@
 //! `s`. The tail is then decided exactly: every set of tail drones with a sum in `[C - s, C]` is
 //! listed (a pattern), and a search picks disjoint patterns that cover every tail drone, always
 //! branching on the drone in the fewest patterns still open (Knuth's exact cover, on bitsets).
-//! An attempt that fails (the front, the pattern cap or the tail's node cap) is followed by
-//! another with new draws. The search finds assignments; it proves nothing when it fails.
+//! An attempt whose front or tail fails (no exact pad within its draws, no cover within the
+//! tail's node cap) is followed by another with new draws; a tail with more patterns than the cap
+//! ends the search. When the tail is the whole swarm there is nothing to draw: the one cover
+//! search gets the whole budget. The search finds assignments; it proves nothing when it fails.
 
 use crate::node_time::search::Budget;
 use rand::{Rng, SeedableRng};
@@ -18,9 +20,10 @@ use rand_chacha::ChaCha8Rng;
 use std::collections::HashMap;
 
 /// Drones left to the tail: `round(COVER_TAIL_DRONES k / n)` pads, at least one. With four
-/// drones per pad (u3 100x25 of the classical classes, slack 5–10 min) 11 tail pads find a
-/// cover once in 45 to 230 attempts within 3.6 s in all, 10 pads in none of 300 attempts on two
-/// of three instances, 12 pads take 4 to 30 times longer (`models/experiments/node_time.md`).
+/// drones per pad (u3 100x25 of the classical classes, slack 5–10 min, seeds 1, 5, 8, drawn
+/// fronts) 11 tail pads found a cover on all three within 3.6 s in all, 10 pads on one of three
+/// in 300 to 400 attempts, 12 pads took 6 to 16 times longer per attempt
+/// (`models/experiments/node_time.md`).
 const COVER_TAIL_DRONES: usize = 44;
 
 /// Most patterns of one tail (u3 100x25: 11,000 to 22,000 on average); a tail with more is
@@ -28,8 +31,8 @@ const COVER_TAIL_DRONES: usize = 44;
 const COVER_PATTERNS_MAX: usize = 1 << 17;
 
 /// Nodes of one tail's cover search. The covers found took 41 to 2,872 nodes; a tail without one
-/// runs up to tens of thousands, so a cap of 3,000 takes two to eight times fewer nodes to the
-/// first cover than none (u3 100x25).
+/// runs up to tens of thousands, so with a cap of 3,000 the first cover came 1.6 to 8 times
+/// sooner than with none (u3 100x25 seeds 1, 5, 8).
 const COVER_TAIL_NODES: u64 = 3_000;
 
 /// Attempts at one front pad before the attempt as a whole starts again.
@@ -47,8 +50,8 @@ const TAIL_MAX_DRONES: usize = 128;
 /// runs out. Returns the pad of every drone; the caller recomputes its makespan.
 ///
 /// Complexity per attempt: `O(n)` draws per front pad, the patterns of the tail (at most
-/// [`COVER_PATTERNS_MAX`]) and at most [`COVER_TAIL_NODES`] cover nodes of `O(t P / 64)` words
-/// each, `P` the patterns.
+/// [`COVER_PATTERNS_MAX`]) and at most [`COVER_TAIL_NODES`] cover nodes of `O(|T| P / 64)` words
+/// each, `T` the tail drones and `P` the patterns.
 pub(crate) fn cover_at(
     m: usize,
     p: &[f64],
@@ -110,12 +113,20 @@ pub(crate) fn cover_at(
             return None;
         }
         let tq: Vec<u64> = tail.iter().map(|&j| pi[j]).collect();
-        let patterns = list_patterns(&tq, cap.saturating_sub(slack), cap, budget)?;
+        let max_visits = stop_at
+            .saturating_sub(budget.nodes)
+            .saturating_mul(VISITS_PER_NODE);
+        let patterns = list_patterns(&tq, cap.saturating_sub(slack), cap, max_visits, budget)?;
         let mut cover = Cover::new(patterns, tail.len(), tail_pads);
-        let limit = budget.nodes.saturating_add(COVER_TAIL_NODES).min(stop_at);
+        let whole_swarm = tail_pads == m;
+        let limit = if whole_swarm {
+            stop_at
+        } else {
+            budget.nodes.saturating_add(COVER_TAIL_NODES).min(stop_at)
+        };
         let covered = cover.run(slack, budget, limit);
-        if covered == Some(false) && tail_pads == m {
-            // The tail is the whole swarm and its search was exhaustive: no assignment fits.
+        if covered != Some(true) && whole_swarm {
+            // Nothing was drawn: another attempt would repeat this one.
             return None;
         }
         if covered == Some(true) {
@@ -153,14 +164,15 @@ fn fill_front_pad(
 ) -> bool {
     let n = pi.len();
     let mut taken: Vec<usize> = Vec::with_capacity(size);
+    let longest = used.iter().position(|&u| !u).expect("size <= drones left");
     for _ in 0..FRONT_PAD_ATTEMPTS {
         if budget.tick() || budget.nodes >= stop_at {
             break;
         }
         taken.clear();
         let mut load = 0u64;
-        if longest_first && size >= 2 {
-            let longest = used.iter().position(|&u| !u).expect("size <= drones left");
+        // A drone of `cap` or more shares no pad: then all are drawn.
+        if longest_first && size >= 2 && pi[longest] < cap {
             taken.push(longest);
             load += pi[longest];
         }
@@ -203,15 +215,23 @@ fn unused_of_length(pi: &[u64], used: &[bool], len: u64) -> Option<usize> {
 }
 
 /// Every set of the drones `q` (decreasing) with a sum in `[lo, hi]`, as (mask, `hi - sum`),
-/// sorted by the second; `None` past [`COVER_PATTERNS_MAX`]. Each set visited counts one node.
-fn list_patterns(q: &[u64], lo: u64, hi: u64, budget: &mut Budget) -> Option<Vec<(u128, u64)>> {
+/// sorted by the second; `None` past [`COVER_PATTERNS_MAX`] patterns or `max_visits` sets
+/// visited. [`VISITS_PER_NODE`] sets visited count one node.
+fn list_patterns(
+    q: &[u64],
+    lo: u64,
+    hi: u64,
+    max_visits: u64,
+    budget: &mut Budget,
+) -> Option<Vec<(u128, u64)>> {
     let mut suffix = vec![0u64; q.len() + 1];
     for j in (0..q.len()).rev() {
         suffix[j] = suffix[j + 1] + q[j];
     }
     let mut out = Vec::new();
-    let mut visited = 0u64;
-    let complete = extend(q, &suffix, lo, hi, 0, 0, 0, &mut out, &mut visited);
+    let mut visits_left = max_visits;
+    let complete = extend(q, &suffix, lo, hi, 0, 0, 0, &mut out, &mut visits_left);
+    let visited = max_visits - visits_left;
     budget.nodes = budget.nodes.saturating_add(visited / VISITS_PER_NODE);
     if !complete {
         return None;
@@ -231,9 +251,12 @@ fn extend(
     sum: u64,
     mask: u128,
     out: &mut Vec<(u128, u64)>,
-    visited: &mut u64,
+    visits_left: &mut u64,
 ) -> bool {
-    *visited += 1;
+    if *visits_left == 0 {
+        return false;
+    }
+    *visits_left -= 1;
     if sum >= lo && mask != 0 {
         out.push((mask, hi - sum));
         if out.len() > COVER_PATTERNS_MAX {
@@ -254,7 +277,7 @@ fn extend(
                 sum + q[j],
                 mask | 1 << j,
                 out,
-                visited,
+                visits_left,
             )
         {
             return false;
