@@ -85,21 +85,22 @@ pub(crate) fn cover_at(
             let pads_left = m - pad;
             let size =
                 left / pads_left + usize::from(rng.random_range(0..pads_left) < left % pads_left);
-            if size == 0
-                || size > left
-                || !fill_front_pad(
-                    &pi,
-                    cap,
-                    size,
-                    longest_first,
-                    pad,
-                    &mut used,
-                    &mut pad_of,
-                    &mut rng,
-                    budget,
-                    stop_at,
-                )
-            {
+            if size == 0 || size > left {
+                // Fewer drones than pads left (not with `n > k`): no front to build.
+                return None;
+            }
+            if !fill_front_pad(
+                &pi,
+                cap,
+                size,
+                longest_first,
+                pad,
+                &mut used,
+                &mut pad_of,
+                &mut rng,
+                budget,
+                stop_at,
+            ) {
                 front_ok = false;
                 break;
             }
