@@ -14,10 +14,12 @@
 //! ends the search. When the tail is the whole swarm there is nothing to draw: the one cover
 //! search gets the whole budget. The search finds assignments; it proves nothing when it fails.
 
-use crate::node_time::search::Budget;
+use crate::node_time::search::WordHasher;
+use crate::node_time::search::{Budget, SubsetSums};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::collections::HashMap;
+use std::hash::BuildHasherDefault;
 
 /// Drones left to the tail: `round(COVER_TAIL_DRONES k / n)` pads, at least one. With four
 /// drones per pad (u3 100x25 of the classical classes, slack 5–10 min, seeds 1, 5, 8, drawn
@@ -40,6 +42,13 @@ const FRONT_PAD_ATTEMPTS: usize = 5_000;
 
 /// Sets visited by the pattern listing that count as one node of the shared budget.
 const VISITS_PER_NODE: u64 = 64;
+
+/// Largest target (minutes) for which the pattern listing prunes by a subset-sum table of the
+/// tail: 4,096 words a row, at most 129 rows.
+const LISTING_TABLE_MAX_SUM: u64 = 1 << 18;
+
+/// Table words that count as one node of the shared budget.
+const TABLE_WORDS_PER_NODE: u64 = 64;
 
 /// Tail drones a pattern mask can hold.
 const TAIL_MAX_DRONES: usize = 128;
@@ -217,7 +226,9 @@ fn unused_of_length(pi: &[u64], used: &[bool], len: u64) -> Option<usize> {
 
 /// Every set of the drones `q` (decreasing) with a sum in `[lo, hi]`, as (mask, `hi - sum`),
 /// sorted by the second; `None` past [`COVER_PATTERNS_MAX`] patterns or `max_visits` sets
-/// visited. [`VISITS_PER_NODE`] sets visited count one node.
+/// visited. [`VISITS_PER_NODE`] sets visited count one node. A set is extended by a drone only
+/// when the drones after it can still bring the sum into `[lo, hi]` (a subset-sum table of the
+/// suffixes, up to [`LISTING_TABLE_MAX_SUM`]), so every set visited is, or leads to, a pattern.
 fn list_patterns(
     q: &[u64],
     lo: u64,
@@ -225,130 +236,199 @@ fn list_patterns(
     max_visits: u64,
     budget: &mut Budget,
 ) -> Option<Vec<(u128, u64)>> {
-    let mut suffix = vec![0u64; q.len() + 1];
-    for j in (0..q.len()).rev() {
+    let n = q.len();
+    let mut suffix = vec![0u64; n + 1];
+    for j in (0..n).rev() {
         suffix[j] = suffix[j + 1] + q[j];
     }
-    let mut out = Vec::new();
-    let mut visits_left = max_visits;
-    let complete = extend(q, &suffix, lo, hi, 0, 0, 0, &mut out, &mut visits_left);
-    let visited = max_visits - visits_left;
+    // Row `r` of the table: the sums of the last `r` drones.
+    let sums = (hi <= LISTING_TABLE_MAX_SUM).then(|| {
+        let mut sums = SubsetSums::default();
+        let reversed: Vec<usize> = (0..n).rev().collect();
+        let words = sums.build(q, &reversed, hi as usize);
+        budget.nodes = budget.nodes.saturating_add(words / TABLE_WORDS_PER_NODE);
+        sums
+    });
+    let mut listing = Listing {
+        q,
+        suffix: &suffix,
+        sums: sums.as_ref(),
+        lo,
+        hi,
+        out: Vec::new(),
+        visits_left: max_visits,
+    };
+    let complete = listing.extend(0, 0, 0);
+    let visited = max_visits - listing.visits_left;
     budget.nodes = budget.nodes.saturating_add(visited / VISITS_PER_NODE);
     if !complete {
         return None;
     }
+    let mut out = listing.out;
     out.sort_by_key(|&(_, idle)| idle);
     Some(out)
 }
 
-/// Adds to `out` the sets `mask ∪ S`, `S ⊆ {from, ..}`, with a sum in `[lo, hi]`.
-#[allow(clippy::too_many_arguments)]
-fn extend(
-    q: &[u64],
-    suffix: &[u64],
+/// The pattern listing's state.
+struct Listing<'a> {
+    q: &'a [u64],
+    suffix: &'a [u64],
+    sums: Option<&'a SubsetSums>,
     lo: u64,
     hi: u64,
-    from: usize,
-    sum: u64,
-    mask: u128,
-    out: &mut Vec<(u128, u64)>,
-    visits_left: &mut u64,
-) -> bool {
-    if *visits_left == 0 {
-        return false;
-    }
-    *visits_left -= 1;
-    if sum >= lo && mask != 0 {
-        out.push((mask, hi - sum));
-        if out.len() > COVER_PATTERNS_MAX {
+    out: Vec<(u128, u64)>,
+    visits_left: u64,
+}
+
+impl Listing<'_> {
+    /// Adds the sets `mask ∪ S`, `S ⊆ {from, ..}`, with a sum in `[lo, hi]`; false when a cap
+    /// stopped it.
+    fn extend(&mut self, from: usize, sum: u64, mask: u128) -> bool {
+        if self.visits_left == 0 {
             return false;
         }
-    }
-    for j in from..q.len() {
-        if sum + suffix[j] < lo {
-            break;
+        self.visits_left -= 1;
+        if sum >= self.lo && mask != 0 {
+            self.out.push((mask, self.hi - sum));
+            if self.out.len() > COVER_PATTERNS_MAX {
+                return false;
+            }
         }
-        if sum + q[j] <= hi
-            && !extend(
-                q,
-                suffix,
-                lo,
-                hi,
-                j + 1,
-                sum + q[j],
-                mask | 1 << j,
-                out,
-                visits_left,
-            )
-        {
-            return false;
+        let n = self.q.len();
+        // The drones longer than the room left come first (`q` decreasing).
+        let room = self.hi - sum;
+        let first = from + self.q[from..].partition_point(|&x| x > room);
+        for j in first..n {
+            if sum + self.suffix[j] < self.lo {
+                break;
+            }
+            let with = sum + self.q[j];
+            if with > self.hi {
+                continue;
+            }
+            // Some set of the drones after `j` (maybe none) brings `with` into the window.
+            let reaches = self.sums.is_none_or(|t| {
+                t.any_in(
+                    n - j - 1,
+                    self.lo.saturating_sub(with) as usize,
+                    (self.hi - with) as usize,
+                )
+            });
+            if reaches && !self.extend(j + 1, with, mask | 1 << j) {
+                return false;
+            }
         }
+        true
     }
-    true
 }
 
 /// Exact cover of the tail drones by patterns, with the idle minutes of the chosen patterns
-/// within the slack.
+/// within the slack. The open patterns of a node are bitsets over the patterns of a frame; a
+/// node whose open patterns fill less than `1 / COMPACT_DENSITY` of its frame's words starts a
+/// new frame of just those, so deep nodes count and filter over short bitsets.
 struct Cover {
     /// (drones, idle minutes), increasing in idle minutes.
     patterns: Vec<(u128, u64)>,
-    /// Per drone: the patterns holding it, as a bitset over patterns.
-    holding: Vec<Vec<u64>>,
+    drones: usize,
     pads: usize,
-    /// Per depth: the patterns still open (disjoint from the chosen ones).
+    /// Stack of frames; frame 0 holds every pattern.
+    frames: Vec<Frame>,
+    /// Per depth: the patterns still open (disjoint from the chosen ones), over the node's frame.
     open: Vec<Vec<u64>>,
     /// Failed states: (drones left, depth) -> the largest slack with which they failed.
-    failed: HashMap<(u128, usize), u64>,
+    failed: HashMap<(u128, usize), u64, BuildHasherDefault<WordHasher>>,
     chosen: Vec<usize>,
+    /// [`COMPACT_DENSITY`] and [`COMPACT_MIN_WORDS`] (the tests set others).
+    compact_density: usize,
+    compact_min_words: usize,
 }
 
-impl Cover {
-    fn new(patterns: Vec<(u128, u64)>, drones: usize, pads: usize) -> Self {
-        let words = patterns.len().div_ceil(64);
-        let mut holding = vec![vec![0u64; words]; drones];
-        for (k, &(mask, _)) in patterns.iter().enumerate() {
-            let mut rest = mask;
+/// Patterns of a subtree, renumbered.
+#[derive(Default)]
+struct Frame {
+    /// Pattern of every frame position, increasing (so idle minutes are increasing too).
+    ids: Vec<usize>,
+    /// Words of a bitset over the frame.
+    words: usize,
+    /// `holding[i * words ..]`: the frame positions holding drone `i`.
+    holding: Vec<u64>,
+}
+
+impl Frame {
+    /// Renumbers the patterns `ids` (increasing) of `patterns` over `drones` drones.
+    fn fill(&mut self, patterns: &[(u128, u64)], drones: usize, ids: impl Iterator<Item = usize>) {
+        self.ids.clear();
+        self.ids.extend(ids);
+        self.words = self.ids.len().div_ceil(64);
+        self.holding.clear();
+        self.holding.resize(drones * self.words, 0);
+        for (k, &id) in self.ids.iter().enumerate() {
+            let mut rest = patterns[id].0;
             while rest != 0 {
                 let i = rest.trailing_zeros() as usize;
                 rest &= rest - 1;
-                holding[i][k / 64] |= 1 << (k % 64);
+                self.holding[i * self.words + k / 64] |= 1 << (k % 64);
             }
         }
+    }
+
+    fn holding(&self, i: usize) -> &[u64] {
+        &self.holding[i * self.words..(i + 1) * self.words]
+    }
+}
+
+/// A node starts a new frame when its open patterns are fewer than its frame's positions over
+/// this (and the frame has more than [`COMPACT_MIN_WORDS`] words). The frames change the time
+/// of a node, never the nodes: 16 and 8 ran u3 100x25 seed 5 in about 10.5 and 11.8 s, 4 and no
+/// frames in 11.4 to 13.6 s (`models/experiments/node_time.md`).
+const COMPACT_DENSITY: usize = 16;
+
+/// Frames of at most this many words are never compacted.
+const COMPACT_MIN_WORDS: usize = 4;
+
+impl Cover {
+    fn new(patterns: Vec<(u128, u64)>, drones: usize, pads: usize) -> Self {
+        let mut root = Frame::default();
+        root.fill(&patterns, drones, 0..patterns.len());
+        let words = root.words;
         let mut all = vec![u64::MAX; words];
         if !patterns.len().is_multiple_of(64) {
             all[words - 1] = (1u64 << (patterns.len() % 64)) - 1;
         }
-        let mut open = vec![vec![0u64; words]; pads + 1];
+        let mut open = vec![Vec::new(); pads + 1];
         open[0] = all;
         Cover {
             patterns,
-            holding,
+            drones,
             pads,
+            frames: vec![root],
             open,
-            failed: HashMap::new(),
+            failed: HashMap::default(),
             chosen: Vec::new(),
+            compact_density: COMPACT_DENSITY,
+            compact_min_words: COMPACT_MIN_WORDS,
         }
     }
 
     /// Whether `pads` patterns cover every drone with at most `slack` idle minutes; `None` when
     /// it stopped at `limit` nodes of `budget`.
     fn run(&mut self, slack: u64, budget: &mut Budget, limit: u64) -> Option<bool> {
-        let drones = self.holding.len();
-        let all = if drones == TAIL_MAX_DRONES {
+        let all = if self.drones == TAIL_MAX_DRONES {
             u128::MAX
         } else {
-            (1u128 << drones) - 1
+            (1u128 << self.drones) - 1
         };
-        self.search(all, slack, 0, budget, limit)
+        self.search(all, slack, 0, 0, budget, limit)
     }
 
-    /// Covers the drones `left` with `pads - depth` patterns and `slack` idle minutes; `None`
-    /// when the node limit stopped it.
+    /// Covers the drones `left` with `pads - depth` patterns and `slack` idle minutes, the open
+    /// patterns in `open[depth]` over frame `f`; `None` when the node limit stopped it.
     fn search(
         &mut self,
         left: u128,
         slack: u64,
         depth: usize,
+        mut f: usize,
         budget: &mut Budget,
         limit: u64,
     ) -> Option<bool> {
@@ -365,8 +445,11 @@ impl Cover {
             return Some(false);
         }
         // Open patterns with more idle minutes than the slack are closed for good below.
-        let fit = self.patterns.partition_point(|&(_, idle)| idle <= slack);
-        let top = fit.div_ceil(64);
+        let patterns = &self.patterns;
+        let mut fit = self.frames[f]
+            .ids
+            .partition_point(|&id| patterns[id].1 <= slack);
+        let mut top = fit.div_ceil(64);
         {
             let open = &mut self.open[depth];
             open[top..].fill(0);
@@ -374,16 +457,48 @@ impl Cover {
                 open[top - 1] &= (1u64 << (fit % 64)) - 1;
             }
         }
+        let count: usize = self.open[depth][..top]
+            .iter()
+            .map(|x| x.count_ones() as usize)
+            .sum();
+        if top > self.compact_min_words && count * self.compact_density < top * 64 {
+            // A new frame of the open patterns, for this node's subtree.
+            if self.frames.len() == f + 1 {
+                self.frames.push(Frame::default());
+            }
+            let (below, above) = self.frames.split_at_mut(f + 1);
+            let (frame, next) = (&below[f], &mut above[0]);
+            let open = &self.open[depth];
+            let ids = (0..top).flat_map(|w| {
+                let mut bits = open[w];
+                std::iter::from_fn(move || {
+                    (bits != 0).then(|| {
+                        let b = bits.trailing_zeros() as usize;
+                        bits &= bits - 1;
+                        frame.ids[w * 64 + b]
+                    })
+                })
+            });
+            next.fill(&self.patterns, self.drones, ids);
+            f += 1;
+            (fit, top) = (count, self.frames[f].words);
+            let open = &mut self.open[depth];
+            open.clear();
+            open.resize(top, u64::MAX);
+            if fit % 64 != 0 {
+                open[top - 1] = (1u64 << (fit % 64)) - 1;
+            }
+        }
+        let frame = &self.frames[f];
         // The drone in the fewest open patterns.
         let (mut fewest, mut branch) = (u32::MAX, 0);
         let mut rest = left;
         while rest != 0 {
             let i = rest.trailing_zeros() as usize;
             rest &= rest - 1;
-            let open = &self.open[depth][..top];
-            let count: u32 = open
+            let count: u32 = self.open[depth][..top]
                 .iter()
-                .zip(&self.holding[i][..top])
+                .zip(frame.holding(i))
                 .map(|(a, b)| (a & b).count_ones())
                 .sum();
             if count < fewest {
@@ -395,29 +510,35 @@ impl Cover {
         }
         if fewest > 0 {
             let mut options = Vec::with_capacity(fewest as usize);
-            for w in 0..top {
-                let mut bits = self.open[depth][w] & self.holding[branch][w];
+            for (w, (&a, &b)) in self.open[depth][..top]
+                .iter()
+                .zip(frame.holding(branch))
+                .enumerate()
+            {
+                let mut bits = a & b;
                 while bits != 0 {
                     options.push(w * 64 + bits.trailing_zeros() as usize);
                     bits &= bits - 1;
                 }
             }
             for k in options {
-                let (mask, idle) = self.patterns[k];
+                let frame = &self.frames[f];
+                let id = frame.ids[k];
+                let (mask, idle) = self.patterns[id];
                 let (upper, lower) = self.open.split_at_mut(depth + 1);
                 let (open, next) = (&upper[depth], &mut lower[0]);
-                next[..top].copy_from_slice(&open[..top]);
-                next[top..].fill(0);
+                next.clear();
+                next.extend_from_slice(&open[..top]);
                 let mut drones = mask;
                 while drones != 0 {
                     let i = drones.trailing_zeros() as usize;
                     drones &= drones - 1;
-                    for (x, h) in next[..top].iter_mut().zip(&self.holding[i][..top]) {
+                    for (x, h) in next.iter_mut().zip(frame.holding(i)) {
                         *x &= !h;
                     }
                 }
-                self.chosen.push(k);
-                match self.search(left & !mask, slack - idle, depth + 1, budget, limit) {
+                self.chosen.push(id);
+                match self.search(left & !mask, slack - idle, depth + 1, f, budget, limit) {
                     Some(true) => return Some(true),
                     None => return None,
                     Some(false) => {}
@@ -488,6 +609,134 @@ mod tests {
                 cover_checked(m, &p, opt - 1.0, 1_000_000, case as u64),
                 None
             );
+        }
+    }
+
+    /// Fewest pads of `cap` that hold the drones `p`: the subset dynamic programme of bin
+    /// packing (per set of packed drones, the fewest pads and then the least load on the last).
+    fn pads_needed(p: &[u64], cap: u64) -> u64 {
+        let n = p.len();
+        let mut best = vec![(u64::MAX, u64::MAX); 1 << n];
+        best[0] = (1, 0);
+        for mask in 0..(1usize << n) {
+            let (pads, load) = best[mask];
+            if pads == u64::MAX {
+                continue;
+            }
+            for (j, &x) in p.iter().enumerate() {
+                if mask >> j & 1 == 0 {
+                    let next = if load + x <= cap {
+                        (pads, load + x)
+                    } else {
+                        (pads + 1, x)
+                    };
+                    best[mask | 1 << j] = best[mask | 1 << j].min(next);
+                }
+            }
+        }
+        best[(1 << n) - 1].0
+    }
+
+    /// Swarms of 13 to 16 short drones on 3 or 4 pads: thousands of patterns, so the search
+    /// renumbers them into frames as it goes deeper. The optimum comes from the subset
+    /// programme; the search, exact on the whole swarm, must fit it and not one minute below.
+    #[test]
+    fn decides_mid_swarms_as_the_subset_programme_does() {
+        let mut rng = ChaCha8Rng::seed_from_u64(412);
+        for case in 0..24 {
+            let n = rng.random_range(13..=16);
+            let m = rng.random_range(3..=4);
+            let hi = [12, 30][case % 2];
+            let mut pi: Vec<u64> = (0..n).map(|_| rng.random_range(1..=hi)).collect();
+            pi.sort_unstable_by(|a, b| b.cmp(a));
+            let sum: u64 = pi.iter().sum();
+            let mut opt = pi[0].max(sum.div_ceil(m as u64));
+            while pads_needed(&pi, opt) > m as u64 {
+                opt += 1;
+            }
+            let p: Vec<f64> = pi.iter().map(|&x| x as f64).collect();
+            assert!(
+                cover_checked(m, &p, opt as f64, 50_000_000, case as u64).is_some(),
+                "case {case}: nothing within the optimum {opt}, k={m} {pi:?}"
+            );
+            if opt > pi[0] {
+                assert_eq!(
+                    cover_checked(m, &p, (opt - 1) as f64, 50_000_000, case as u64),
+                    None
+                );
+            }
+        }
+    }
+
+    /// The listing, pruned by the suffix sums, gives exactly the sets a scan of all `2^n` finds,
+    /// with their idle minutes, sorted by them.
+    #[test]
+    fn patterns_are_every_set_in_the_window() {
+        let mut rng = ChaCha8Rng::seed_from_u64(414);
+        for case in 0..300 {
+            let n = rng.random_range(1..=13);
+            let mut q: Vec<u64> = (0..n).map(|_| rng.random_range(1..=40)).collect();
+            q.sort_unstable_by(|a, b| b.cmp(a));
+            let hi = rng.random_range(1..=q.iter().sum::<u64>() + 5);
+            let lo = hi.saturating_sub(rng.random_range(0..=6));
+            let limits = Limits::default();
+            let mut budget = Budget::new(&limits);
+            let listed = list_patterns(&q, lo, hi, u64::MAX, &mut budget).unwrap();
+            assert!(listed.windows(2).all(|w| w[0].1 <= w[1].1), "case {case}");
+            let mut listed: Vec<(u128, u64)> = listed;
+            listed.sort_unstable();
+            let mut scanned = Vec::new();
+            for mask in 1u128..1 << n {
+                let sum: u64 = (0..n).filter(|&j| mask >> j & 1 == 1).map(|j| q[j]).sum();
+                if (lo..=hi).contains(&sum) {
+                    scanned.push((mask, hi - sum));
+                }
+            }
+            assert_eq!(listed, scanned, "case {case}: {q:?} in [{lo}, {hi}]");
+        }
+    }
+
+    /// The cover search alone on whole swarms of 10 to 14 drones, renumbering into a new frame
+    /// wherever the open patterns fill less than half of their frame: it covers the drones within
+    /// the subset programme's optimum with disjoint patterns and proves that one minute less
+    /// fails, as it does without frames.
+    #[test]
+    fn frames_keep_the_cover_search_exact() {
+        let mut rng = ChaCha8Rng::seed_from_u64(413);
+        for case in 0..150 {
+            let n = rng.random_range(10..=14);
+            let m = rng.random_range(2..=4);
+            let mut pi: Vec<u64> = (0..n).map(|_| rng.random_range(1..=20)).collect();
+            pi.sort_unstable_by(|a, b| b.cmp(a));
+            let sum: u64 = pi.iter().sum();
+            let mut opt = pi[0].max(sum.div_ceil(m as u64));
+            while pads_needed(&pi, opt) > m as u64 {
+                opt += 1;
+            }
+            for (cap, fits) in [(opt, true), (opt - 1, false)] {
+                let Some(slack) = (m as u64 * cap).checked_sub(sum) else {
+                    continue;
+                };
+                let limits = Limits::default();
+                let mut budget = Budget::new(&limits);
+                let patterns =
+                    list_patterns(&pi, cap.saturating_sub(slack), cap, u64::MAX, &mut budget)
+                        .unwrap();
+                for (density, min_words) in [(2, 0), (COMPACT_DENSITY, COMPACT_MIN_WORDS)] {
+                    let mut cover = Cover::new(patterns.clone(), n, m);
+                    (cover.compact_density, cover.compact_min_words) = (density, min_words);
+                    let decided = cover.run(slack, &mut budget, u64::MAX);
+                    assert_eq!(decided, Some(fits), "case {case}, C = {cap}, {pi:?}");
+                    if fits {
+                        let mut covered = 0u128;
+                        for &k in &cover.chosen {
+                            assert_eq!(covered & cover.patterns[k].0, 0, "case {case}");
+                            covered |= cover.patterns[k].0;
+                        }
+                        assert_eq!(covered, (1u128 << n) - 1, "case {case}");
+                    }
+                }
+            }
         }
     }
 

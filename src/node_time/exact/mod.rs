@@ -149,10 +149,20 @@ const DIVE_SLICE_FACTOR: u64 = 16;
 const REPACK_MAX_DRONES_PER_PAD: usize = 4;
 
 /// Most drones per pad (on average) for which a stalled decision tries the exact front and
-/// covered tail (`cover.rs`) after the repacking, with as many nodes as the slice: with four per
-/// pad (u3 100x25 of the classical classes) it finds the perfect assignments the other searches
-/// miss; with more, a tail's patterns multiply (`models/experiments/node_time.md`).
+/// covered tail (`cover.rs`) after the repacking, with [`COVER_SLICE_FACTOR`] times the slice's
+/// nodes: with four per pad (u3 100x25 of the classical classes) it finds the perfect
+/// assignments the other searches miss; with more, a tail's patterns multiply
+/// (`models/experiments/node_time.md`).
 const COVER_MAX_DRONES_PER_PAD: usize = 4;
+
+/// Nodes of the exact front and covered tail per slice, in slices: its attempts meet a cover at
+/// random, and the other searches of a slice cost the same whatever its share, so a larger share
+/// brings the first cover sooner. On u3 100x25 seeds 1, 5 and 8 of the classical classes, each
+/// with three other seeds of the draws (one run each), 5, 4, 6 and 8 of the nine runs met a cover within 10 s
+/// with the factors 1, 2, 4 and 8, 7 with 16 and 5 with 32; on l2, l5, l6 and l7 100x40 (where
+/// the LP proves the optimum) the times stay within their spread
+/// (`models/experiments/node_time.md`).
+const COVER_SLICE_FACTOR: u64 = 8;
 
 /// Largest load of the assignment `pad_of` of the sorted drones `p`.
 fn makespan_sorted(m: usize, p: &[f64], pad_of: &[usize]) -> f64 {
@@ -326,7 +336,8 @@ fn phase2(
                         }
                     }
                     if p.len() <= COVER_MAX_DRONES_PER_PAD * m {
-                        let covered = cover_at(m, p, c, slice_nodes, round, budget);
+                        let work = slice_nodes.saturating_mul(COVER_SLICE_FACTOR);
+                        let covered = cover_at(m, p, c, work, round, budget);
                         if let Some(trial) = covered.filter(|t| makespan_sorted(m, p, t) <= c) {
                             aimed = Some(trial);
                             break Decision::Fits;

@@ -9,70 +9,13 @@
 //! splits that keep both loads within the current largest load (a kick), and the descent
 //! resumes. Any assignment it returns has its makespan recomputed by the caller.
 
-use crate::node_time::search::Budget;
+use crate::node_time::search::{Budget, SubsetSums};
 use rand::seq::SliceRandom;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 /// Table words that count as one node of the shared budget (each table counts at least one).
 const WORDS_PER_NODE: u64 = 64;
-
-/// Subset sums of a pad pair's drones, one bitset per prefix, for reconstruction.
-#[derive(Default)]
-struct PairTable {
-    /// `bits[q * words ..][s]`: sum `s` is reachable with the first `q` drones.
-    bits: Vec<u64>,
-    words: usize,
-}
-
-impl PairTable {
-    /// Builds the table of the drones `items` (lengths `p`) for sums `0..=half`; returns the work
-    /// in words.
-    fn build(&mut self, p: &[u64], items: &[usize], half: usize) -> u64 {
-        self.words = (half + 1).div_ceil(64);
-        let w = self.words;
-        self.bits.clear();
-        self.bits.resize((items.len() + 1) * w, 0);
-        self.bits[0] = 1;
-        for (q, &j) in items.iter().enumerate() {
-            let shift = p[j] as usize;
-            let (prev, next) = self.bits.split_at_mut((q + 1) * w);
-            let prev = &prev[q * w..];
-            let next = &mut next[..w];
-            next.copy_from_slice(prev);
-            let (ws, bs) = (shift / 64, shift % 64);
-            for k in (ws..w).rev() {
-                let mut x = prev[k - ws] << bs;
-                if bs > 0 && k > ws {
-                    x |= prev[k - ws - 1] >> (64 - bs);
-                }
-                next[k] |= x;
-            }
-            // Clear the bits beyond `half` in the last word.
-            let extra = w * 64 - (half + 1);
-            if extra > 0 {
-                next[w - 1] &= u64::MAX >> extra;
-            }
-        }
-        (items.len() * w) as u64
-    }
-
-    fn reachable(&self, q: usize, s: usize) -> bool {
-        self.bits[q * self.words + s / 64] >> (s % 64) & 1 == 1
-    }
-
-    /// A subset of `items` with sum `s` (reachable), as a flag per item.
-    fn subset(&self, p: &[u64], items: &[usize], mut s: usize) -> Vec<bool> {
-        let mut take = vec![false; items.len()];
-        for q in (0..items.len()).rev() {
-            if !self.reachable(q, s) {
-                take[q] = true;
-                s -= p[items[q]] as usize;
-            }
-        }
-        take
-    }
-}
 
 /// Looks for an assignment of the drones `p` (whole minutes, positive) on `m` pads with every
 /// load `<= target`, starting from `pad_of`; `seed` varies the kicks between calls. Stops when
@@ -103,7 +46,7 @@ pub(crate) fn aim_at(
         loads[i] += pi[j];
     }
     let mut rng = ChaCha8Rng::seed_from_u64(0x5eed_0000 ^ seed);
-    let mut table = PairTable::default();
+    let mut table = SubsetSums::default();
     let stop_at = budget.nodes.saturating_add(work);
     let mut spent = 0u64;
     let mut others: Vec<usize> = (0..m).collect();
