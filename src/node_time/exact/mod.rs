@@ -155,13 +155,17 @@ const REPACK_MAX_DRONES_PER_PAD: usize = 4;
 /// (`models/experiments/node_time.md`).
 const COVER_MAX_DRONES_PER_PAD: usize = 4;
 
-/// Nodes of the exact front and covered tail per slice, in slices: its attempts meet a cover at
-/// random, and the other searches of a slice cost the same whatever its share, so a larger share
-/// brings the first cover sooner. On u3 100x25 seeds 1, 5 and 8 of the classical classes, each
-/// with three other seeds of the draws (one run each), 5, 4, 6 and 8 of the nine runs met a cover within 10 s
-/// with the factors 1, 2, 4 and 8, 7 with 16 and 5 with 32; on l2, l5, l6 and l7 100x40 (where
-/// the LP proves the optimum) the times stay within their spread
-/// (`models/experiments/node_time.md`).
+/// Nodes of the exact front and covered tail per slice, in slices, at a decision where the LP
+/// bound is not tried (at the volume bound `ceil(sum/k)` with a perfect assignment expected,
+/// [`PERFECT_EXCESS_MAX_MIN`], and a large knapsack table, [`LP_EARLY_MAX_CELLS`]): the other
+/// searches there only move drones between pads, so the cover is what finds the perfect
+/// assignment. Its attempts meet a cover at random, and the other searches of a slice cost the
+/// same whatever its share, so a larger share brings the first cover sooner. On u3 100x25 seeds
+/// 1, 5 and 8 of the classical classes, each with three other seeds of the draws (one run each),
+/// 5, 4, 6 and 8 of the nine runs met a cover within 10 s with the factors 1, 2, 4 and 8, 7 with
+/// 16 and 5 with 32. Elsewhere one slice: given at every decision, or at every decision at the
+/// volume bound, it took l2 100x40 seeds 8 and 10 (where the LP does not refute the volume bound
+/// and bin completion does) from about 0.3 to 0.5 s (`models/experiments/node_time.md`).
 const COVER_SLICE_FACTOR: u64 = 8;
 
 /// Largest load of the assignment `pad_of` of the sorted drones `p`.
@@ -224,7 +228,7 @@ fn phase2(
     } else {
         volume
     };
-    let skip_lp_at_volume = integral && expected_excess(p, m, 1.0) < PERFECT_EXCESS_MAX_MIN;
+    let perfect_expected = integral && expected_excess(p, m, 1.0) < PERFECT_EXCESS_MAX_MIN;
     for _ in 0..10_000 {
         if proven(ub, lb) {
             return outcome(true, lb, ub);
@@ -281,8 +285,9 @@ fn phase2(
             // `ceil(sum/k)` when a perfect assignment is expected); after every slice, with
             // whole minutes, the perfect-partition search aims at `c` with as many nodes as the
             // slice, then the repacking of pad groups with as many again, then the exact front and
-            // covered tail (`cover.rs`) with as many again, then, once the LP has failed to
-            // refute `c`, an LP dive (`dive.rs`). Bin completion resumes with its memo.
+            // covered tail (`cover.rs`) with as many again (COVER_SLICE_FACTOR times as many
+            // where the LP is not tried), then, once the LP has failed to refute `c`, an LP dive
+            // (`dive.rs`). Bin completion resumes with its memo.
             let mut slice_nodes = STALL_NODES;
             let mut round = 0u64;
             let lp_round = if integral && (c + 1.0) * p.len() as f64 > LP_EARLY_MAX_CELLS {
@@ -290,7 +295,7 @@ fn phase2(
             } else {
                 0
             };
-            let lp_hopeless = skip_lp_at_volume && c <= volume && lp_round == LP_LATE_SLICE;
+            let lp_hopeless = perfect_expected && c <= volume && lp_round == LP_LATE_SLICE;
             let mut dives = 0u64;
             loop {
                 let slice_limits = budget.limits_for(slice_nodes);
@@ -336,7 +341,8 @@ fn phase2(
                         }
                     }
                     if p.len() <= COVER_MAX_DRONES_PER_PAD * m {
-                        let work = slice_nodes.saturating_mul(COVER_SLICE_FACTOR);
+                        let factor = if lp_hopeless { COVER_SLICE_FACTOR } else { 1 };
+                        let work = slice_nodes.saturating_mul(factor);
                         let covered = cover_at(m, p, c, work, round, budget);
                         if let Some(trial) = covered.filter(|t| makespan_sorted(m, p, t) <= c) {
                             aimed = Some(trial);

@@ -47,22 +47,21 @@ impl SubsetSums {
 
     /// Whether some sum in `lo..=hi` (`hi` at most the table's largest) is reachable with the
     /// first `q` drones.
+    #[inline]
     pub(crate) fn any_in(&self, q: usize, lo: usize, hi: usize) -> bool {
         if lo > hi {
             return false;
         }
         let row = &self.bits[q * self.words..(q + 1) * self.words];
         let (first, last) = (lo / 64, hi / 64);
-        (first..=last).any(|w| {
-            let mut x = row[w];
-            if w == first {
-                x &= u64::MAX << (lo % 64);
-            }
-            if w == last && hi % 64 < 63 {
-                x &= (1u64 << (hi % 64 + 1)) - 1;
-            }
-            x != 0
-        })
+        let low_mask = u64::MAX << (lo % 64);
+        let high_mask = u64::MAX >> (63 - hi % 64);
+        if first == last {
+            return row[first] & low_mask & high_mask != 0;
+        }
+        row[first] & low_mask != 0
+            || row[first + 1..last].iter().any(|&x| x != 0)
+            || row[last] & high_mask != 0
     }
 
     /// A subset of `items` with sum `s` (reachable), as a flag per item.
