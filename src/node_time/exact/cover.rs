@@ -15,7 +15,7 @@
 //! search gets the whole budget. The search finds assignments; it proves nothing when it fails.
 
 use crate::node_time::search::WordHasher;
-use crate::node_time::search::{Budget, SubsetSums};
+use crate::node_time::search::{Budget, SubsetSums, TABLE_WORDS_PER_NODE};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::collections::HashMap;
@@ -44,11 +44,8 @@ const FRONT_PAD_ATTEMPTS: usize = 5_000;
 const VISITS_PER_NODE: u64 = 64;
 
 /// Largest target (minutes) for which the pattern listing prunes by a subset-sum table of the
-/// tail: 4,096 words a row, at most 129 rows.
+/// tail: at most 4,097 words a row and 129 rows.
 const LISTING_TABLE_MAX_SUM: u64 = 1 << 18;
-
-/// Table words that count as one node of the shared budget.
-const TABLE_WORDS_PER_NODE: u64 = 64;
 
 /// Tail drones a pattern mask can hold.
 const TAIL_MAX_DRONES: usize = 128;
@@ -82,6 +79,7 @@ pub(crate) fn cover_at(
     let stop_at = budget.nodes.saturating_add(work);
     let mut used = vec![false; n];
     let mut pad_of = vec![usize::MAX; n];
+    let mut sums = SubsetSums::default();
     let mut attempt = 0u64;
     while budget.nodes < stop_at && !budget.spent() {
         used.fill(false);
@@ -126,7 +124,8 @@ pub(crate) fn cover_at(
         let max_visits = stop_at
             .saturating_sub(budget.nodes)
             .saturating_mul(VISITS_PER_NODE);
-        let patterns = list_patterns(&tq, cap.saturating_sub(slack), cap, max_visits, budget)?;
+        let lo = cap.saturating_sub(slack);
+        let patterns = list_patterns(&tq, lo, cap, max_visits, &mut sums, budget)?;
         let mut cover = Cover::new(patterns, tail.len(), tail_pads);
         let whole_swarm = tail_pads == m;
         let limit = if whole_swarm {
@@ -227,13 +226,16 @@ fn unused_of_length(pi: &[u64], used: &[bool], len: u64) -> Option<usize> {
 /// Every set of the drones `q` (decreasing) with a sum in `[lo, hi]`, as (mask, `hi - sum`),
 /// sorted by the second; `None` past [`COVER_PATTERNS_MAX`] patterns or `max_visits` sets
 /// visited. [`VISITS_PER_NODE`] sets visited count one node. A set is extended by a drone only
-/// when the drones after it can still bring the sum into `[lo, hi]` (a subset-sum table of the
-/// suffixes, up to [`LISTING_TABLE_MAX_SUM`]), so every set visited is, or leads to, a pattern.
+/// when the drones after it can still bring the sum into `[lo, hi]` (the subset-sum table
+/// `sums` of the suffixes, rebuilt here, up to [`LISTING_TABLE_MAX_SUM`]), so every set visited
+/// is, or leads to, a pattern. Building the table counts [`TABLE_WORDS_PER_NODE`] words as one
+/// node; its queries (at most `|q|` per set visited) are not counted.
 fn list_patterns(
     q: &[u64],
     lo: u64,
     hi: u64,
     max_visits: u64,
+    sums: &mut SubsetSums,
     budget: &mut Budget,
 ) -> Option<Vec<(u128, u64)>> {
     let n = q.len();
@@ -242,17 +244,16 @@ fn list_patterns(
         suffix[j] = suffix[j + 1] + q[j];
     }
     // Row `r` of the table: the sums of the last `r` drones.
-    let sums = (hi <= LISTING_TABLE_MAX_SUM).then(|| {
-        let mut sums = SubsetSums::default();
+    let use_table = hi <= LISTING_TABLE_MAX_SUM;
+    if use_table {
         let reversed: Vec<usize> = (0..n).rev().collect();
         let words = sums.build(q, &reversed, hi as usize);
         budget.nodes = budget.nodes.saturating_add(words / TABLE_WORDS_PER_NODE);
-        sums
-    });
+    }
     let mut listing = Listing {
         q,
         suffix: &suffix,
-        sums: sums.as_ref(),
+        sums: use_table.then_some(&*sums),
         lo,
         hi,
         out: Vec::new(),
@@ -324,8 +325,10 @@ impl Listing<'_> {
 
 /// Exact cover of the tail drones by patterns, with the idle minutes of the chosen patterns
 /// within the slack. The open patterns of a node are bitsets over the patterns of a frame; a
-/// node whose open patterns fill less than `1 / COMPACT_DENSITY` of its frame's words starts a
-/// new frame of just those, so deep nodes count and filter over short bitsets.
+/// node whose open patterns fill less than `1 / COMPACT_DENSITY` of the frame's words that
+/// hold patterns within its slack starts a new frame of just those, so deep nodes count and
+/// filter over short bitsets. Building a frame is not counted in nodes (it costs about as much
+/// as the node's own counting, and the clock check of every node bounds it).
 struct Cover {
     /// (drones, idle minutes), increasing in idle minutes.
     patterns: Vec<(u128, u64)>,
@@ -377,13 +380,15 @@ impl Frame {
     }
 }
 
-/// A node starts a new frame when its open patterns are fewer than its frame's positions over
-/// this (and the frame has more than [`COMPACT_MIN_WORDS`] words). The frames change the time
-/// of a node, never the nodes: 16 and 8 ran u3 100x25 seed 5 in about 10.5 and 11.8 s, 4 and no
-/// frames in 11.4 to 13.6 s (`models/experiments/node_time.md`).
+/// A node starts a new frame when its open patterns are fewer than the frame's positions within
+/// its slack over this (and those take more than [`COMPACT_MIN_WORDS`] words). The frames change
+/// the time of a node, never the nodes: u3 100x25 seed 5 ran in 8.3 and 7.3 s with 16, 8.6 and
+/// 7.8 s with 32, 8.7 and 7.0 s with 64, 9.3 and 8.2 s without frames
+/// (`models/experiments/node_time.md`).
 const COMPACT_DENSITY: usize = 16;
 
-/// Frames of at most this many words are never compacted.
+/// Nodes whose patterns within the slack take at most this many words of their frame never
+/// start a new one.
 const COMPACT_MIN_WORDS: usize = 4;
 
 impl Cover {
@@ -673,15 +678,18 @@ mod tests {
     #[test]
     fn patterns_are_every_set_in_the_window() {
         let mut rng = ChaCha8Rng::seed_from_u64(414);
+        let mut sums = SubsetSums::default();
         for case in 0..300 {
             let n = rng.random_range(1..=13);
-            let mut q: Vec<u64> = (0..n).map(|_| rng.random_range(1..=40)).collect();
+            // A third of the cases above LISTING_TABLE_MAX_SUM: no table, suffix totals only.
+            let unit = if case % 3 == 2 { 30_000 } else { 1 };
+            let mut q: Vec<u64> = (0..n).map(|_| unit * rng.random_range(1..=40)).collect();
             q.sort_unstable_by(|a, b| b.cmp(a));
             let hi = rng.random_range(1..=q.iter().sum::<u64>() + 5);
-            let lo = hi.saturating_sub(rng.random_range(0..=6));
+            let lo = hi.saturating_sub(rng.random_range(0..=6) * unit);
             let limits = Limits::default();
             let mut budget = Budget::new(&limits);
-            let listed = list_patterns(&q, lo, hi, u64::MAX, &mut budget).unwrap();
+            let listed = list_patterns(&q, lo, hi, u64::MAX, &mut sums, &mut budget).unwrap();
             assert!(listed.windows(2).all(|w| w[0].1 <= w[1].1), "case {case}");
             let mut listed: Vec<(u128, u64)> = listed;
             listed.sort_unstable();
@@ -696,10 +704,11 @@ mod tests {
         }
     }
 
-    /// The cover search alone on whole swarms of 10 to 14 drones, renumbering into a new frame
-    /// wherever the open patterns fill less than half of their frame: it covers the drones within
-    /// the subset programme's optimum with disjoint patterns and proves that one minute less
-    /// fails, as it does without frames.
+    /// The cover search alone on whole swarms of 10 to 14 drones, without frames, renumbering
+    /// into a new frame wherever the open patterns fill less than half of their frame, and as in
+    /// the solver: each covers the drones within the subset programme's optimum with disjoint
+    /// patterns and proves that one minute less fails, after the same nodes and with the same
+    /// patterns chosen.
     #[test]
     fn frames_keep_the_cover_search_exact() {
         let mut rng = ChaCha8Rng::seed_from_u64(413);
@@ -719,14 +728,28 @@ mod tests {
                 };
                 let limits = Limits::default();
                 let mut budget = Budget::new(&limits);
+                let lo = cap.saturating_sub(slack);
+                let mut sums = SubsetSums::default();
                 let patterns =
-                    list_patterns(&pi, cap.saturating_sub(slack), cap, u64::MAX, &mut budget)
-                        .unwrap();
-                for (density, min_words) in [(2, 0), (COMPACT_DENSITY, COMPACT_MIN_WORDS)] {
+                    list_patterns(&pi, lo, cap, u64::MAX, &mut sums, &mut budget).unwrap();
+                // Without frames, then with frames wherever half empty, then as in the solver:
+                // the same decision, after the same nodes, with the same patterns chosen.
+                let mut first: Option<(u64, Vec<usize>)> = None;
+                for (density, min_words) in [
+                    (1, usize::MAX),
+                    (2, 0),
+                    (COMPACT_DENSITY, COMPACT_MIN_WORDS),
+                ] {
                     let mut cover = Cover::new(patterns.clone(), n, m);
                     (cover.compact_density, cover.compact_min_words) = (density, min_words);
+                    let mut budget = Budget::new(&limits);
                     let decided = cover.run(slack, &mut budget, u64::MAX);
                     assert_eq!(decided, Some(fits), "case {case}, C = {cap}, {pi:?}");
+                    let run = (budget.nodes, cover.chosen.clone());
+                    match &first {
+                        None => first = Some(run),
+                        Some(without) => assert_eq!(&run, without, "case {case}, C = {cap}"),
+                    }
                     if fits {
                         let mut covered = 0u128;
                         for &k in &cover.chosen {

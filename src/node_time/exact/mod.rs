@@ -149,14 +149,14 @@ const DIVE_SLICE_FACTOR: u64 = 16;
 const REPACK_MAX_DRONES_PER_PAD: usize = 4;
 
 /// Most drones per pad (on average) for which a stalled decision tries the exact front and
-/// covered tail (`cover.rs`) after the repacking, with [`COVER_SLICE_FACTOR`] times the slice's
-/// nodes: with four per pad (u3 100x25 of the classical classes) it finds the perfect
+/// covered tail (`cover.rs`) after the repacking, with the slice's nodes ([`COVER_SLICE_FACTOR`]
+/// times as many where the LP bound is skipped at the volume bound): with four per pad (u3 100x25 of the classical classes) it finds the perfect
 /// assignments the other searches miss; with more, a tail's patterns multiply
 /// (`models/experiments/node_time.md`).
 const COVER_MAX_DRONES_PER_PAD: usize = 4;
 
 /// Nodes of the exact front and covered tail per slice, in slices, at a decision where the LP
-/// bound is not tried (at the volume bound `ceil(sum/k)` with a perfect assignment expected,
+/// bound is skipped (at the volume bound `ceil(sum/k)` with a perfect assignment expected,
 /// [`PERFECT_EXCESS_MAX_MIN`], and a large knapsack table, [`LP_EARLY_MAX_CELLS`]): the other
 /// searches there only move drones between pads, so the cover is what finds the perfect
 /// assignment. Its attempts meet a cover at random, and the other searches of a slice cost the
@@ -165,7 +165,7 @@ const COVER_MAX_DRONES_PER_PAD: usize = 4;
 /// 5, 4, 6 and 8 of the nine runs met a cover within 10 s with the factors 1, 2, 4 and 8, 7 with
 /// 16 and 5 with 32. Elsewhere one slice: given at every decision, or at every decision at the
 /// volume bound, it took l2 100x40 seeds 8 and 10 (where the LP does not refute the volume bound
-/// and bin completion does) from about 0.3 to 0.5 s (`models/experiments/node_time.md`).
+/// and bin completion does) from 0.2–0.3 s to 0.45–0.6 s (`models/experiments/node_time.md`).
 const COVER_SLICE_FACTOR: u64 = 8;
 
 /// Largest load of the assignment `pad_of` of the sorted drones `p`.
@@ -286,7 +286,7 @@ fn phase2(
             // whole minutes, the perfect-partition search aims at `c` with as many nodes as the
             // slice, then the repacking of pad groups with as many again, then the exact front and
             // covered tail (`cover.rs`) with as many again (COVER_SLICE_FACTOR times as many
-            // where the LP is not tried), then, once the LP has failed to refute `c`, an LP dive
+            // where the LP is skipped at the volume bound), then, once the LP has failed to refute `c`, an LP dive
             // (`dive.rs`). Bin completion resumes with its memo.
             let mut slice_nodes = STALL_NODES;
             let mut round = 0u64;
@@ -295,7 +295,7 @@ fn phase2(
             } else {
                 0
             };
-            let lp_hopeless = perfect_expected && c <= volume && lp_round == LP_LATE_SLICE;
+            let lp_skipped_at_volume = perfect_expected && c <= volume && lp_round == LP_LATE_SLICE;
             let mut dives = 0u64;
             loop {
                 let slice_limits = budget.limits_for(slice_nodes);
@@ -309,7 +309,7 @@ fn phase2(
                 if d != Decision::Stopped || budget.spent() {
                     break d;
                 }
-                if round == lp_round && c_run < lp_failed_at && !lp_hopeless {
+                if round == lp_round && c_run < lp_failed_at && !lp_skipped_at_volume {
                     // Refuted at `c`: the bisection up to the incumbent lifts the bound at once
                     // (and proves the incumbent when it refutes just below it).
                     let lp = lp.get_or_insert_with(|| LpBound::new(p, integral));
@@ -341,7 +341,11 @@ fn phase2(
                         }
                     }
                     if p.len() <= COVER_MAX_DRONES_PER_PAD * m {
-                        let factor = if lp_hopeless { COVER_SLICE_FACTOR } else { 1 };
+                        let factor = if lp_skipped_at_volume {
+                            COVER_SLICE_FACTOR
+                        } else {
+                            1
+                        };
                         let work = slice_nodes.saturating_mul(factor);
                         let covered = cover_at(m, p, c, work, round, budget);
                         if let Some(trial) = covered.filter(|t| makespan_sorted(m, p, t) <= c) {

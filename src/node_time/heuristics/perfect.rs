@@ -9,13 +9,10 @@
 //! splits that keep both loads within the current largest load (a kick), and the descent
 //! resumes. Any assignment it returns has its makespan recomputed by the caller.
 
-use crate::node_time::search::{Budget, SubsetSums};
+use crate::node_time::search::{Budget, SubsetSums, TABLE_WORDS_PER_NODE};
 use rand::seq::SliceRandom;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-
-/// Table words that count as one node of the shared budget (each table counts at least one).
-const WORDS_PER_NODE: u64 = 64;
 
 /// Looks for an assignment of the drones `p` (whole minutes, positive) on `m` pads with every
 /// load `<= target`, starting from `pad_of`; `seed` varies the kicks between calls. Stops when
@@ -77,7 +74,9 @@ pub(crate) fn aim_at(
             let items: Vec<usize> = (0..n).filter(|&x| cur[x] == i || cur[x] == j).collect();
             let w = table.build(&pi, &items, half);
             spent += w;
-            budget.nodes = budget.nodes.saturating_add((w / WORDS_PER_NODE).max(1));
+            budget.nodes = budget
+                .nodes
+                .saturating_add((w / TABLE_WORDS_PER_NODE).max(1));
             let q = items.len();
             // Sums s <= half: the split (s, total - s) has max total - s. Within the target:
             // s >= total - target; pick at random among those (a few tries), else the largest s.
@@ -120,7 +119,9 @@ pub(crate) fn aim_at(
         let items: Vec<usize> = (0..n).filter(|&x| cur[x] == a || cur[x] == b).collect();
         let w = table.build(&pi, &items, half);
         spent += w;
-        budget.nodes = budget.nodes.saturating_add((w / WORDS_PER_NODE).max(1));
+        budget.nodes = budget
+            .nodes
+            .saturating_add((w / TABLE_WORDS_PER_NODE).max(1));
         let lo = total.saturating_sub(lmax) as usize;
         if lo > half {
             continue;

@@ -1,6 +1,7 @@
 //! What every search of one exact solve shares: the node and time [`Budget`] with its one limit
 //! check, the [`Memo`] of failed bin-completion states, the [`Decision`] outcome of a capacity
-//! query "do all drones fit on `k` pads with every load `<= C`?", and the [`SubsetSums`] table of the searches that split or list drone sets by their sum.
+//! query "do all drones fit on `k` pads with every load `<= C`?", and the [`SubsetSums`] table
+//! of the searches that split or list drone sets by their sum.
 
 mod budget;
 mod memo;
@@ -8,7 +9,7 @@ mod subset_sums;
 
 pub(crate) use budget::{Budget, CLOCK_EVERY_NODES};
 pub(crate) use memo::{Memo, WordHasher, MEMO_MAX_STATES};
-pub(crate) use subset_sums::SubsetSums;
+pub(crate) use subset_sums::{SubsetSums, TABLE_WORDS_PER_NODE};
 
 /// Real-valued times are checked against `C (1 + CAP_SLACK)`: exact arithmetic would fill the
 /// last pad to exactly its share of the waste, and rounding must not turn that into a failure.

@@ -1,6 +1,10 @@
 //! Subset sums of a list of drones (whole minutes), one bitset per prefix: the exact two-way
 //! split of the perfect-partition search and the pruning of the cover search's pattern listing.
 
+/// Table words that count as one node of the shared budget (the pair tables of the
+/// perfect-partition search count at least one each).
+pub(crate) const TABLE_WORDS_PER_NODE: u64 = 64;
+
 /// `bits[q * words ..][s]`: sum `s` is reachable with the first `q` drones of the list.
 #[derive(Default)]
 pub(crate) struct SubsetSums {
@@ -98,14 +102,27 @@ mod tests {
         assert_eq!(t.subset(&p, &[0, 1, 2], 14), vec![true, false, true]);
     }
 
+    /// Shifts that cross words (70, 130) and a word's last bit: every window against the sums
+    /// of all 16 subsets, enumerated.
     #[test]
     fn windows_across_words_match_a_scan() {
         let p = [61u64, 70, 130, 7];
         let mut t = SubsetSums::default();
         t.build(&p, &[0, 1, 2, 3], 300);
+        let sums: Vec<usize> = (0..16usize)
+            .map(|mask| {
+                (0..4)
+                    .filter(|&j| mask >> j & 1 == 1)
+                    .map(|j| p[j] as usize)
+                    .sum()
+            })
+            .collect();
+        for s in 0..=300 {
+            assert_eq!(t.reachable(4, s), sums.contains(&s), "sum {s}");
+        }
         for lo in 0..=300 {
             for hi in lo..=(lo + 70).min(300) {
-                let scan = (lo..=hi).any(|s| t.reachable(4, s));
+                let scan = sums.iter().any(|&s| (lo..=hi).contains(&s));
                 assert_eq!(t.any_in(4, lo, hi), scan, "{lo}..={hi}");
             }
         }
