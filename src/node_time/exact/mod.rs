@@ -150,9 +150,9 @@ const REPACK_MAX_DRONES_PER_PAD: usize = 4;
 
 /// Most drones per pad (on average) for which a stalled decision tries the exact front and
 /// covered tail (`cover.rs`) after the repacking, with the slice's nodes ([`COVER_SLICE_FACTOR`]
-/// times as many where the LP bound is skipped at the volume bound): with four per pad (u3 100x25 of the classical classes) it finds the perfect
-/// assignments the other searches miss; with more, a tail's patterns multiply
-/// (`models/experiments/node_time.md`).
+/// times as many where the LP bound is skipped at the volume bound): with four per pad (u3
+/// 100x25 of the classical classes) it finds the perfect assignments the other searches miss;
+/// with more, a tail's patterns multiply (`models/experiments/node_time.md`).
 const COVER_MAX_DRONES_PER_PAD: usize = 4;
 
 /// Nodes of the exact front and covered tail per slice, in slices, at a decision where the LP
@@ -286,8 +286,8 @@ fn phase2(
             // whole minutes, the perfect-partition search aims at `c` with as many nodes as the
             // slice, then the repacking of pad groups with as many again, then the exact front and
             // covered tail (`cover.rs`) with as many again (COVER_SLICE_FACTOR times as many
-            // where the LP is skipped at the volume bound), then, once the LP has failed to refute `c`, an LP dive
-            // (`dive.rs`). Bin completion resumes with its memo.
+            // where the LP is skipped at the volume bound), then, once the LP has failed to
+            // refute `c`, an LP dive (`dive.rs`). Bin completion resumes with its memo.
             let mut slice_nodes = STALL_NODES;
             let mut round = 0u64;
             let lp_round = if integral && (c + 1.0) * p.len() as f64 > LP_EARLY_MAX_CELLS {
