@@ -11,57 +11,14 @@
 //! `highs` feature, `-- 10 highs 10,3,30` times the goal size (10 delivery and 3 support
 //! drones, 30 periods).
 
-use rand::{Rng, SeedableRng};
+#[path = "common/bench_hop.rs"]
+mod bench_hop;
+use bench_hop::hop;
+use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use swarmplan::eaas::milp::{solve_milp, ExactStatus, MilpOptions, Objective, Reorder};
-use swarmplan::eaas::{fluid, DroneState, HopProblem, LegRates};
-use swarmplan::formation::slots_m;
-use swarmplan::problem::{FormationKind, Role};
+use swarmplan::eaas::fluid;
 use swarmplan::solver::MilpBackend;
-
-fn hop(rng: &mut ChaCha8Rng, nd: usize, ns: usize, periods: usize) -> HopProblem {
-    let n = nd + ns;
-    // Beyond 16 periods rates and rho shrink in proportion, so a hop uses the same share of a
-    // battery whatever its length (otherwise long hops are infeasible for every schedule).
-    let scale = 16.0 / (periods.max(16) as f64);
-    let slots_m = slots_m(FormationKind::Vee, n, 0.7);
-    // Support drones in the middle of the formation.
-    let mut initial_slot: Vec<usize> = (0..n).collect();
-    for s in 0..ns {
-        initial_slot.swap(nd + s, s);
-    }
-    HopProblem {
-        legs: vec![LegRates {
-            duration_min: periods as f64,
-            rate_mah_per_min: (0..n)
-                .map(|_| (0..n).map(|_| scale * rng.random_range(2.0..6.0)).collect())
-                .collect::<Vec<_>>()
-                .into(),
-        }],
-        drones: (0..n)
-            .map(|d| DroneState {
-                role: if d < nd {
-                    Role::Delivery
-                } else {
-                    Role::Support
-                },
-                capacity_mah: 100.0,
-                battery_mah: if d < nd {
-                    rng.random_range(30.0..100.0)
-                } else {
-                    100.0
-                },
-            })
-            .collect(),
-        slots_m,
-        initial_slot,
-        rho_mah_per_min: 8.0 * scale,
-        range_m: 1.2,
-        gamma_mah: 40.0,
-        lambda_mah: 16.0,
-        delta_mah: 5.0,
-    }
-}
 
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
@@ -127,7 +84,10 @@ fn main() {
                         ExactStatus::Optimal => 0,
                         ExactStatus::Feasible => 1,
                         ExactStatus::Infeasible => 2,
-                        ExactStatus::TimeLimitNoSolution => 3,
+                        // Statuses of the continuous model only.
+                        ExactStatus::TimeLimitNoSolution
+                        | ExactStatus::OptimalWithin
+                        | ExactStatus::NoScheduleFound => 3,
                     }] += 1;
                     let f = fluid::bound(&p, &objective, reorder, time_limit_s).expect("valid hop");
                     fl.push(f.solve_ms);

@@ -165,6 +165,8 @@ fn status_name(s: ExactStatus) -> &'static str {
         ExactStatus::Feasible => "feasible",
         ExactStatus::Infeasible => "infeasible",
         ExactStatus::TimeLimitNoSolution => "time_limit_no_solution",
+        ExactStatus::OptimalWithin => "optimal_within",
+        ExactStatus::NoScheduleFound => "no_schedule_found",
     }
 }
 

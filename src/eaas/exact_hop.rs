@@ -77,6 +77,10 @@ fn is_proven(proven: &bool) -> bool {
     *proven
 }
 
+fn is_zero(count: &usize) -> bool {
+    *count == 0
+}
+
 /// How the exact or fair solve of one hop ended.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -125,12 +129,20 @@ pub struct HopSolveCounts {
     pub solves: usize,
     /// Proven optimal (the fair QP: solved).
     pub optimal: usize,
+    /// Within a certified distance of an infimum the continuous model does not attain (see
+    /// `models/eaas_config.md`); written only when not zero.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub optimal_within: usize,
     /// Stopped at the time limit with an incumbent.
     pub time_limit_incumbent: usize,
     /// Proven: no schedule of the model flies.
     pub infeasible: usize,
     /// Stopped at the time limit without a schedule.
     pub time_limit_no_solution: usize,
+    /// The continuous model has a value but no schedule was found (see
+    /// [`ExactStatus::NoScheduleFound`]); written only when not zero.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub no_schedule_found: usize,
     /// Solves on which the backend failed.
     pub backend_errors: usize,
     /// Solves that returned a schedule that does not fly (the fair QP's layout).
@@ -145,6 +157,8 @@ impl HopSolveCounts {
         self.solves += 1;
         match solve.status {
             Some(ExactStatus::Optimal) => self.optimal += 1,
+            Some(ExactStatus::OptimalWithin) => self.optimal_within += 1,
+            Some(ExactStatus::NoScheduleFound) => self.no_schedule_found += 1,
             Some(ExactStatus::Feasible) => self.time_limit_incumbent += 1,
             Some(ExactStatus::Infeasible) => self.infeasible += 1,
             Some(ExactStatus::TimeLimitNoSolution) => self.time_limit_no_solution += 1,
@@ -152,7 +166,7 @@ impl HopSolveCounts {
         }
         if matches!(
             solve.status,
-            Some(ExactStatus::Optimal | ExactStatus::Feasible)
+            Some(ExactStatus::Optimal | ExactStatus::OptimalWithin | ExactStatus::Feasible)
         ) && !solve.schedule_flies
         {
             self.schedule_does_not_fly += 1;
@@ -166,6 +180,8 @@ impl HopSolveCounts {
     pub fn merge(&mut self, other: &HopSolveCounts) {
         self.solves += other.solves;
         self.optimal += other.optimal;
+        self.optimal_within += other.optimal_within;
+        self.no_schedule_found += other.no_schedule_found;
         self.time_limit_incumbent += other.time_limit_incumbent;
         self.infeasible += other.infeasible;
         self.time_limit_no_solution += other.time_limit_no_solution;

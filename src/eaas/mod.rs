@@ -23,15 +23,16 @@ use serde::{Deserialize, Serialize};
 use std::sync::Arc;
 
 pub mod compare;
+pub mod exact;
 pub mod exact_hop;
 mod fb;
-pub mod fluid;
 pub mod hop_file;
-pub mod milp;
 mod none;
 mod pb;
 pub mod reorder;
 mod simulate;
+
+pub use exact::{continuous, fluid, milp};
 
 /// Time tolerance, minutes: events closer than this are simultaneous.
 pub const TIME_TOL_MIN: f64 = 1e-9;

@@ -25,15 +25,18 @@
 //! feasibility alone. The optimum is optimal over full-period grid schedules of step `h`, which
 //! the outcome carries ([`ExactOutcome::grid_step_min`]).
 
-use super::simulate::evaluate;
-use super::{
-    reorder, sharing_budget_mah, validate, HopOutcome, HopProblem, Role, Transfer, TIME_TOL_MIN,
+pub use super::{
+    objective_of, validate_objective, ExactOutcome, ExactStatus, Objective, ObjectiveValue, Reorder,
 };
-use crate::error::{Error, Result, Violation};
+use super::{backend_end, moves, validate_inputs, BackendEnd, Move, PadRows};
+use crate::eaas::simulate::evaluate;
+use crate::eaas::{reorder, sharing_budget_mah, HopProblem, Role, Transfer, TIME_TOL_MIN};
+use crate::error::{Error, Result};
+#[cfg(feature = "highs")]
 use crate::node_time;
 use crate::solver::lp_file::LpCapture;
 pub use crate::solver::lp_file::LpSize;
-use crate::solver::{MilpBackend, SolveStatus};
+use crate::solver::MilpBackend;
 use good_lp::{
     constraint, variable, Expression, ProblemVariables, ResolutionError, Solution, SolutionStatus,
     SolverModel, Variable, WithTimeLimit,
@@ -44,55 +47,6 @@ use std::time::Instant;
 
 /// Largest number of periods a grid may have (guards against a tiny `period_min`).
 pub const MAX_PERIODS: usize = 100_000;
-
-/// How drones may change formation slots while sharing.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, clap::ValueEnum)]
-#[serde(rename_all = "lowercase")]
-pub enum Reorder {
-    /// The paper's fixed re-ordering: an out-of-range consumer swaps with the delivery drone of an
-    /// in-range slot (any such slot, not only the nearest) for the transfer; in-range consumers
-    /// stay.
-    Paper,
-    /// Any permutation of the delivery drones over the non-support slots in each period.
-    Free,
-    /// No movement: only consumers within range in their own slots are served.
-    None,
-}
-
-display_as_value_name!(Reorder);
-
-/// What an exact hop model optimises.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Objective {
-    /// Minimise the node time at the hop's end, minutes: the makespan of charging every drone
-    /// (delivery and support) to full on `pads` identical pads, drone `d` taking
-    /// `ct_d = (C_d - b_d(tt)) / pad_rate_mah_per_min` minutes.
-    NodeTime {
-        /// Pads `k` at the stop ending the hop.
-        pads: usize,
-        /// Charging rate of a pad, mAh/min.
-        pad_rate_mah_per_min: f64,
-    },
-    /// Maximise the lowest arrival battery `min_{d in D_d} b_d(tt)` over the delivery drones, mAh.
-    MaxMinArrival,
-    /// Any schedule with no drone below zero; objective value 0.
-    Feasible,
-}
-
-/// Outcome of an exact hop solve.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum ExactStatus {
-    /// Proven optimal (over the model's schedules: grid schedules for the MILP).
-    Optimal,
-    /// An incumbent; the time limit stopped the proof. The bound is reported separately.
-    Feasible,
-    /// Proven: no schedule of the model keeps every drone at or above zero.
-    Infeasible,
-    /// The time limit expired before any feasible schedule was found.
-    TimeLimitNoSolution,
-}
 
 /// Settings of a MILP solve.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -117,42 +71,6 @@ impl Default for MilpOptions {
             time_limit_s: 60.0,
         }
     }
-}
-
-/// Result of [`solve_milp`] (and of the fluid models, with their own meaning of each field).
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct ExactOutcome {
-    /// Optimal, feasible (time limit), infeasible or no solution in time.
-    pub status: ExactStatus,
-    /// Objective of the returned schedule, re-evaluated from its replay (node time in minutes,
-    /// lowest delivery arrival battery in mAh, or 0 for feasibility); `None` without a schedule.
-    pub objective: Option<f64>,
-    /// False when `objective` is a node time the exact search did not prove within
-    /// [`node_time::DEFAULT_STOP_NODE_LIMIT`] nodes (then an upper bound on the schedule's node
-    /// time); true otherwise.
-    pub objective_proven: bool,
-    /// Objective value reported by the model itself (grid MILP, LP or QP).
-    pub model_objective: Option<f64>,
-    /// A proven bound on the model's optimum (lower for minimisation, upper for maximisation):
-    /// the optimum itself when optimal; after a time limit the better of the LP relaxation's
-    /// value and the fluid LP bound.
-    pub bound: Option<f64>,
-    /// Longest period of the grid, minutes: the MILP is optimal over schedules whose transfers
-    /// occupy whole periods of this grid. `0` for the continuous-time fluid models.
-    pub grid_step_min: f64,
-    /// Number of periods of the grid (legs for the fluid models).
-    pub periods: usize,
-    /// Wall-clock time of the solve, milliseconds.
-    pub solve_ms: f64,
-    /// The schedule, consecutive periods of the same (support, consumer, slot) within a leg
-    /// merged.
-    pub transfers: Vec<Transfer>,
-    /// The schedule replayed by the hop evaluation; passes [`crate::check::check_hop`].
-    /// `None` without a schedule, or for a `free` schedule whose slot permutation is not a set of
-    /// consumer swaps (see [`ExactOutcome::slots`]).
-    pub outcome: Option<HopOutcome>,
-    /// `free` only: the slot of every drone in every period.
-    pub slots: Option<Vec<Vec<usize>>>,
 }
 
 /// The time grid of a hop.
@@ -228,185 +146,6 @@ impl Grid {
     }
 }
 
-/// Checks the objective's numbers.
-///
-/// # Errors
-/// `E4103` for zero pads, `E4104` for a pad rate that is not finite and positive.
-pub fn validate_objective(objective: &Objective) -> Result<()> {
-    if let Objective::NodeTime {
-        pads,
-        pad_rate_mah_per_min,
-    } = *objective
-    {
-        let mut v = Vec::new();
-        if pads == 0 {
-            v.push(Violation::new(
-                "E4103",
-                "pads",
-                "0 pads".to_string(),
-                "give at least one pad",
-            ));
-        }
-        if !(pad_rate_mah_per_min.is_finite() && pad_rate_mah_per_min > 0.0) {
-            v.push(Violation::new(
-                "E4104",
-                "pad_rate_mah_per_min",
-                format!("{pad_rate_mah_per_min} is not a finite rate > 0"),
-                "give the pad charging rate in mAh/min",
-            ));
-        }
-        if !v.is_empty() {
-            return Err(Error::Invalid(v));
-        }
-    }
-    Ok(())
-}
-
-/// Checks a hop, an objective and a time limit: the inputs of every exact hop model.
-pub(crate) fn validate_inputs(
-    problem: &HopProblem,
-    objective: &Objective,
-    time_limit_s: f64,
-) -> Result<()> {
-    validate(problem)?;
-    validate_objective(objective)?;
-    validate_time_limit(time_limit_s)
-}
-
-fn validate_time_limit(time_limit_s: f64) -> Result<()> {
-    if time_limit_s.is_finite() && time_limit_s > 0.0 {
-        Ok(())
-    } else {
-        Err(Error::invalid(
-            "E4105",
-            "time_limit_s",
-            format!("{time_limit_s} is not a finite time > 0"),
-            "give the time limit in seconds",
-        ))
-    }
-}
-
-/// The objective of a replayed hop and whether that value is proven.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ObjectiveValue {
-    /// Node time (min), lowest delivery arrival battery (mAh), or 0.
-    pub value: f64,
-    /// False when the exact node time stopped at [`node_time::DEFAULT_STOP_NODE_LIMIT`] nodes:
-    /// `value` is then the makespan of the best pad assignment found, an upper bound on the
-    /// schedule's node time.
-    pub proven: bool,
-}
-
-impl ObjectiveValue {
-    fn proven(value: f64) -> ObjectiveValue {
-        ObjectiveValue {
-            value,
-            proven: true,
-        }
-    }
-}
-
-/// Objective value of a replayed hop: node time by the exact P||Cmax search on the charge times
-/// `(C_d - b_d(tt)) / pad_rate` (a battery above capacity counts as full) under the node limit
-/// of a planner's stop ([`node_time::DEFAULT_STOP_NODE_LIMIT`]), lowest delivery arrival
-/// battery, or 0.
-///
-/// # Errors
-/// Those of [`node_time::exact()`] (none for valid inputs).
-pub fn objective_of(
-    problem: &HopProblem,
-    objective: &Objective,
-    final_battery_mah: &[f64],
-) -> Result<ObjectiveValue> {
-    match *objective {
-        Objective::NodeTime {
-            pads,
-            pad_rate_mah_per_min,
-        } => {
-            let times: Vec<f64> = problem
-                .drones
-                .iter()
-                .zip(final_battery_mah)
-                .map(|(d, &b)| ((d.capacity_mah - b) / pad_rate_mah_per_min).max(0.0))
-                .collect();
-            let limits = node_time::Limits {
-                time_limit_s: None,
-                node_limit: Some(node_time::DEFAULT_STOP_NODE_LIMIT),
-            };
-            let solution = node_time::exact(pads, &times, &limits)?;
-            Ok(ObjectiveValue {
-                value: solution.makespan_min,
-                proven: solution.status == SolveStatus::Optimal,
-            })
-        }
-        Objective::MaxMinArrival => Ok(ObjectiveValue::proven(
-            problem
-                .drones
-                .iter()
-                .zip(final_battery_mah)
-                .filter(|(d, _)| d.role == Role::Delivery)
-                .map(|(_, &b)| b)
-                .fold(f64::INFINITY, f64::min),
-        )),
-        Objective::Feasible => Ok(ObjectiveValue::proven(0.0)),
-    }
-}
-
-/// One possible transfer pattern in a period: `support` serves `consumer` flying in `slot`; when
-/// `partner` is set it holds the consumer's initial slot meanwhile.
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct Move {
-    support: usize,
-    consumer: usize,
-    slot: usize,
-    partner: Option<usize>,
-}
-
-/// Moves allowed by `reorder` (`free` uses every support-consumer pair; slots come from `z`).
-fn moves(problem: &HopProblem, mode: Reorder) -> Vec<Move> {
-    let n = problem.drones.len();
-    let role = |d: usize| problem.drones[d].role;
-    let mut out = Vec::new();
-    for s in (0..n).filter(|&s| role(s) == Role::Support) {
-        let qs = problem.initial_slot[s];
-        for c in (0..n).filter(|&c| role(c) == Role::Delivery) {
-            let own = problem.initial_slot[c];
-            let in_range = reorder::slot_distance_m(problem, qs, own) <= problem.range_m;
-            match mode {
-                Reorder::Free => out.push(Move {
-                    support: s,
-                    consumer: c,
-                    slot: own,
-                    partner: None,
-                }),
-                _ if in_range => out.push(Move {
-                    support: s,
-                    consumer: c,
-                    slot: own,
-                    partner: None,
-                }),
-                Reorder::None => {}
-                Reorder::Paper => {
-                    for q in 0..n {
-                        let p = reorder::occupant(problem, q);
-                        if q != own
-                            && role(p) == Role::Delivery
-                            && reorder::slot_distance_m(problem, qs, q) <= problem.range_m
-                        {
-                            out.push(Move {
-                                support: s,
-                                consumer: c,
-                                slot: q,
-                                partner: Some(p),
-                            });
-                        }
-                    }
-                }
-            }
-        }
-    }
-    out
-}
 
 /// Values of one solve of the model.
 struct Raw {
@@ -512,22 +251,8 @@ where
     // Objective variables.
     let (goal, pad_vars) = match *objective {
         Objective::NodeTime { pads, .. } => {
-            let m = pads.min(n);
-            let x: Vec<Vec<Variable>> = (0..n)
-                .map(|d| {
-                    (0..=d.min(m - 1))
-                        .map(|i| bin(&mut vars, format!("x_d{d}_p{i}")))
-                        .collect()
-                })
-                .collect();
-            let w: Vec<Vec<Variable>> = (0..n)
-                .map(|d| {
-                    (0..x[d].len())
-                        .map(|i| vars.add(variable().min(0.0).name(format!("w_d{d}_p{i}"))))
-                        .collect()
-                })
-                .collect();
-            (Some(vars.add(variable().min(0.0).name("M"))), Some((x, w)))
+            let rows = PadRows::add(&mut vars, n, pads, relax);
+            (Some(vars.add(variable().min(0.0).name("M"))), Some(rows))
         }
         Objective::MaxMinArrival => (Some(vars.add(variable().name("g"))), None),
         Objective::Feasible => (None, None),
@@ -631,27 +356,11 @@ where
                 ..
             },
             Some(g),
-            Some((x, w)),
+            Some(rows),
         ) => {
-            let m = x.last().map_or(0, |xd| xd.len());
-            for d in 0..n {
-                let cap = problem.drones[d].capacity_mah;
-                let ct = (cap - b_at(d, np)) * (1.0 / pad_rate_mah_per_min);
-                let big = cap / pad_rate_mah_per_min;
-                let once: Expression = x[d].iter().copied().sum();
-                model.add_constraint(constraint!(once == 1.0));
-                // ct_d split over the pads, all of it on the pad x chooses.
-                for i in 0..x[d].len() {
-                    model.add_constraint(constraint!(w[d][i] <= big * x[d][i]));
-                }
-                let split: Expression = w[d].iter().copied().sum();
-                model.add_constraint(constraint!(split == ct.clone()));
-                model.add_constraint(constraint!(ct <= g));
-            }
-            for i in 0..m {
-                let load: Expression = w[i..].iter().map(|wd| wd[i]).sum();
-                model.add_constraint(constraint!(load <= g));
-            }
+            let finals: Vec<Expression> = (0..n).map(|d| b_at(d, np)).collect();
+            let caps: Vec<f64> = problem.drones.iter().map(|d| d.capacity_mah).collect();
+            rows.constrain(&mut model, &caps, &finals, pad_rate_mah_per_min, g);
         }
         (Objective::MaxMinArrival, Some(g), _) => {
             for &d in &delivery {
@@ -675,25 +384,10 @@ where
             names,
         }));
     }
-    let solution = match model.solve() {
-        Ok(s) => s,
-        Err(ResolutionError::Infeasible) => return Ok(Solved::Infeasible),
-        // microlp says "Time limit"; HiGHS stopped by its limit before any incumbent reports
-        // the model status NoSolutionFound.
-        Err(ResolutionError::Other(msg))
-            if msg.contains("Time limit") || msg.contains("NoSolutionFound") =>
-        {
-            return Ok(Solved::NoSolution)
-        }
-        Err(ResolutionError::Str(msg)) if msg.contains("NoSolutionFound") => {
-            return Ok(Solved::NoSolution)
-        }
-        Err(e) => {
-            return Err(Error::Backend {
-                backend: backend_name.to_string(),
-                message: e.to_string(),
-            })
-        }
+    let solution = match backend_end(model.solve(), backend_name)? {
+        BackendEnd::Solved(s) => s,
+        BackendEnd::Infeasible => return Ok(Solved::Infeasible),
+        BackendEnd::NoSolution => return Ok(Solved::NoSolution),
     };
     let proven = matches!(
         solution.status(),
@@ -917,6 +611,7 @@ pub fn solve_milp(
         objective_proven: true,
         model_objective: None,
         bound: None,
+        epsilon: None,
         grid_step_min: grid.step_min(),
         periods: grid.periods(),
         solve_ms: 0.0,

@@ -22,10 +22,10 @@
 //! ([`fair`]) it minimises `sum_d (C_d - b_d(tt))^2` over every drone, and its amounts are laid out
 //! as a concrete schedule and replayed.
 
-use super::milp::{objective_of, validate_inputs, ExactOutcome, ExactStatus, Objective, Reorder};
-use super::reorder::{busy_drones, choose_consumer_slot, slot_distance_m};
-use super::simulate::evaluate;
-use super::{sharing_budget_mah, HopProblem, Role, Transfer, TIME_TOL_MIN};
+use super::{objective_of, validate_inputs, ExactOutcome, ExactStatus, Objective, Reorder};
+use crate::eaas::reorder::{busy_drones, choose_consumer_slot, slot_distance_m};
+use crate::eaas::simulate::evaluate;
+use crate::eaas::{sharing_budget_mah, HopProblem, Role, Transfer, TIME_TOL_MIN};
 use crate::error::{Error, Result};
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
@@ -267,6 +267,7 @@ fn empty_outcome(legs: usize) -> ExactOutcome {
         objective_proven: true,
         model_objective: None,
         bound: None,
+        epsilon: None,
         grid_step_min: 0.0,
         periods: legs,
         solve_ms: 0.0,

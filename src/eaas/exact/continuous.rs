@@ -1,0 +1,1025 @@
+//! The continuous-time configuration LP of one hop, see `models/eaas_config.md`.
+//!
+//! Inside a leg every rate is constant. A configuration `σ` is a set of moves that can run at the
+//! same time (at most one consumer per support drone, a delivery drone in at most one move as
+//! consumer or swap partner), the empty set included; while it runs, drone `d` changes its battery
+//! at the constant rate `v[l][σ][d]`. Only the time spent in each configuration matters to the
+//! leg-end batteries:
+//!
+//! ```text
+//! θ[l][σ] >= 0                       minutes of leg l spent in configuration σ
+//! sum_σ θ[l][σ] = τ_l
+//! b[d][l+1] = b[d][l] + sum_σ v[l][σ][d] θ[l][σ],   m <= b[d][l+1] <= C_d - m
+//! rho sum_{l, σ : s serves in σ} θ[l][σ] <= B_s      support reserve
+//! ```
+//!
+//! plus the objective's rows (the exact `k`-pad assignment for the node time). With margin
+//! `m = 0` its value is the infimum of the objective over every continuous-time schedule of the
+//! mode (under the Slater condition of the write-up) and a lower bound on every schedule in any
+//! case. A schedule is realised from `θ` by playing each leg's configurations in `N` equal rounds,
+//! in an order chosen round by round so that every battery stays in `[0, C_d]`; when no round
+//! count up to [`MAX_ROUNDS`] works, the model is solved again with a margin `m > 0` and a short
+//! start in the empty configuration, whose schedule is realisable and within a certified `ε` of
+//! the infimum. The empty schedule and the heuristics' schedules (when the mode contains them)
+//! are incumbents from the start, so a hop that flies without sharing always has a schedule.
+
+use super::{
+    backend_end, moves, objective_of, validate_inputs, BackendEnd, ExactOutcome, ExactStatus,
+    Objective, PadRows, Reorder,
+};
+use crate::eaas::simulate::evaluate;
+use crate::eaas::{
+    reorder, sharing_budget_mah, simulate_with, HopOutcome, HopProblem, PolicyOptions, Role,
+    SharingPolicy, Transfer, TIME_TOL_MIN,
+};
+use crate::error::{Error, Result};
+use crate::solver::MilpBackend;
+use good_lp::{
+    constraint, variable, Expression, ProblemVariables, ResolutionError, Solution, SolutionStatus,
+    SolverModel, Variable, WithTimeLimit,
+};
+use serde::{Deserialize, Serialize};
+use std::time::Instant;
+
+/// Default largest number of configurations a hop may have (E4117 above it).
+pub const DEFAULT_MAX_CONFIGURATIONS: usize = 20_000;
+/// Largest number of rounds a leg's configurations are played in.
+pub const MAX_ROUNDS: usize = 1024;
+/// Shortest round, as a fraction of the leg's time shares.
+pub const MIN_ROUND_FRACTION: f64 = 1e-9;
+/// Relative tolerance under which a schedule's objective equals the model's optimum
+/// (status `optimal`); above it the status is `optimal_within` with the distance.
+pub const OPTIMAL_REL_TOL: f64 = 1e-9;
+/// Absolute part of that tolerance (minutes or mAh).
+pub const OPTIMAL_ABS_TOL: f64 = 1e-7;
+/// Energy tolerance of the realisation's bound checks, mAh.
+const REALISE_TOL_MAH: f64 = 1e-7;
+/// Margins tried, in this order, when the optimum is not attained: fractions of the smallest
+/// capacity. Each is a further LP solve and realisation; the best realised schedule is kept.
+const MARGIN_FRACTIONS: [f64; 3] = [1e-4, 1e-6, 1e-8];
+
+/// Settings of a continuous solve.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ContinuousOptions {
+    /// Re-ordering mode (default [`Reorder::Paper`]).
+    pub reorder: Reorder,
+    /// Backend of the LP (a MILP with the node-time objective's pad rows).
+    pub backend: MilpBackend,
+    /// Wall-clock limit of each backend call, seconds (default 60).
+    pub time_limit_s: f64,
+    /// Largest number of configurations (default [`DEFAULT_MAX_CONFIGURATIONS`]).
+    pub max_configurations: usize,
+    /// Readings of PB and FB, whose schedules are incumbents.
+    pub readings: PolicyOptions,
+}
+
+impl Default for ContinuousOptions {
+    fn default() -> Self {
+        ContinuousOptions {
+            reorder: Reorder::Paper,
+            backend: MilpBackend::default(),
+            time_limit_s: 60.0,
+            max_configurations: DEFAULT_MAX_CONFIGURATIONS,
+            readings: PolicyOptions::default(),
+        }
+    }
+}
+
+/// A set of moves that can run at the same time.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Configuration {
+    /// `(support, consumer, consumer's slot)` of every move.
+    pub moves: Vec<(usize, usize, usize)>,
+    /// Slot of every drone while the configuration runs.
+    pub slot: Vec<usize>,
+}
+
+impl Configuration {
+    fn serves(&self, s: usize) -> bool {
+        self.moves.iter().any(|m| m.0 == s)
+    }
+
+    /// Battery rate of every drone on a leg with consumption `rates`, mAh/min.
+    fn rates(&self, problem: &HopProblem, rates: &[Vec<f64>]) -> Vec<f64> {
+        let rho = problem.rho_mah_per_min;
+        let mut v: Vec<f64> = (0..problem.drones.len())
+            .map(|d| -rates[d][self.slot[d]])
+            .collect();
+        for &(s, c, _) in &self.moves {
+            v[s] -= rho;
+            v[c] += rho;
+        }
+        v
+    }
+}
+
+/// Every configuration of `mode`, the empty one first; in `free` mode every slot permutation of
+/// the delivery drones with every matching of support drones to consumers within range.
+///
+/// # Errors
+/// `E4117` when there are more than `max` of them.
+pub fn configurations(problem: &HopProblem, mode: Reorder, max: usize) -> Result<Vec<Configuration>> {
+    let n = problem.drones.len();
+    let supports: Vec<usize> = (0..n)
+        .filter(|&d| problem.drones[d].role == Role::Support)
+        .collect();
+    let mut out = Vec::new();
+    let too_many = || {
+        Error::invalid(
+            "E4117",
+            "max_configurations",
+            format!("the hop has more than {max} configurations in {mode} re-ordering"),
+            "raise --max-configurations, or use --reorder paper or none (fewer moves)",
+        )
+    };
+    let slots_list: Vec<Vec<usize>> = if mode == Reorder::Free {
+        free_slot_assignments(problem, max).ok_or_else(too_many)?
+    } else {
+        vec![problem.initial_slot.clone()]
+    };
+    let mv = moves(problem, mode);
+    for slot in &slots_list {
+        // Moves of this slot assignment: (support, consumer, slot, partner).
+        let here: Vec<(usize, usize, usize, Option<usize>)> = if mode == Reorder::Free {
+            mv.iter()
+                .filter(|m| {
+                    reorder::slot_distance_m(problem, slot[m.support], slot[m.consumer])
+                        <= problem.range_m
+                })
+                .map(|m| (m.support, m.consumer, slot[m.consumer], None))
+                .collect()
+        } else {
+            mv.iter()
+                .map(|m| (m.support, m.consumer, m.slot, m.partner))
+                .collect()
+        };
+        let mut used = vec![false; n];
+        let mut chosen = Vec::new();
+        let mut ctx = Enumeration {
+            problem,
+            supports: &supports,
+            moves: &here,
+            slot,
+            max,
+            out: &mut out,
+        };
+        if !ctx.walk(0, &mut used, &mut chosen) {
+            return Err(too_many());
+        }
+    }
+    Ok(out)
+}
+
+/// Depth-first enumeration of the drone-disjoint move sets, one support drone at a time.
+struct Enumeration<'a> {
+    problem: &'a HopProblem,
+    supports: &'a [usize],
+    moves: &'a [(usize, usize, usize, Option<usize>)],
+    slot: &'a [usize],
+    max: usize,
+    out: &'a mut Vec<Configuration>,
+}
+
+impl Enumeration<'_> {
+    /// False when the count exceeds `max`.
+    fn walk(&mut self, i: usize, used: &mut [bool], chosen: &mut Vec<usize>) -> bool {
+        if i == self.supports.len() {
+            if self.out.len() >= self.max {
+                return false;
+            }
+            let mut slot = self.slot.to_vec();
+            let mut list = Vec::new();
+            for &k in chosen.iter() {
+                let (s, c, q, p) = self.moves[k];
+                if let Some(p) = p {
+                    slot[p] = self.problem.initial_slot[c];
+                }
+                slot[c] = q;
+                list.push((s, c, q));
+            }
+            self.out.push(Configuration { moves: list, slot });
+            return true;
+        }
+        if !self.walk(i + 1, used, chosen) {
+            return false;
+        }
+        let s = self.supports[i];
+        for k in 0..self.moves.len() {
+            let (ks, c, _, p) = self.moves[k];
+            if ks != s || used[c] || p.is_some_and(|p| used[p]) {
+                continue;
+            }
+            used[c] = true;
+            if let Some(p) = p {
+                used[p] = true;
+            }
+            chosen.push(k);
+            let ok = self.walk(i + 1, used, chosen);
+            chosen.pop();
+            used[c] = false;
+            if let Some(p) = p {
+                used[p] = false;
+            }
+            if !ok {
+                return false;
+            }
+        }
+        true
+    }
+}
+
+/// Every assignment of the delivery drones to their slots (support drones keep theirs), the
+/// initial one first; `None` above `max`.
+fn free_slot_assignments(problem: &HopProblem, max: usize) -> Option<Vec<Vec<usize>>> {
+    let delivery: Vec<usize> = (0..problem.drones.len())
+        .filter(|&d| problem.drones[d].role == Role::Delivery)
+        .collect();
+    let open: Vec<usize> = delivery.iter().map(|&d| problem.initial_slot[d]).collect();
+    let mut count: usize = 1;
+    for k in 1..=delivery.len() {
+        count = count.checked_mul(k)?;
+        if count > max {
+            return None;
+        }
+    }
+    let mut out = Vec::with_capacity(count);
+    let mut perm: Vec<usize> = (0..open.len()).collect();
+    loop {
+        let mut slot = problem.initial_slot.clone();
+        for (i, &d) in delivery.iter().enumerate() {
+            slot[d] = open[perm[i]];
+        }
+        out.push(slot);
+        // Next permutation in lexicographic order.
+        let Some(i) = (1..perm.len()).rev().find(|&i| perm[i - 1] < perm[i]) else {
+            break;
+        };
+        let j = (i..perm.len()).rev().find(|&j| perm[j] > perm[i - 1])?;
+        perm.swap(i - 1, j);
+        perm[i..].reverse();
+    }
+    Some(out)
+}
+
+/// The legs of positive duration, with every configuration's rates on each.
+struct Model<'a> {
+    problem: &'a HopProblem,
+    configs: &'a [Configuration],
+    /// Legs of positive duration.
+    legs: Vec<usize>,
+    /// `v[i][σ][d]`, leg index `i` into `legs`.
+    v: Vec<Vec<Vec<f64>>>,
+}
+
+/// One solve of the model: leg-end bounds `[margin, C_d - margin]`, at least `start_min` of the
+/// first leg in the empty configuration, the pad binaries relaxed to `[0, 1]` when `relax`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Attempt {
+    margin_mah: f64,
+    start_min: f64,
+    relax: bool,
+    /// Multiplies the model's energy unit (1 but on a retry after a numerical failure).
+    rescale: f64,
+}
+
+impl Attempt {
+    /// The model of the theorem: no margin, no empty start.
+    fn exact(relax: bool) -> Attempt {
+        Attempt {
+            margin_mah: 0.0,
+            start_min: 0.0,
+            relax,
+            rescale: 1.0,
+        }
+    }
+}
+
+/// The values of one solve.
+struct Values {
+    /// `θ[i][σ]`, minutes.
+    theta: Vec<Vec<f64>>,
+    /// The model's objective value.
+    value: f64,
+    /// The backend proved optimality.
+    proven: bool,
+}
+
+/// How one solve ended.
+enum Solved {
+    Values(Values),
+    Infeasible,
+    NoSolution,
+}
+
+impl Model<'_> {
+    /// Solves the model of `attempt`; after a numerical failure of the backend, again in
+    /// energy units 4 and 1/4 times as large.
+    fn solve(
+        &self,
+        objective: &Objective,
+        options: &ContinuousOptions,
+        attempt: Attempt,
+    ) -> Result<Solved> {
+        let mut answer = self.solve_once(objective, options, attempt);
+        for rescale in [4.0, 0.25] {
+            if !matches!(answer, Err(Error::Backend { .. })) {
+                break;
+            }
+            answer = self.solve_once(objective, options, Attempt { rescale, ..attempt });
+        }
+        answer
+    }
+
+    fn solve_once(
+        &self,
+        objective: &Objective,
+        options: &ContinuousOptions,
+        attempt: Attempt,
+    ) -> Result<Solved> {
+        match options.backend {
+            #[cfg(feature = "microlp")]
+            MilpBackend::Microlp => self.solve_with(
+                good_lp::solvers::microlp::microlp,
+                "microlp",
+                objective,
+                attempt,
+                options.time_limit_s,
+            ),
+            #[cfg(feature = "highs")]
+            MilpBackend::Highs => self.solve_with(
+                |p| {
+                    good_lp::solvers::highs::highs(p)
+                        .set_threads(1)
+                        .set_option("mip_rel_gap", crate::node_time::REL_TOL)
+                        .set_option("mip_abs_gap", 0.0)
+                },
+                "highs",
+                objective,
+                attempt,
+                options.time_limit_s,
+            ),
+            #[cfg(not(any(feature = "microlp", feature = "highs")))]
+            MilpBackend::NoBackend => {
+                let _ = (objective, attempt);
+                Err(crate::solver::no_milp_backend("backend"))
+            }
+        }
+    }
+
+    fn solve_with<S: good_lp::Solver>(
+        &self,
+        solver: S,
+        backend_name: &str,
+        objective: &Objective,
+        attempt: Attempt,
+        time_limit_s: f64,
+    ) -> Result<Solved>
+    where
+        S::Model: WithTimeLimit + SolverModel<Error = ResolutionError>,
+    {
+        let Attempt {
+            margin_mah,
+            start_min,
+            relax,
+            rescale,
+        } = attempt;
+        let problem = self.problem;
+        let n = problem.drones.len();
+        // Energies enter the model in a unit of `1 / scale` mAh: minutes of pad charging for the
+        // node time (so charge times, batteries and rates are of like size, which microlp's
+        // branch and bound needs), hundredths of the largest capacity otherwise.
+        let scale = rescale
+            * match *objective {
+            Objective::NodeTime {
+                pad_rate_mah_per_min,
+                ..
+            } => 1.0 / pad_rate_mah_per_min,
+            _ => {
+                100.0
+                    / problem
+                        .drones
+                        .iter()
+                        .map(|d| d.capacity_mah)
+                        .fold(1e-9, f64::max)
+            }
+        };
+        let mut vars = ProblemVariables::new();
+        let theta: Vec<Vec<Variable>> = self
+            .legs
+            .iter()
+            .map(|&l| {
+                (0..self.configs.len())
+                    .map(|k| vars.add(variable().min(0.0).name(format!("theta_l{l}_k{k}"))))
+                    .collect()
+            })
+            .collect();
+        let b: Vec<Vec<Variable>> = problem
+            .drones
+            .iter()
+            .enumerate()
+            .map(|(d, drone)| {
+                let (lo, hi) = (scale * margin_mah, scale * (drone.capacity_mah - margin_mah));
+                self.legs
+                    .iter()
+                    .map(|&l| vars.add(variable().min(lo).max(hi).name(format!("b_d{d}_l{l}"))))
+                    .collect()
+            })
+            .collect();
+        let (goal, pads) = match *objective {
+            Objective::NodeTime { pads, .. } => (
+                Some(vars.add(variable().min(0.0).name("M"))),
+                Some(PadRows::add(&mut vars, n, pads, relax)),
+            ),
+            Objective::MaxMinArrival => (Some(vars.add(variable().name("g"))), None),
+            Objective::Feasible => (None, None),
+        };
+        let mut model = match (objective, goal) {
+            (Objective::MaxMinArrival, Some(g)) => vars.maximise(g),
+            (_, Some(g)) => vars.minimise(g),
+            _ => vars.minimise(Expression::from(0.0)),
+        }
+        .using(solver)
+        .with_time_limit(time_limit_s);
+        let rho = problem.rho_mah_per_min;
+        for (i, &l) in self.legs.iter().enumerate() {
+            let tau = problem.legs[l].duration_min;
+            let all: Expression = theta[i].iter().copied().sum();
+            model.add_constraint(constraint!(all == tau));
+            for d in 0..n {
+                let prev = if i == 0 {
+                    Expression::from(scale * problem.drones[d].battery_mah)
+                } else {
+                    Expression::from(b[d][i - 1])
+                };
+                let change: Expression = (0..self.configs.len())
+                    .filter(|&k| self.v[i][k][d] != 0.0)
+                    .map(|k| scale * self.v[i][k][d] * theta[i][k])
+                    .sum();
+                model.add_constraint(constraint!(b[d][i] == prev + change));
+            }
+        }
+        if start_min > 0.0 && !theta.is_empty() {
+            model.add_constraint(constraint!(theta[0][0] >= start_min));
+        }
+        for s in (0..n).filter(|&s| problem.drones[s].role == Role::Support) {
+            let given: Expression = theta
+                .iter()
+                .flat_map(|row| {
+                    row.iter()
+                        .enumerate()
+                        .filter(|(k, _)| self.configs[*k].serves(s))
+                        .map(|(_, &t)| scale * rho * t)
+                })
+                .sum();
+            model.add_constraint(constraint!(given <= scale * sharing_budget_mah(problem, s)));
+        }
+        let final_battery: Vec<Expression> = (0..n)
+            .map(|d| match b[d].last() {
+                Some(&v) => Expression::from(v),
+                None => Expression::from(scale * problem.drones[d].battery_mah),
+            })
+            .collect();
+        match (*objective, goal, &pads) {
+            (
+                Objective::NodeTime {
+                    pad_rate_mah_per_min,
+                    ..
+                },
+                Some(g),
+                Some(rows),
+            ) => {
+                let caps: Vec<f64> = problem.drones.iter().map(|d| scale * d.capacity_mah).collect();
+                rows.constrain(&mut model, &caps, &final_battery, scale * pad_rate_mah_per_min, g)
+            }
+            (Objective::MaxMinArrival, Some(g), _) => {
+                for d in (0..n).filter(|&d| problem.drones[d].role == Role::Delivery) {
+                    model.add_constraint(constraint!(g <= final_battery[d].clone()));
+                }
+            }
+            _ => {}
+        }
+        let solution = match backend_end(model.solve(), backend_name)? {
+            BackendEnd::Solved(s) => s,
+            BackendEnd::Infeasible => return Ok(Solved::Infeasible),
+            BackendEnd::NoSolution => return Ok(Solved::NoSolution),
+        };
+        let proven = matches!(
+            solution.status(),
+            SolutionStatus::Optimal | SolutionStatus::GapLimit
+        );
+        Ok(Solved::Values(Values {
+            theta: theta
+                .iter()
+                .map(|row| row.iter().map(|&t| solution.value(t).max(0.0)).collect())
+                .collect(),
+            value: goal.map_or(0.0, |g| match objective {
+                Objective::MaxMinArrival => solution.value(g) / scale,
+                _ => solution.value(g),
+            }),
+            proven,
+        }))
+    }
+}
+
+/// A configuration played over `[start_min, end_min)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Piece {
+    config: usize,
+    start_min: f64,
+    end_min: f64,
+    leg: usize,
+}
+
+impl Model<'_> {
+    /// Plays every leg's time shares in rounds (after `start_min` of the empty configuration at
+    /// the hop start); a round plays the same fraction of every share, so the batteries at its
+    /// end lie on the straight line between the leg-end values, and its configurations in an
+    /// order that keeps every battery in `[0, C_d]` ([`round_order`]). `None` when a leg needs
+    /// more than [`MAX_ROUNDS`] rounds or rounds shorter than [`MIN_ROUND_FRACTION`] of it.
+    fn realise(&self, theta: &[Vec<f64>], start_min: f64) -> Option<Vec<Piece>> {
+        let problem = self.problem;
+        let caps: Vec<f64> = problem.drones.iter().map(|d| d.capacity_mah).collect();
+        let mut b: Vec<f64> = problem.drones.iter().map(|d| d.battery_mah).collect();
+        let mut pieces = Vec::new();
+        let mut at = 0.0;
+        let mut leg_start = 0.0;
+        for (l, leg) in problem.legs.iter().enumerate() {
+            let Some(i) = self.legs.iter().position(|&x| x == l) else {
+                leg_start += leg.duration_min;
+                continue;
+            };
+            let tau = leg.duration_min;
+            let leg_end = leg_start + tau;
+            let mut share: Vec<f64> = theta[i]
+                .iter()
+                .map(|&t| if t > TIME_TOL_MIN { t } else { 0.0 })
+                .collect();
+            // The empty configuration absorbs the solver's rounding so the leg lasts τ_l.
+            let sum: f64 = share.iter().sum();
+            share[0] = (share[0] + tau - sum).max(0.0);
+            let play = |k: usize, dur: f64, b: &mut Vec<f64>, at: &mut f64, pieces: &mut Vec<Piece>| {
+                for (d, bd) in b.iter_mut().enumerate() {
+                    *bd += self.v[i][k][d] * dur;
+                }
+                pieces.push(Piece {
+                    config: k,
+                    start_min: *at,
+                    end_min: *at + dur,
+                    leg: l,
+                });
+                *at += dur;
+            };
+            if i == 0 && start_min > 0.0 {
+                let first = start_min.min(share[0]);
+                play(0, first, &mut b, &mut at, &mut pieces);
+                share[0] -= first;
+            }
+            let used: Vec<usize> = (0..share.len()).filter(|&k| share[k] > 0.0).collect();
+            // Rounds of adaptive length: a round plays the fraction `f` of every share; it is
+            // halved when no order fits, doubled after a round that fits.
+            let (mut left, mut f, mut rounds) = (1.0_f64, 1.0_f64, 0);
+            while left > 1e-15 {
+                let take = f.min(left);
+                match round_order(&self.v[i], &used, &share, take, &b, &caps) {
+                    Some(order) => {
+                        for k in order {
+                            play(k, share[k] * take, &mut b, &mut at, &mut pieces);
+                        }
+                        left -= take;
+                        f = 2.0 * take;
+                        rounds += 1;
+                        if rounds > MAX_ROUNDS {
+                            return None;
+                        }
+                    }
+                    None if take < MIN_ROUND_FRACTION => return None,
+                    None => f = 0.5 * take,
+                }
+            }
+            // Close the leg exactly at its end.
+            if let Some(last) = pieces.last_mut() {
+                if last.leg == l {
+                    last.end_min = leg_end;
+                }
+            }
+            at = leg_end;
+            leg_start = leg_end;
+        }
+        Some(pieces)
+    }
+
+    /// The transfers of the pieces, consecutive pieces of the same move within a leg merged.
+    fn transfers(&self, pieces: &[Piece]) -> Vec<Transfer> {
+        let rho = self.problem.rho_mah_per_min;
+        let mut out: Vec<Transfer> = Vec::new();
+        // Index in `out` of the running transfer of each (support, consumer, slot), with its leg.
+        let mut open: Vec<((usize, usize, usize), usize, usize)> = Vec::new();
+        for p in pieces {
+            if p.end_min - p.start_min <= TIME_TOL_MIN {
+                continue;
+            }
+            let mut still = Vec::new();
+            for &(s, c, q) in &self.configs[p.config].moves {
+                let running = open.iter().find(|(key, leg, at)| {
+                    *key == (s, c, q) && *leg == p.leg && (out[*at].end_min - p.start_min).abs() <= TIME_TOL_MIN
+                });
+                match running {
+                    Some(&(_, _, at)) => {
+                        out[at].end_min = p.end_min;
+                        out[at].energy_mah = rho * (out[at].end_min - out[at].start_min);
+                        still.push(((s, c, q), p.leg, at));
+                    }
+                    None => {
+                        out.push(Transfer {
+                            support: s,
+                            consumer: c,
+                            start_min: p.start_min,
+                            end_min: p.end_min,
+                            energy_mah: rho * (p.end_min - p.start_min),
+                            consumer_slot: q,
+                        });
+                        still.push(((s, c, q), p.leg, out.len() - 1));
+                    }
+                }
+            }
+            open = still;
+        }
+        out.sort_by(|a, b| {
+            a.start_min
+                .total_cmp(&b.start_min)
+                .then(a.support.cmp(&b.support))
+        });
+        out
+    }
+}
+
+impl Model<'_> {
+    /// The schedule realised from `theta`, scored; `None` when it cannot be realised or its
+    /// replay does not fly.
+    fn realised(
+        &self,
+        objective: &Objective,
+        theta: &[Vec<f64>],
+        start_min: f64,
+    ) -> Result<Option<Candidate>> {
+        match self.realise(theta, start_min) {
+            Some(pieces) => candidate(self.problem, objective, &self.transfers(&pieces)),
+            None => Ok(None),
+        }
+    }
+}
+
+/// An order of the configurations `used`, each played for `share[k] * fraction` minutes from the
+/// batteries `b`, that keeps every battery in `[0, C_d]`: at each step the configuration leaving
+/// the largest smallest distance to a bound among those that fit (ties: the lower index).
+fn round_order(
+    v: &[Vec<f64>],
+    used: &[usize],
+    share: &[f64],
+    fraction: f64,
+    b: &[f64],
+    caps: &[f64],
+) -> Option<Vec<usize>> {
+    let mut b = b.to_vec();
+    let mut left = used.to_vec();
+    let mut order = Vec::with_capacity(used.len());
+    while !left.is_empty() {
+        let mut best: Option<(usize, f64)> = None;
+        for (j, &k) in left.iter().enumerate() {
+            let dur = share[k] * fraction;
+            let mut slack = f64::INFINITY;
+            for d in 0..b.len() {
+                let after = b[d] + v[k][d] * dur;
+                if after < -REALISE_TOL_MAH || after > caps[d] + REALISE_TOL_MAH {
+                    slack = f64::NEG_INFINITY;
+                    break;
+                }
+                slack = slack.min(after.min(caps[d] - after));
+            }
+            if slack > f64::NEG_INFINITY && best.is_none_or(|(_, s)| slack > s) {
+                best = Some((j, slack));
+            }
+        }
+        let (j, _) = best?;
+        let k = left.remove(j);
+        for d in 0..b.len() {
+            b[d] += v[k][d] * share[k] * fraction;
+        }
+        order.push(k);
+    }
+    Some(order)
+}
+
+/// A schedule that flies, with its objective.
+#[derive(Debug, Clone)]
+struct Candidate {
+    value: f64,
+    proven: bool,
+    outcome: HopOutcome,
+    /// Realised from a margin attempt (an infimum approached, not attained).
+    approached: bool,
+}
+
+/// `a` is better than `b` under the objective.
+fn better(objective: &Objective, a: f64, b: f64) -> bool {
+    match objective {
+        Objective::MaxMinArrival => a > b,
+        _ => a < b,
+    }
+}
+
+/// Replays `transfers` and scores them; `None` when the schedule does not fly.
+fn candidate(
+    problem: &HopProblem,
+    objective: &Objective,
+    transfers: &[Transfer],
+) -> Result<Option<Candidate>> {
+    let outcome = evaluate(problem, transfers).into_outcome();
+    if !outcome.feasible {
+        return Ok(None);
+    }
+    let value = objective_of(problem, objective, &outcome.final_battery_mah)?;
+    Ok(Some(Candidate {
+        value: value.value,
+        proven: value.proven,
+        outcome,
+        approached: false,
+    }))
+}
+
+/// Keeps the better of `best` and `new`.
+fn keep(objective: &Objective, best: &mut Option<Candidate>, new: Option<Candidate>) {
+    if let Some(c) = new {
+        if best.as_ref().is_none_or(|b| better(objective, c.value, b.value)) {
+            *best = Some(c);
+        }
+    }
+}
+
+/// Whether every transfer of a schedule is a move of `mode` (the `none` mode has no swaps).
+fn in_mode(problem: &HopProblem, mode: Reorder, transfers: &[Transfer]) -> bool {
+    mode != Reorder::None
+        || transfers
+            .iter()
+            .all(|t| t.consumer_slot == problem.initial_slot[t.consumer])
+}
+
+/// Solves the continuous-time configuration LP of one hop and returns a schedule at (or within a
+/// certified distance of) its optimum.
+///
+/// # Arguments
+/// * `problem` - the hop.
+/// * `objective` - node time at the hop's end, lowest delivery arrival battery, or feasibility.
+/// * `options` - re-ordering mode (`none`, `paper`; `free` returns no transfers, see Errors),
+///   backend, time limit of each backend call, largest number of configurations, readings of
+///   the heuristics whose schedules are incumbents.
+///
+/// # Returns
+/// An [`ExactOutcome`]: status `optimal` (the schedule's objective equals the model's optimum
+/// within [`OPTIMAL_REL_TOL`]), `optimal_within` (the optimum is approached; `epsilon` is the
+/// schedule's certified distance to it), `infeasible` (proven: no continuous-time schedule of
+/// the mode flies), `no_schedule_found` (a bound but no schedule) or a time-limit status;
+/// `bound` is the model's optimum, a lower bound (upper for max-min) on every continuous-time
+/// schedule of the mode; the schedule and its replay.
+///
+/// # Errors
+/// Those of [`super::milp::solve_milp`] for bad input; `E4117` for more configurations than
+/// `max_configurations`; `E4118` for `free` re-ordering (its schedules move drones that do not
+/// share, which a list of transfers cannot carry); `E4119` when a replayed schedule beats the
+/// model's proven optimum (a bug: report it); [`Error::Backend`] when the backend fails.
+///
+/// # Complexity
+/// One LP over `L |Σ|` time shares (a MILP with the node-time objective's `n min(k, n)` pad
+/// binaries), `|Σ| <= Π_s (1 + |K_s|)` configurations; realisation `O(N L |Σ|^2 n)` for `N`
+/// rounds; at most [`MARGIN_FRACTIONS`] further solves when the optimum is not attained.
+///
+/// # Example
+/// ```
+/// use swarmplan::eaas::*;
+/// use swarmplan::problem::Role;
+/// use swarmplan::eaas::exact::continuous::{solve_continuous, ContinuousOptions};
+/// use swarmplan::eaas::exact::{ExactStatus, Objective};
+/// use nalgebra::Vector2;
+/// // One delivery drone (80 mAh, 10 mAh/min) next to a support drone, 10 minutes.
+/// let p = HopProblem {
+///     legs: vec![LegRates { duration_min: 10.0, rate_mah_per_min: vec![vec![10.0, 10.0], vec![5.0, 5.0]].into() }],
+///     drones: vec![
+///         DroneState { role: Role::Delivery, capacity_mah: 200.0, battery_mah: 80.0 },
+///         DroneState { role: Role::Support, capacity_mah: 500.0, battery_mah: 500.0 },
+///     ],
+///     slots_m: vec![Vector2::new(0.0, 0.0), Vector2::new(1.0, 0.0)],
+///     initial_slot: vec![0, 1],
+///     rho_mah_per_min: 4.0, range_m: 1.2, gamma_mah: 50.0, lambda_mah: 20.0, delta_mah: 100.0,
+/// };
+/// let o = solve_continuous(&p, &Objective::MaxMinArrival, &ContinuousOptions::default()).unwrap();
+/// assert_eq!(o.status, ExactStatus::Optimal);
+/// // 80 - 100 + 4 * 10 = 20 mAh with sharing during the whole hop.
+/// assert!((o.objective.unwrap() - 20.0).abs() < 1e-6);
+/// ```
+pub fn solve_continuous(
+    problem: &HopProblem,
+    objective: &Objective,
+    options: &ContinuousOptions,
+) -> Result<ExactOutcome> {
+    validate_inputs(problem, objective, options.time_limit_s)?;
+    if options.reorder == Reorder::Free {
+        return Err(Error::invalid(
+            "E4118",
+            "--reorder",
+            "free re-ordering for the continuous method",
+            "use --reorder paper or none, or the grid MILP (--methods milp) for free re-ordering",
+        ));
+    }
+    let start = Instant::now();
+    let configs = configurations(problem, options.reorder, options.max_configurations)?;
+    let legs: Vec<usize> = (0..problem.legs.len())
+        .filter(|&l| problem.legs[l].duration_min > TIME_TOL_MIN)
+        .collect();
+    let v = legs
+        .iter()
+        .map(|&l| {
+            let rates = &problem.legs[l].rate_mah_per_min;
+            configs.iter().map(|c| c.rates(problem, rates)).collect()
+        })
+        .collect();
+    let model = Model {
+        problem,
+        configs: &configs,
+        legs,
+        v,
+    };
+    let mut out = ExactOutcome {
+        status: ExactStatus::Infeasible,
+        objective: None,
+        objective_proven: true,
+        model_objective: None,
+        bound: None,
+        epsilon: None,
+        grid_step_min: 0.0,
+        periods: model.legs.len(),
+        solve_ms: 0.0,
+        transfers: Vec::new(),
+        outcome: None,
+        slots: None,
+    };
+    // Incumbents: the empty schedule and the heuristics' schedules of the mode.
+    let mut best: Option<Candidate> = None;
+    keep(objective, &mut best, candidate(problem, objective, &[])?);
+    for policy in [SharingPolicy::Pb, SharingPolicy::Fb] {
+        // A heuristic refusing the hop (FB's round bound) gives no incumbent.
+        if let Ok(o) = simulate_with(problem, policy, &options.readings) {
+            if o.feasible && in_mode(problem, options.reorder, &o.transfers) {
+                keep(objective, &mut best, candidate(problem, objective, &o.transfers)?);
+            }
+        }
+    }
+    // The relaxation of the pad binaries first: a lower bound, and often a schedule at it.
+    let has_binaries = matches!(objective, Objective::NodeTime { .. });
+    let relaxed = match model.solve(objective, options, Attempt::exact(true))? {
+        Solved::Infeasible => {
+            out.solve_ms = start.elapsed().as_secs_f64() * 1e3;
+            return Ok(out);
+        }
+        Solved::NoSolution => None,
+        Solved::Values(v) => Some(v),
+    };
+    let Some(relaxed) = relaxed else {
+        finish(&mut out, objective, best, None)?;
+        out.solve_ms = start.elapsed().as_secs_f64() * 1e3;
+        return Ok(out);
+    };
+    // The bound: the relaxation's value while no better one is proven.
+    let mut bound = relaxed.proven.then_some(relaxed.value);
+    let tolerance = |b: f64| OPTIMAL_ABS_TOL + OPTIMAL_REL_TOL * b.abs();
+    let distance = |c: &Candidate, b: f64| match objective {
+        Objective::MaxMinArrival => b - c.value,
+        _ => c.value - b,
+    };
+    let reached = |best: &Option<Candidate>, bound: Option<f64>| {
+        bound.is_some_and(|b| best.as_ref().is_some_and(|c| distance(c, b) <= tolerance(b)))
+    };
+    keep(objective, &mut best, model.realised(objective, &relaxed.theta, 0.0)?);
+    let mut integral = !has_binaries;
+    if has_binaries && !reached(&best, bound) {
+        // The pad MILP: a microlp failure leaves the relaxation's bound, said so by epsilon.
+        match model.solve(objective, options, Attempt::exact(false)) {
+            Ok(Solved::Values(v)) => {
+                if v.proven {
+                    bound = Some(v.value);
+                }
+                integral = true;
+                keep(objective, &mut best, model.realised(objective, &v.theta, 0.0)?);
+            }
+            Ok(Solved::Infeasible) => {
+                out.solve_ms = start.elapsed().as_secs_f64() * 1e3;
+                return Ok(out);
+            }
+            Ok(Solved::NoSolution) | Err(Error::Backend { .. }) => {}
+            Err(e) => return Err(e),
+        }
+    }
+    if let Some(b) = bound.filter(|_| !reached(&best, bound)) {
+        // Not attained by the realisation: margins at leg ends and an empty start.
+        let scale = problem
+            .drones
+            .iter()
+            .map(|d| d.capacity_mah)
+            .fold(f64::INFINITY, f64::min);
+        let slowest = model.legs.first().map_or(0.0, |&l| {
+            let rates = &problem.legs[l].rate_mah_per_min;
+            (0..problem.drones.len())
+                .map(|d| rates[d][problem.initial_slot[d]])
+                .filter(|&r| r > 0.0)
+                .fold(f64::INFINITY, f64::min)
+        });
+        let first_leg = model
+            .legs
+            .first()
+            .map_or(0.0, |&l| problem.legs[l].duration_min);
+        for fraction in MARGIN_FRACTIONS {
+            let margin_mah = fraction * scale;
+            let rate = if slowest.is_finite() {
+                slowest
+            } else {
+                problem.rho_mah_per_min
+            };
+            let start_min = (margin_mah / rate).min(0.5 * first_leg);
+            let attempt = Attempt {
+                margin_mah,
+                start_min,
+                relax: !integral,
+                rescale: 1.0,
+            };
+            let values = match model.solve(objective, options, attempt) {
+                Ok(Solved::Values(v)) => v,
+                Ok(_) | Err(Error::Backend { .. }) => continue,
+                Err(e) => return Err(e),
+            };
+            let realised = model.realised(objective, &values.theta, start_min)?;
+            let approached = realised.map(|c| Candidate {
+                approached: true,
+                ..c
+            });
+            keep(objective, &mut best, approached);
+            if best.as_ref().is_some_and(|c| distance(c, b) <= tolerance(b)) {
+                break;
+            }
+        }
+    }
+    if let (Some(c), Some(b)) = (&best, bound) {
+        if distance(c, b) < -tolerance(b) {
+            return Err(Error::Backend {
+                backend: options.backend.to_string(),
+                message: format!(
+                    "E4119: a replayed schedule ({}) beats the model's proven bound ({b}); \
+                     report it with the instance",
+                    c.value
+                ),
+            });
+        }
+    }
+    // Optimal only when a schedule of the model without margin reaches the bound; a schedule of
+    // a margin attempt approaches an infimum and says how closely (optimal_within, epsilon).
+    let attained = reached(&best, bound) && !best.as_ref().is_some_and(|c| c.approached);
+    finish(&mut out, objective, best, bound)?;
+    if attained {
+        out.status = ExactStatus::Optimal;
+    }
+    out.model_objective = bound;
+    out.solve_ms = start.elapsed().as_secs_f64() * 1e3;
+    Ok(out)
+}
+
+/// Fills the outcome from the best schedule and the model's bound.
+fn finish(
+    out: &mut ExactOutcome,
+    objective: &Objective,
+    best: Option<Candidate>,
+    bound: Option<f64>,
+) -> Result<()> {
+    out.bound = bound;
+    let Some(c) = best else {
+        out.status = match bound {
+            Some(_) => ExactStatus::NoScheduleFound,
+            None => ExactStatus::TimeLimitNoSolution,
+        };
+        return Ok(());
+    };
+    out.objective = Some(c.value);
+    out.objective_proven = c.proven;
+    out.transfers = c.outcome.transfers.clone();
+    out.outcome = Some(c.outcome);
+    match out.bound {
+        Some(b) => {
+            let eps = match objective {
+                Objective::MaxMinArrival => b - c.value,
+                _ => c.value - b,
+            };
+            out.epsilon = Some(eps.max(0.0));
+            out.status = ExactStatus::OptimalWithin;
+        }
+        None => out.status = ExactStatus::Feasible,
+    }
+    Ok(())
+}

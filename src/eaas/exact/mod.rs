@@ -1,0 +1,410 @@
+//! The exact hop models and their shared vocabulary, see `models/eaas_milp.md`,
+//! `models/eaas_config.md` and `models/eaas_fluid.md`.
+//!
+//! Every model takes a [`HopProblem`], an [`Objective`] (what it optimises at the hop's end) and a
+//! re-ordering mode ([`Reorder`]), and answers an [`ExactOutcome`]:
+//! - [`continuous`]: the configuration LP, the optimum over every continuous-time schedule (the
+//!   hop reference of the tool);
+//! - [`milp`]: the time-indexed MILP, the optimum over full-period schedules on a time grid (a
+//!   cross-check);
+//! - [`fluid`]: the fluid LP bound and the fair QP.
+//!
+//! The root holds what they share: the objective, the re-ordering modes, the status and outcome
+//! types, input validation, the objective of a replayed schedule and the moves of a mode.
+
+use super::{reorder, validate, HopOutcome, HopProblem, Role, Transfer};
+use crate::error::{Error, Result, Violation};
+use crate::node_time;
+use crate::solver::SolveStatus;
+use serde::{Deserialize, Serialize};
+
+pub mod continuous;
+pub mod fluid;
+pub mod milp;
+
+/// How drones may change formation slots while sharing.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, clap::ValueEnum)]
+#[serde(rename_all = "lowercase")]
+pub enum Reorder {
+    /// The paper's fixed re-ordering: an out-of-range consumer swaps with the delivery drone of an
+    /// in-range slot (any such slot, not only the nearest) for the transfer; in-range consumers
+    /// stay.
+    Paper,
+    /// Any permutation of the delivery drones over the non-support slots in each period.
+    Free,
+    /// No movement: only consumers within range in their own slots are served.
+    None,
+}
+
+display_as_value_name!(Reorder);
+
+/// What an exact hop model optimises.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Objective {
+    /// Minimise the node time at the hop's end, minutes: the makespan of charging every drone
+    /// (delivery and support) to full on `pads` identical pads, drone `d` taking
+    /// `ct_d = (C_d - b_d(tt)) / pad_rate_mah_per_min` minutes.
+    NodeTime {
+        /// Pads `k` at the stop ending the hop.
+        pads: usize,
+        /// Charging rate of a pad, mAh/min.
+        pad_rate_mah_per_min: f64,
+    },
+    /// Maximise the lowest arrival battery `min_{d in D_d} b_d(tt)` over the delivery drones, mAh.
+    MaxMinArrival,
+    /// Any schedule with no drone below zero; objective value 0.
+    Feasible,
+}
+
+/// Outcome of an exact hop solve.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ExactStatus {
+    /// Proven optimal (over the model's schedules: grid schedules for the MILP).
+    Optimal,
+    /// A schedule within a certified distance of the optimum ([`ExactOutcome::epsilon`]): the
+    /// continuous model's value is an infimum the returned schedule approaches but does not reach
+    /// (`models/eaas_config.md`).
+    OptimalWithin,
+    /// An incumbent; the time limit stopped the proof. The bound is reported separately.
+    Feasible,
+    /// Proven: no schedule of the model keeps every drone at or above zero.
+    Infeasible,
+    /// The time limit expired before any feasible schedule was found.
+    TimeLimitNoSolution,
+    /// The continuous model has a value (a lower bound on every schedule, [`ExactOutcome::bound`])
+    /// but no schedule that flies was found: either none exists (a hop without a Slater point,
+    /// `models/eaas_config.md`) or the realisation's work limit did not reach one.
+    NoScheduleFound,
+}
+
+/// Result of an exact hop model: [`milp::solve_milp`], [`continuous::solve_continuous`], and the
+/// fluid models (with their own meaning of each field).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ExactOutcome {
+    /// Optimal, feasible (time limit), infeasible or no solution in time.
+    pub status: ExactStatus,
+    /// Objective of the returned schedule, re-evaluated from its replay (node time in minutes,
+    /// lowest delivery arrival battery in mAh, or 0 for feasibility); `None` without a schedule.
+    pub objective: Option<f64>,
+    /// False when `objective` is a node time the exact search did not prove within
+    /// [`node_time::DEFAULT_STOP_NODE_LIMIT`] nodes (then an upper bound on the schedule's node
+    /// time); true otherwise.
+    pub objective_proven: bool,
+    /// Objective value reported by the model itself (grid MILP, LP or QP).
+    pub model_objective: Option<f64>,
+    /// A proven bound on the model's optimum (lower for minimisation, upper for maximisation):
+    /// the optimum itself when optimal; after a time limit the better of the LP relaxation's
+    /// value and the fluid LP bound.
+    pub bound: Option<f64>,
+    /// The certified distance of the returned schedule's objective to the model's optimum
+    /// (`objective - bound` when minimising, `bound - objective` when maximising): set by the
+    /// continuous model when it returns a schedule, `None` for the others.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub epsilon: Option<f64>,
+    /// Longest period of the grid, minutes: the MILP is optimal over schedules whose transfers
+    /// occupy whole periods of this grid. `0` for the continuous-time fluid models.
+    pub grid_step_min: f64,
+    /// Number of periods of the grid (legs for the fluid models).
+    pub periods: usize,
+    /// Wall-clock time of the solve, milliseconds.
+    pub solve_ms: f64,
+    /// The schedule, consecutive periods of the same (support, consumer, slot) within a leg
+    /// merged.
+    pub transfers: Vec<Transfer>,
+    /// The schedule replayed by the hop evaluation; passes [`crate::check::check_hop`].
+    /// `None` without a schedule, or for a `free` schedule whose slot permutation is not a set of
+    /// consumer swaps (see [`ExactOutcome::slots`]).
+    pub outcome: Option<HopOutcome>,
+    /// `free` only: the slot of every drone in every period.
+    pub slots: Option<Vec<Vec<usize>>>,
+}
+
+/// Checks the objective's numbers.
+///
+/// # Errors
+/// `E4103` for zero pads, `E4104` for a pad rate that is not finite and positive.
+pub fn validate_objective(objective: &Objective) -> Result<()> {
+    if let Objective::NodeTime {
+        pads,
+        pad_rate_mah_per_min,
+    } = *objective
+    {
+        let mut v = Vec::new();
+        if pads == 0 {
+            v.push(Violation::new(
+                "E4103",
+                "pads",
+                "0 pads".to_string(),
+                "give at least one pad",
+            ));
+        }
+        if !(pad_rate_mah_per_min.is_finite() && pad_rate_mah_per_min > 0.0) {
+            v.push(Violation::new(
+                "E4104",
+                "pad_rate_mah_per_min",
+                format!("{pad_rate_mah_per_min} is not a finite rate > 0"),
+                "give the pad charging rate in mAh/min",
+            ));
+        }
+        if !v.is_empty() {
+            return Err(Error::Invalid(v));
+        }
+    }
+    Ok(())
+}
+
+/// Checks a hop, an objective and a time limit: the inputs of every exact hop model.
+pub(crate) fn validate_inputs(
+    problem: &HopProblem,
+    objective: &Objective,
+    time_limit_s: f64,
+) -> Result<()> {
+    validate(problem)?;
+    validate_objective(objective)?;
+    validate_time_limit(time_limit_s)
+}
+
+fn validate_time_limit(time_limit_s: f64) -> Result<()> {
+    if time_limit_s.is_finite() && time_limit_s > 0.0 {
+        Ok(())
+    } else {
+        Err(Error::invalid(
+            "E4105",
+            "time_limit_s",
+            format!("{time_limit_s} is not a finite time > 0"),
+            "give the time limit in seconds",
+        ))
+    }
+}
+
+/// The objective of a replayed hop and whether that value is proven.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ObjectiveValue {
+    /// Node time (min), lowest delivery arrival battery (mAh), or 0.
+    pub value: f64,
+    /// False when the exact node time stopped at [`node_time::DEFAULT_STOP_NODE_LIMIT`] nodes:
+    /// `value` is then the makespan of the best pad assignment found, an upper bound on the
+    /// schedule's node time.
+    pub proven: bool,
+}
+
+impl ObjectiveValue {
+    fn proven(value: f64) -> ObjectiveValue {
+        ObjectiveValue {
+            value,
+            proven: true,
+        }
+    }
+}
+
+/// Objective value of a replayed hop: node time by the exact P||Cmax search on the charge times
+/// `(C_d - b_d(tt)) / pad_rate` (a battery above capacity counts as full) under the node limit
+/// of a planner's stop ([`node_time::DEFAULT_STOP_NODE_LIMIT`]), lowest delivery arrival
+/// battery, or 0.
+///
+/// # Errors
+/// Those of [`node_time::exact()`] (none for valid inputs).
+pub fn objective_of(
+    problem: &HopProblem,
+    objective: &Objective,
+    final_battery_mah: &[f64],
+) -> Result<ObjectiveValue> {
+    match *objective {
+        Objective::NodeTime {
+            pads,
+            pad_rate_mah_per_min,
+        } => {
+            let times: Vec<f64> = problem
+                .drones
+                .iter()
+                .zip(final_battery_mah)
+                .map(|(d, &b)| ((d.capacity_mah - b) / pad_rate_mah_per_min).max(0.0))
+                .collect();
+            let limits = node_time::Limits {
+                time_limit_s: None,
+                node_limit: Some(node_time::DEFAULT_STOP_NODE_LIMIT),
+            };
+            let solution = node_time::exact(pads, &times, &limits)?;
+            Ok(ObjectiveValue {
+                value: solution.makespan_min,
+                proven: solution.status == SolveStatus::Optimal,
+            })
+        }
+        Objective::MaxMinArrival => Ok(ObjectiveValue::proven(
+            problem
+                .drones
+                .iter()
+                .zip(final_battery_mah)
+                .filter(|(d, _)| d.role == Role::Delivery)
+                .map(|(_, &b)| b)
+                .fold(f64::INFINITY, f64::min),
+        )),
+        Objective::Feasible => Ok(ObjectiveValue::proven(0.0)),
+    }
+}
+
+/// One possible transfer pattern in a period: `support` serves `consumer` flying in `slot`; when
+/// `partner` is set it holds the consumer's initial slot meanwhile.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Move {
+    pub support: usize,
+    pub consumer: usize,
+    pub slot: usize,
+    pub partner: Option<usize>,
+}
+
+/// Moves allowed by `reorder` (`free` uses every support-consumer pair; slots come from `z`).
+pub(crate) fn moves(problem: &HopProblem, mode: Reorder) -> Vec<Move> {
+    let n = problem.drones.len();
+    let role = |d: usize| problem.drones[d].role;
+    let mut out = Vec::new();
+    for s in (0..n).filter(|&s| role(s) == Role::Support) {
+        let qs = problem.initial_slot[s];
+        for c in (0..n).filter(|&c| role(c) == Role::Delivery) {
+            let own = problem.initial_slot[c];
+            let in_range = reorder::slot_distance_m(problem, qs, own) <= problem.range_m;
+            match mode {
+                Reorder::Free => out.push(Move {
+                    support: s,
+                    consumer: c,
+                    slot: own,
+                    partner: None,
+                }),
+                _ if in_range => out.push(Move {
+                    support: s,
+                    consumer: c,
+                    slot: own,
+                    partner: None,
+                }),
+                Reorder::None => {}
+                Reorder::Paper => {
+                    for q in 0..n {
+                        let p = reorder::occupant(problem, q);
+                        if q != own
+                            && role(p) == Role::Delivery
+                            && reorder::slot_distance_m(problem, qs, q) <= problem.range_m
+                        {
+                            out.push(Move {
+                                support: s,
+                                consumer: c,
+                                slot: q,
+                                partner: Some(p),
+                            });
+                        }
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
+/// How a good_lp backend call ended.
+pub(crate) enum BackendEnd<S> {
+    /// Values, with the solver's solution.
+    Solved(S),
+    /// Proven infeasible.
+    Infeasible,
+    /// Stopped by its limit before any incumbent.
+    NoSolution,
+}
+
+/// Reads a good_lp backend's answer: infeasibility and a limit without an incumbent are outcomes,
+/// anything else an [`Error::Backend`].
+pub(crate) fn backend_end<S>(
+    answer: std::result::Result<S, good_lp::ResolutionError>,
+    backend_name: &str,
+) -> Result<BackendEnd<S>> {
+    use good_lp::ResolutionError;
+    match answer {
+        Ok(s) => Ok(BackendEnd::Solved(s)),
+        Err(ResolutionError::Infeasible) => Ok(BackendEnd::Infeasible),
+        // microlp says "Time limit"; HiGHS stopped by its limit before any incumbent reports
+        // the model status NoSolutionFound.
+        Err(ResolutionError::Other(msg))
+            if msg.contains("Time limit") || msg.contains("NoSolutionFound") =>
+        {
+            Ok(BackendEnd::NoSolution)
+        }
+        Err(ResolutionError::Str(msg)) if msg.contains("NoSolutionFound") => {
+            Ok(BackendEnd::NoSolution)
+        }
+        Err(e) => Err(Error::Backend {
+            backend: backend_name.to_string(),
+            message: e.to_string(),
+        }),
+    }
+}
+
+/// The exact `k`-pad assignment rows of the node-time objective (`models/eaas_milp.md`,
+/// "Objectives"): `x[d][i]` drone `d` on pad `i <= min(d, m - 1)`, `w[d][i]` its charge time
+/// there, minutes.
+pub(crate) struct PadRows {
+    x: Vec<Vec<good_lp::Variable>>,
+    w: Vec<Vec<good_lp::Variable>>,
+}
+
+impl PadRows {
+    /// Adds the variables for `n` drones on `pads` pads (`x` in `[0, 1]` when `relax`).
+    pub(crate) fn add(vars: &mut good_lp::ProblemVariables, n: usize, pads: usize, relax: bool) -> PadRows {
+        use good_lp::variable;
+        let m = pads.min(n);
+        let x: Vec<Vec<good_lp::Variable>> = (0..n)
+            .map(|d| {
+                (0..=d.min(m.max(1) - 1))
+                    .map(|i| {
+                        let name = format!("x_d{d}_p{i}");
+                        if relax {
+                            vars.add(variable().min(0.0).max(1.0).name(name))
+                        } else {
+                            vars.add(variable().binary().name(name))
+                        }
+                    })
+                    .collect()
+            })
+            .collect();
+        let w = (0..n)
+            .map(|d| {
+                (0..x[d].len())
+                    .map(|i| vars.add(variable().min(0.0).name(format!("w_d{d}_p{i}"))))
+                    .collect()
+            })
+            .collect();
+        PadRows { x, w }
+    }
+
+    /// Adds `ct_d = (C_d - b_d(tt)) / pad rate` split over the pads, every `ct_d <= M` and every
+    /// pad's load `<= M`; `final_battery[d]` is `b_d(tt)` as an expression of the model and
+    /// `capacity[d]` is `C_d`, both in the model's energy unit, in which the pad charges
+    /// `pad_rate` per minute.
+    pub(crate) fn constrain<M: good_lp::SolverModel>(
+        &self,
+        model: &mut M,
+        capacity: &[f64],
+        final_battery: &[good_lp::Expression],
+        pad_rate_mah_per_min: f64,
+        makespan: good_lp::Variable,
+    ) {
+        use good_lp::{constraint, Expression};
+        let m = self.x.last().map_or(0, |xd| xd.len());
+        for (d, &cap) in capacity.iter().enumerate() {
+            let ct = (cap - final_battery[d].clone()) * (1.0 / pad_rate_mah_per_min);
+            let big = cap / pad_rate_mah_per_min;
+            let once: Expression = self.x[d].iter().copied().sum();
+            model.add_constraint(constraint!(once == 1.0));
+            // ct_d split over the pads, all of it on the pad x chooses.
+            for i in 0..self.x[d].len() {
+                model.add_constraint(constraint!(self.w[d][i] <= big * self.x[d][i]));
+            }
+            let split: Expression = self.w[d].iter().copied().sum();
+            model.add_constraint(constraint!(split == ct.clone()));
+            model.add_constraint(constraint!(ct <= makespan));
+        }
+        for i in 0..m {
+            let load: Expression = self.w[i..].iter().map(|wd| wd[i]).sum();
+            model.add_constraint(constraint!(load <= makespan));
+        }
+    }
+}
