@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{close, drone, known_optima, uniform_leg, Known};
+use common::{close, drone, integral_hop, known_optima, uniform_leg, Known};
 use nalgebra::Vector2;
 use proptest::prelude::*;
 use swarmplan::check::check_hop;
@@ -336,54 +336,6 @@ proptest! {
 /// Integral hop: rho = 1 mAh/min, integer rates, batteries, durations and capacities, gamma = C
 /// (PB requests start at breakpoints), lambda integral (FB rounds of whole minutes): every
 /// breakpoint of PB and FB is a whole minute.
-fn integral_hop(seed: u64) -> HopProblem {
-    use rand::{Rng, SeedableRng};
-    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
-    let nd = rng.random_range(2..=3usize);
-    let ns = rng.random_range(1..=2usize);
-    let n = nd + ns;
-    let legs = (0..rng.random_range(1..=2usize))
-        .map(|_| LegRates {
-            duration_min: rng.random_range(1..=2u32) as f64,
-            rate_mah_per_min: (0..n)
-                .map(|_| (0..n).map(|_| rng.random_range(0..=3u32) as f64).collect())
-                .collect::<Vec<_>>()
-                .into(),
-        })
-        .collect();
-    let drones = (0..n)
-        .map(|d| {
-            let cap = 12.0;
-            DroneState {
-                role: if d < nd {
-                    Role::Delivery
-                } else {
-                    Role::Support
-                },
-                capacity_mah: cap,
-                battery_mah: rng.random_range(3..=12u32) as f64,
-            }
-        })
-        .collect();
-    // Slots 1 m apart on a line, shuffled: some consumers out of range of R = 1.2 m.
-    let mut initial_slot: Vec<usize> = (0..n).collect();
-    for i in (1..n).rev() {
-        let j = rng.random_range(0..=i);
-        initial_slot.swap(i, j);
-    }
-    HopProblem {
-        legs,
-        drones,
-        slots_m: (0..n).map(|q| Vector2::new(q as f64, 0.0)).collect(),
-        initial_slot,
-        rho_mah_per_min: 1.0,
-        range_m: 1.2,
-        gamma_mah: 12.0,
-        lambda_mah: rng.random_range(1..=2u32) as f64,
-        delta_mah: rng.random_range(0..=2u32) as f64,
-    }
-}
-
 fn on_whole_minutes(ts: &[Transfer]) -> bool {
     ts.iter().all(|x| {
         (x.start_min - x.start_min.round()).abs() < 1e-9

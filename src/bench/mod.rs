@@ -489,7 +489,7 @@ fn keep_report(
             .into_iter()
             .map(|m| run_method(&problem, &objective, m, &config.milp, readings))
             .collect::<Result<Vec<_>>>()?;
-        label_gaps(&mut rows);
+        label_gaps(&mut rows, &problem, config.milp.reorder);
         let [heur, milp, fluid] = &rows[..] else {
             unreachable!("three methods were run")
         };
@@ -542,6 +542,7 @@ pub fn reference_name(kind: ReferenceKind) -> &'static str {
         ReferenceKind::Optimal => "optimal",
         ReferenceKind::Incumbent => "incumbent",
         ReferenceKind::Bound => "bound",
+        ReferenceKind::Infimum => "infimum",
     }
 }
 

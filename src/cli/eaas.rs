@@ -2,7 +2,7 @@
 //! models side by side.
 //!
 //! ```text
-//! swarmplan eaas --request-id r001 --hop 0 --methods pb,fb,milp,fluid,fair --time-limit 10
+//! swarmplan eaas --request-id r001 --hop 0 --methods pb,fb,continuous,milp,fluid,fair --time-limit 10
 //! swarmplan eaas --request-id r001 --hop 1 --methods milp --reorder free --period-min 0.5 --json
 //! swarmplan eaas --request-id r001 --hop 1 --write-hop hop.json --write-lp hop.lp --methods pb
 //! swarmplan eaas --hop-file hop.json --methods pb,milp
@@ -13,9 +13,11 @@
 //! (`--hop-file`, see [`crate::eaas::hop_file`]). `--write-hop` writes the hop as a hop file,
 //! `--write-lp` the MILP of `milp` in CPLEX LP format; the methods then run as usual. The objective is the node time
 //! at the hop's end when the plan stops there, else (the destination) the lowest delivery arrival battery. Each
-//! method's gap is measured against the best reference available, labelled: the MILP optimum
-//! (`optimal`, over grid schedules), its incumbent after a time limit (`incumbent`), or the fluid
-//! LP bound (`bound`).
+//! method's gap is measured against the best reference available, labelled: the continuous
+//! model's optimum (`optimal`, over every continuous-time schedule) or the infimum it approaches
+//! (`infimum`), the MILP optimum (`optimal`, over grid schedules), its incumbent after a time
+//! limit (`incumbent`), or the fluid LP bound (`bound`); a PB or FB schedule outside the
+//! re-ordering mode of the exact models is labelled `different_policy` instead.
 
 use super::inputs::{self, InstanceArgs};
 use crate::compose::{Context, PlanOptions, Planner, RouteMethod};
@@ -65,7 +67,7 @@ pub struct EaasArgs {
         long,
         value_enum,
         value_delimiter = ',',
-        default_value = "pb,fb,milp,fluid,fair"
+        default_value = "pb,fb,continuous,milp,fluid,fair"
     )]
     pub methods: Vec<HopMethod>,
     /// MILP backend.
@@ -257,7 +259,7 @@ fn rows(
         bar.inc(1);
     }
     bar.finish_and_clear();
-    label_gaps(&mut rows);
+    label_gaps(&mut rows, problem, args.reorder);
     Ok(rows)
 }
 
@@ -284,12 +286,16 @@ fn print_human(r: &EaasReport) -> Result<()> {
     );
     for row in &r.rows {
         let num = |x: Option<f64>| x.map_or("-".to_string(), |v| format!("{v:.4}"));
-        let gap = row.gap.map_or("-".to_string(), |g| match g.relative {
-            Some(x) => format!("{:+.4}% vs {:?}", 100.0 * x, g.reference),
-            None => format!("n/a vs {:?}", g.reference),
-        });
+        let gap = match (row.gap, row.gap_label) {
+            (_, Some(label)) => label.to_string(),
+            (Some(g), None) => match g.relative {
+                Some(x) => format!("{:+.4}% vs {:?}", 100.0 * x, g.reference),
+                None => format!("n/a vs {:?}", g.reference),
+            },
+            (None, None) => "-".to_string(),
+        };
         outln!(
-            "  {:<6} {:<12} status {:<24} feasible {:<5} objective {:<12} bound {:<12} gap {:<24} {}{:.1} ms, {} transfer(s)",
+            "  {:<10} {:<16} status {:<24} feasible {:<5} objective {:<12} bound {:<12} gap {:<24} {}{}{:.1} ms, {} transfer(s)",
             format!("{:?}", row.method).to_lowercase(),
             row.kind,
             row.status.map_or("-".to_string(), |s| format!("{s:?}")),
@@ -305,6 +311,9 @@ fn print_human(r: &EaasReport) -> Result<()> {
                     "grid {} min, ",
                     super::human::round(h, 4)
                 )),
+            row.epsilon
+                .filter(|e| *e > 0.0)
+                .map_or(String::new(), |e| format!("epsilon {e:.3e}, ")),
             row.solve_ms,
             row.transfers.len()
         );

@@ -141,6 +141,7 @@ impl RouteGapSummary {
             (ReferenceKind::Optimal, _) => "optimal",
             (ReferenceKind::Incumbent, _) => "incumbent",
             (ReferenceKind::Bound, _) => "bound",
+            (ReferenceKind::Infimum, _) => "infimum",
         }
     }
 

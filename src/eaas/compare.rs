@@ -1,10 +1,17 @@
 //! One hop solved by the sharing heuristics and the exact models side by side, each scored by the
-//! hop's objective and its gap labelled against the best reference available: the MILP optimum
-//! (`optimal`, over grid schedules), its incumbent after a time limit (`incumbent`), or the fluid
-//! LP bound (`bound`). `swarmplan eaas` prints it for one hop; `swarmplan bench` for every hop of
-//! its exact subset.
+//! hop's objective and its gap labelled against the best reference available: the continuous
+//! model's optimum (`optimal`, over every continuous-time schedule of the mode) or the infimum it
+//! approaches (`infimum`), else the grid MILP's optimum (`optimal`, over grid schedules) or its
+//! incumbent after a time limit (`incumbent`), else the fluid LP bound (`bound`). A gap is taken
+//! only against a reference whose schedules contain the row's: in `none` re-ordering a PB or FB
+//! schedule that swaps slots is outside the model, and its row says `different_policy` instead of
+//! a gap. `swarmplan eaas` prints it for one hop; `swarmplan bench` for every hop of its exact
+//! subset.
 
-use super::milp::{objective_of, solve_milp, ExactOutcome, ExactStatus, MilpOptions, Objective};
+use super::exact::continuous::{solve_continuous, ContinuousOptions, DEFAULT_MAX_CONFIGURATIONS};
+use super::milp::{
+    objective_of, solve_milp, ExactOutcome, ExactStatus, MilpOptions, Objective, Reorder,
+};
 use super::{fluid, simulate_with, HopProblem, PolicyOptions, SharingPolicy, Transfer};
 use crate::error::Result;
 use crate::solver::{Gap, ReferenceKind};
@@ -20,6 +27,8 @@ pub enum HopMethod {
     Pb,
     /// Fairness-based heuristic (Algorithm 3).
     Fb,
+    /// Continuous-time configuration LP (optimal over every continuous-time schedule).
+    Continuous,
     /// Time-indexed MILP (optimal over grid schedules).
     Milp,
     /// Fluid LP bound (valid for every continuous-time schedule).
@@ -43,7 +52,10 @@ impl HopMethod {
 
     /// Whether the method solves a model (and may run up to its time limit).
     pub fn is_model(self) -> bool {
-        matches!(self, HopMethod::Milp | HopMethod::Fluid | HopMethod::Fair)
+        matches!(
+            self,
+            HopMethod::Continuous | HopMethod::Milp | HopMethod::Fluid | HopMethod::Fair
+        )
     }
 }
 
@@ -52,7 +64,8 @@ impl HopMethod {
 pub struct MethodRow {
     /// The method.
     pub method: HopMethod,
-    /// `heuristic`, `exact_grid` (MILP), `bound` (fluid LP) or `fair_layout` (QP schedule).
+    /// `heuristic`, `exact_continuous` (configuration LP), `exact_grid` (MILP), `bound` (fluid
+    /// LP) or `fair_layout` (QP schedule).
     pub kind: &'static str,
     /// Solve status of the exact models; `None` for the heuristics.
     pub status: Option<ExactStatus>,
@@ -71,6 +84,14 @@ pub struct MethodRow {
     pub qp_squared_deficits_mah2: Option<f64>,
     /// Gap against the reference, with its kind.
     pub gap: Option<Gap>,
+    /// `different_policy` when the row's schedule lies outside the reference's model (a
+    /// swapping PB or FB schedule against a `none` reference): no gap is taken.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub gap_label: Option<&'static str>,
+    /// `continuous`: the certified distance of the schedule to the model's optimum, in the
+    /// objective's unit (0 when attained).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub epsilon: Option<f64>,
     /// MILP grid step, minutes.
     pub grid_step_min: Option<f64>,
     /// Wall-clock time, ms.
@@ -102,6 +123,8 @@ fn exact_row(method: HopMethod, kind: &'static str, o: ExactOutcome) -> MethodRo
             None
         },
         gap: None,
+        gap_label: None,
+        epsilon: o.epsilon,
         grid_step_min: (method == HopMethod::Milp).then_some(o.grid_step_min),
         solve_ms: o.solve_ms,
         transfers: o.transfers,
@@ -144,11 +167,28 @@ pub fn run_method(
                 bound: None,
                 qp_squared_deficits_mah2: None,
                 gap: None,
+                gap_label: None,
+                epsilon: None,
                 grid_step_min: None,
                 solve_ms: start.elapsed().as_secs_f64() * 1e3,
                 transfers: o.transfers,
             }
         }
+        HopMethod::Continuous => exact_row(
+            method,
+            "exact_continuous",
+            solve_continuous(
+                problem,
+                objective,
+                &ContinuousOptions {
+                    reorder: milp.reorder,
+                    backend: milp.backend,
+                    time_limit_s: milp.time_limit_s,
+                    max_configurations: DEFAULT_MAX_CONFIGURATIONS,
+                    readings: *readings,
+                },
+            )?,
+        ),
         HopMethod::Milp => exact_row(method, "exact_grid", solve_milp(problem, objective, milp)?),
         HopMethod::Fluid => exact_row(
             method,
@@ -163,36 +203,66 @@ pub fn run_method(
     })
 }
 
-/// The best reference among the rows, with its kind: the MILP's objective (`optimal` when the
-/// solve and the node time of its schedule are proven, else `incumbent`), else the fluid bound.
+/// The best reference among the rows, with its kind and the method it comes from: the
+/// continuous model's optimum (`optimal` when attained and its node time proven, `infimum` when
+/// only approached: the model's value, which every schedule of the mode is at or above), else
+/// the MILP's objective (`optimal` when the solve and the node time of its schedule are proven,
+/// else `incumbent`), else the fluid bound.
 pub fn reference(rows: &[MethodRow]) -> Option<(f64, ReferenceKind)> {
-    rows.iter()
-        .find_map(|r| match (r.method, r.status, r.objective) {
-            // The MILP's schedule is optimal over the grid; its node time is the reference only
-            // when the exact node time proved it.
-            (HopMethod::Milp, Some(ExactStatus::Optimal), Some(v)) if r.objective_proven => {
-                Some((v, ReferenceKind::Optimal))
-            }
-            (HopMethod::Milp, Some(ExactStatus::Optimal | ExactStatus::Feasible), Some(v)) => {
-                Some((v, ReferenceKind::Incumbent))
-            }
-            _ => None,
+    reference_of(rows).map(|(v, k, _)| (v, k))
+}
+
+fn reference_of(rows: &[MethodRow]) -> Option<(f64, ReferenceKind, HopMethod)> {
+    let continuous = rows.iter().find_map(|r| match (r.method, r.status) {
+        (HopMethod::Continuous, Some(ExactStatus::Optimal)) if r.objective_proven => r
+            .objective
+            .map(|v| (v, ReferenceKind::Optimal, HopMethod::Continuous)),
+        (HopMethod::Continuous, Some(ExactStatus::Optimal | ExactStatus::OptimalWithin)) => r
+            .bound
+            .map(|b| (b, ReferenceKind::Infimum, HopMethod::Continuous)),
+        _ => None,
+    });
+    continuous
+        .or_else(|| {
+            rows.iter().find_map(|r| match (r.method, r.status, r.objective) {
+                // The MILP's schedule is optimal over the grid; its node time is the reference
+                // only when the exact node time proved it.
+                (HopMethod::Milp, Some(ExactStatus::Optimal), Some(v)) if r.objective_proven => {
+                    Some((v, ReferenceKind::Optimal, HopMethod::Milp))
+                }
+                (HopMethod::Milp, Some(ExactStatus::Optimal | ExactStatus::Feasible), Some(v)) => {
+                    Some((v, ReferenceKind::Incumbent, HopMethod::Milp))
+                }
+                _ => None,
+            })
         })
         .or_else(|| {
             rows.iter()
                 .find(|r| r.method == HopMethod::Fluid && r.status == Some(ExactStatus::Optimal))
-                .and_then(|r| r.bound.map(|b| (b, ReferenceKind::Bound)))
+                .and_then(|r| r.bound.map(|b| (b, ReferenceKind::Bound, HopMethod::Fluid)))
         })
 }
 
-/// Labels every row but the MILP's and the fluid bound's with its gap against [`reference`].
-pub fn label_gaps(rows: &mut [MethodRow]) {
-    if let Some((v, kind)) = reference(rows) {
-        for r in rows.iter_mut() {
-            if matches!(r.method, HopMethod::Milp | HopMethod::Fluid) {
-                continue;
-            }
-            r.gap = r.objective.map(|h| Gap::new(h, v, kind));
+/// Labels every row but the reference's own and the fluid bound's with its gap against
+/// [`reference`]; the grid MILP's row too when the reference is the continuous model (every grid
+/// schedule is a continuous one). In `none` re-ordering (`reorder`) a heuristic row whose
+/// schedule swaps slots is outside the model: it gets `different_policy` and no gap.
+pub fn label_gaps(rows: &mut [MethodRow], problem: &HopProblem, reorder: Reorder) {
+    let Some((v, kind, from)) = reference_of(rows) else {
+        return;
+    };
+    for r in rows.iter_mut() {
+        if r.method == from || r.method == HopMethod::Fluid {
+            continue;
         }
+        let swaps = r
+            .transfers
+            .iter()
+            .any(|t| t.consumer_slot != problem.initial_slot[t.consumer]);
+        if reorder == Reorder::None && swaps && !r.method.is_model() {
+            r.gap_label = Some("different_policy");
+            continue;
+        }
+        r.gap = r.objective.map(|h| Gap::new(h, v, kind));
     }
 }

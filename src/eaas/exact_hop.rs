@@ -1,16 +1,17 @@
-//! The exact and fair sharing policies on a hop of a route: the hop MILP's optimal grid schedule
-//! ([`SharingPolicy::Exact`]) or the fair QP's schedule ([`SharingPolicy::Fair`]) in place of PB
-//! or FB, see `models/eaas.md`, "Exact and fair", and `models/compose.md`, "Exact and fair sharing on a
+//! The exact and fair sharing policies on a hop of a route: the continuous-time configuration
+//! LP's optimal schedule ([`SharingPolicy::Exact`], `models/eaas_config.md`) or the fair QP's
+//! schedule ([`SharingPolicy::Fair`]) in place of PB or FB, see `models/eaas.md`, "Exact and fair", and `models/compose.md`, "Exact and fair sharing on a
 //! route".
 //!
 //! The objective follows from where the hop ends: at a recharging stop, the node time there
 //! ([`Objective::NodeTime`]); at the destination, or at a node passed without charging, any
-//! schedule that flies ([`Objective::Feasible`], Algorithm 1's line 8 answered exactly over grid
-//! schedules). A hop that flies without sharing always has a schedule: the empty one is a grid
-//! schedule, and when a solve stops at its limit without one, or the fair layout does not fly,
-//! the empty schedule is flown and the fallback is recorded ([`HopSolve::fallback`]).
+//! schedule that flies ([`Objective::Feasible`], Algorithm 1's line 8 answered exactly over
+//! continuous-time schedules). A hop that flies without sharing always has a schedule: the empty
+//! one is the continuous model's first incumbent, and when the fair layout does not fly the empty
+//! schedule is flown and the fallback is recorded ([`HopSolve::fallback`]).
 
-use super::milp::{solve_milp, ExactStatus, MilpOptions, Objective, Reorder};
+use super::exact::continuous::{solve_continuous, ContinuousOptions, DEFAULT_MAX_CONFIGURATIONS};
+use super::milp::{ExactStatus, MilpOptions, Objective, Reorder};
 use super::{fluid, simulate_with, HopOutcome, HopProblem, PolicyOptions, SharingPolicy};
 use crate::error::{Error, Result};
 use serde::{Deserialize, Serialize};
@@ -21,9 +22,9 @@ pub const DEFAULT_HOP_TIME_LIMIT_S: f64 = 10.0;
 /// Settings of the exact and fair policies.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ExactSettings {
-    /// Grid step, re-ordering (`paper` or `none`: a `free` schedule is not always a set of
-    /// transfers), backend and the time limit of each hop solve (the fair QP uses the last two of
-    /// its own: re-ordering and time limit).
+    /// Re-ordering (`paper` or `none`: a `free` schedule is not always a set of transfers),
+    /// backend and the time limit of each hop solve (the fair QP uses re-ordering and time limit;
+    /// the grid step is not used: the exact policy solves the continuous-time model).
     pub milp: MilpOptions,
     /// Algorithm 1: skip candidate stops whose lower bound (`tt` + the fluid LP's node-time
     /// bound) exceeds the best cost found (default). `false` solves every candidate, the
@@ -57,7 +58,7 @@ pub enum HopGoal {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Fallback {
-    /// The MILP stopped at its limit with no schedule; the hop flies without sharing.
+    /// The model stopped at its limit with no schedule; the hop flies without sharing.
     NoSolutionInTime,
     /// The fair QP's schedule, laid out and replayed, does not fly; the hop flies without sharing.
     FairLayoutDoesNotFly,
@@ -85,13 +86,15 @@ fn is_zero(count: &usize) -> bool {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct HopSolve {
-    /// `exact` (the MILP) or `fair` (the QP).
+    /// `exact` (the continuous-time configuration LP) or `fair` (the QP).
     pub policy: SharingPolicy,
     /// What was optimised.
     pub goal: HopGoal,
-    /// The solver's status: for `exact`, `optimal` is optimal over full-period schedules of
-    /// `grid_step_min`; `feasible` an incumbent after the time limit; `infeasible` no grid
-    /// schedule flies; `time_limit_no_solution` none found in time. For `fair`, `optimal` means
+    /// The solver's status: for `exact`, `optimal` is optimal over every continuous-time
+    /// schedule of the re-ordering mode; `optimal_within` within a certified distance of that
+    /// optimum, an infimum not attained; `feasible` an incumbent after the time limit;
+    /// `infeasible` no continuous-time schedule flies; `time_limit_no_solution` or
+    /// `no_schedule_found` none found. For `fair`, `optimal` means
     /// the QP was solved (its schedule is a layout, not an optimum) and `infeasible` that no
     /// continuous-time schedule flies. `None` when the backend failed (see `backend_error`).
     pub status: Option<ExactStatus>,
@@ -110,7 +113,7 @@ pub struct HopSolve {
     /// `optimal`; the LP relaxation or fluid bound after a limit; the fair QP has none).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub bound: Option<f64>,
-    /// Longest grid period, minutes (0 for the fair QP, which is continuous in time).
+    /// Longest grid period, minutes (0 for both models, which are continuous in time).
     pub grid_step_min: f64,
     /// Whether the solver's own schedule flies (always for an `exact` schedule; the fair QP's
     /// layout may not).
@@ -215,7 +218,7 @@ impl HopSolveCounts {
 ///
 /// # Errors
 /// `E4114` for a policy other than `exact` and `fair`, `E4113` for `free` re-ordering; those of
-/// [`solve_milp`] and [`fluid::fair`] for bad input. A backend failure is not an error here: it
+/// [`solve_continuous`] and [`fluid::fair`] for bad input. A backend failure is not an error here: it
 /// is recorded in [`HopSolve::backend_error`] and the hop flies without sharing if it can.
 ///
 /// # Complexity
@@ -236,12 +239,24 @@ pub fn fly_exact(
              plan can carry (use `swarmplan eaas --reorder free` on one hop)",
         ));
     }
+    // The grid step is the grid MILP's; a bad one is still bad input.
+    super::milp::Grid::new(&super::HopProblem { legs: Vec::new(), ..problem.clone() }, milp.period_min)?;
     let goal = match objective {
         Objective::NodeTime { .. } => HopGoal::NodeTimeMin,
         _ => HopGoal::Feasible,
     };
     let solved = match policy {
-        SharingPolicy::Exact => match solve_milp(problem, objective, milp) {
+        SharingPolicy::Exact => match solve_continuous(
+            problem,
+            objective,
+            &ContinuousOptions {
+                reorder: milp.reorder,
+                backend: milp.backend,
+                time_limit_s: milp.time_limit_s,
+                max_configurations: DEFAULT_MAX_CONFIGURATIONS,
+                readings: PolicyOptions::default(),
+            },
+        ) {
             Ok(o) => Ok(o),
             Err(Error::Backend { backend, message }) => Err(format!("{backend}: {message}")),
             Err(e) => return Err(e),

@@ -151,6 +151,9 @@ pub enum ReferenceKind {
     Incumbent,
     /// A lower bound (such as a convex relaxation).
     Bound,
+    /// The infimum over continuous-time schedules, approached within a certified distance by
+    /// the schedule returned but not attained.
+    Infimum,
 }
 
 /// Relative gap `(heuristic - reference) / reference` with the kind of its reference.

@@ -150,6 +150,9 @@ pub struct Known {
     pub period_min: f64,
     pub optimum: f64,
     pub source: String,
+    /// The optimum over every continuous-time schedule (the configuration LP's value).
+    pub continuous_optimum: f64,
+    pub continuous_source: String,
 }
 
 /// Reads `instances/eaas/known_optima.json`.
@@ -277,3 +280,55 @@ pub fn random_network_case(
     };
     (network, graph, request)
 }
+
+/// A small random hop with integer rates (0-3 mAh/min), batteries (3-12 of 12 mAh), durations
+/// (1-2 min) and `rho = 1` mAh/min: 2-3 delivery and 1-2 support drones on a line of slots 1 m
+/// apart, shuffled, so some consumers are out of range of R = 1.2 m.
+pub fn integral_hop(seed: u64) -> HopProblem {
+    use rand::{Rng, SeedableRng};
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+    let nd = rng.random_range(2..=3usize);
+    let ns = rng.random_range(1..=2usize);
+    let n = nd + ns;
+    let legs = (0..rng.random_range(1..=2usize))
+        .map(|_| LegRates {
+            duration_min: rng.random_range(1..=2u32) as f64,
+            rate_mah_per_min: (0..n)
+                .map(|_| (0..n).map(|_| rng.random_range(0..=3u32) as f64).collect())
+                .collect::<Vec<_>>()
+                .into(),
+        })
+        .collect();
+    let drones = (0..n)
+        .map(|d| {
+            let cap = 12.0;
+            DroneState {
+                role: if d < nd {
+                    Role::Delivery
+                } else {
+                    Role::Support
+                },
+                capacity_mah: cap,
+                battery_mah: rng.random_range(3..=12u32) as f64,
+            }
+        })
+        .collect();
+    // Slots 1 m apart on a line, shuffled: some consumers out of range of R = 1.2 m.
+    let mut initial_slot: Vec<usize> = (0..n).collect();
+    for i in (1..n).rev() {
+        let j = rng.random_range(0..=i);
+        initial_slot.swap(i, j);
+    }
+    HopProblem {
+        legs,
+        drones,
+        slots_m: (0..n).map(|q| Vector2::new(q as f64, 0.0)).collect(),
+        initial_slot,
+        rho_mah_per_min: 1.0,
+        range_m: 1.2,
+        gamma_mah: 12.0,
+        lambda_mah: rng.random_range(1..=2u32) as f64,
+        delta_mah: rng.random_range(0..=2u32) as f64,
+    }
+}
+

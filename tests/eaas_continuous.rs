@@ -1,0 +1,248 @@
+//! The continuous-time configuration LP (`models/eaas_config.md`): hand-computed continuous optima
+//! (`instances/eaas/known_optima.json`), the counterexample without a Slater point, an infimum
+//! approached but not attained, and properties on random hops against the fluid LP, the grid MILP
+//! and the heuristics, on every backend.
+
+mod common;
+
+use common::{close, drone, integral_hop, known_optima};
+use nalgebra::Vector2;
+use proptest::prelude::*;
+use swarmplan::check::check_hop;
+use swarmplan::eaas::exact::continuous::{solve_continuous, ContinuousOptions};
+use swarmplan::eaas::exact::milp::{solve_milp, MilpOptions};
+use swarmplan::eaas::exact::{ExactOutcome, ExactStatus, Objective, Reorder};
+use swarmplan::eaas::{fluid, simulate, HopProblem, LegRates, SharingPolicy};
+use swarmplan::problem::Role;
+use swarmplan::solver::MilpBackend;
+
+fn options(backend: MilpBackend, reorder: Reorder) -> ContinuousOptions {
+    ContinuousOptions {
+        reorder,
+        backend,
+        ..ContinuousOptions::default()
+    }
+}
+
+/// The schedule an outcome carries passes the independent checker, flies, and its objective is
+/// the bound plus the reported epsilon.
+fn assert_checked(p: &HopProblem, o: &ExactOutcome, objective: &Objective) {
+    let Some(out) = &o.outcome else { return };
+    let v = check_hop(p, out);
+    assert!(v.is_empty(), "checker: {v:#?}");
+    assert!(out.feasible);
+    if let (Some(value), Some(bound), Some(eps)) = (o.objective, o.bound, o.epsilon) {
+        let d = match objective {
+            Objective::MaxMinArrival => bound - value,
+            _ => value - bound,
+        };
+        assert!((d.max(0.0) - eps).abs() <= 1e-9 * (1.0 + bound.abs()), "{d} vs {eps}");
+    }
+}
+
+#[test]
+fn known_continuous_optima_are_reproduced_on_every_backend() {
+    let t = known_optima();
+    let mut failing = Vec::new();
+    for backend in MilpBackend::all() {
+        for k in &t.instances {
+            let o = solve_continuous(&k.problem, &k.objective, &options(backend, k.reorder))
+                .unwrap();
+            assert_checked(&k.problem, &o, &k.objective);
+            let ok = o.status == ExactStatus::Optimal
+                && o.objective.is_some_and(|v| close(v, k.continuous_optimum))
+                && o.bound.is_some_and(|v| close(v, k.continuous_optimum))
+                && o.grid_step_min == 0.0;
+            if !ok {
+                failing.push(format!(
+                    "{} on {backend}: {:?} objective {:?} bound {:?}, expected {}",
+                    k.name, o.status, o.objective, o.bound, k.continuous_optimum
+                ));
+            }
+        }
+    }
+    assert!(failing.is_empty(), "failing instances:\n{}", failing.join("\n"));
+}
+
+#[test]
+fn the_swap_is_worth_8_mah_over_none_on_the_paper_swap_hop() {
+    let k = known_optima()
+        .instances
+        .into_iter()
+        .find(|k| k.name == "paper_swap_max_min")
+        .unwrap();
+    // Hand: without the swap drone 0 arrives with 100 - 5 x 10 = 50 mAh.
+    let none = solve_continuous(&k.problem, &k.objective, &options(MilpBackend::default(), Reorder::None))
+        .unwrap();
+    assert_eq!(none.status, ExactStatus::Optimal);
+    assert!(close(none.objective.unwrap(), 50.0), "{none:?}");
+    let paper = solve_continuous(&k.problem, &k.objective, &options(MilpBackend::default(), Reorder::Paper))
+        .unwrap();
+    assert!(close(paper.objective.unwrap(), 58.0));
+    // The swap schedule moves drone 0 into slot 1.
+    assert!(paper.transfers.iter().any(|t| t.consumer == 0 && t.consumer_slot == 1));
+}
+
+/// Support drone 2 in range of consumers 0 and 1 (all on a 1 m line), capacity 100 mAh for the
+/// consumers, rho = 2 mAh/min.
+fn two_consumers(legs: Vec<(f64, f64)>) -> HopProblem {
+    HopProblem {
+        legs: legs
+            .into_iter()
+            .map(|(duration_min, r)| LegRates {
+                duration_min,
+                rate_mah_per_min: vec![vec![r; 3], vec![r; 3], vec![1.0; 3]].into(),
+            })
+            .collect(),
+        drones: vec![
+            drone(Role::Delivery, 100.0, 100.0),
+            drone(Role::Delivery, 100.0, 100.0),
+            drone(Role::Support, 1000.0, 1000.0),
+        ],
+        slots_m: vec![
+            Vector2::new(-1.0, 0.0),
+            Vector2::new(1.0, 0.0),
+            Vector2::new(0.0, 0.0),
+        ],
+        initial_slot: vec![0, 1, 2],
+        rho_mah_per_min: 2.0,
+        range_m: 1.2,
+        gamma_mah: 50.0,
+        lambda_mah: 20.0,
+        delta_mah: 0.0,
+    }
+}
+
+/// models/eaas_config.md, the counterexample: leg 0 (1 min at 101 mAh/min) forces both consumers
+/// to exactly 0 at t = 1 (the support drone serving each half the minute); on leg 1 (1 min at
+/// 1 mAh/min) it can hold only one of them there.
+#[test]
+fn fluid_lp_feasible_but_no_schedule_flies() {
+    let p = two_consumers(vec![(1.0, 101.0), (1.0, 1.0)]);
+    let fl = fluid::bound(&p, &Objective::Feasible, Reorder::None, 10.0).unwrap();
+    assert_eq!(fl.status, ExactStatus::Optimal, "the fluid LP is feasible");
+    for policy in [SharingPolicy::None, SharingPolicy::Pb, SharingPolicy::Fb] {
+        assert!(!simulate(&p, policy).unwrap().feasible, "{policy:?} flies");
+    }
+    for backend in MilpBackend::all() {
+        for reorder in [Reorder::None, Reorder::Paper] {
+            let o = solve_continuous(&p, &Objective::Feasible, &options(backend, reorder)).unwrap();
+            assert_eq!(o.status, ExactStatus::NoScheduleFound, "{backend} {reorder}: {o:?}");
+            assert_eq!(o.bound, Some(0.0));
+            assert!(o.outcome.is_none() && o.objective.is_none());
+        }
+    }
+}
+
+/// Both consumers full, rho = 2 against 1 mAh/min for 10 min: the most both can arrive with is
+/// 100 mAh (each served 5 min, a straight line at capacity), which no schedule reaches: a served
+/// full drone would pass its capacity, so each must first drop.
+#[test]
+fn an_infimum_only_approached_is_optimal_within_its_certified_epsilon() {
+    let p = two_consumers(vec![(10.0, 1.0)]);
+    for backend in MilpBackend::all() {
+        let o = solve_continuous(&p, &Objective::MaxMinArrival, &options(backend, Reorder::None))
+            .unwrap();
+        assert_eq!(o.status, ExactStatus::OptimalWithin, "{o:?}");
+        assert!(close(o.bound.unwrap(), 100.0));
+        let eps = o.epsilon.unwrap();
+        let value = o.objective.unwrap();
+        assert!(eps > 0.0 && eps < 0.1, "epsilon {eps}");
+        assert!(value < 100.0 && value > 99.9, "{value}");
+        assert_checked(&p, &o, &Objective::MaxMinArrival);
+    }
+}
+
+#[test]
+fn free_reordering_and_too_many_configurations_are_coded_errors() {
+    let p = two_consumers(vec![(10.0, 1.0)]);
+    let e = solve_continuous(&p, &Objective::Feasible, &options(MilpBackend::default(), Reorder::Free))
+        .unwrap_err();
+    assert!(e.to_string().contains("E4118"), "{e}");
+    let few = ContinuousOptions {
+        max_configurations: 2,
+        ..options(MilpBackend::default(), Reorder::None)
+    };
+    // Configurations: {}, {2 -> 0}, {2 -> 1}.
+    let e = solve_continuous(&p, &Objective::Feasible, &few).unwrap_err();
+    assert!(e.to_string().contains("E4117"), "{e}");
+}
+
+const NT2: Objective = Objective::NodeTime {
+    pads: 2,
+    pad_rate_mah_per_min: 1.0,
+};
+
+/// `value` under a minimisation is at most `limit` up to rounding.
+fn at_most(value: f64, limit: f64) -> bool {
+    value <= limit + 1e-6 * (1.0 + limit.abs())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(32))]
+
+    /// fluid <= continuous <= grid MILP (1 and 0.5 min) and continuous <= PB, FB, no sharing;
+    /// every schedule passes the checker; every backend agrees.
+    #[test]
+    fn continuous_lies_between_the_fluid_bound_and_the_grid_and_below_the_heuristics(
+        seed in any::<u64>(),
+        fast in any::<bool>(),
+    ) {
+        let mut p = integral_hop(seed);
+        if fast {
+            // Consumers gain while served: batteries rise inside legs.
+            p.rho_mah_per_min = 4.0;
+        }
+        let mut values = Vec::new();
+        for backend in MilpBackend::all() {
+            for reorder in [Reorder::None, Reorder::Paper] {
+                let o = solve_continuous(&p, &NT2, &options(backend, reorder)).unwrap();
+                assert_checked(&p, &o, &NT2);
+                let fl = fluid::bound(&p, &NT2, reorder, 10.0).unwrap();
+                match o.status {
+                    ExactStatus::Infeasible => {
+                        for period_min in [1.0, 0.5] {
+                            let g = solve_milp(&p, &NT2, &MilpOptions { period_min, reorder, backend, time_limit_s: 60.0 }).unwrap();
+                            prop_assert_eq!(g.status, ExactStatus::Infeasible);
+                        }
+                        values.push((reorder, f64::INFINITY));
+                        continue;
+                    }
+                    ExactStatus::Optimal | ExactStatus::OptimalWithin | ExactStatus::NoScheduleFound => {}
+                    s => prop_assert!(false, "status {:?}", s),
+                }
+                let bound = o.bound.unwrap();
+                prop_assert!(at_most(fl.bound.unwrap(), bound), "fluid {:?} above {}", fl.bound, bound);
+                for period_min in [1.0, 0.5] {
+                    let g = solve_milp(&p, &NT2, &MilpOptions { period_min, reorder, backend, time_limit_s: 60.0 }).unwrap();
+                    if g.status == ExactStatus::Optimal {
+                        prop_assert!(at_most(bound, g.objective.unwrap()), "grid {:?} below {}", g.objective, bound);
+                    }
+                }
+                if reorder == Reorder::Paper {
+                    for policy in [SharingPolicy::None, SharingPolicy::Pb, SharingPolicy::Fb] {
+                        let h = simulate(&p, policy).unwrap();
+                        if h.feasible {
+                            let times: Vec<f64> = p.drones.iter().zip(&h.final_battery_mah)
+                                .map(|(d, b)| (d.capacity_mah - b).max(0.0)).collect();
+                            let nt = swarmplan::node_time::brute(2, &times, &Default::default()).unwrap().makespan_min;
+                            prop_assert!(at_most(bound, nt), "{:?} {} below the bound {}", policy, nt, bound);
+                            if let Some(v) = o.objective {
+                                prop_assert!(at_most(v, nt), "{:?} {} below the schedule {}", policy, nt, v);
+                            }
+                        }
+                    }
+                }
+                values.push((reorder, bound));
+            }
+        }
+        // Every backend gives the same value per mode.
+        for (reorder, v) in &values {
+            for (r2, v2) in &values {
+                if reorder == r2 {
+                    prop_assert!(v == v2 || close(*v, *v2), "{} vs {}", v, v2);
+                }
+            }
+        }
+    }
+}
