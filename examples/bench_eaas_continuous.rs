@@ -18,13 +18,13 @@ use clap::Parser;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use std::path::PathBuf;
+use swarmplan::cli::inputs::{load_requests, InstanceArgs};
 use swarmplan::compose::{Context, PlanOptions, Planner, RouteMethod};
 use swarmplan::eaas::exact::continuous::{solve_continuous, ContinuousOptions};
 use swarmplan::eaas::exact::milp::{solve_milp, MilpOptions};
 use swarmplan::eaas::exact::{ExactOutcome, ExactStatus, Objective, Reorder};
 use swarmplan::eaas::{HopProblem, SharingPolicy};
 use swarmplan::precompose::Positioning;
-use swarmplan::cli::inputs::{load_requests, InstanceArgs};
 use swarmplan::problem::Instance;
 use swarmplan::solver::MilpBackend;
 
@@ -122,14 +122,21 @@ fn main() {
     }
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
     let sets = [
-        ("paper-195", "instances/paper-195/network.json", "instances/profiles/paper.toml"),
+        (
+            "paper-195",
+            "instances/paper-195/network.json",
+            "instances/profiles/paper.toml",
+        ),
         (
             "findings-195",
             "instances/findings-195/network.json",
             "instances/profiles/paper-findings.toml",
         ),
     ];
-    println!("2. hops of the PB plans of the first {} requests", args.limit);
+    println!(
+        "2. hops of the PB plans of the first {} requests",
+        args.limit
+    );
     let modes: Vec<Reorder> = if args.free {
         vec![Reorder::None, Reorder::Paper, Reorder::Free]
     } else {
@@ -167,7 +174,11 @@ fn main() {
                             }
                             if std::env::var("DUMP_REFUSED").is_ok() {
                                 let path = format!("/tmp/refused_{name}_{refused}_{reorder}.json");
-                                std::fs::write(&path, serde_json::to_string(&(p, objective)).unwrap()).unwrap();
+                                std::fs::write(
+                                    &path,
+                                    serde_json::to_string(&(p, objective)).unwrap(),
+                                )
+                                .unwrap();
                             }
                             refused += 1;
                             continue;
@@ -176,7 +187,8 @@ fn main() {
                     cont.add(&o);
                     if o.solve_ms > 500.0 && std::env::var("DUMP_REFUSED").is_ok() {
                         let path = format!("/tmp/slow_{name}_{}_{reorder}.json", cont.ms.len());
-                        std::fs::write(&path, serde_json::to_string(&(p, objective)).unwrap()).unwrap();
+                        std::fs::write(&path, serde_json::to_string(&(p, objective)).unwrap())
+                            .unwrap();
                     }
                     if args.grid_time_limit > 0.0 {
                         let g = solve_milp(
@@ -207,7 +219,11 @@ fn main() {
                     println!("    continuous refused: {refused}");
                 }
                 if args.grid_time_limit > 0.0 {
-                    println!("    grid MILP (1 min, {} s limit): {}", args.grid_time_limit, grid.line());
+                    println!(
+                        "    grid MILP (1 min, {} s limit): {}",
+                        args.grid_time_limit,
+                        grid.line()
+                    );
                     println!("    continuous bound above a proven grid optimum: {above_grid}");
                 }
             }
@@ -215,7 +231,12 @@ fn main() {
     }
 }
 
-fn solve(p: &HopProblem, objective: &Objective, reorder: Reorder, backend: MilpBackend) -> ExactOutcome {
+fn solve(
+    p: &HopProblem,
+    objective: &Objective,
+    reorder: Reorder,
+    backend: MilpBackend,
+) -> ExactOutcome {
     let options = ContinuousOptions {
         reorder,
         backend,
@@ -236,7 +257,12 @@ fn stop_hops(instance: &Instance, limit: usize) -> Vec<(HopProblem, Objective)> 
     let mut out = Vec::new();
     for request in instance.requests.iter().take(limit) {
         let report = context.plan(request, &options).expect("plannable request");
-        let planner = Planner::new(&instance.graph, &instance.profile, &report.swarm, SharingPolicy::Pb);
+        let planner = Planner::new(
+            &instance.graph,
+            &instance.profile,
+            &report.swarm,
+            SharingPolicy::Pb,
+        );
         for hop in &report.plan.hops {
             if hop.stop.is_none() {
                 continue;

@@ -16,8 +16,8 @@ mod bench_hop;
 use bench_hop::hop;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-use swarmplan::eaas::milp::{solve_milp, ExactStatus, MilpOptions, Objective, Reorder};
 use swarmplan::eaas::fluid;
+use swarmplan::eaas::milp::{solve_milp, ExactStatus, MilpOptions, Objective, Reorder};
 use swarmplan::solver::MilpBackend;
 
 fn median(mut v: Vec<f64>) -> f64 {

@@ -36,7 +36,10 @@ fn assert_checked(p: &HopProblem, o: &ExactOutcome, objective: &Objective) {
             Objective::MaxMinArrival => bound - value,
             _ => value - bound,
         };
-        assert!((d.max(0.0) - eps).abs() <= 1e-9 * (1.0 + bound.abs()), "{d} vs {eps}");
+        assert!(
+            (d.max(0.0) - eps).abs() <= 1e-9 * (1.0 + bound.abs()),
+            "{d} vs {eps}"
+        );
     }
 }
 
@@ -46,8 +49,8 @@ fn known_continuous_optima_are_reproduced_on_every_backend() {
     let mut failing = Vec::new();
     for backend in MilpBackend::all() {
         for k in &t.instances {
-            let o = solve_continuous(&k.problem, &k.objective, &options(backend, k.reorder))
-                .unwrap();
+            let o =
+                solve_continuous(&k.problem, &k.objective, &options(backend, k.reorder)).unwrap();
             assert_checked(&k.problem, &o, &k.objective);
             let ok = o.status == ExactStatus::Optimal
                 && o.objective.is_some_and(|v| close(v, k.continuous_optimum))
@@ -61,7 +64,11 @@ fn known_continuous_optima_are_reproduced_on_every_backend() {
             }
         }
     }
-    assert!(failing.is_empty(), "failing instances:\n{}", failing.join("\n"));
+    assert!(
+        failing.is_empty(),
+        "failing instances:\n{}",
+        failing.join("\n")
+    );
 }
 
 #[test]
@@ -72,15 +79,26 @@ fn the_swap_is_worth_8_mah_over_none_on_the_paper_swap_hop() {
         .find(|k| k.name == "paper_swap_max_min")
         .unwrap();
     // Hand: without the swap drone 0 arrives with 100 - 5 x 10 = 50 mAh.
-    let none = solve_continuous(&k.problem, &k.objective, &options(MilpBackend::default(), Reorder::None))
-        .unwrap();
+    let none = solve_continuous(
+        &k.problem,
+        &k.objective,
+        &options(MilpBackend::default(), Reorder::None),
+    )
+    .unwrap();
     assert_eq!(none.status, ExactStatus::Optimal);
     assert!(close(none.objective.unwrap(), 50.0), "{none:?}");
-    let paper = solve_continuous(&k.problem, &k.objective, &options(MilpBackend::default(), Reorder::Paper))
-        .unwrap();
+    let paper = solve_continuous(
+        &k.problem,
+        &k.objective,
+        &options(MilpBackend::default(), Reorder::Paper),
+    )
+    .unwrap();
     assert!(close(paper.objective.unwrap(), 58.0));
     // The swap schedule moves drone 0 into slot 1.
-    assert!(paper.transfers.iter().any(|t| t.consumer == 0 && t.consumer_slot == 1));
+    assert!(paper
+        .transfers
+        .iter()
+        .any(|t| t.consumer == 0 && t.consumer_slot == 1));
 }
 
 /// Support drone 2 in range of consumers 0 and 1 (all on a 1 m line), capacity 100 mAh for the
@@ -127,7 +145,11 @@ fn fluid_lp_feasible_but_no_schedule_flies() {
     for backend in MilpBackend::all() {
         for reorder in [Reorder::None, Reorder::Paper] {
             let o = solve_continuous(&p, &Objective::Feasible, &options(backend, reorder)).unwrap();
-            assert_eq!(o.status, ExactStatus::NoScheduleFound, "{backend} {reorder}: {o:?}");
+            assert_eq!(
+                o.status,
+                ExactStatus::NoScheduleFound,
+                "{backend} {reorder}: {o:?}"
+            );
             assert_eq!(o.bound, Some(0.0));
             assert!(o.outcome.is_none() && o.objective.is_none());
         }
@@ -141,8 +163,12 @@ fn fluid_lp_feasible_but_no_schedule_flies() {
 fn an_infimum_only_approached_is_optimal_within_its_certified_epsilon() {
     let p = two_consumers(vec![(10.0, 1.0)]);
     for backend in MilpBackend::all() {
-        let o = solve_continuous(&p, &Objective::MaxMinArrival, &options(backend, Reorder::None))
-            .unwrap();
+        let o = solve_continuous(
+            &p,
+            &Objective::MaxMinArrival,
+            &options(backend, Reorder::None),
+        )
+        .unwrap();
         assert_eq!(o.status, ExactStatus::OptimalWithin, "{o:?}");
         assert!(close(o.bound.unwrap(), 100.0));
         let eps = o.epsilon.unwrap();
@@ -156,8 +182,12 @@ fn an_infimum_only_approached_is_optimal_within_its_certified_epsilon() {
 #[test]
 fn free_reordering_and_too_many_configurations_are_coded_errors() {
     let p = two_consumers(vec![(10.0, 1.0)]);
-    let e = solve_continuous(&p, &Objective::Feasible, &options(MilpBackend::default(), Reorder::Free))
-        .unwrap_err();
+    let e = solve_continuous(
+        &p,
+        &Objective::Feasible,
+        &options(MilpBackend::default(), Reorder::Free),
+    )
+    .unwrap_err();
     assert!(e.to_string().contains("E4118"), "{e}");
     let few = ContinuousOptions {
         max_configurations: 2,

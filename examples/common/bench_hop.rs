@@ -54,4 +54,3 @@ pub fn hop(rng: &mut ChaCha8Rng, nd: usize, ns: usize, periods: usize) -> HopPro
         delta_mah: 5.0,
     }
 }
-

@@ -8,7 +8,7 @@
 //! a gap. `swarmplan eaas` prints it for one hop; `swarmplan bench` for every hop of its exact
 //! subset.
 
-use super::exact::continuous::{solve_continuous, ContinuousOptions, DEFAULT_MAX_CONFIGURATIONS};
+use super::exact::continuous::{solve_continuous, ContinuousOptions};
 use super::milp::{
     objective_of, solve_milp, ExactOutcome, ExactStatus, MilpOptions, Objective, Reorder,
 };
@@ -180,13 +180,7 @@ pub fn run_method(
             solve_continuous(
                 problem,
                 objective,
-                &ContinuousOptions {
-                    reorder: milp.reorder,
-                    backend: milp.backend,
-                    time_limit_s: milp.time_limit_s,
-                    max_configurations: DEFAULT_MAX_CONFIGURATIONS,
-                    readings: *readings,
-                },
+                &ContinuousOptions::like(milp, *readings),
             )?,
         ),
         HopMethod::Milp => exact_row(method, "exact_grid", solve_milp(problem, objective, milp)?),
@@ -224,17 +218,22 @@ fn reference_of(rows: &[MethodRow]) -> Option<(f64, ReferenceKind, HopMethod)> {
     });
     continuous
         .or_else(|| {
-            rows.iter().find_map(|r| match (r.method, r.status, r.objective) {
-                // The MILP's schedule is optimal over the grid; its node time is the reference
-                // only when the exact node time proved it.
-                (HopMethod::Milp, Some(ExactStatus::Optimal), Some(v)) if r.objective_proven => {
-                    Some((v, ReferenceKind::Optimal, HopMethod::Milp))
-                }
-                (HopMethod::Milp, Some(ExactStatus::Optimal | ExactStatus::Feasible), Some(v)) => {
-                    Some((v, ReferenceKind::Incumbent, HopMethod::Milp))
-                }
-                _ => None,
-            })
+            rows.iter()
+                .find_map(|r| match (r.method, r.status, r.objective) {
+                    // The MILP's schedule is optimal over the grid; its node time is the reference
+                    // only when the exact node time proved it.
+                    (HopMethod::Milp, Some(ExactStatus::Optimal), Some(v))
+                        if r.objective_proven =>
+                    {
+                        Some((v, ReferenceKind::Optimal, HopMethod::Milp))
+                    }
+                    (
+                        HopMethod::Milp,
+                        Some(ExactStatus::Optimal | ExactStatus::Feasible),
+                        Some(v),
+                    ) => Some((v, ReferenceKind::Incumbent, HopMethod::Milp)),
+                    _ => None,
+                })
         })
         .or_else(|| {
             rows.iter()

@@ -10,7 +10,7 @@
 //! one is the continuous model's first incumbent, and when the fair layout does not fly the empty
 //! schedule is flown and the fallback is recorded ([`HopSolve::fallback`]).
 
-use super::exact::continuous::{solve_continuous, ContinuousOptions, DEFAULT_MAX_CONFIGURATIONS};
+use super::exact::continuous::{solve_continuous, ContinuousOptions};
 use super::milp::{ExactStatus, MilpOptions, Objective, Reorder};
 use super::{fluid, simulate_with, HopOutcome, HopProblem, PolicyOptions, SharingPolicy};
 use crate::error::{Error, Result};
@@ -240,7 +240,13 @@ pub fn fly_exact(
         ));
     }
     // The grid step is the grid MILP's; a bad one is still bad input.
-    super::milp::Grid::new(&super::HopProblem { legs: Vec::new(), ..problem.clone() }, milp.period_min)?;
+    super::milp::Grid::new(
+        &super::HopProblem {
+            legs: Vec::new(),
+            ..problem.clone()
+        },
+        milp.period_min,
+    )?;
     let goal = match objective {
         Objective::NodeTime { .. } => HopGoal::NodeTimeMin,
         _ => HopGoal::Feasible,
@@ -249,13 +255,7 @@ pub fn fly_exact(
         SharingPolicy::Exact => match solve_continuous(
             problem,
             objective,
-            &ContinuousOptions {
-                reorder: milp.reorder,
-                backend: milp.backend,
-                time_limit_s: milp.time_limit_s,
-                max_configurations: DEFAULT_MAX_CONFIGURATIONS,
-                readings: PolicyOptions::default(),
-            },
+            &ContinuousOptions::like(milp, PolicyOptions::default()),
         ) {
             Ok(o) => Ok(o),
             Err(Error::Backend { backend, message }) => Err(format!("{backend}: {message}")),

@@ -331,4 +331,3 @@ pub fn integral_hop(seed: u64) -> HopProblem {
         delta_mah: rng.random_range(0..=2u32) as f64,
     }
 }
-

@@ -74,6 +74,20 @@ pub struct ContinuousOptions {
     pub readings: PolicyOptions,
 }
 
+impl ContinuousOptions {
+    /// The options of a caller that also runs the grid MILP: its re-ordering, backend and time
+    /// limit, the default largest number of configurations, and the heuristics' readings.
+    pub fn like(milp: &super::milp::MilpOptions, readings: PolicyOptions) -> ContinuousOptions {
+        ContinuousOptions {
+            reorder: milp.reorder,
+            backend: milp.backend,
+            time_limit_s: milp.time_limit_s,
+            max_configurations: DEFAULT_MAX_CONFIGURATIONS,
+            readings,
+        }
+    }
+}
+
 impl Default for ContinuousOptions {
     fn default() -> Self {
         ContinuousOptions {
@@ -119,7 +133,11 @@ impl Configuration {
 ///
 /// # Errors
 /// `E4117` when there are more than `max` of them.
-pub fn configurations(problem: &HopProblem, mode: Reorder, max: usize) -> Result<Vec<Configuration>> {
+pub fn configurations(
+    problem: &HopProblem,
+    mode: Reorder,
+    max: usize,
+) -> Result<Vec<Configuration>> {
     let n = problem.drones.len();
     let supports: Vec<usize> = (0..n)
         .filter(|&d| problem.drones[d].role == Role::Support)
@@ -391,19 +409,19 @@ impl Model<'_> {
         // branch and bound needs), hundredths of the largest capacity otherwise.
         let scale = rescale
             * match *objective {
-            Objective::NodeTime {
-                pad_rate_mah_per_min,
-                ..
-            } => 1.0 / pad_rate_mah_per_min,
-            _ => {
-                100.0
-                    / problem
-                        .drones
-                        .iter()
-                        .map(|d| d.capacity_mah)
-                        .fold(1e-9, f64::max)
-            }
-        };
+                Objective::NodeTime {
+                    pad_rate_mah_per_min,
+                    ..
+                } => 1.0 / pad_rate_mah_per_min,
+                _ => {
+                    100.0
+                        / problem
+                            .drones
+                            .iter()
+                            .map(|d| d.capacity_mah)
+                            .fold(1e-9, f64::max)
+                }
+            };
         let mut vars = ProblemVariables::new();
         let theta: Vec<Vec<Variable>> = self
             .legs
@@ -419,7 +437,10 @@ impl Model<'_> {
             .iter()
             .enumerate()
             .map(|(d, drone)| {
-                let (lo, hi) = (scale * margin_mah, scale * (drone.capacity_mah - margin_mah));
+                let (lo, hi) = (
+                    scale * margin_mah,
+                    scale * (drone.capacity_mah - margin_mah),
+                );
                 self.legs
                     .iter()
                     .map(|&l| vars.add(variable().min(lo).max(hi).name(format!("b_d{d}_l{l}"))))
@@ -446,17 +467,17 @@ impl Model<'_> {
             let tau = problem.legs[l].duration_min;
             let all: Expression = theta[i].iter().copied().sum();
             model.add_constraint(constraint!(all == tau));
-            for d in 0..n {
+            for (d, bd) in b.iter().enumerate() {
                 let prev = if i == 0 {
                     Expression::from(scale * problem.drones[d].battery_mah)
                 } else {
-                    Expression::from(b[d][i - 1])
+                    Expression::from(bd[i - 1])
                 };
                 let change: Expression = (0..self.configs.len())
                     .filter(|&k| self.v[i][k][d] != 0.0)
                     .map(|k| scale * self.v[i][k][d] * theta[i][k])
                     .sum();
-                model.add_constraint(constraint!(b[d][i] == prev + change));
+                model.add_constraint(constraint!(bd[i] == prev + change));
             }
         }
         if start_min > 0.0 && !theta.is_empty() {
@@ -489,8 +510,18 @@ impl Model<'_> {
                 Some(g),
                 Some(rows),
             ) => {
-                let caps: Vec<f64> = problem.drones.iter().map(|d| scale * d.capacity_mah).collect();
-                rows.constrain(&mut model, &caps, &final_battery, scale * pad_rate_mah_per_min, g)
+                let caps: Vec<f64> = problem
+                    .drones
+                    .iter()
+                    .map(|d| scale * d.capacity_mah)
+                    .collect();
+                rows.constrain(
+                    &mut model,
+                    &caps,
+                    &final_battery,
+                    scale * pad_rate_mah_per_min,
+                    g,
+                )
             }
             (Objective::MaxMinArrival, Some(g), _) => {
                 for d in (0..n).filter(|&d| problem.drones[d].role == Role::Delivery) {
@@ -558,18 +589,19 @@ impl Model<'_> {
             // The empty configuration absorbs the solver's rounding so the leg lasts τ_l.
             let sum: f64 = share.iter().sum();
             share[0] = (share[0] + tau - sum).max(0.0);
-            let play = |k: usize, dur: f64, b: &mut Vec<f64>, at: &mut f64, pieces: &mut Vec<Piece>| {
-                for (d, bd) in b.iter_mut().enumerate() {
-                    *bd += self.v[i][k][d] * dur;
-                }
-                pieces.push(Piece {
-                    config: k,
-                    start_min: *at,
-                    end_min: *at + dur,
-                    leg: l,
-                });
-                *at += dur;
-            };
+            let play =
+                |k: usize, dur: f64, b: &mut Vec<f64>, at: &mut f64, pieces: &mut Vec<Piece>| {
+                    for (d, bd) in b.iter_mut().enumerate() {
+                        *bd += self.v[i][k][d] * dur;
+                    }
+                    pieces.push(Piece {
+                        config: k,
+                        start_min: *at,
+                        end_min: *at + dur,
+                        leg: l,
+                    });
+                    *at += dur;
+                };
             if i == 0 && start_min > 0.0 {
                 let first = start_min.min(share[0]);
                 play(0, first, &mut b, &mut at, &mut pieces);
@@ -622,7 +654,9 @@ impl Model<'_> {
             let mut still = Vec::new();
             for &(s, c, q) in &self.configs[p.config].moves {
                 let running = open.iter().find(|(key, leg, at)| {
-                    *key == (s, c, q) && *leg == p.leg && (out[*at].end_min - p.start_min).abs() <= TIME_TOL_MIN
+                    *key == (s, c, q)
+                        && *leg == p.leg
+                        && (out[*at].end_min - p.start_min).abs() <= TIME_TOL_MIN
                 });
                 match running {
                     Some(&(_, _, at)) => {
@@ -751,7 +785,10 @@ fn candidate(
 /// Keeps the better of `best` and `new`.
 fn keep(objective: &Objective, best: &mut Option<Candidate>, new: Option<Candidate>) {
     if let Some(c) = new {
-        if best.as_ref().is_none_or(|b| better(objective, c.value, b.value)) {
+        if best
+            .as_ref()
+            .is_none_or(|b| better(objective, c.value, b.value))
+        {
             *best = Some(c);
         }
     }
@@ -870,7 +907,11 @@ pub fn solve_continuous(
         // A heuristic refusing the hop (FB's round bound) gives no incumbent.
         if let Ok(o) = simulate_with(problem, policy, &options.readings) {
             if o.feasible && in_mode(problem, options.reorder, &o.transfers) {
-                keep(objective, &mut best, candidate(problem, objective, &o.transfers)?);
+                keep(
+                    objective,
+                    &mut best,
+                    candidate(problem, objective, &o.transfers)?,
+                );
             }
         }
     }
@@ -897,9 +938,16 @@ pub fn solve_continuous(
         _ => c.value - b,
     };
     let reached = |best: &Option<Candidate>, bound: Option<f64>| {
-        bound.is_some_and(|b| best.as_ref().is_some_and(|c| distance(c, b) <= tolerance(b)))
+        bound.is_some_and(|b| {
+            best.as_ref()
+                .is_some_and(|c| distance(c, b) <= tolerance(b))
+        })
     };
-    keep(objective, &mut best, model.realised(objective, &relaxed.theta, 0.0)?);
+    keep(
+        objective,
+        &mut best,
+        model.realised(objective, &relaxed.theta, 0.0)?,
+    );
     let mut integral = !has_binaries;
     if has_binaries && !reached(&best, bound) {
         // The pad MILP: a microlp failure leaves the relaxation's bound, said so by epsilon.
@@ -909,7 +957,11 @@ pub fn solve_continuous(
                     bound = Some(v.value);
                 }
                 integral = true;
-                keep(objective, &mut best, model.realised(objective, &v.theta, 0.0)?);
+                keep(
+                    objective,
+                    &mut best,
+                    model.realised(objective, &v.theta, 0.0)?,
+                );
             }
             Ok(Solved::Infeasible) => {
                 out.solve_ms = start.elapsed().as_secs_f64() * 1e3;
@@ -962,7 +1014,10 @@ pub fn solve_continuous(
                 ..c
             });
             keep(objective, &mut best, approached);
-            if best.as_ref().is_some_and(|c| distance(c, b) <= tolerance(b)) {
+            if best
+                .as_ref()
+                .is_some_and(|c| distance(c, b) <= tolerance(b))
+            {
                 break;
             }
         }

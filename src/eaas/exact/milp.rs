@@ -25,10 +25,10 @@
 //! feasibility alone. The optimum is optimal over full-period grid schedules of step `h`, which
 //! the outcome carries ([`ExactOutcome::grid_step_min`]).
 
+use super::{backend_end, moves, validate_inputs, BackendEnd, Move, PadRows};
 pub use super::{
     objective_of, validate_objective, ExactOutcome, ExactStatus, Objective, ObjectiveValue, Reorder,
 };
-use super::{backend_end, moves, validate_inputs, BackendEnd, Move, PadRows};
 use crate::eaas::simulate::evaluate;
 use crate::eaas::{reorder, sharing_budget_mah, HopProblem, Role, Transfer, TIME_TOL_MIN};
 use crate::error::{Error, Result};
@@ -145,7 +145,6 @@ impl Grid {
             .fold(0.0, f64::max)
     }
 }
-
 
 /// Values of one solve of the model.
 struct Raw {

@@ -348,7 +348,12 @@ pub(crate) struct PadRows {
 
 impl PadRows {
     /// Adds the variables for `n` drones on `pads` pads (`x` in `[0, 1]` when `relax`).
-    pub(crate) fn add(vars: &mut good_lp::ProblemVariables, n: usize, pads: usize, relax: bool) -> PadRows {
+    pub(crate) fn add(
+        vars: &mut good_lp::ProblemVariables,
+        n: usize,
+        pads: usize,
+        relax: bool,
+    ) -> PadRows {
         use good_lp::variable;
         let m = pads.min(n);
         let x: Vec<Vec<good_lp::Variable>> = (0..n)
