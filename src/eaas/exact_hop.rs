@@ -240,13 +240,7 @@ pub fn fly_exact(
         ));
     }
     // The grid step is the grid MILP's; a bad one is still bad input.
-    super::milp::Grid::new(
-        &super::HopProblem {
-            legs: Vec::new(),
-            ..problem.clone()
-        },
-        milp.period_min,
-    )?;
+    super::milp::validate_period_min(milp.period_min)?;
     let goal = match objective {
         Objective::NodeTime { .. } => HopGoal::NodeTimeMin,
         _ => HopGoal::Feasible,

@@ -18,7 +18,7 @@ use super::{
     Limits, NodeTimeMethod, NodeTimeSolution,
 };
 use crate::error::{Error, Result};
-use crate::solver::{MilpBackend, SolveStatus};
+use crate::solver::{run_on, MilpBackend, MilpJob, SolveStatus};
 use good_lp::{
     constraint, variable, Expression, ProblemVariables, Solution, SolutionStatus, SolverModel,
     Variable, WithTimeLimit,
@@ -96,6 +96,34 @@ where
     Ok((pad_of, optimal))
 }
 
+/// One solve of the assignment MILP, for [`run_on`].
+struct PcmaxJob<'a> {
+    pads: usize,
+    sorted_desc: &'a [f64],
+    time_limit_s: Option<f64>,
+}
+
+impl MilpJob for PcmaxJob<'_> {
+    type Output = (Vec<usize>, bool);
+
+    fn solve_with<S: good_lp::Solver>(
+        self,
+        solver: S,
+        backend_name: &str,
+    ) -> Result<(Vec<usize>, bool)>
+    where
+        S::Model: WithTimeLimit + good_lp::SolverModel<Error = good_lp::ResolutionError>,
+    {
+        solve_with(
+            solver,
+            backend_name,
+            self.pads,
+            self.sorted_desc,
+            self.time_limit_s,
+        )
+    }
+}
+
 /// Node time by the assignment MILP on `backend`.
 ///
 /// # Arguments
@@ -136,31 +164,12 @@ pub fn milp(
     let m = pads.min(n);
     let (order, sorted) = sort_desc(charge_times_min);
     let t = limits.time_limit_s;
-    let (pad_sorted, optimal): (Vec<usize>, bool) = match backend {
-        #[cfg(feature = "microlp")]
-        MilpBackend::Microlp => {
-            solve_with(good_lp::solvers::microlp::microlp, "microlp", m, &sorted, t)?
-        }
-        #[cfg(feature = "highs")]
-        MilpBackend::Highs => solve_with(
-            |p| {
-                // HiGHS stops at a 1e-4 relative gap by default; ask for the gap of REL_TOL.
-                good_lp::solvers::highs::highs(p)
-                    .set_threads(1)
-                    .set_option("mip_rel_gap", super::REL_TOL)
-                    .set_option("mip_abs_gap", 0.0)
-            },
-            "highs",
-            m,
-            &sorted,
-            t,
-        )?,
-        #[cfg(not(any(feature = "microlp", feature = "highs")))]
-        MilpBackend::NoBackend => {
-            let _ = t;
-            Err(crate::solver::no_milp_backend("--backend"))?
-        }
+    let job = PcmaxJob {
+        pads: m,
+        sorted_desc: &sorted,
+        time_limit_s: t,
     };
+    let (pad_sorted, optimal) = run_on(backend, job)?;
     let mut pad_of = vec![0; n];
     for (pos, &j) in order.iter().enumerate() {
         pad_of[j] = pad_sorted[pos];

@@ -129,6 +129,55 @@ pub fn backend_value_parser() -> impl clap::builder::TypedValueParser<Value = Mi
     })
 }
 
+/// Relative MIP gap at which a backend may stop and call its incumbent optimal (HiGHS stops at
+/// `1e-4` by default; microlp proves optimality outright).
+pub const MIP_REL_GAP: f64 = 1e-9;
+
+/// A model that can be built and solved on any good_lp MILP solver: what [`run_on`] runs.
+pub trait MilpJob {
+    /// What a solve gives.
+    type Output;
+
+    /// Builds the model and solves it with `solver`, named `backend_name` in errors.
+    ///
+    /// # Errors
+    /// Bad input found while building, and backend failures.
+    fn solve_with<S: good_lp::Solver>(
+        self,
+        solver: S,
+        backend_name: &str,
+    ) -> crate::error::Result<Self::Output>
+    where
+        S::Model: good_lp::WithTimeLimit + good_lp::SolverModel<Error = good_lp::ResolutionError>;
+}
+
+/// Runs `job` on `backend`, with the options every exact method uses: HiGHS on one thread (the
+/// same answer on any machine) stopping at the relative gap [`MIP_REL_GAP`] and no absolute gap.
+///
+/// # Errors
+/// Those of the job; `E0011` in a build without a MILP backend.
+pub fn run_on<J: MilpJob>(backend: MilpBackend, job: J) -> crate::error::Result<J::Output> {
+    match backend {
+        #[cfg(feature = "microlp")]
+        MilpBackend::Microlp => job.solve_with(good_lp::solvers::microlp::microlp, "microlp"),
+        #[cfg(feature = "highs")]
+        MilpBackend::Highs => job.solve_with(
+            |p| {
+                good_lp::solvers::highs::highs(p)
+                    .set_threads(1)
+                    .set_option("mip_rel_gap", MIP_REL_GAP)
+                    .set_option("mip_abs_gap", 0.0)
+            },
+            "highs",
+        ),
+        #[cfg(not(any(feature = "microlp", feature = "highs")))]
+        MilpBackend::NoBackend => {
+            let _ = job;
+            Err(no_milp_backend("--backend"))
+        }
+    }
+}
+
 /// Outcome of a solve.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]

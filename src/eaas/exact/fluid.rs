@@ -260,23 +260,6 @@ fn status_of(status: SolverStatus) -> Result<ExactStatus> {
     }
 }
 
-fn empty_outcome(legs: usize) -> ExactOutcome {
-    ExactOutcome {
-        status: ExactStatus::Infeasible,
-        objective: None,
-        objective_proven: true,
-        model_objective: None,
-        bound: None,
-        epsilon: None,
-        grid_step_min: 0.0,
-        periods: legs,
-        solve_ms: 0.0,
-        transfers: Vec::new(),
-        outcome: None,
-        slots: None,
-    }
-}
-
 /// Fluid LP bound of a hop.
 ///
 /// # Arguments
@@ -359,7 +342,7 @@ pub fn bound(
         Objective::Feasible => {}
     }
     let (status, _x, primal, dual) = m.solve(&q, &[], time_limit_s)?;
-    let mut out = empty_outcome(m.legs.len());
+    let mut out = ExactOutcome::infeasible(0.0, m.legs.len());
     out.status = status_of(status)?;
     if out.status == ExactStatus::Optimal {
         // Minimisation of sign * goal: the smaller of primal and dual is the safer lower bound.
@@ -420,7 +403,7 @@ pub fn fair(
         }
     }
     let (status, x, primal, _dual) = m.solve(&q, &p_diag, time_limit_s)?;
-    let mut out = empty_outcome(m.legs.len());
+    let mut out = ExactOutcome::infeasible(0.0, m.legs.len());
     out.status = status_of(status)?;
     if out.status != ExactStatus::Optimal {
         out.solve_ms = start.elapsed().as_secs_f64() * 1e3;

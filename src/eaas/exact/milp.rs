@@ -32,11 +32,9 @@ pub use super::{
 use crate::eaas::simulate::evaluate;
 use crate::eaas::{reorder, sharing_budget_mah, HopProblem, Role, Transfer, TIME_TOL_MIN};
 use crate::error::{Error, Result};
-#[cfg(feature = "highs")]
-use crate::node_time;
 use crate::solver::lp_file::LpCapture;
 pub use crate::solver::lp_file::LpSize;
-use crate::solver::MilpBackend;
+use crate::solver::{run_on, MilpBackend, MilpJob};
 use good_lp::{
     constraint, variable, Expression, ProblemVariables, ResolutionError, Solution, SolutionStatus,
     SolverModel, Variable, WithTimeLimit,
@@ -73,6 +71,23 @@ impl Default for MilpOptions {
     }
 }
 
+/// Checks a grid step.
+///
+/// # Errors
+/// `E4101` for a `period_min` that is not finite and positive.
+pub fn validate_period_min(period_min: f64) -> Result<()> {
+    if period_min.is_finite() && period_min > 0.0 {
+        Ok(())
+    } else {
+        Err(Error::invalid(
+            "E4101",
+            "period_min",
+            format!("{period_min} is not a finite duration > 0"),
+            "give the grid step in minutes, such as 1.0",
+        ))
+    }
+}
+
 /// The time grid of a hop.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Grid {
@@ -89,14 +104,7 @@ impl Grid {
     /// `E4101` for a `period_min` that is not finite and positive, `E4102` for more than
     /// [`MAX_PERIODS`] periods.
     pub fn new(problem: &HopProblem, period_min: f64) -> Result<Grid> {
-        if !(period_min.is_finite() && period_min > 0.0) {
-            return Err(Error::invalid(
-                "E4101",
-                "period_min",
-                format!("{period_min} is not a finite duration > 0"),
-                "give the grid step in minutes, such as 1.0",
-            ));
-        }
+        validate_period_min(period_min)?;
         let mut points_min = vec![0.0];
         let mut leg = Vec::new();
         let mut at = 0.0;
@@ -426,6 +434,36 @@ where
     }))
 }
 
+/// One solve of the grid MILP (or its LP relaxation when `relax`), for [`run_on`].
+struct GridJob<'a> {
+    problem: &'a HopProblem,
+    grid: &'a Grid,
+    objective: &'a Objective,
+    mode: Reorder,
+    relax: bool,
+    time_limit_s: f64,
+}
+
+impl MilpJob for GridJob<'_> {
+    type Output = Solved;
+
+    fn solve_with<S: good_lp::Solver>(self, solver: S, backend_name: &str) -> Result<Solved>
+    where
+        S::Model: WithTimeLimit + SolverModel<Error = ResolutionError>,
+    {
+        solve_with(
+            solver,
+            backend_name,
+            self.problem,
+            self.grid,
+            self.mode,
+            self.objective,
+            self.relax,
+            self.time_limit_s,
+        )
+    }
+}
+
 /// Runs [`solve_with`] on the chosen backend.
 fn run(
     problem: &HopProblem,
@@ -434,41 +472,15 @@ fn run(
     options: &MilpOptions,
     relax: bool,
 ) -> Result<Solved> {
-    let (m, o, t) = (options.reorder, objective, options.time_limit_s);
-    match options.backend {
-        #[cfg(feature = "microlp")]
-        MilpBackend::Microlp => solve_with(
-            good_lp::solvers::microlp::microlp,
-            "microlp",
-            problem,
-            grid,
-            m,
-            o,
-            relax,
-            t,
-        ),
-        #[cfg(feature = "highs")]
-        MilpBackend::Highs => solve_with(
-            |p| {
-                good_lp::solvers::highs::highs(p)
-                    .set_threads(1)
-                    .set_option("mip_rel_gap", node_time::REL_TOL)
-                    .set_option("mip_abs_gap", 0.0)
-            },
-            "highs",
-            problem,
-            grid,
-            m,
-            o,
-            relax,
-            t,
-        ),
-        #[cfg(not(any(feature = "microlp", feature = "highs")))]
-        MilpBackend::NoBackend => {
-            let _ = (problem, grid, m, o, relax, t);
-            Err(crate::solver::no_milp_backend("backend"))
-        }
-    }
+    let job = GridJob {
+        problem,
+        grid,
+        objective,
+        mode: options.reorder,
+        relax,
+        time_limit_s: options.time_limit_s,
+    };
+    run_on(options.backend, job)
 }
 
 /// Merges the consecutive periods of one leg in which a move is on into transfers, by start then
@@ -604,20 +616,7 @@ pub fn solve_milp(
     let grid = Grid::new(problem, options.period_min)?;
     let start = Instant::now();
     let solved = run(problem, &grid, objective, options, false)?;
-    let mut out = ExactOutcome {
-        status: ExactStatus::Infeasible,
-        objective: None,
-        objective_proven: true,
-        model_objective: None,
-        bound: None,
-        epsilon: None,
-        grid_step_min: grid.step_min(),
-        periods: grid.periods(),
-        solve_ms: 0.0,
-        transfers: Vec::new(),
-        outcome: None,
-        slots: None,
-    };
+    let mut out = ExactOutcome::infeasible(grid.step_min(), grid.periods());
     let raw = match solved {
         Solved::Values(raw) => raw,
         Solved::Infeasible => {

@@ -121,6 +121,27 @@ pub struct ExactOutcome {
     pub slots: Option<Vec<Vec<usize>>>,
 }
 
+impl ExactOutcome {
+    /// The outcome of a proven infeasible model, filled in by the caller otherwise: no schedule,
+    /// no value, the model's grid step (0 for the continuous-time models) and periods (or legs).
+    pub fn infeasible(grid_step_min: f64, periods: usize) -> ExactOutcome {
+        ExactOutcome {
+            status: ExactStatus::Infeasible,
+            objective: None,
+            objective_proven: true,
+            model_objective: None,
+            bound: None,
+            epsilon: None,
+            grid_step_min,
+            periods,
+            solve_ms: 0.0,
+            transfers: Vec::new(),
+            outcome: None,
+            slots: None,
+        }
+    }
+}
+
 /// Checks the objective's numbers.
 ///
 /// # Errors
