@@ -33,7 +33,7 @@ use crate::eaas::{
     SharingPolicy, Transfer, TIME_TOL_MIN,
 };
 use crate::error::{Error, Result};
-use crate::solver::MilpBackend;
+use crate::solver::{run_on, MilpBackend, MilpJob};
 use good_lp::{
     constraint, variable, Expression, ProblemVariables, ResolutionError, Solution, SolutionStatus,
     SolverModel, Variable, WithTimeLimit,
@@ -290,24 +290,36 @@ struct Model<'a> {
     v: Vec<Vec<Vec<f64>>>,
 }
 
-/// One solve of the model: leg-end bounds `[margin, C_d - margin]`, at least `start_min` of the
-/// first leg in the empty configuration, the pad binaries relaxed to `[0, 1]` when `relax`.
+/// How the node time's pad assignment enters a solve.
 #[derive(Debug, Clone, Copy, PartialEq)]
-struct Attempt {
+enum Pads<'a> {
+    /// The exact assignment rows, binaries in `[0, 1]`: a lower bound.
+    Relaxed,
+    /// The exact assignment rows with binaries: the model of the theorem.
+    Integral,
+    /// A fixed assignment, the pad of every drone: an LP whose value bounds the optimum from
+    /// above.
+    Fixed(&'a [usize]),
+}
+
+/// One solve of the model: leg-end bounds `[margin, C_d - margin]`, at least `start_min` of the
+/// first leg in the empty configuration, and the pads as `pads` says.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Attempt<'a> {
     margin_mah: f64,
     start_min: f64,
-    relax: bool,
+    pads: Pads<'a>,
     /// Multiplies the model's energy unit (1 but on a retry after a numerical failure).
     rescale: f64,
 }
 
-impl Attempt {
-    /// The model of the theorem: no margin, no empty start.
-    fn exact(relax: bool) -> Attempt {
+impl Attempt<'_> {
+    /// The model of the theorem (no margin, no empty start) with the pads as `pads` says.
+    fn exact(pads: Pads<'_>) -> Attempt<'_> {
         Attempt {
             margin_mah: 0.0,
             start_min: 0.0,
-            relax,
+            pads,
             rescale: 1.0,
         }
     }
@@ -355,34 +367,13 @@ impl Model<'_> {
         options: &ContinuousOptions,
         attempt: Attempt,
     ) -> Result<Solved> {
-        match options.backend {
-            #[cfg(feature = "microlp")]
-            MilpBackend::Microlp => self.solve_with(
-                good_lp::solvers::microlp::microlp,
-                "microlp",
-                objective,
-                attempt,
-                options.time_limit_s,
-            ),
-            #[cfg(feature = "highs")]
-            MilpBackend::Highs => self.solve_with(
-                |p| {
-                    good_lp::solvers::highs::highs(p)
-                        .set_threads(1)
-                        .set_option("mip_rel_gap", crate::node_time::REL_TOL)
-                        .set_option("mip_abs_gap", 0.0)
-                },
-                "highs",
-                objective,
-                attempt,
-                options.time_limit_s,
-            ),
-            #[cfg(not(any(feature = "microlp", feature = "highs")))]
-            MilpBackend::NoBackend => {
-                let _ = (objective, attempt);
-                Err(crate::solver::no_milp_backend("backend"))
-            }
-        }
+        let job = ModelJob {
+            model: self,
+            objective,
+            attempt,
+            time_limit_s: options.time_limit_s,
+        };
+        run_on(options.backend, job)
     }
 
     fn solve_with<S: good_lp::Solver>(
@@ -399,7 +390,7 @@ impl Model<'_> {
         let Attempt {
             margin_mah,
             start_min,
-            relax,
+            pads: pad_mode,
             rescale,
         } = attempt;
         let problem = self.problem;
@@ -450,7 +441,11 @@ impl Model<'_> {
         let (goal, pads) = match *objective {
             Objective::NodeTime { pads, .. } => (
                 Some(vars.add(variable().min(0.0).name("M"))),
-                Some(PadRows::add(&mut vars, n, pads, relax)),
+                match pad_mode {
+                    Pads::Fixed(_) => None,
+                    Pads::Relaxed => Some(PadRows::add(&mut vars, n, pads, true)),
+                    Pads::Integral => Some(PadRows::add(&mut vars, n, pads, false)),
+                },
             ),
             Objective::MaxMinArrival => (Some(vars.add(variable().name("g"))), None),
             Objective::Feasible => (None, None),
@@ -523,6 +518,30 @@ impl Model<'_> {
                     g,
                 )
             }
+            (
+                Objective::NodeTime {
+                    pad_rate_mah_per_min,
+                    ..
+                },
+                Some(g),
+                None,
+            ) => {
+                if let Pads::Fixed(pad_of) = pad_mode {
+                    // Each pad's load, in minutes: sum of (C_d - b_d(tt)) / pad rate.
+                    let per_min = 1.0 / (scale * pad_rate_mah_per_min);
+                    let pads_used = pad_of.iter().copied().max().map_or(0, |p| p + 1);
+                    for pad in 0..pads_used {
+                        let load: Expression = (0..n)
+                            .filter(|&d| pad_of[d] == pad)
+                            .map(|d| {
+                                (scale * problem.drones[d].capacity_mah - final_battery[d].clone())
+                                    * per_min
+                            })
+                            .sum();
+                        model.add_constraint(constraint!(load <= g));
+                    }
+                }
+            }
             (Objective::MaxMinArrival, Some(g), _) => {
                 for d in (0..n).filter(|&d| problem.drones[d].role == Role::Delivery) {
                     model.add_constraint(constraint!(g <= final_battery[d].clone()));
@@ -550,6 +569,81 @@ impl Model<'_> {
             }),
             proven,
         }))
+    }
+}
+
+impl Model<'_> {
+    /// Every drone's battery at the hop's end under the time shares `theta`, mAh.
+    fn final_battery(&self, theta: &[Vec<f64>]) -> Vec<f64> {
+        let mut b: Vec<f64> = self.problem.drones.iter().map(|d| d.battery_mah).collect();
+        for (i, shares) in theta.iter().enumerate() {
+            for (k, &t) in shares.iter().enumerate() {
+                for (d, bd) in b.iter_mut().enumerate() {
+                    *bd += self.v[i][k][d] * t;
+                }
+            }
+        }
+        b
+    }
+
+    /// For the node time, the pad of every drone in the best assignment (the exact P||Cmax
+    /// search) of the batteries `theta` leaves; `None` for the other objectives.
+    fn pad_assignment(
+        &self,
+        objective: &Objective,
+        theta: &[Vec<f64>],
+    ) -> Result<Option<Vec<usize>>> {
+        let Objective::NodeTime {
+            pads,
+            pad_rate_mah_per_min,
+        } = *objective
+        else {
+            return Ok(None);
+        };
+        let times: Vec<f64> = self
+            .problem
+            .drones
+            .iter()
+            .zip(self.final_battery(theta))
+            .map(|(d, b)| ((d.capacity_mah - b) / pad_rate_mah_per_min).max(0.0))
+            .collect();
+        let limits = crate::node_time::Limits {
+            time_limit_s: None,
+            node_limit: Some(crate::node_time::DEFAULT_STOP_NODE_LIMIT),
+        };
+        let solution = crate::node_time::exact(pads, &times, &limits)?;
+        let mut pad_of = vec![0; times.len()];
+        for (pad, drones) in solution.assignment.iter().enumerate() {
+            for &d in drones {
+                pad_of[d] = pad;
+            }
+        }
+        Ok(Some(pad_of))
+    }
+}
+
+/// One solve of the model, for [`run_on`].
+struct ModelJob<'a> {
+    model: &'a Model<'a>,
+    objective: &'a Objective,
+    attempt: Attempt<'a>,
+    time_limit_s: f64,
+}
+
+impl MilpJob for ModelJob<'_> {
+    type Output = Solved;
+
+    fn solve_with<S: good_lp::Solver>(self, solver: S, backend_name: &str) -> Result<Solved>
+    where
+        S::Model: WithTimeLimit + SolverModel<Error = ResolutionError>,
+    {
+        self.model.solve_with(
+            solver,
+            backend_name,
+            self.objective,
+            self.attempt,
+            self.time_limit_s,
+        )
     }
 }
 
@@ -886,20 +980,7 @@ pub fn solve_continuous(
         legs,
         v,
     };
-    let mut out = ExactOutcome {
-        status: ExactStatus::Infeasible,
-        objective: None,
-        objective_proven: true,
-        model_objective: None,
-        bound: None,
-        epsilon: None,
-        grid_step_min: 0.0,
-        periods: model.legs.len(),
-        solve_ms: 0.0,
-        transfers: Vec::new(),
-        outcome: None,
-        slots: None,
-    };
+    let mut out = ExactOutcome::infeasible(0.0, model.legs.len());
     // Incumbents: the empty schedule and the heuristics' schedules of the mode.
     let mut best: Option<Candidate> = None;
     keep(objective, &mut best, candidate(problem, objective, &[])?);
@@ -917,7 +998,7 @@ pub fn solve_continuous(
     }
     // The relaxation of the pad binaries first: a lower bound, and often a schedule at it.
     let has_binaries = matches!(objective, Objective::NodeTime { .. });
-    let relaxed = match model.solve(objective, options, Attempt::exact(true))? {
+    let relaxed = match model.solve(objective, options, Attempt::exact(Pads::Relaxed))? {
         Solved::Infeasible => {
             out.solve_ms = start.elapsed().as_secs_f64() * 1e3;
             return Ok(out);
@@ -948,15 +1029,28 @@ pub fn solve_continuous(
         &mut best,
         model.realised(objective, &relaxed.theta, 0.0)?,
     );
-    let mut integral = !has_binaries;
+    // The pad assignment the margin attempts fix: the best one for the latest time shares.
+    let mut assignment = model.pad_assignment(objective, &relaxed.theta)?;
+    if let Some(a) = assignment.as_deref().filter(|_| !reached(&best, bound)) {
+        // The relaxation's assignment fixed: an LP whose schedule often reaches the bound.
+        if let Solved::Values(v) =
+            model.solve(objective, options, Attempt::exact(Pads::Fixed(a)))?
+        {
+            keep(
+                objective,
+                &mut best,
+                model.realised(objective, &v.theta, 0.0)?,
+            );
+        }
+    }
     if has_binaries && !reached(&best, bound) {
         // The pad MILP: a microlp failure leaves the relaxation's bound, said so by epsilon.
-        match model.solve(objective, options, Attempt::exact(false)) {
+        match model.solve(objective, options, Attempt::exact(Pads::Integral)) {
             Ok(Solved::Values(v)) => {
                 if v.proven {
                     bound = Some(v.value);
                 }
-                integral = true;
+                assignment = model.pad_assignment(objective, &v.theta)?;
                 keep(
                     objective,
                     &mut best,
@@ -1000,7 +1094,10 @@ pub fn solve_continuous(
             let attempt = Attempt {
                 margin_mah,
                 start_min,
-                relax: !integral,
+                pads: match &assignment {
+                    Some(a) => Pads::Fixed(a),
+                    None => Pads::Integral,
+                },
                 rescale: 1.0,
             };
             let values = match model.solve(objective, options, attempt) {
