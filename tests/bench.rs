@@ -2,7 +2,7 @@
 //! on the thread count, and the merge of shards writes the files of one run, byte for byte.
 //!
 //! The runs are small (the first 12 requests of the shipped set on the default findings-195
-//! instance, a few combinations, the exact subset of the first 2 requests, whose hop MILPs solve
+//! instance, a few combinations, the exact subset of the first 2 requests, whose hop models solve
 //! to optimality in milliseconds, far from the time limit, so `hops.csv` is reproducible).
 
 mod common;
@@ -115,7 +115,11 @@ fn thread_counts_give_identical_files_and_shards_merge_into_one_run() {
             }
         }
         for h in v["hop_gaps"].as_array_mut().unwrap() {
-            for k in ["milp_ms_total", "milp_ms_median", "milp_ms_max"] {
+            for k in [
+                "continuous_ms_total",
+                "continuous_ms_median",
+                "continuous_ms_max",
+            ] {
                 h[k] = Value::Null;
             }
         }
@@ -279,7 +283,7 @@ fn hop_rows_agree_with_eaas_on_the_same_hop() {
             "--hop",
             &r["hop_index"],
             "--methods",
-            "pb,milp,fluid",
+            "pb,continuous,fluid",
             "--time-limit",
             "0.5",
             "--json",
@@ -294,9 +298,9 @@ fn hop_rows_agree_with_eaas_on_the_same_hop() {
             "hop {}",
             r["hop_index"]
         );
-        assert_eq!(num(&r["milp"]), m[1]["objective"].as_f64());
+        assert_eq!(num(&r["continuous"]), m[1]["objective"].as_f64());
         assert_eq!(num(&r["fluid_bound"]), m[2]["bound"].as_f64());
-        assert_eq!(r["milp_status"], m[1]["status"].as_str().unwrap());
+        assert_eq!(r["continuous_status"], m[1]["status"].as_str().unwrap());
         assert_eq!(r["reference"], "optimal");
         let gap = m[0]["gap"]["relative"].as_f64().unwrap();
         assert_eq!(r["gap"].parse::<f64>().unwrap(), gap);

@@ -109,7 +109,8 @@ impl Time {
 ///   line per combination of that positioning (the combinations without sharing in both);
 /// - `exec_time.svg`: median execution time per request (ms) per combination;
 /// - `route_gap_histogram.svg`: the route gaps of the combinations that measured them;
-/// - `hop_gap_histogram.svg`: each sharing heuristic's loss per hop against the hop MILP;
+/// - `hop_gap_histogram.svg`: each sharing heuristic's loss per hop against the hop's
+///   continuous-time optimum;
 /// - `stop_gap_histogram.svg`: LPT's gap against the exact node time per stop.
 ///
 /// Only the figures whose data exist are written.
@@ -284,7 +285,7 @@ fn hop_gaps(summary: &Summary) -> Option<GroupedBars> {
         .map(|h| (h.sharing.to_string(), &h.histogram))
         .collect();
     gap_histogram(
-        "Sharing heuristics' loss against the hop MILP's optimum, per hop",
+        "Sharing heuristics' loss against the hop's continuous-time optimum, per hop",
         "loss (% of the optimum)",
         "hops",
         series,

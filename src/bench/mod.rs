@@ -9,8 +9,8 @@
 //! - `requests.csv` ([`RequestRow`]): the outcome of each request and combination, with its
 //!   route gap against the optimal route of the same sharing policy and positioning;
 //! - `hops.csv` ([`HopRow`]): on the exact subset (the first `exact_limit` requests of the set),
-//!   every hop of a delivered plan under a sharing heuristic (PB, FB) solved again by the hop MILP
-//!   (optimal over grid schedules) and the fluid bound, with the heuristic's gap;
+//!   every hop of a delivered plan under a sharing heuristic (PB, FB) solved again by the
+//!   continuous-time model (`models/eaas_config.md`) and the fluid bound, with the heuristic's gap;
 //! - `stops.csv` ([`StopRow`]): on the same subset, every stop's exact node time against LPT;
 //! - `timings.csv` ([`TimingRow`]): execution times, machine-dependent;
 //! - `summary.json` ([`Summary`]) and the SVG figures of [`figures`].
@@ -225,22 +225,28 @@ pub struct HopRow {
     pub objective: String,
     /// The heuristic's objective value.
     pub heuristic: Option<f64>,
-    /// The MILP's status: `optimal` (over grid schedules), `feasible` (time limit, an
-    /// incumbent), `infeasible`, `time_limit_no_solution`.
-    pub milp_status: String,
-    /// The MILP's objective value.
-    pub milp: Option<f64>,
-    /// The MILP grid's step, min.
-    pub grid_step_min: Option<f64>,
+    /// The continuous model's status (`models/eaas_config.md`): `optimal` (over every
+    /// continuous-time schedule), `optimal_within` (an infimum approached within `epsilon`),
+    /// `infeasible`, `no_schedule_found`, or a time-limit status.
+    pub continuous_status: String,
+    /// The objective of the continuous model's schedule.
+    pub continuous: Option<f64>,
+    /// The certified distance of that schedule to the continuous optimum (0 when attained).
+    pub epsilon: Option<f64>,
     /// The fluid LP bound (valid for every continuous-time schedule).
     pub fluid_bound: Option<f64>,
-    /// What the gap is measured against: `optimal`, `incumbent` or `bound`; empty without one.
+    /// What the gap is measured against: `optimal` (the continuous optimum, attained),
+    /// `infimum` (the continuous optimum, approached), or `bound` (the fluid LP); empty without
+    /// one.
     pub reference: String,
     /// The reference's value.
     pub reference_value: Option<f64>,
     /// `(heuristic - reference) / reference`: positive is worse for a node time, negative is
     /// worse for an arrival battery.
     pub gap: Option<f64>,
+    /// `different_policy` when the heuristic's schedule lies outside the re-ordering mode of the
+    /// reference (a swapping schedule against `--reorder none`): no gap is taken.
+    pub gap_label: String,
 }
 
 /// One recharging stop of a delivered plan on the exact subset: a row of `stops.csv`.
@@ -478,22 +484,22 @@ fn keep_report(
             });
         }
     }
-    // Hops under a sharing heuristic: solved again by the MILP and the fluid bound.
+    // Hops under a sharing heuristic: solved again by the continuous model and the fluid bound.
     let Some(heuristic) = HopMethod::of_policy(o.sharing).filter(|m| *m != HopMethod::None) else {
         return Ok(kept);
     };
     let planner = context.planner(&report.swarm, o.sharing);
     for (h, hop) in plan.hops.iter().enumerate() {
         let (problem, objective) = planner.studied_hop(hop)?;
-        let mut rows = [heuristic, HopMethod::Milp, HopMethod::Fluid]
+        let mut rows = [heuristic, HopMethod::Continuous, HopMethod::Fluid]
             .into_iter()
             .map(|m| run_method(&problem, &objective, m, &config.milp, readings))
             .collect::<Result<Vec<_>>>()?;
         label_gaps(&mut rows, &problem, config.milp.reorder);
-        let [heur, milp, fluid] = &rows[..] else {
+        let [heur, exact, fluid] = &rows[..] else {
             unreachable!("three methods were run")
         };
-        for (row, what) in [(milp, "milp"), (fluid, "fluid")] {
+        for (row, what) in [(exact, "continuous"), (fluid, "fluid")] {
             kept.timings.push(TimingRow {
                 request_index: position,
                 sharing: o.sharing,
@@ -522,15 +528,16 @@ fn keep_report(
             }
             .into(),
             heuristic: heur.objective,
-            milp_status: milp.status.map(|s| serde_name(&s)).unwrap_or_default(),
-            milp: milp.objective,
-            grid_step_min: milp.grid_step_min,
+            continuous_status: exact.status.map(|s| serde_name(&s)).unwrap_or_default(),
+            continuous: exact.objective,
+            epsilon: exact.epsilon,
             fluid_bound: fluid.bound,
             reference: reference
                 .map(|(_, k)| reference_name(k).to_string())
                 .unwrap_or_default(),
             reference_value: reference.map(|(v, _)| v),
             gap: heur.gap.and_then(|g| g.relative),
+            gap_label: heur.gap_label.unwrap_or_default().to_string(),
         });
     }
     Ok(kept)
