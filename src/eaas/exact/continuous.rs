@@ -33,7 +33,7 @@ use crate::eaas::{
     SharingPolicy, Transfer, TIME_TOL_MIN,
 };
 use crate::error::{Error, Result};
-use crate::solver::{run_on, MilpBackend, MilpJob};
+use crate::solver::{run_on, MilpBackend, MilpJob, MIP_REL_GAP};
 use good_lp::{
     constraint, variable, Expression, ProblemVariables, ResolutionError, Solution, SolutionStatus,
     SolverModel, Variable, WithTimeLimit,
@@ -331,8 +331,10 @@ struct Values {
     theta: Vec<Vec<f64>>,
     /// The model's objective value.
     value: f64,
-    /// The backend proved optimality.
-    proven: bool,
+    /// A proven bound on the model's optimum (lower for minimisation, upper for max-min): the
+    /// value itself when proven optimal, the value less HiGHS's relative gap
+    /// ([`MIP_REL_GAP`]) after a stop at that gap, `None` after a time limit.
+    bound: Option<f64>,
 }
 
 /// How one solve ended.
@@ -554,20 +556,25 @@ impl Model<'_> {
             BackendEnd::Infeasible => return Ok(Solved::Infeasible),
             BackendEnd::NoSolution => return Ok(Solved::NoSolution),
         };
-        let proven = matches!(
-            solution.status(),
-            SolutionStatus::Optimal | SolutionStatus::GapLimit
-        );
+        let value = goal.map_or(0.0, |g| match objective {
+            Objective::MaxMinArrival => solution.value(g) / scale,
+            _ => solution.value(g),
+        });
+        let bound = match solution.status() {
+            SolutionStatus::Optimal => Some(value),
+            // HiGHS's relative gap is (incumbent - bound) / max(|incumbent|, a tiny guard), so
+            // the bound is at least the incumbent less the gap times max(|incumbent|, 1); only
+            // the node time (a minimisation) has integer variables.
+            SolutionStatus::GapLimit => Some(value - MIP_REL_GAP * value.abs().max(1.0)),
+            _ => None,
+        };
         Ok(Solved::Values(Values {
             theta: theta
                 .iter()
                 .map(|row| row.iter().map(|&t| solution.value(t).max(0.0)).collect())
                 .collect(),
-            value: goal.map_or(0.0, |g| match objective {
-                Objective::MaxMinArrival => solution.value(g) / scale,
-                _ => solution.value(g),
-            }),
-            proven,
+            value,
+            bound,
         }))
     }
 }
@@ -1012,7 +1019,9 @@ pub fn solve_continuous(
         return Ok(out);
     };
     // The bound: the relaxation's value while no better one is proven.
-    let mut bound = relaxed.proven.then_some(relaxed.value);
+    let mut bound = relaxed.bound;
+    // The model's own value: the relaxation's, then the pad MILP's.
+    let mut model_value = relaxed.value;
     let tolerance = |b: f64| OPTIMAL_ABS_TOL + OPTIMAL_REL_TOL * b.abs();
     let distance = |c: &Candidate, b: f64| match objective {
         Objective::MaxMinArrival => b - c.value,
@@ -1047,8 +1056,9 @@ pub fn solve_continuous(
         // The pad MILP: a microlp failure leaves the relaxation's bound, said so by epsilon.
         match model.solve(objective, options, Attempt::exact(Pads::Integral)) {
             Ok(Solved::Values(v)) => {
-                if v.proven {
-                    bound = Some(v.value);
+                if v.bound.is_some() {
+                    bound = v.bound;
+                    model_value = v.value;
                 }
                 assignment = model.pad_assignment(objective, &v.theta)?;
                 keep(
@@ -1138,7 +1148,7 @@ pub fn solve_continuous(
     if attained {
         out.status = ExactStatus::Optimal;
     }
-    out.model_objective = bound;
+    out.model_objective = bound.map(|_| model_value);
     out.solve_ms = start.elapsed().as_secs_f64() * 1e3;
     Ok(out)
 }
