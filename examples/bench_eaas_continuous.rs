@@ -39,7 +39,7 @@ struct Args {
     /// Backend of both models.
     #[arg(long, value_enum)]
     backend: Option<MilpBackend>,
-    /// Also `free` mode on the hops (the continuous model's E4118 is reported as a count).
+    /// Also `free` mode on the hops (refusals, E4117 above the configuration count, are counted).
     #[arg(long)]
     free: bool,
 }

@@ -8,11 +8,11 @@ mod common;
 use common::{close, drone, integral_hop, known_optima};
 use nalgebra::Vector2;
 use proptest::prelude::*;
-use swarmplan::check::check_hop;
+use swarmplan::check::{check_free_hop, check_hop};
 use swarmplan::eaas::exact::continuous::{solve_continuous, ContinuousOptions};
 use swarmplan::eaas::exact::milp::{solve_milp, MilpOptions};
 use swarmplan::eaas::exact::{ExactOutcome, ExactStatus, Objective, Reorder};
-use swarmplan::eaas::{fluid, simulate, HopProblem, LegRates, SharingPolicy};
+use swarmplan::eaas::{fluid, simulate, HopProblem, LegRates, SharingPolicy, SlotInterval};
 use swarmplan::problem::Role;
 use swarmplan::solver::MilpBackend;
 
@@ -27,6 +27,10 @@ fn options(backend: MilpBackend, reorder: Reorder) -> ContinuousOptions {
 /// The schedule an outcome carries passes the independent checker, flies, and its objective is
 /// the bound plus the reported epsilon.
 fn assert_checked(p: &HopProblem, o: &ExactOutcome, objective: &Objective) {
+    if let Some(free) = &o.intervals {
+        let v = check_free_hop(p, &free.intervals, &free.final_battery_mah);
+        assert!(v.is_empty(), "free checker: {v:#?}");
+    }
     let Some(out) = &o.outcome else { return };
     let v = check_hop(p, out);
     assert!(v.is_empty(), "checker: {v:#?}");
@@ -179,16 +183,64 @@ fn an_infimum_only_approached_is_optimal_within_its_certified_epsilon() {
     }
 }
 
+/// The paper swap hop in `free` mode: the only other slot assignment is the swap itself, so the
+/// optimum is the `paper` one, 58 mAh, now as slot intervals the free checker replays; each
+/// change to them is caught with its code.
 #[test]
-fn free_reordering_and_too_many_configurations_are_coded_errors() {
-    let p = two_consumers(vec![(10.0, 1.0)]);
-    let e = solve_continuous(
-        &p,
-        &Objective::Feasible,
+fn free_schedules_are_slot_intervals_the_checker_replays() {
+    let k = known_optima()
+        .instances
+        .into_iter()
+        .find(|k| k.name == "paper_swap_max_min")
+        .unwrap();
+    let o = solve_continuous(
+        &k.problem,
+        &k.objective,
         &options(MilpBackend::default(), Reorder::Free),
     )
-    .unwrap_err();
-    assert!(e.to_string().contains("E4118"), "{e}");
+    .unwrap();
+    assert_eq!(o.status, ExactStatus::Optimal, "{o:?}");
+    assert!(close(o.objective.unwrap(), 58.0));
+    assert_checked(&k.problem, &o, &k.objective);
+    let free = o.intervals.clone().unwrap();
+    assert!(
+        free.final_battery_mah[..2].iter().all(|&b| close(b, 58.0)),
+        "{free:?}"
+    );
+    let codes = |intervals: &[SlotInterval], finals: &[f64]| -> Vec<String> {
+        check_free_hop(&k.problem, intervals, finals)
+            .iter()
+            .map(|v| v.code.to_string())
+            .collect()
+    };
+    let serving = free
+        .intervals
+        .iter()
+        .position(|x| !x.serves.is_empty())
+        .unwrap();
+    // The support drone (2) leaves its slot.
+    let mut moved = free.intervals.clone();
+    moved[serving].slot.swap(1, 2);
+    assert!(codes(&moved, &free.final_battery_mah).contains(&"C3020".to_string()));
+    // The consumer served from slot 0, 3 m from the support drone.
+    let mut far = free.intervals.clone();
+    let c = far[serving].serves[0].1;
+    far[serving].slot[c] = 0;
+    far[serving].slot[1 - c] = 1;
+    assert!(codes(&far, &free.final_battery_mah).contains(&"C3023".to_string()));
+    // A stated battery that is not the re-integrated one.
+    let mut finals = free.final_battery_mah.clone();
+    finals[0] += 1.0;
+    assert_eq!(codes(&free.intervals, &finals), vec!["C3027".to_string()]);
+    // A gap in time.
+    let mut short = free.intervals.clone();
+    short.pop();
+    assert!(codes(&short, &free.final_battery_mah).contains(&"C3019".to_string()));
+}
+
+#[test]
+fn too_many_configurations_is_a_coded_error() {
+    let p = two_consumers(vec![(10.0, 1.0)]);
     let few = ContinuousOptions {
         max_configurations: 2,
         ..options(MilpBackend::default(), Reorder::None)
@@ -211,8 +263,9 @@ fn at_most(value: f64, limit: f64) -> bool {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(32))]
 
-    /// fluid <= continuous <= grid MILP (1 and 0.5 min) and continuous <= PB, FB, no sharing;
-    /// every schedule passes the checker; every backend agrees.
+    /// fluid <= continuous <= grid MILP (1 and 0.5 min) in every mode, and continuous <= PB, FB,
+    /// no sharing in `paper`; free <= paper <= none; every schedule passes its checker; every
+    /// backend agrees.
     #[test]
     fn continuous_lies_between_the_fluid_bound_and_the_grid_and_below_the_heuristics(
         seed in any::<u64>(),
@@ -225,7 +278,7 @@ proptest! {
         }
         let mut values = Vec::new();
         for backend in MilpBackend::all() {
-            for reorder in [Reorder::None, Reorder::Paper] {
+            for reorder in [Reorder::None, Reorder::Paper, Reorder::Free] {
                 let o = solve_continuous(&p, &NT2, &options(backend, reorder)).unwrap();
                 assert_checked(&p, &o, &NT2);
                 let fl = fluid::bound(&p, &NT2, reorder, 10.0).unwrap();
@@ -266,6 +319,10 @@ proptest! {
                 values.push((reorder, bound));
             }
         }
+        // Modes are nested: free <= paper <= none (an infeasible mode counts as +infinity).
+        let of = |mode: Reorder| values.iter().find(|(r, _)| *r == mode).map(|(_, v)| *v).unwrap();
+        prop_assert!(at_most(of(Reorder::Free), of(Reorder::Paper)), "free {} above paper {}", of(Reorder::Free), of(Reorder::Paper));
+        prop_assert!(at_most(of(Reorder::Paper), of(Reorder::None)), "paper {} above none {}", of(Reorder::Paper), of(Reorder::None));
         // Every backend gives the same value per mode.
         for (reorder, v) in &values {
             for (r2, v2) in &values {

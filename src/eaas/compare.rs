@@ -12,7 +12,9 @@ use super::exact::continuous::{solve_continuous, ContinuousOptions};
 use super::milp::{
     objective_of, solve_milp, ExactOutcome, ExactStatus, MilpOptions, Objective, Reorder,
 };
-use super::{fluid, simulate_with, HopProblem, PolicyOptions, SharingPolicy, Transfer};
+use super::{
+    fluid, simulate_with, FreeSchedule, HopProblem, PolicyOptions, SharingPolicy, Transfer,
+};
 use crate::error::Result;
 use crate::solver::{Gap, ReferenceKind};
 use serde::Serialize;
@@ -98,6 +100,10 @@ pub struct MethodRow {
     pub solve_ms: f64,
     /// The schedule.
     pub transfers: Vec<Transfer>,
+    /// `continuous` with `free` re-ordering: the schedule as slot intervals (every drone's slot)
+    /// and its final batteries, which `transfers` alone cannot carry.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub free_schedule: Option<FreeSchedule>,
 }
 
 fn exact_row(method: HopMethod, kind: &'static str, o: ExactOutcome) -> MethodRow {
@@ -105,7 +111,11 @@ fn exact_row(method: HopMethod, kind: &'static str, o: ExactOutcome) -> MethodRo
         method,
         kind,
         status: Some(o.status),
-        feasible: o.outcome.as_ref().map(|x| x.feasible),
+        feasible: o
+            .outcome
+            .as_ref()
+            .map(|x| x.feasible)
+            .or(o.intervals.as_ref().map(|_| true)),
         objective: if method == HopMethod::Fluid {
             o.bound
         } else {
@@ -128,6 +138,7 @@ fn exact_row(method: HopMethod, kind: &'static str, o: ExactOutcome) -> MethodRo
         grid_step_min: (method == HopMethod::Milp).then_some(o.grid_step_min),
         solve_ms: o.solve_ms,
         transfers: o.transfers,
+        free_schedule: o.intervals,
     }
 }
 
@@ -172,6 +183,7 @@ pub fn run_method(
                 grid_step_min: None,
                 solve_ms: start.elapsed().as_secs_f64() * 1e3,
                 transfers: o.transfers,
+                free_schedule: None,
             }
         }
         HopMethod::Continuous => exact_row(

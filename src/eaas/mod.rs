@@ -193,6 +193,33 @@ pub struct Transfer {
     pub consumer_slot: usize,
 }
 
+/// A stretch of a `free` schedule in which every drone keeps one slot and the same support
+/// drones serve the same consumers (`models/eaas_config.md`): what a list of [`Transfer`]s cannot
+/// carry when drones that do not share change slots.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SlotInterval {
+    /// Start, minutes from the hop start.
+    pub start_min: f64,
+    /// End, minutes from the hop start.
+    pub end_min: f64,
+    /// Slot of every drone during the interval (support drones in their own slots).
+    pub slot: Vec<usize>,
+    /// `(support, consumer)` pairs sharing at `rho` during the interval.
+    pub serves: Vec<(usize, usize)>,
+}
+
+/// A `free` schedule as slot intervals, with every drone's battery at the hop's end as the
+/// schedule states it (re-verified by [`crate::check::check_free_hop`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FreeSchedule {
+    /// The intervals, back to back over `[0, tt]`.
+    pub intervals: Vec<SlotInterval>,
+    /// Every drone's battery at `tt`, mAh.
+    pub final_battery_mah: Vec<f64>,
+}
+
 /// Why a hop is infeasible.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]

@@ -28,9 +28,10 @@ use super::{
     Objective, PadRows, Reorder,
 };
 use crate::eaas::simulate::evaluate;
+use crate::eaas::simulate::leg_at;
 use crate::eaas::{
-    reorder, sharing_budget_mah, simulate_with, HopOutcome, HopProblem, PolicyOptions, Role,
-    SharingPolicy, Transfer, TIME_TOL_MIN,
+    reorder, sharing_budget_mah, simulate_with, FreeSchedule, HopOutcome, HopProblem,
+    PolicyOptions, Role, SharingPolicy, SlotInterval, Transfer, ENERGY_TOL_MAH, TIME_TOL_MIN,
 };
 use crate::error::{Error, Result};
 use crate::solver::{run_on, MilpBackend, MilpJob, MIP_REL_GAP};
@@ -288,6 +289,8 @@ struct Model<'a> {
     legs: Vec<usize>,
     /// `v[i][σ][d]`, leg index `i` into `legs`.
     v: Vec<Vec<Vec<f64>>>,
+    /// `free` re-ordering: schedules are slot intervals, not transfers.
+    free: bool,
 }
 
 /// How the node time's pad assignment enters a solve.
@@ -742,6 +745,34 @@ impl Model<'_> {
         Some(pieces)
     }
 
+    /// The slot intervals of the pieces, consecutive pieces of the same configuration within a
+    /// leg merged.
+    fn intervals(&self, pieces: &[Piece]) -> Vec<SlotInterval> {
+        let mut out: Vec<((usize, usize), SlotInterval)> = Vec::new();
+        for p in pieces {
+            if p.end_min - p.start_min <= TIME_TOL_MIN {
+                continue;
+            }
+            if let Some((k, last)) = out.last_mut() {
+                if *k == (p.config, p.leg) && (last.end_min - p.start_min).abs() <= TIME_TOL_MIN {
+                    last.end_min = p.end_min;
+                    continue;
+                }
+            }
+            let config = &self.configs[p.config];
+            out.push((
+                (p.config, p.leg),
+                SlotInterval {
+                    start_min: p.start_min,
+                    end_min: p.end_min,
+                    slot: config.slot.clone(),
+                    serves: config.moves.iter().map(|&(s, c, _)| (s, c)).collect(),
+                },
+            ));
+        }
+        out.into_iter().map(|(_, x)| x).collect()
+    }
+
     /// The transfers of the pieces, consecutive pieces of the same move within a leg merged.
     fn transfers(&self, pieces: &[Piece]) -> Vec<Transfer> {
         let rho = self.problem.rho_mah_per_min;
@@ -799,6 +830,9 @@ impl Model<'_> {
         start_min: f64,
     ) -> Result<Option<Candidate>> {
         match self.realise(theta, start_min) {
+            Some(pieces) if self.free => {
+                free_candidate(self.problem, objective, self.intervals(&pieces))
+            }
             Some(pieces) => candidate(self.problem, objective, &self.transfers(&pieces)),
             None => Ok(None),
         }
@@ -851,7 +885,10 @@ fn round_order(
 struct Candidate {
     value: f64,
     proven: bool,
-    outcome: HopOutcome,
+    /// The replay by the hop evaluation (`none`, `paper`, and the heuristics' schedules).
+    outcome: Option<HopOutcome>,
+    /// `free`: the schedule as slot intervals, with its transfers.
+    intervals: Option<(FreeSchedule, Vec<Transfer>)>,
     /// Realised from a margin attempt (an infimum approached, not attained).
     approached: bool,
 }
@@ -878,7 +915,63 @@ fn candidate(
     Ok(Some(Candidate {
         value: value.value,
         proven: value.proven,
-        outcome,
+        outcome: Some(outcome),
+        intervals: None,
+        approached: false,
+    }))
+}
+
+/// Integrates a `free` schedule and scores it; `None` when a battery leaves `[0, C_d]` (beyond
+/// [`ENERGY_TOL_MAH`]).
+fn free_candidate(
+    problem: &HopProblem,
+    objective: &Objective,
+    intervals: Vec<SlotInterval>,
+) -> Result<Option<Candidate>> {
+    let rho = problem.rho_mah_per_min;
+    let mut b: Vec<f64> = problem.drones.iter().map(|d| d.battery_mah).collect();
+    let mut transfers = Vec::new();
+    for x in &intervals {
+        let dur = x.end_min - x.start_min;
+        let Some(l) = leg_at(problem, 0.5 * (x.start_min + x.end_min)) else {
+            continue;
+        };
+        let rates = &problem.legs[l].rate_mah_per_min;
+        for (d, bd) in b.iter_mut().enumerate() {
+            *bd -= dur * rates[d][x.slot[d]];
+        }
+        for &(s, c) in &x.serves {
+            b[s] -= rho * dur;
+            b[c] += rho * dur;
+            transfers.push(Transfer {
+                support: s,
+                consumer: c,
+                start_min: x.start_min,
+                end_min: x.end_min,
+                energy_mah: rho * dur,
+                consumer_slot: x.slot[c],
+            });
+        }
+        let outside = b
+            .iter()
+            .zip(&problem.drones)
+            .any(|(&bd, d)| bd < -ENERGY_TOL_MAH || bd > d.capacity_mah + ENERGY_TOL_MAH);
+        if outside {
+            return Ok(None);
+        }
+    }
+    let value = objective_of(problem, objective, &b)?;
+    Ok(Some(Candidate {
+        value: value.value,
+        proven: value.proven,
+        outcome: None,
+        intervals: Some((
+            FreeSchedule {
+                intervals,
+                final_battery_mah: b,
+            },
+            transfers,
+        )),
         approached: false,
     }))
 }
@@ -909,7 +1002,8 @@ fn in_mode(problem: &HopProblem, mode: Reorder, transfers: &[Transfer]) -> bool 
 /// # Arguments
 /// * `problem` - the hop.
 /// * `objective` - node time at the hop's end, lowest delivery arrival battery, or feasibility.
-/// * `options` - re-ordering mode (`none`, `paper`; `free` returns no transfers, see Errors),
+/// * `options` - re-ordering mode (`none`, `paper`, `free`: its schedule comes as slot intervals,
+///   [`ExactOutcome::intervals`], with no replay by the hop evaluation),
 ///   backend, time limit of each backend call, largest number of configurations, readings of
 ///   the heuristics whose schedules are incumbents.
 ///
@@ -923,8 +1017,7 @@ fn in_mode(problem: &HopProblem, mode: Reorder, transfers: &[Transfer]) -> bool 
 ///
 /// # Errors
 /// Those of [`super::milp::solve_milp`] for bad input; `E4117` for more configurations than
-/// `max_configurations`; `E4118` for `free` re-ordering (its schedules move drones that do not
-/// share, which a list of transfers cannot carry); `E4119` when a replayed schedule beats the
+/// `max_configurations`; `E4119` when a replayed schedule beats the
 /// model's proven optimum (a bug: report it); [`Error::Backend`] when the backend fails.
 ///
 /// # Complexity
@@ -961,14 +1054,6 @@ pub fn solve_continuous(
     options: &ContinuousOptions,
 ) -> Result<ExactOutcome> {
     validate_inputs(problem, objective, options.time_limit_s)?;
-    if options.reorder == Reorder::Free {
-        return Err(Error::invalid(
-            "E4118",
-            "--reorder",
-            "free re-ordering for the continuous method",
-            "use --reorder paper or none, or the grid MILP (--methods milp) for free re-ordering",
-        ));
-    }
     let start = Instant::now();
     let configs = configurations(problem, options.reorder, options.max_configurations)?;
     let legs: Vec<usize> = (0..problem.legs.len())
@@ -986,6 +1071,7 @@ pub fn solve_continuous(
         configs: &configs,
         legs,
         v,
+        free: options.reorder == Reorder::Free,
     };
     let mut out = ExactOutcome::infeasible(0.0, model.legs.len());
     // Incumbents: the empty schedule and the heuristics' schedules of the mode.
@@ -1170,8 +1256,17 @@ fn finish(
     };
     out.objective = Some(c.value);
     out.objective_proven = c.proven;
-    out.transfers = c.outcome.transfers.clone();
-    out.outcome = Some(c.outcome);
+    match (c.outcome, c.intervals) {
+        (Some(o), _) => {
+            out.transfers = o.transfers.clone();
+            out.outcome = Some(o);
+        }
+        (None, Some((intervals, transfers))) => {
+            out.transfers = transfers;
+            out.intervals = Some(intervals);
+        }
+        (None, None) => {}
+    }
     match out.bound {
         Some(b) => {
             let eps = match objective {

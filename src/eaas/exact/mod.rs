@@ -119,6 +119,10 @@ pub struct ExactOutcome {
     pub outcome: Option<HopOutcome>,
     /// `free` only: the slot of every drone in every period.
     pub slots: Option<Vec<Vec<usize>>>,
+    /// `free`, continuous model: the schedule as intervals with every drone's slot (its replay
+    /// by [`crate::check::check_free_hop`]); `transfers` lists the same sharing.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub intervals: Option<crate::eaas::FreeSchedule>,
 }
 
 impl ExactOutcome {
@@ -138,6 +142,7 @@ impl ExactOutcome {
             transfers: Vec::new(),
             outcome: None,
             slots: None,
+            intervals: None,
         }
     }
 }
