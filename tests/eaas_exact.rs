@@ -561,6 +561,8 @@ fn a_solve_stopped_by_the_time_limit_says_so_and_labels_its_bound() {
                 assert_checked(&p, &o);
             }
             ExactStatus::TimeLimitNoSolution => {
+                // The empty schedule is the first incumbent: only a hop it cannot fly ends so.
+                assert!(!simulate(&p, SharingPolicy::None).unwrap().feasible);
                 assert!(o.objective.is_none() && o.transfers.is_empty());
                 assert!(o.bound.unwrap() >= lp.bound.unwrap() - 1e-6);
             }

@@ -624,8 +624,7 @@ pub fn solve_milp(
             return Ok(out);
         }
         Solved::NoSolution => {
-            out.status = ExactStatus::TimeLimitNoSolution;
-            out.bound = relaxation_bound(problem, &grid, objective, options)?;
+            no_solution_in_time(&mut out, problem, &grid, objective, options)?;
             out.solve_ms = node_time_ms(start);
             return Ok(out);
         }
@@ -641,8 +640,7 @@ pub fn solve_milp(
         if !replay.feasible && !raw.proven {
             // A backend stopped by the limit may return values that are not a solution (HiGHS
             // reports a time limit without saying whether it has an incumbent).
-            out.status = ExactStatus::TimeLimitNoSolution;
-            out.bound = relaxation_bound(problem, &grid, objective, options)?;
+            no_solution_in_time(&mut out, problem, &grid, objective, options)?;
             out.solve_ms = node_time_ms(start);
             return Ok(out);
         }
@@ -912,6 +910,33 @@ fn lp_header(
         });
     }
     out
+}
+
+/// The outcome of a solve stopped by its limit without a schedule: the bound, and the empty
+/// schedule (a grid schedule of every mode) as the incumbent when it flies, so a hop that flies
+/// without sharing is never `time_limit_no_solution`.
+fn no_solution_in_time(
+    out: &mut ExactOutcome,
+    problem: &HopProblem,
+    grid: &Grid,
+    objective: &Objective,
+    options: &MilpOptions,
+) -> Result<()> {
+    out.bound = relaxation_bound(problem, grid, objective, options)?;
+    let empty = evaluate(problem, &[]).into_outcome();
+    if !empty.feasible {
+        out.status = ExactStatus::TimeLimitNoSolution;
+        return Ok(());
+    }
+    let value = objective_of(problem, objective, &empty.final_battery_mah)?;
+    out.status = ExactStatus::Feasible;
+    out.objective = Some(value.value);
+    out.objective_proven = value.proven;
+    out.transfers = Vec::new();
+    out.slots = (options.reorder == Reorder::Free)
+        .then(|| vec![problem.initial_slot.clone(); grid.periods()]);
+    out.outcome = Some(empty);
+    Ok(())
 }
 
 fn node_time_ms(start: Instant) -> f64 {
