@@ -8,8 +8,9 @@
 //!    `paper-findings`), each on its own profile and on `fast-sharing`, modes `none` and `paper`:
 //!    status counts, median and largest time.
 //!
-//! `cargo run --release --example bench_eaas_continuous [-- --limit 50 --grid-time-limit 2]`
-//! (`--grid-time-limit 0` skips the grid MILP; `--backend highs` with the `highs` feature).
+//! `cargo run --release --example bench_eaas_continuous [-- --limit 50 --grid-time-limit 1 --free]`
+//! (the grid MILP beside it with a time limit, `free` mode too; `--backend highs` with the
+//! `highs` feature).
 
 #[path = "common/bench_hop.rs"]
 mod bench_hop;
@@ -33,8 +34,8 @@ struct Args {
     /// Requests of each instance (the first of the set).
     #[arg(long, default_value_t = 50)]
     limit: usize,
-    /// Time limit of each grid MILP, seconds; 0 skips the grid MILP.
-    #[arg(long, default_value_t = 2.0)]
+    /// Time limit of each grid MILP, seconds; 0 (default) skips the grid MILP.
+    #[arg(long, default_value_t = 0.0)]
     grid_time_limit: f64,
     /// Backend of both models.
     #[arg(long, value_enum)]

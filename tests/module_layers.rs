@@ -111,3 +111,94 @@ fn the_scan_sees_a_cycle_when_there_is_one() {
     let mut path = vec!["problem".to_string()];
     assert!(cycle_from(&uses, "problem", "problem", &mut path).is_some());
 }
+
+/// Inside the module directory `dir` (relative to `src`): each child module (a file, or a
+/// directory's `mod.rs` for the root) -> the siblings its code names as `super::<child>`,
+/// `crate::<dir path>::<child>` or, from the root, `self::<child>`/`<child>::`. The root is
+/// `mod`; a child naming the root's own items (`super::Item`) uses `mod`.
+fn child_uses(dir: &str) -> BTreeMap<String, BTreeSet<String>> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("src").join(dir);
+    let children: Vec<String> = std::fs::read_dir(&root)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "rs"))
+        .map(|p| p.file_stem().unwrap().to_string_lossy().to_string())
+        .collect();
+    let crate_path = format!("crate::{}::", dir.replace('/', "::"));
+    let mut uses: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+    for child in &children {
+        let text = std::fs::read_to_string(root.join(format!("{child}.rs"))).unwrap();
+        let entry = uses.entry(child.clone()).or_default();
+        for line in text.lines() {
+            let code = line.split("//").next().unwrap_or("").trim();
+            if code.starts_with("pub mod ") || code.starts_with("mod ") {
+                continue;
+            }
+            if child == "mod" {
+                // The root names a child bare: `milp::Grid`, `pub use milp::...`.
+                for other in &children {
+                    let bare = format!("{other}::");
+                    let named = code.match_indices(&bare).any(|(i, _)| {
+                        i == 0
+                            || !code[..i].ends_with(|c: char| {
+                                c.is_ascii_alphanumeric() || c == '_' || c == ':'
+                            })
+                    });
+                    if named && other != "mod" {
+                        entry.insert(other.clone());
+                    }
+                }
+            }
+            for prefix in ["super::", crate_path.as_str(), "self::"] {
+                for (i, _) in code.match_indices(prefix) {
+                    let name: String = code[i + prefix.len()..]
+                        .chars()
+                        .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+                        .collect();
+                    let target = if children.contains(&name) && name != *child {
+                        name
+                    } else if prefix == "super::" && child != "mod" {
+                        "mod".to_string()
+                    } else {
+                        continue;
+                    };
+                    if target != *child {
+                        entry.insert(target);
+                    }
+                }
+            }
+        }
+    }
+    uses
+}
+
+/// The exact hop models: the root holds the shared vocabulary and uses none of its
+/// formulations; no formulation uses another that uses it back.
+#[test]
+fn exact_hop_models_form_layers_under_their_shared_root() {
+    let uses = child_uses("eaas/exact");
+    assert!(
+        ["continuous", "fluid", "milp", "mod"]
+            .iter()
+            .all(|c| uses.contains_key(*c)),
+        "found {:?}",
+        uses.keys()
+    );
+    assert!(uses["mod"].is_empty(), "the root uses {:?}", uses["mod"]);
+    for child in uses.keys() {
+        let mut path = vec![child.clone()];
+        if let Some(cycle) = cycle_from(&uses, child, child, &mut path) {
+            panic!("import cycle in eaas/exact: {}", cycle.join(" -> "));
+        }
+    }
+    // The formulations share the root's vocabulary.
+    assert!(uses["continuous"].contains("mod") && uses["milp"].contains("mod"));
+}
+
+#[test]
+fn the_scan_of_a_module_directory_sees_a_cycle_when_there_is_one() {
+    let mut uses = child_uses("eaas/exact");
+    uses.get_mut("mod").unwrap().insert("milp".to_string());
+    let mut path = vec!["mod".to_string()];
+    assert!(cycle_from(&uses, "mod", "mod", &mut path).is_some());
+}
