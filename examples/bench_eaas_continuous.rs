@@ -40,6 +40,10 @@ struct Args {
     /// Backend of both models.
     #[arg(long, value_enum)]
     backend: Option<MilpBackend>,
+    /// Write every hop refused, solved in more than 0.5 s, or left more than 1e-6 relative from
+    /// its optimum, as `[problem, objective]` JSON into this directory.
+    #[arg(long, value_name = "DIR")]
+    dump: Option<PathBuf>,
     /// Also `free` mode on the hops (refusals, E4117 above the configuration count, are counted).
     #[arg(long)]
     free: bool,
@@ -173,23 +177,25 @@ fn main() {
                             if refused == 0 {
                                 println!("    first refusal: {e}");
                             }
-                            if std::env::var("DUMP_REFUSED").is_ok() {
-                                let path = format!("/tmp/refused_{name}_{refused}_{reorder}.json");
-                                std::fs::write(
-                                    &path,
-                                    serde_json::to_string(&(p, objective)).unwrap(),
-                                )
-                                .unwrap();
-                            }
+                            dump(
+                                &args,
+                                &format!("refused_{name}_{refused}_{reorder}"),
+                                p,
+                                objective,
+                            );
                             refused += 1;
                             continue;
                         }
                     };
                     cont.add(&o);
-                    if o.solve_ms > 500.0 && std::env::var("DUMP_REFUSED").is_ok() {
-                        let path = format!("/tmp/slow_{name}_{}_{reorder}.json", cont.ms.len());
-                        std::fs::write(&path, serde_json::to_string(&(p, objective)).unwrap())
-                            .unwrap();
+                    let loose = o
+                        .epsilon
+                        .zip(o.bound)
+                        .is_some_and(|(e, b)| e > 1e-6 * b.abs().max(1.0));
+                    if o.solve_ms > 500.0 || loose {
+                        let profile_name = profile.rsplit('/').next().unwrap_or(profile);
+                        let file = format!("hop_{name}_{profile_name}_{}_{reorder}", cont.ms.len());
+                        dump(&args, &file, p, objective);
                     }
                     if args.grid_time_limit > 0.0 {
                         let g = solve_milp(
@@ -229,6 +235,15 @@ fn main() {
                 }
             }
         }
+    }
+}
+
+/// Writes `[problem, objective]` as `DIR/name.json` when `--dump DIR` is given.
+fn dump(args: &Args, name: &str, p: &HopProblem, objective: &Objective) {
+    if let Some(dir) = &args.dump {
+        let text = serde_json::to_string(&(p, objective)).expect("a hop serialises");
+        std::fs::create_dir_all(dir).expect("a writable --dump directory");
+        std::fs::write(dir.join(format!("{name}.json")), text).expect("a writable --dump file");
     }
 }
 

@@ -44,8 +44,10 @@ use std::time::Instant;
 
 /// Default largest number of configurations a hop may have (E4117 above it).
 pub const DEFAULT_MAX_CONFIGURATIONS: usize = 20_000;
+/// The margin search stops at the first schedule within this relative distance of the optimum.
+pub const MARGIN_REL_EPSILON: f64 = 1e-6;
 /// Largest number of rounds a leg's configurations are played in.
-pub const MAX_ROUNDS: usize = 1024;
+pub const MAX_ROUNDS: usize = 8192;
 /// Shortest round, as a fraction of the leg's time shares.
 pub const MIN_ROUND_FRACTION: f64 = 1e-9;
 /// Relative tolerance under which a schedule's objective equals the model's optimum
@@ -56,8 +58,10 @@ pub const OPTIMAL_ABS_TOL: f64 = 1e-7;
 /// Energy tolerance of the realisation's bound checks, mAh.
 const REALISE_TOL_MAH: f64 = 1e-7;
 /// Margins tried, in this order, when the optimum is not attained: fractions of the smallest
-/// capacity. Each is a further LP solve and realisation; the best realised schedule is kept.
-const MARGIN_FRACTIONS: [f64; 3] = [1e-4, 1e-6, 1e-8];
+/// capacity. Each is a further LP solve and realisation; the best realised schedule is kept, and
+/// the first margin that cannot be realised after one that could ends the search (a smaller one
+/// needs still more rounds).
+const MARGIN_FRACTIONS: [f64; 5] = [1e-4, 1e-5, 1e-6, 1e-7, 1e-8];
 
 /// Settings of a continuous solve.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -1023,7 +1027,7 @@ fn in_mode(problem: &HopProblem, mode: Reorder, transfers: &[Transfer]) -> bool 
 /// # Complexity
 /// One LP over `L |Σ|` time shares (a MILP with the node-time objective's `n min(k, n)` pad
 /// binaries), `|Σ| <= Π_s (1 + |K_s|)` configurations; realisation `O(N L |Σ|^2 n)` for `N`
-/// rounds; at most [`MARGIN_FRACTIONS`] further solves when the optimum is not attained.
+/// rounds; at most five further solves ([`MARGIN_FRACTIONS`]) when the optimum is not attained.
 ///
 /// # Example
 /// ```
@@ -1179,6 +1183,7 @@ pub fn solve_continuous(
             .legs
             .first()
             .map_or(0.0, |&l| problem.legs[l].duration_min);
+        let mut realised_any = false;
         for fraction in MARGIN_FRACTIONS {
             let margin_mah = fraction * scale;
             let rate = if slowest.is_finite() {
@@ -1202,14 +1207,19 @@ pub fn solve_continuous(
                 Err(e) => return Err(e),
             };
             let realised = model.realised(objective, &values.theta, start_min)?;
+            if realised.is_none() && realised_any {
+                break;
+            }
+            realised_any |= realised.is_some();
             let approached = realised.map(|c| Candidate {
                 approached: true,
                 ..c
             });
             keep(objective, &mut best, approached);
+            // Close enough: a finer margin costs more rounds (transfers) for a smaller epsilon.
             if best
                 .as_ref()
-                .is_some_and(|c| distance(c, b) <= tolerance(b))
+                .is_some_and(|c| distance(c, b) <= tolerance(b).max(MARGIN_REL_EPSILON * b.abs()))
             {
                 break;
             }
