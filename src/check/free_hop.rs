@@ -11,24 +11,10 @@
 //! zero (C3026); the stated final batteries match the re-integration (C3027). Within an interval
 //! every rate is constant, so the bounds at its ends are the bounds throughout.
 
+use super::hop::{e_tol, v, T_TOL};
 use crate::eaas::{HopProblem, SlotInterval};
 use crate::error::Violation;
 use crate::problem::Role;
-
-const T_TOL: f64 = 1e-7;
-
-fn e_tol(x: f64) -> f64 {
-    1e-6 * (1.0 + x.abs())
-}
-
-fn v(code: &'static str, field: String, cause: String) -> Violation {
-    Violation::new(
-        code,
-        field,
-        cause,
-        "the schedule breaks the hop model; report it with the instance",
-    )
-}
 
 /// Checks a `free` schedule against `problem`.
 ///

@@ -16,13 +16,13 @@ use crate::eaas::{HopOutcome, HopProblem, Transfer};
 use crate::error::Violation;
 use crate::problem::Role;
 
-const T_TOL: f64 = 1e-7;
+pub(super) const T_TOL: f64 = 1e-7;
 
-fn e_tol(x: f64) -> f64 {
+pub(super) fn e_tol(x: f64) -> f64 {
     1e-6 * (1.0 + x.abs())
 }
 
-fn v(code: &'static str, field: String, cause: String) -> Violation {
+pub(super) fn v(code: &'static str, field: String, cause: String) -> Violation {
     Violation::new(
         code,
         field,
