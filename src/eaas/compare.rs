@@ -255,7 +255,7 @@ fn reference_of(rows: &[MethodRow]) -> Option<(f64, ReferenceKind, HopMethod)> {
 }
 
 /// Labels every row but the reference's own and the fluid bound's with its gap against
-/// [`reference`]; the grid MILP's row too when the reference is the continuous model (every grid
+/// [`reference()`]; the grid MILP's row too when the reference is the continuous model (every grid
 /// schedule is a continuous one). In `none` re-ordering (`reorder`) a heuristic row whose
 /// schedule swaps slots is outside the model: it gets `different_policy` and no gap.
 pub fn label_gaps(rows: &mut [MethodRow], problem: &HopProblem, reorder: Reorder) {

@@ -16,12 +16,15 @@
 //! plus the objective's rows (the exact `k`-pad assignment for the node time). With margin
 //! `m = 0` its value is the infimum of the objective over every continuous-time schedule of the
 //! mode (under the Slater condition of the write-up) and a lower bound on every schedule in any
-//! case. A schedule is realised from `θ` by playing each leg's configurations in `N` equal rounds,
-//! in an order chosen round by round so that every battery stays in `[0, C_d]`; when no round
-//! count up to [`MAX_ROUNDS`] works, the model is solved again with a margin `m > 0` and a short
-//! start in the empty configuration, whose schedule is realisable and within a certified `ε` of
-//! the infimum. The empty schedule and the heuristics' schedules (when the mode contains them)
-//! are incumbents from the start, so a hop that flies without sharing always has a schedule.
+//! case. A schedule is realised from `θ` by playing each leg's configurations in rounds of
+//! adaptive length (each round the same fraction of every share, so its end lies on the line
+//! between the leg-end batteries), in an order chosen round by round so that every battery stays
+//! in `[0, C_d]`; when that fails within [`MAX_ROUNDS`] rounds, the model is solved again with a
+//! margin `m > 0` and a short start in the empty configuration, whose schedule is realisable and
+//! within a certified `ε` of the infimum. The empty schedule and the heuristics' schedules (when
+//! the mode contains them) are incumbents from the start, so a hop that flies without sharing
+//! always has a schedule. In `free` re-ordering a configuration is a slot assignment of the
+//! delivery drones with a matching, and a schedule is a list of [`SlotInterval`]s.
 
 use super::{
     backend_end, moves, objective_of, validate_inputs, BackendEnd, ExactOutcome, ExactStatus,
@@ -1027,7 +1030,7 @@ fn in_mode(problem: &HopProblem, mode: Reorder, transfers: &[Transfer]) -> bool 
 /// # Complexity
 /// One LP over `L |Σ|` time shares (a MILP with the node-time objective's `n min(k, n)` pad
 /// binaries), `|Σ| <= Π_s (1 + |K_s|)` configurations; realisation `O(N L |Σ|^2 n)` for `N`
-/// rounds; at most five further solves ([`MARGIN_FRACTIONS`]) when the optimum is not attained.
+/// rounds; at most five further solves (margins of 1e-4 to 1e-8 of the smallest capacity) when the optimum is not attained.
 ///
 /// # Example
 /// ```
