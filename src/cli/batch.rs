@@ -57,7 +57,8 @@ pub struct BatchArgs {
     )]
     pub positioning: Vec<Positioning>,
     /// Route methods, comma-separated (`optimal`: the least delivery time over stop sequences,
-    /// simulated sharing policies only; never part of `--all`).
+    /// with `--sharing exact` also over sharing schedules and pads; not with `fair`; never part
+    /// of `--all`).
     #[arg(long, value_enum, value_delimiter = ',', default_value = "sequential")]
     pub route: Vec<RouteMethod>,
     /// Every combination of sharing, positioning and route (overrides the three lists): the
@@ -81,7 +82,7 @@ pub struct BatchArgs {
     pub node_limit: u64,
     /// Route gap: also plan every request with `--route optimal` (same sharing policy,
     /// positioning and support drones) and give each other route method's gap against it
-    /// (columns route_gap_*; simulated sharing policies only).
+    /// (columns route_gap_*; not with `fair`).
     #[arg(long)]
     pub gap: bool,
     /// Print the summaries as JSON.
@@ -201,7 +202,7 @@ pub fn run(args: BatchArgs) -> Result<i32> {
     let mut reference_of: Vec<Option<usize>> = vec![None; shown.len()];
     if args.gap {
         for (i, o) in shown.iter().enumerate() {
-            if o.route == RouteMethod::Optimal || o.sharing.is_exact() {
+            if o.route == RouteMethod::Optimal || o.sharing == SharingPolicy::Fair {
                 continue;
             }
             let optimal = PlanOptions {

@@ -61,8 +61,7 @@ pub struct SolveArgs {
     #[arg(long)]
     pub json: bool,
     /// Also plan the request with `--route optimal` (same sharing policy, positioning and support
-    /// drones) and give this plan's gap against it (`route_gap` in the JSON; simulated sharing
-    /// policies only).
+    /// drones) and give this plan's gap against it (`route_gap` in the JSON; not with `fair`).
     #[arg(long)]
     pub gap: bool,
     /// Re-verify the plan as printed with the independent checker (as `swarmplan check` does);
@@ -111,16 +110,16 @@ pub fn run(args: SolveArgs) -> Result<i32> {
         support: args.support,
     };
     context.validate(&options)?;
-    if args.gap && args.sharing.is_exact() {
+    if args.gap && args.sharing == SharingPolicy::Fair {
         return Err(Error::invalid(
             "E0015",
             "--gap",
             format!(
                 "--gap compares with --route optimal, which supports the simulated sharing \
-                 policies (none, idle-support, pb, fb), not {}",
+                 policies (none, idle-support, pb, fb) and exact, not {}",
                 args.sharing
             ),
-            "use --gap with --sharing none, idle-support, pb or fb",
+            "use --gap with --sharing none, idle-support, pb, fb or exact",
         ));
     }
     // A hop solve can take up to --hop-time-limit, and a route makes many.
@@ -219,40 +218,50 @@ fn print_human(report: &RequestReport) -> Result<()> {
         }
     }
     if let Some(c) = &plan.hop_solves {
-        let grid = match report.options.sharing {
-            crate::eaas::SharingPolicy::Exact => " (optimal over full-period grid schedules)",
+        let over = match report.options.sharing {
+            crate::eaas::SharingPolicy::Exact => " (optimal over continuous-time schedules)",
             _ => "",
         };
         outln!(
-            "hop solves: {} made{grid}: {} optimal, {} infeasible, {} stopped at the limit with a \
-             schedule, {} without, {} backend error(s); {} schedule(s) that do not fly; {} hop(s) flew without \
-             sharing instead",
+            "hop solves: {} made{over}: {} optimal, {} within a certified distance, {} \
+             infeasible, {} stopped at the limit with a schedule, {} without, {} backend \
+             error(s); {} schedule(s) that do not fly; {} hop(s) flew without sharing instead",
             c.solves,
             c.optimal,
+            c.optimal_within,
             c.infeasible,
             c.time_limit_incumbent,
-            c.time_limit_no_solution,
+            c.time_limit_no_solution + c.no_schedule_found,
             c.backend_errors,
             c.schedule_does_not_fly,
             c.fallbacks
         );
     }
     if let Some(o) = &plan.route_optimality {
-        let verdict = match (o.proven(), o.hop_paths) {
-            (true, HopPaths::Rule) => "proven optimal over stop sequences",
-            (true, HopPaths::Any) => "proven optimal over stop sequences and hop paths",
-            (false, _) => {
-                "optimal for the node times found (a stop's solve reached the node limit)"
-            }
+        let exact = report.options.sharing == crate::eaas::SharingPolicy::Exact;
+        let over = match (o.hop_paths, exact) {
+            (HopPaths::Rule, false) => "stop sequences",
+            (HopPaths::Rule, true) => "stop sequences, sharing schedules and pad assignments",
+            (HopPaths::Any, _) => "stop sequences and hop paths",
+        };
+        let verdict = if !o.proven() {
+            format!(
+                "optimal over {over} for the solves found ({} stop(s) at the node limit, {} hop \
+                 solve(s) unproven)",
+                o.stops_unproven, o.hop_solves_unproven
+            )
+        } else if o.epsilon_min > 0.0 {
+            format!("proven optimal over {over} within {:.3e} min", o.epsilon_min)
+        } else {
+            format!("proven optimal over {over}")
         };
         outln!(
             "route: {verdict} (--hop-paths {}); {} recharging node(s) settled, {} hop(s) flown, \
-             {} stop(s) solved, {} at the node limit",
+             {} stop(s) solved",
             o.hop_paths,
             o.stops_settled,
             o.arcs_flown,
             o.stops_solved,
-            o.stops_unproven
         );
     }
     if plan.delivered() {

@@ -226,6 +226,7 @@ impl Planner<'_> {
                             path,
                             flight,
                             stop: None,
+                            epsilon_min: 0.0,
                         });
                     }
                 }

@@ -15,14 +15,18 @@ use crate::problem::Profile;
 use crate::problem::SkywayGraph;
 use crate::problem::{Role, Swarm};
 use std::cell::{Cell, RefCell};
+use std::collections::HashMap;
 use std::sync::Arc;
 use std::sync::OnceLock;
 
 /// Rate matrices `[drone][slot]` per directed edge ([`Planner::edge_key`]).
 type RateCache = RefCell<Vec<Option<Arc<Vec<Vec<f64>>>>>>;
 
+/// Exact and fair flights from full batteries, by policy, path nodes and hop end.
+type FlightCache = RefCell<HashMap<(SharingPolicy, Vec<usize>, HopEnd), Flight>>;
+
 /// Where a flown hop ends, which decides what the exact and fair policies optimise.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum HopEnd {
     /// At a recharging stop: the least node time there.
     Stop,
@@ -59,6 +63,9 @@ pub struct Planner<'a> {
     exact: ExactSettings,
     /// Hop solves of the exact and fair policies made so far.
     solves: RefCell<HopSolveCounts>,
+    /// The exact and fair flights from full batteries solved so far: a hop departing full is
+    /// the same model whichever route method or stop sequence flies it.
+    flights: FlightCache,
     /// Node limit of the exact node time at every stop; `None` for none.
     node_limit: Option<u64>,
     /// Which paths the hops of the optimal route may follow.
@@ -87,6 +94,7 @@ impl<'a> Planner<'a> {
             payload_rates: OnceLock::new(),
             exact: ExactSettings::default(),
             solves: RefCell::new(HopSolveCounts::default()),
+            flights: RefCell::new(HashMap::new()),
             node_limit: Some(node_time::DEFAULT_STOP_NODE_LIMIT),
             hop_paths: super::HopPaths::Rule,
             validated: Cell::new(false),
@@ -246,7 +254,7 @@ impl<'a> Planner<'a> {
     /// Every drone's least rate over the slots on `leg` (directed edge index `key`), mAh/min:
     /// the row minima of [`Planner::leg_rates`] without building the matrix (`(p w) f` grows with
     /// `f` in floating point too, so the least slot factor gives the least product).
-    fn least_rates<'s>(
+    pub(super) fn least_rates<'s>(
         &'s self,
         key: usize,
         leg: &crate::network::Leg,
@@ -323,7 +331,7 @@ impl<'a> Planner<'a> {
 
     /// Index of the directed edge `leg` flies in the per-edge caches: edge `e` flown from its
     /// file `from` node at `2 e`, the other way at `2 e + 1`.
-    fn edge_key(&self, leg: &crate::network::Leg) -> usize {
+    pub(super) fn edge_key(&self, leg: &crate::network::Leg) -> usize {
         2 * leg.edge + usize::from(leg.from != self.graph.edge(leg.edge).a)
     }
 
@@ -413,6 +421,9 @@ impl<'a> Planner<'a> {
     /// Flies `path` without stopping under `policy`: PB, FB and the baselines are simulated; the
     /// exact and fair policies solve their model, for the least node time at the stop ending the
     /// hop when `end` is [`HopEnd::Stop`] and the node has pads, else for any schedule that flies.
+    /// An exact or fair hop departing with full batteries is solved once per planner: a second
+    /// call returns the first flight, and counts its solve again (so a composition's counts do
+    /// not depend on what the planner flew before).
     ///
     /// # Errors
     /// Those of [`eaas::simulate_with`] and [`exact_hop::fly_exact`].
@@ -423,6 +434,21 @@ impl<'a> Planner<'a> {
         policy: SharingPolicy,
         end: HopEnd,
     ) -> Result<Flight> {
+        let full = self
+            .swarm
+            .drones
+            .iter()
+            .zip(battery_mah)
+            .all(|(d, &b)| b == d.capacity_mah);
+        let key = (policy, path.nodes.clone(), end);
+        if policy.is_exact() && full {
+            if let Some(flight) = self.flights.borrow().get(&key) {
+                if let Some(solve) = &flight.solve {
+                    self.solves.borrow_mut().add(solve);
+                }
+                return Ok(flight.clone());
+            }
+        }
         let problem = self.hop_problem(path, battery_mah)?;
         if !policy.is_exact() {
             let options = eaas::PolicyOptions::from(&self.profile.readings);
@@ -443,10 +469,14 @@ impl<'a> Planner<'a> {
         };
         let (outcome, solve) = exact_hop::fly_exact(&problem, policy, &objective, &self.exact)?;
         self.solves.borrow_mut().add(&solve);
-        Ok(Flight {
+        let flight = Flight {
             outcome,
             solve: Some(solve),
-        })
+        };
+        if full {
+            self.flights.borrow_mut().insert(key, flight.clone());
+        }
+        Ok(flight)
     }
 
     /// The recharging stop at `node` for a swarm arriving with `arrival_mah`: every drone charges to
@@ -544,6 +574,74 @@ impl<'a> Planner<'a> {
             }
         }
         bound
+    }
+
+    /// A lower bound on the cost `tt + nt` of flying `path` from full batteries under any
+    /// continuous-time sharing schedule and stopping at `stop` (`None`: into the destination,
+    /// cost `tt`), min; `None` when no schedule can fly it.
+    ///
+    /// Each drone `d` consumes at least `w_d = Σ_l τ_l r_min[l][d]` (its least rate over the
+    /// slots on every leg). A support drone receives nothing, so its deficit at the end is at
+    /// least `w_s`; a delivery drone receives at most `rho` per minute, so its deficit is at
+    /// least `w_d - rho tt`; sharing creates no energy, so the deficits sum to at least `Σ w`.
+    /// The hop cannot fly when a deficit bound exceeds the drone's capacity, or the sum the
+    /// swarm's (beyond the hop evaluation's `1e-6` mAh and a relative `1e-9`). With `k` pads at
+    /// rate `q`, the node time is at least the P||Cmax bound `max(Σ w / (k q), max_d l_d / q,
+    /// (l_(k) + l_(k+1)) / q)` on the deficit bounds `l` sorted in decreasing order (two of the
+    /// `k + 1` largest share a pad). Lowered by a relative `1e-9` against rounding.
+    ///
+    /// # Errors
+    /// Those of [`Planner::leg_rates`] for a rate that is not finite.
+    pub(super) fn hop_bound_min(&self, path: &Route, stop: Option<usize>) -> Result<Option<f64>> {
+        const MARGIN: f64 = 1e-9;
+        let speed = self.speed_m_per_min();
+        let tt_min = path.distance_m / speed;
+        let n = self.swarm.drones.len();
+        let mut consumed_mah = vec![0.0; n];
+        for leg in &path.legs {
+            let key = self.edge_key(leg);
+            let tau_min = leg.distance_m / speed;
+            for (w, r) in consumed_mah.iter_mut().zip(self.least_rates(key, leg)) {
+                if !(r.is_finite() && r >= 0.0) {
+                    self.leg_rates(leg)?;
+                }
+                *w += tau_min * r;
+            }
+        }
+        let has_support = self.swarm.drones.iter().any(|d| d.role == Role::Support);
+        let inflow_mah = if has_support && self.sharing.shares() {
+            self.profile.sharing.rate_mah_per_min * tt_min
+        } else {
+            0.0
+        };
+        let beyond = |deficit: f64, capacity: f64| deficit > capacity * (1.0 + MARGIN) + 1e-6;
+        let mut deficits = Vec::with_capacity(n);
+        for (d, &w) in self.swarm.drones.iter().zip(&consumed_mah) {
+            let deficit = match d.role {
+                Role::Support => w,
+                Role::Delivery => (w - inflow_mah).max(0.0),
+            };
+            if beyond(deficit, d.capacity_mah) {
+                return Ok(None);
+            }
+            deficits.push(deficit);
+        }
+        let total_mah: f64 = consumed_mah.iter().sum();
+        let capacity_mah: f64 = self.swarm.drones.iter().map(|d| d.capacity_mah).sum();
+        if beyond(total_mah, capacity_mah) {
+            return Ok(None);
+        }
+        let Some(v) = stop else {
+            return Ok(Some(tt_min));
+        };
+        let pads = self.graph.pads(v) as usize;
+        let q = self.pad_rate_mah_per_min(v);
+        deficits.sort_by(|a, b| b.total_cmp(a));
+        let mut nt_min = (total_mah / pads as f64).max(deficits[0]) / q;
+        if n > pads {
+            nt_min = nt_min.max((deficits[pads - 1] + deficits[pads]) / q);
+        }
+        Ok(Some((tt_min + nt_min) * (1.0 - MARGIN)))
     }
 
     /// Smallest consumption rate of every drone over every directed edge and every slot, mAh/min.

@@ -14,6 +14,7 @@ mod factors;
 mod flight;
 mod gaps;
 mod grid;
+mod joint;
 mod optimal;
 mod plan;
 mod request;
@@ -27,6 +28,7 @@ pub use gaps::{lpt_gap, lpt_node_time_gaps, LptGapSummary, RouteGapSummary, Rout
 pub use plan::{Hop, LegFlown, Plan, PlanOutcome, RouteOptimality, Stop};
 pub use request::{Context, PlanOptions, RequestReport, RouteGap, SwarmChoice};
 
+use crate::eaas::SharingPolicy;
 use crate::problem::profile::Candidates;
 use serde::{Deserialize, Serialize};
 
@@ -46,7 +48,8 @@ pub enum RouteMethod {
     FloydWarshall,
     /// The least delivery time over every sequence of stops (Dijkstra on the stop graph, each
     /// hop along the shortest path between its stops, under the sharing policy): the proven
-    /// optimum the heuristics are measured against. Simulated sharing policies only. Not in
+    /// optimum the heuristics are measured against; under `exact`, the joint optimum over stop
+    /// sequences, sharing schedules and pad assignments. Not with `fair`. Not in
     /// [`RouteMethod::ALL`]: asked for by name.
     Optimal,
 }
@@ -114,9 +117,9 @@ impl Planner<'_> {
     /// A [`Plan`]; `plan.outcome` says why when the swarm cannot deliver ([`PlanOutcome`]).
     ///
     /// # Errors
-    /// [`crate::Error::Invalid`] E0015 for [`RouteMethod::Optimal`] with the exact and fair
-    /// policies; else only for malformed internal problems (a bug or inconsistent input that
-    /// escaped validation).
+    /// [`crate::Error::Invalid`] E0015 for [`RouteMethod::Optimal`] with the fair policy; else
+    /// only for malformed internal problems (a bug or inconsistent input that escaped
+    /// validation).
     ///
     /// # Complexity
     /// Sequential/A*: at most one step per recharging node, each step one Dijkstra tree and one
@@ -197,6 +200,9 @@ impl Planner<'_> {
             }
             RouteMethod::Optimal if self.hop_paths() == HopPaths::Any => {
                 self.compose_optimal_any_path(source, destination)
+            }
+            RouteMethod::Optimal if self.sharing() == SharingPolicy::Exact => {
+                self.compose_joint(source, destination)
             }
             RouteMethod::Optimal => self.compose_optimal(source, destination),
         }?;

@@ -6,6 +6,7 @@ use super::{Flight, HopEnd, Planner, Stop};
 use crate::eaas::SharingPolicy;
 use crate::error::{Error, Result};
 use crate::network::Route;
+use crate::eaas::milp::ExactStatus;
 use crate::solver::SolveStatus;
 
 /// The best arc found so far into a node of the stop graph: its tail, the hop path, the flight
@@ -15,19 +16,22 @@ pub(super) struct BestArc {
     pub(super) path: Route,
     pub(super) flight: Flight,
     pub(super) stop: Option<Stop>,
+    /// `--sharing exact`: how far the stop's node time may lie above the infimum of the hop's
+    /// node time over continuous-time schedules, min (0 when the optimum is attained).
+    pub(super) epsilon_min: f64,
 }
 
-/// The coded error of `--route optimal` with `--sharing exact | fair`.
+/// The coded error of `--route optimal` with `--sharing fair`.
 pub(crate) fn optimal_with_solved_sharing(sharing: SharingPolicy) -> Error {
     Error::invalid(
         "E0015",
         "--route optimal",
         format!(
             "--route optimal supports the simulated sharing policies (none, idle-support, pb, \
-             fb), not {sharing}"
+             fb) and exact, not {sharing}: the fair QP's layout is not an optimum of any hop"
         ),
-        "use --sharing none, idle-support, pb or fb with --route optimal, or another --route \
-         with --sharing exact or fair",
+        "use --sharing exact (the joint optimum) or a simulated policy with --route optimal, \
+         or another --route with --sharing fair",
     )
 }
 
@@ -58,7 +62,7 @@ impl Planner<'_> {
     /// does.
     ///
     /// # Errors
-    /// E0015 for the exact and fair policies; else those of [`Planner::fly`] and
+    /// E0015 for the fair policy; else those of [`Planner::fly`] and
     /// [`Planner::stop_at`].
     ///
     /// # Complexity
@@ -66,7 +70,7 @@ impl Planner<'_> {
     /// and one exact node time for each settled node: O(K^2) hops for K nodes with pads, fewer
     /// when bounds prune; plus O(K^2) to pick the nodes to settle.
     pub(crate) fn compose_optimal(&self, source: usize, destination: usize) -> Result<Plan> {
-        if self.sharing().is_exact() {
+        if self.sharing() == SharingPolicy::Fair {
             return Err(optimal_with_solved_sharing(self.sharing()));
         }
         let graph = self.graph();
@@ -87,7 +91,7 @@ impl Planner<'_> {
             }));
         };
         // The direct hop flies: no route with stops is shorter.
-        let (flight, direct_failure) = self.fly_to_destination(&direct, &full)?;
+        let (flight, direct_failure) = self.fly_to_destination(&direct, &full, &mut optimality)?;
         optimality.arcs_flown += 1;
         if let Some(flight) = flight {
             plan.push(self.hop(&direct, &full, flight, None));
@@ -122,7 +126,7 @@ impl Planner<'_> {
                 if let Some(path) = graph.shortest_path(u, destination) {
                     let cost = cost_min[u] + path.distance_m / speed;
                     if improves(cost, u, cost_min[destination], &best[destination]) {
-                        let (flight, _) = self.fly_to_destination(&path, &full)?;
+                        let (flight, _) = self.fly_to_destination(&path, &full, &mut optimality)?;
                         optimality.arcs_flown += 1;
                         if let Some(flight) = flight {
                             cost_min[destination] = cost;
@@ -131,6 +135,7 @@ impl Planner<'_> {
                                 path,
                                 flight,
                                 stop: None,
+                                epsilon_min: 0.0,
                             });
                         }
                     }
@@ -179,6 +184,7 @@ impl Planner<'_> {
     ) -> Result<Option<BestArc>> {
         let flight = self.fly(&path, full, self.sharing(), HopEnd::Stop)?;
         optimality.arcs_flown += 1;
+        count_unproven(&flight, optimality);
         if !flight.outcome.feasible {
             return Ok(None);
         }
@@ -189,11 +195,20 @@ impl Planner<'_> {
         if stop.status != SolveStatus::Optimal {
             optimality.stops_unproven += 1;
         }
+        // An infimum approached: the arc's cost is its infimum, the stop's node time lies
+        // within the solve's certified distance of it.
+        let epsilon_min = match &flight.solve {
+            Some(solve) if solve.status == Some(ExactStatus::OptimalWithin) => solve
+                .bound
+                .map_or(0.0, |bound| (stop.nt_min - bound).max(0.0)),
+            _ => 0.0,
+        };
         Ok(Some(BestArc {
             from: u,
             path,
             flight,
             stop: Some(stop),
+            epsilon_min,
         }))
     }
 
@@ -218,7 +233,9 @@ impl Planner<'_> {
             at = arc.from;
             arcs.push(arc);
         }
+        let mut optimality = optimality;
         for arc in arcs.into_iter().rev() {
+            optimality.epsilon_min += arc.epsilon_min;
             plan.push(self.hop(&arc.path, &full, arc.flight, arc.stop));
         }
         plan.route_optimality = Some(optimality);
@@ -228,10 +245,11 @@ impl Planner<'_> {
     /// The hop `path` into the destination from full batteries `full`: flown without sharing if
     /// that flies, else under the policy when it shares (Algorithm 1's lines 5–10). The flight,
     /// or `None` with the first failure (of the flight with sharing, when the policy shares).
-    fn fly_to_destination(
+    pub(super) fn fly_to_destination(
         &self,
         path: &Route,
         full: &[f64],
+        optimality: &mut RouteOptimality,
     ) -> Result<(Option<Flight>, Option<crate::eaas::HopFailure>)> {
         let flight = self.fly(path, full, SharingPolicy::None, HopEnd::NoStop)?;
         if flight.outcome.feasible {
@@ -240,12 +258,20 @@ impl Planner<'_> {
         let mut failure = flight.outcome.failure;
         if self.sharing().shares() {
             let flight = self.fly(path, full, self.sharing(), HopEnd::NoStop)?;
+            count_unproven(&flight, optimality);
             if flight.outcome.feasible {
                 return Ok((Some(flight), None));
             }
             failure = flight.outcome.failure;
         }
         Ok((None, failure))
+    }
+}
+
+/// Counts `flight`'s exact solve in `optimality` when it ended unproven.
+fn count_unproven(flight: &Flight, optimality: &mut RouteOptimality) {
+    if flight.solve.as_ref().is_some_and(|s| !s.proven()) {
+        optimality.hop_solves_unproven += 1;
     }
 }
 
@@ -282,7 +308,7 @@ pub(super) fn relax(
     arc: Option<BestArc>,
 ) {
     let Some(arc) = arc else { return };
-    let nt_min = arc.stop.as_ref().map_or(0.0, |s| s.nt_min);
+    let nt_min = arc.stop.as_ref().map_or(0.0, |s| s.nt_min) - arc.epsilon_min;
     let cost = tail_cost_min + arc.path.distance_m / speed_m_per_min + nt_min;
     if improves(cost, arc.from, cost_min[v], &best[v]) {
         cost_min[v] = cost;

@@ -28,8 +28,9 @@ pub struct Plan {
     /// Energy shared in flight over the whole plan, mAh.
     pub shared_mah: f64,
     /// Exact and fair policies: how every hop solve made while composing ended, candidate hops
-    /// included. `all_proven` in these counts is what makes the route's schedules optimal over
-    /// grid schedules.
+    /// included (a hop flown twice from full batteries is solved once and counted twice).
+    /// `all_proven` in these counts is what makes the route's schedules optimal over
+    /// continuous-time schedules.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub hop_solves: Option<HopSolveCounts>,
     /// `--route optimal`: the search of the stop graph, and whether the route is proven optimal.
@@ -39,8 +40,9 @@ pub struct Plan {
 
 /// What the optimal route's search of the stop graph did (`--route optimal`,
 /// models/compose.md): the route is the least delivery time over stop sequences when every
-/// stop solved while searching was solved to optimality (`stops_unproven == 0`).
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+/// stop solved while searching was solved to optimality (`stops_unproven == 0`) and, under
+/// `--sharing exact`, every hop solve was proven (`hop_solves_unproven == 0`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RouteOptimality {
     /// Nodes with pads settled before the destination (their out-arcs flown).
@@ -59,6 +61,31 @@ pub struct RouteOptimality {
     /// `any`: labels created by the searches of hop paths (one search per settled stop).
     #[serde(default, skip_serializing_if = "is_zero")]
     pub hop_path_labels: usize,
+    /// `--sharing exact`: rounds of the lazy search (a Dijkstra on the stop graph each).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub rounds: usize,
+    /// `--sharing exact`: arcs whose lower bound was taken from their path's legs.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub arcs_bounded: usize,
+    /// `--sharing exact`: arcs into a stop whose lower bound was then taken from the fluid LP.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub arcs_fluid_bounded: usize,
+    /// `--sharing exact`: arcs of the stop graph (`arcs_flown` of them were flown).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub arcs_total: usize,
+    /// `--sharing exact`: hop solves of the search that ended unproven (a time limit, a backend
+    /// failure, a fallback to the empty schedule, or a node time the node limit stopped).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub hop_solves_unproven: usize,
+    /// `--sharing exact`: the certified distance of the route's `dt` to the infimum over
+    /// continuous-time schedules, min: the sum over its hops of the distance of each hop's node
+    /// time to its infimum (0 when every optimum is attained, written only when not 0).
+    #[serde(default, skip_serializing_if = "is_zero_min")]
+    pub epsilon_min: f64,
+}
+
+fn is_zero_min(x: &f64) -> bool {
+    *x == 0.0
 }
 
 fn is_zero(n: &usize) -> bool {
@@ -69,7 +96,7 @@ impl RouteOptimality {
     /// Whether every node time of the search was proven optimal, so the route is the proven
     /// optimum over stop sequences.
     pub fn proven(&self) -> bool {
-        self.stops_unproven == 0
+        self.stops_unproven == 0 && self.hop_solves_unproven == 0
     }
 }
 

@@ -34,12 +34,12 @@ impl PlanOptions {
     /// policy (none, idle-support, pb, fb).
     ///
     /// # Errors
-    /// [`Error::Invalid`] E0015 for [`RouteMethod::Optimal`] with `exact` or `fair`.
+    /// [`Error::Invalid`] E0015 for [`RouteMethod::Optimal`] with `fair`.
     ///
     /// # Complexity
     /// O(1).
     pub fn validate(&self) -> Result<()> {
-        if self.route == RouteMethod::Optimal && self.sharing.is_exact() {
+        if self.route == RouteMethod::Optimal && self.sharing == SharingPolicy::Fair {
             return Err(super::optimal::optimal_with_solved_sharing(self.sharing));
         }
         Ok(())

@@ -113,6 +113,10 @@ pub struct HopSolve {
     /// `optimal`; the LP relaxation or fluid bound after a limit; the fair QP has none).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub bound: Option<f64>,
+    /// `exact`, status `optimal_within`: the certified distance of the flown schedule's model
+    /// value to the infimum (`bound`), in the objective's unit.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub epsilon: Option<f64>,
     /// Longest grid period, minutes (0 for both models, which are continuous in time).
     pub grid_step_min: f64,
     /// Whether the solver's own schedule flies (always for an `exact` schedule; the fair QP's
@@ -152,6 +156,19 @@ pub struct HopSolveCounts {
     pub schedule_does_not_fly: usize,
     /// Hops that flew the empty schedule instead (see [`Fallback`]).
     pub fallbacks: usize,
+}
+
+impl HopSolve {
+    /// Whether the solve is proven: `optimal`, `optimal_within` (within `epsilon`) or
+    /// `infeasible`, with the flown schedule's node time proven at the stop and no fallback to
+    /// the empty schedule.
+    pub fn proven(&self) -> bool {
+        matches!(
+            self.status,
+            Some(ExactStatus::Optimal | ExactStatus::OptimalWithin | ExactStatus::Infeasible)
+        ) && self.objective_proven
+            && self.fallback.is_none()
+    }
 }
 
 impl HopSolveCounts {
@@ -198,6 +215,7 @@ impl HopSolveCounts {
     pub fn all_proven(&self) -> bool {
         self.time_limit_incumbent == 0
             && self.time_limit_no_solution == 0
+            && self.no_schedule_found == 0
             && self.backend_errors == 0
     }
 }
@@ -271,9 +289,16 @@ pub fn fly_exact(
             ))
         }
     };
-    let (status, bound, grid_step_min, schedule, backend_error) = match solved {
-        Ok(o) => (Some(o.status), o.bound, o.grid_step_min, o.outcome, None),
-        Err(message) => (None, None, 0.0, None, Some(message)),
+    let (status, bound, epsilon, grid_step_min, schedule, backend_error) = match solved {
+        Ok(o) => (
+            Some(o.status),
+            o.bound,
+            o.epsilon.filter(|_| o.status == ExactStatus::OptimalWithin),
+            o.grid_step_min,
+            o.outcome,
+            None,
+        ),
+        Err(message) => (None, None, None, 0.0, None, Some(message)),
     };
     let exact_node_time = goal == HopGoal::NodeTimeMin && policy == SharingPolicy::Exact;
     let mut solve = HopSolve {
@@ -284,6 +309,7 @@ pub fn fly_exact(
         objective: None,
         objective_proven: true,
         bound: bound.filter(|_| exact_node_time),
+        epsilon: epsilon.filter(|_| exact_node_time),
         grid_step_min,
         schedule_flies: schedule.as_ref().is_some_and(|o| o.feasible),
         fallback: None,

@@ -110,7 +110,7 @@ pub enum SharingPolicy {
     Pb,
     /// Fairness-based sharing (the paper's Algorithm 3).
     Fb,
-    /// The hop MILP's optimal grid schedule on every hop (`models/eaas_milp.md`): least node
+    /// The optimal continuous-time schedule on every hop (`models/eaas_config.md`): least node
     /// time at a stop, any flying schedule into the destination.
     Exact,
     /// The fair QP's schedule on every hop (`models/eaas_fluid.md`), FB's exact counterpart.
