@@ -11,7 +11,13 @@ use std::path::Path;
 /// The configuration file of a run.
 pub const CONFIG_FILE: &str = "config.json";
 /// The data files, one row per record, reproducible byte for byte but `timings.csv`.
-pub const DATA_FILES: [&str; 4] = ["requests.csv", "hops.csv", "stops.csv", "timings.csv"];
+pub const DATA_FILES: [&str; 5] = [
+    "requests.csv",
+    "hops.csv",
+    "stops.csv",
+    "timings.csv",
+    "joint.csv",
+];
 
 fn csv_error(path: &Path, e: impl std::fmt::Display) -> Error {
     Error::invalid(
@@ -57,6 +63,7 @@ pub fn read_data(dir: &Path) -> Result<(BenchConfig, BenchData)> {
         hops: read_csv(&dir.join(DATA_FILES[1]))?,
         stops: read_csv(&dir.join(DATA_FILES[2]))?,
         timings: read_csv(&dir.join(DATA_FILES[3]))?,
+        joint: read_csv(&dir.join(DATA_FILES[4]))?,
     };
     Ok((config, data))
 }
@@ -83,6 +90,7 @@ pub fn write_outputs(
     write_csv(&dir.join(DATA_FILES[1]), &data.hops)?;
     write_csv(&dir.join(DATA_FILES[2]), &data.stops)?;
     write_csv(&dir.join(DATA_FILES[3]), &data.timings)?;
+    write_csv(&dir.join(DATA_FILES[4]), &data.joint)?;
     let (config, data) = read_data(dir)?;
     let mut summary = Summary::of(&config, &data, command);
     summary.findings = findings(&summary.methods, &data);
@@ -164,6 +172,7 @@ pub fn merge(dirs: &[&Path]) -> Result<(BenchConfig, BenchData)> {
         data.hops.extend(d.hops);
         data.stops.extend(d.stops);
         data.timings.extend(d.timings);
+        data.joint.extend(d.joint);
     }
     // Stable sorts: within one request and combination the rows keep their shard's order.
     data.requests
@@ -174,5 +183,6 @@ pub fn merge(dirs: &[&Path]) -> Result<(BenchConfig, BenchData)> {
         .sort_by_key(|r| (r.request_index, position(r.sharing, r.positioning, r.route)));
     data.timings
         .sort_by_key(|r| (r.request_index, position(r.sharing, r.positioning, r.route)));
+    data.joint.sort_by_key(|r| r.request_index);
     Ok((config, data))
 }

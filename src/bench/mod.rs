@@ -23,8 +23,8 @@ mod summary;
 pub use files::{merge, read_data, write_outputs, CONFIG_FILE, DATA_FILES};
 pub use findings::{findings, Finding, Verdict};
 pub use summary::{
-    DistanceBucket, GapHistogram, HopGapSummary, MethodSummary, StopGapSummary, Summary,
-    SUMMARY_SCHEMA_VERSION,
+    DistanceBucket, GapHistogram, GapSplitSummary, HopGapSummary, JointSummary, MethodSummary,
+    StopGapSummary, Summary, SUMMARY_SCHEMA_VERSION,
 };
 
 use crate::compose::{lpt_gap, Context, PlanOptions, RequestReport, RouteMethod};
@@ -104,6 +104,11 @@ pub struct BenchConfig {
     /// Whether each combination with a simulated sharing policy and a heuristic route is also
     /// planned with `--route optimal` for its route gap.
     pub gap: bool,
+    /// Whether each request's joint optimum (`--route optimal --sharing exact` over the swarms
+    /// of pre-composition) is computed, and every heuristic combination's gap split against
+    /// it (`joint.csv`, the `gap_*` columns of `requests.csv`).
+    #[serde(default)]
+    pub joint: bool,
     /// Requests of the set considered (the first `limit`); the shards split these.
     pub limit: usize,
     /// Requests (the first of the set) whose hops and stops are solved again exactly.
@@ -197,6 +202,62 @@ pub struct RequestRow {
     /// `(dt - dt_opt) / dt_opt` when both deliver (negative only for Dijkstra and
     /// Floyd–Warshall, whose hops follow their own route).
     pub route_gap: Option<f64>,
+    /// `--joint`: the request's joint optimum over swarms, stop sequences, continuous-time
+    /// sharing schedules and pads, min (empty when it does not deliver or was not computed).
+    pub joint_dt_min: Option<f64>,
+    /// `--joint`: why the split below is not (wholly) taken: `not_delivered`, `no_reference`,
+    /// `different_policy`, `outside_reference` (a hop off the hop-path rule: only the sharing
+    /// part); empty when every part is taken or for a reference row.
+    pub split_label: String,
+    /// `--joint`: the plan's stop sequence and hop paths flown with the exact schedule and pads
+    /// on every hop, `dt` min.
+    pub exact_schedule_dt_min: Option<f64>,
+    /// `--joint`: the optimum of the plan's own swarm under `--sharing exact`, min.
+    pub swarm_optimum_dt_min: Option<f64>,
+    /// `--joint`: `dt - joint_dt` = sharing + route + swarm, min.
+    pub gap_total_min: Option<f64>,
+    /// `--joint`: `dt - exact_schedule_dt`, min: the cost of the heuristic's sharing schedules.
+    pub gap_sharing_min: Option<f64>,
+    /// `--joint`: `exact_schedule_dt - swarm_optimum_dt`, min: the cost of the route choice.
+    pub gap_route_min: Option<f64>,
+    /// `--joint`: `swarm_optimum_dt - joint_dt`, min: the cost of pre-composition's swarm.
+    pub gap_swarm_min: Option<f64>,
+    /// `--joint`: each part is at least `-split_epsilon_min` (0 when every hop optimum is
+    /// attained).
+    pub split_epsilon_min: Option<f64>,
+    /// `--joint`: whether every solve behind the split's references is proven.
+    pub split_proven: Option<bool>,
+}
+
+/// `--joint`: one swarm's optimum under `--sharing exact` for one request: a row of
+/// `joint.csv`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct JointRow {
+    /// Position of the request in the request set.
+    pub request_index: usize,
+    /// Request id.
+    pub request_id: String,
+    /// The positioning the swarm was pre-composed with (`location-aware` for the swarm
+    /// without support drones).
+    pub positioning: crate::precompose::Positioning,
+    /// Support drones.
+    pub support_drones: usize,
+    /// Whether this swarm's optimum is the request's joint optimum (the first among equals).
+    pub best: bool,
+    /// Whether it delivers.
+    pub delivered: bool,
+    /// Delivery time, min.
+    pub dt_min: Option<f64>,
+    /// Recharging stops.
+    pub stops: usize,
+    /// Whether every node time and hop solve of the search is proven.
+    pub proven: bool,
+    /// The certified distance of `dt` to its infimum, min.
+    pub epsilon_min: f64,
+    /// Arcs of the stop graph flown (a hop solve each).
+    pub arcs_flown: usize,
+    /// Arcs of the stop graph.
+    pub arcs_total: usize,
 }
 
 /// One hop of a delivered plan under a sharing heuristic, solved again exactly: a row of
@@ -313,7 +374,12 @@ pub struct BenchData {
     pub stops: Vec<StopRow>,
     /// `timings.csv`.
     pub timings: Vec<TimingRow>,
+    /// `joint.csv` (`--joint`).
+    pub joint: Vec<JointRow>,
 }
+
+/// What is kept of one request: each combination's, and the joint optimum's rows.
+type Row = (Vec<Kept>, Vec<JointRow>);
 
 /// What is kept of one request planned with one combination.
 struct Kept {
@@ -344,20 +410,82 @@ pub fn run(
     let combos = config.planned_combos();
     let graph = context.graph();
     let readings = PolicyOptions::from(&context.profile().readings);
-    let keep = |i: usize, report: RequestReport| -> Result<Kept> {
+    let keep_row = |i: usize, request: &Request, reports: Vec<RequestReport>| -> Result<Row> {
         let position = positions[i];
         let distance_m = match (
-            graph.index_of(&report.request.source),
-            graph.index_of(&report.request.destination),
+            graph.index_of(&request.source),
+            graph.index_of(&request.destination),
         ) {
             (Some(s), Some(d)) => graph.distances_from_m(s)[d],
             _ => f64::NAN,
         };
-        keep_report(context, config, &readings, position, distance_m, report)
+        let joint = if config.joint {
+            Some(context.joint_split(request, &reports)?)
+        } else {
+            None
+        };
+        let mut kept = reports
+            .into_iter()
+            .map(|report| keep_report(context, config, &readings, position, distance_m, report))
+            .collect::<Result<Vec<_>>>()?;
+        let Some(joint) = joint else {
+            return Ok((kept, Vec::new()));
+        };
+        let joint_dt = joint.joint.dt_min();
+        for (k, split) in kept.iter_mut().zip(&joint.splits) {
+            let Some(split) = split else { continue };
+            let r = &mut k.row;
+            r.joint_dt_min = joint_dt;
+            r.split_label = split.label.map(|l| serde_name(&l)).unwrap_or_default();
+            r.exact_schedule_dt_min = split.exact_schedule_dt_min;
+            r.swarm_optimum_dt_min = split.swarm_optimum_dt_min;
+            r.gap_total_min = split.total_min;
+            r.gap_sharing_min = split.sharing_min;
+            r.gap_route_min = split.route_min;
+            r.gap_swarm_min = split.swarm_min;
+            r.split_epsilon_min = Some(split.epsilon_min);
+            r.split_proven = Some(split.proven);
+        }
+        if let Some(first) = kept.first_mut() {
+            first.timings.push(TimingRow {
+                request_index: position,
+                sharing: SharingPolicy::Exact,
+                positioning: crate::precompose::Positioning::LocationAware,
+                route: RouteMethod::Optimal,
+                hop_index: None,
+                what: "joint".into(),
+                ms: joint.joint.execution_ms,
+            });
+        }
+        let rows = joint
+            .joint
+            .swarms
+            .iter()
+            .enumerate()
+            .map(|(s, swarm)| {
+                let o = swarm.plan.route_optimality.unwrap_or_default();
+                JointRow {
+                    request_index: position,
+                    request_id: request.id.clone(),
+                    positioning: swarm.positioning,
+                    support_drones: swarm.support_drones,
+                    best: joint.joint.best == Some(s),
+                    delivered: swarm.plan.delivered(),
+                    dt_min: swarm.dt_min(),
+                    stops: swarm.plan.stops().len(),
+                    proven: o.proven(),
+                    epsilon_min: o.epsilon_min,
+                    arcs_flown: o.arcs_flown,
+                    arcs_total: o.arcs_total,
+                }
+            })
+            .collect();
+        Ok((kept, rows))
     };
-    let grid = context.plan_grid(&planned, &combos, threads, done, &keep)?;
+    let grid = context.plan_grid_rows(&planned, &combos, threads, done, &keep_row)?;
     let mut data = BenchData::default();
-    for row in grid {
+    for (row, joint) in grid {
+        data.joint.extend(joint);
         // Route gaps against the optimal route planned with the request.
         let reference: Vec<Option<(Option<f64>, bool)>> = config
             .combos
@@ -444,6 +572,16 @@ fn keep_report(
             optimal_dt_min: None,
             optimal_proven: None,
             route_gap: None,
+            joint_dt_min: None,
+            split_label: String::new(),
+            exact_schedule_dt_min: None,
+            swarm_optimum_dt_min: None,
+            gap_total_min: None,
+            gap_sharing_min: None,
+            gap_route_min: None,
+            gap_swarm_min: None,
+            split_epsilon_min: None,
+            split_proven: None,
         },
         proven: plan.route_optimality.is_none_or(|r| r.proven()),
         hops: Vec::new(),

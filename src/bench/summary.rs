@@ -8,7 +8,7 @@ use serde::Serialize;
 use std::collections::BTreeMap;
 
 /// Version of the schema of `summary.json`, `config.json` and the CSV files.
-pub const SUMMARY_SCHEMA_VERSION: u32 = 2;
+pub const SUMMARY_SCHEMA_VERSION: u32 = 3;
 
 /// Upper edges of the gap histograms' bins after the bins `< 0` and `0`: `(0, 1%]`, `(1%, 5%]`,
 /// ..., `(200%, 500%]`, then `> 500%`.
@@ -108,6 +108,9 @@ pub struct MethodSummary {
     pub route_gap: Option<RouteGapSummary>,
     /// The route gaps' histogram.
     pub route_gap_histogram: Option<GapHistogram>,
+    /// `--joint`: the gap to the joint optimum split into its parts.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub gap_split: Option<GapSplitSummary>,
     /// The requests by source–destination distance.
     pub by_distance: Vec<DistanceBucket>,
     /// Execution time over the requests, ms (machine-dependent): total.
@@ -116,6 +119,77 @@ pub struct MethodSummary {
     pub exec_ms_median: f64,
     /// Longest execution time of a request, ms.
     pub exec_ms_max: f64,
+}
+
+/// One combination's gaps to the joint optimum, split (`--joint`; models/compose.md, "Gap
+/// split"). Means are over the requests split wholly (`split`), in minutes, and in % of the
+/// joint optimum's `dt` (the mean of each part over `dt_joint`).
+#[derive(Debug, Clone, Serialize)]
+pub struct GapSplitSummary {
+    /// Requests whose gap is split into all three parts.
+    pub split: usize,
+    /// Requests delivered whose route leaves the hop-path rule: only the sharing part.
+    pub outside_reference: usize,
+    /// Requests delivered whose schedules lie outside `--reorder none`: no part.
+    pub different_policy: usize,
+    /// Requests the joint optimum delivers and the combination does not.
+    pub joint_only: usize,
+    /// Requests the combination delivers and the joint optimum does not (always 0: the joint
+    /// optimum's swarms and schedules contain the combination's).
+    pub heuristic_only: usize,
+    /// Requests split whose references are all proven.
+    pub proven: usize,
+    /// Mean `dt - dt_joint`, min.
+    pub mean_total_min: f64,
+    /// Mean sharing part, min.
+    pub mean_sharing_min: f64,
+    /// Mean route part, min.
+    pub mean_route_min: f64,
+    /// Mean swarm part, min.
+    pub mean_swarm_min: f64,
+    /// Mean of `total / dt_joint`.
+    pub mean_total_pct: f64,
+    /// Mean of `sharing / dt_joint`.
+    pub mean_sharing_pct: f64,
+    /// Mean of `route / dt_joint`.
+    pub mean_route_pct: f64,
+    /// Mean of `swarm / dt_joint`.
+    pub mean_swarm_pct: f64,
+    /// The least part over the requests split (`>= -max_epsilon_min`).
+    pub min_part_min: f64,
+    /// The largest certified distance behind a split, min.
+    pub max_epsilon_min: f64,
+}
+
+/// The joint optimum over the requests of the run (`--joint`).
+#[derive(Debug, Clone, Serialize)]
+pub struct JointSummary {
+    /// Requests.
+    pub requests: usize,
+    /// Requests the joint optimum delivers.
+    pub delivered: usize,
+    /// Requests whose every swarm's search is proven.
+    pub proven: usize,
+    /// Of the delivered, those whose best swarm's optimum is approached (epsilon > 0).
+    pub within: usize,
+    /// The largest epsilon of a best swarm, min.
+    pub max_epsilon_min: f64,
+    /// Delivered by the swarm without support drones alone, not by a swarm with them.
+    pub best_without_support: usize,
+    /// Mean joint `dt` over the delivered, min.
+    pub mean_dt_min: f64,
+    /// Arcs flown over every swarm's search.
+    pub arcs_flown: usize,
+    /// Arcs of the stop graphs searched.
+    pub arcs_total: usize,
+    /// Execution time per request (searches and replays), ms (machine-dependent): median.
+    pub ms_median: f64,
+    /// 90th percentile, ms.
+    pub ms_p90: f64,
+    /// Longest, ms.
+    pub ms_max: f64,
+    /// Total, ms.
+    pub ms_total: f64,
 }
 
 /// A sharing heuristic's hops on the exact subset against the hop's continuous-time optimum.
@@ -190,6 +264,9 @@ pub struct Summary {
     pub hop_gaps: Vec<HopGapSummary>,
     /// The stops of the exact subset.
     pub stop_gaps: StopGapSummary,
+    /// `--joint`: the joint optimum over the requests.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub joint: Option<JointSummary>,
     /// The paper's findings.
     pub findings: Vec<Finding>,
     /// The figure files written, relative to the output directory.
@@ -304,10 +381,104 @@ fn method_summary(config: &BenchConfig, data: &BenchData, o: &PlanOptions) -> Me
         lpt_mean_gap: total(delivered.iter().map(|r| r.lpt_gap_sum)) / lpt_stops.max(1) as f64,
         route_gap,
         route_gap_histogram,
+        gap_split: config.joint.then(|| gap_split_summary(&rows)),
         by_distance,
         exec_ms_total: total(times.iter().copied()),
         exec_ms_median: median(times.clone()),
         exec_ms_max: times.iter().copied().fold(0.0, f64::max),
+    }
+}
+
+fn gap_split_summary(rows: &[&RequestRow]) -> GapSplitSummary {
+    let split: Vec<&RequestRow> = rows
+        .iter()
+        .copied()
+        .filter(|r| r.gap_total_min.is_some())
+        .collect();
+    let label = |l: &str| rows.iter().filter(|r| r.split_label == l).count();
+    let part = |r: &RequestRow, f: fn(&RequestRow) -> Option<f64>| f(r).unwrap_or(0.0);
+    let mean = |f: fn(&RequestRow) -> Option<f64>| mean_of(&split, |r| part(r, f));
+    let mean_pct = |f: fn(&RequestRow) -> Option<f64>| {
+        mean_of(&split, |r| {
+            part(r, f) / r.joint_dt_min.filter(|&d| d > 0.0).unwrap_or(f64::INFINITY)
+        })
+    };
+    let parts: [fn(&RequestRow) -> Option<f64>; 3] = [
+        |r| r.gap_sharing_min,
+        |r| r.gap_route_min,
+        |r| r.gap_swarm_min,
+    ];
+    GapSplitSummary {
+        split: split.len(),
+        outside_reference: label("outside_reference"),
+        different_policy: label("different_policy"),
+        joint_only: rows
+            .iter()
+            .filter(|r| !r.success && r.joint_dt_min.is_some())
+            .count(),
+        heuristic_only: rows
+            .iter()
+            .filter(|r| r.success && r.joint_dt_min.is_none() && r.split_proven.is_some())
+            .count(),
+        proven: split.iter().filter(|r| r.split_proven == Some(true)).count(),
+        mean_total_min: mean(|r| r.gap_total_min),
+        mean_sharing_min: mean(parts[0]),
+        mean_route_min: mean(parts[1]),
+        mean_swarm_min: mean(parts[2]),
+        mean_total_pct: mean_pct(|r| r.gap_total_min),
+        mean_sharing_pct: mean_pct(parts[0]),
+        mean_route_pct: mean_pct(parts[1]),
+        mean_swarm_pct: mean_pct(parts[2]),
+        min_part_min: split
+            .iter()
+            .flat_map(|r| parts.iter().map(move |f| part(r, *f)))
+            .fold(0.0, f64::min),
+        max_epsilon_min: split
+            .iter()
+            .filter_map(|r| r.split_epsilon_min)
+            .fold(0.0, f64::max),
+    }
+}
+
+fn joint_summary(data: &BenchData) -> JointSummary {
+    let mut requests: Vec<usize> = data.joint.iter().map(|j| j.request_index).collect();
+    requests.dedup();
+    let best: Vec<&super::JointRow> = data.joint.iter().filter(|j| j.best).collect();
+    let proven = requests
+        .iter()
+        .filter(|&&i| {
+            data.joint
+                .iter()
+                .filter(|j| j.request_index == i)
+                .all(|j| j.proven)
+        })
+        .count();
+    let times: Vec<f64> = data
+        .timings
+        .iter()
+        .filter(|t| t.what == "joint")
+        .map(|t| t.ms)
+        .collect();
+    let mut sorted = times.clone();
+    sorted.sort_by(f64::total_cmp);
+    let p90 = sorted
+        .get(((sorted.len().max(1) - 1) as f64 * 0.9).round() as usize)
+        .copied()
+        .unwrap_or(0.0);
+    JointSummary {
+        requests: requests.len(),
+        delivered: best.len(),
+        proven,
+        within: best.iter().filter(|j| j.epsilon_min > 0.0).count(),
+        max_epsilon_min: best.iter().map(|j| j.epsilon_min).fold(0.0, f64::max),
+        best_without_support: best.iter().filter(|j| j.support_drones == 0).count(),
+        mean_dt_min: total(best.iter().map(|j| j.dt_min.unwrap_or(0.0))) / best.len().max(1) as f64,
+        arcs_flown: data.joint.iter().map(|j| j.arcs_flown).sum(),
+        arcs_total: data.joint.iter().map(|j| j.arcs_total).sum(),
+        ms_median: median(times.clone()),
+        ms_p90: p90,
+        ms_max: times.iter().copied().fold(0.0, f64::max),
+        ms_total: total(times.iter().copied()),
     }
 }
 
@@ -388,6 +559,7 @@ impl Summary {
                 .map(|s| hop_gap_summary(data, s))
                 .collect(),
             stop_gaps: stop_gap_summary(data),
+            joint: config.joint.then(|| joint_summary(data)),
             findings: Vec::new(),
             figures: Vec::new(),
             methods,

@@ -26,28 +26,59 @@ impl Context<'_> {
         done: &(dyn Fn(u64) + Sync),
         keep: &(dyn Fn(usize, RequestReport) -> Result<T> + Sync),
     ) -> Result<Vec<Vec<T>>> {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .map_err(|e| {
-                Error::invalid(
-                    "E0004",
-                    "--threads",
-                    format!("cannot start {threads} worker threads: {e}"),
-                    "give fewer --threads",
-                )
-            })?;
-        let rows: Vec<Result<Vec<T>>> = pool.install(|| {
+        let keep_row = |i: usize, _: &Request, reports: Vec<RequestReport>| -> Result<Vec<T>> {
+            reports.into_iter().map(|report| keep(i, report)).collect()
+        };
+        self.plan_grid_rows(requests, combos, threads, done, &keep_row)
+    }
+
+    /// [`Context::plan_grid`] keeping of each request what `keep_row(request position,
+    /// request, reports in the order of combos)` returns: for work on a request's reports
+    /// together (the joint optimum and the gap splits).
+    ///
+    /// # Errors
+    /// As [`Context::plan_grid`].
+    ///
+    /// # Complexity
+    /// As [`Context::plan_grid`], plus `keep_row` per request on the pool.
+    pub fn plan_grid_rows<T: Send>(
+        &self,
+        requests: &[Request],
+        combos: &[PlanOptions],
+        threads: usize,
+        done: &(dyn Fn(u64) + Sync),
+        keep_row: &(dyn Fn(usize, &Request, Vec<RequestReport>) -> Result<T> + Sync),
+    ) -> Result<Vec<T>> {
+        let pool = thread_pool(threads)?;
+        let rows: Vec<Result<T>> = pool.install(|| {
             requests
                 .par_iter()
                 .enumerate()
                 .map(|(i, r)| {
                     let reports = self.plan_each(r, combos)?;
                     done(combos.len() as u64);
-                    reports.into_iter().map(|report| keep(i, report)).collect()
+                    keep_row(i, r, reports)
                 })
                 .collect()
         });
         rows.into_iter().collect()
     }
+}
+
+/// A pool of `threads` worker threads.
+///
+/// # Errors
+/// E0004 when the pool cannot be started.
+fn thread_pool(threads: usize) -> Result<rayon::ThreadPool> {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| {
+            Error::invalid(
+                "E0004",
+                "--threads",
+                format!("cannot start {threads} worker threads: {e}"),
+                "give fewer --threads",
+            )
+        })
 }

@@ -19,6 +19,7 @@ mod optimal;
 mod plan;
 mod request;
 mod sequential;
+mod split;
 
 pub use any_path::MAX_HOP_PATH_LABELS;
 pub use baselines::BaselineCosts;
@@ -27,6 +28,7 @@ pub use flight::{Flight, HopEnd, Planner};
 pub use gaps::{lpt_gap, lpt_node_time_gaps, LptGapSummary, RouteGapSummary, RoutePair};
 pub use plan::{Hop, LegFlown, Plan, PlanOutcome, RouteOptimality, Stop};
 pub use request::{Context, PlanOptions, RequestReport, RouteGap, SwarmChoice};
+pub use split::{GapSplit, JointOptimum, JointSplit, SplitLabel, SwarmOptimum};
 
 use crate::eaas::SharingPolicy;
 use crate::problem::profile::Candidates;

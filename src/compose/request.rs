@@ -450,6 +450,6 @@ impl<'a> Context<'a> {
 }
 
 /// Milliseconds since `start`.
-fn elapsed_ms(start: Instant) -> f64 {
+pub(super) fn elapsed_ms(start: Instant) -> f64 {
     start.elapsed().as_secs_f64() * 1e3
 }
