@@ -10,12 +10,10 @@ mod common;
 
 use common::{paper_195, swarmplan};
 use swarmplan::check::check_plan;
-use swarmplan::compose::{
-    Context, HopEnd, PlanOptions, PlanOutcome, Planner, RequestReport, RouteMethod,
-};
+use swarmplan::compose::{Context, PlanOptions, PlanOutcome, RequestReport, RouteMethod};
 use swarmplan::eaas::SharingPolicy;
 use swarmplan::precompose::Positioning;
-use swarmplan::problem::{Network, Profile, Request, SkywayGraph, Swarm};
+use swarmplan::problem::{Network, Profile, Request, SkywayGraph};
 use swarmplan::solver::SolveStatus;
 
 /// Relative tolerance between two delivery times summed in different orders.
@@ -44,84 +42,6 @@ fn random_case(seed: u64) -> (Network, SkywayGraph, Request) {
             max_wind_mps: 6.0,
         },
     )
-}
-
-/// The least delivery time over every simple sequence of distinct pad nodes from `source` to
-/// `destination` (`None` when none delivers), by enumeration: from each stop, the hop into the
-/// destination flies without sharing or with the policy; the hop into a pad node flies with the
-/// policy, and the stop's node time is that of the arrival batteries.
-fn enumerate_min_dt(
-    graph: &SkywayGraph,
-    profile: &Profile,
-    swarm: &Swarm,
-    sharing: SharingPolicy,
-    source: usize,
-    destination: usize,
-) -> Option<f64> {
-    let planner = Planner::new(graph, profile, swarm, sharing);
-    let full = planner.full_battery_mah();
-    let speed = planner.speed_m_per_min();
-    let mut visited = vec![false; graph.node_count()];
-    visited[source] = true;
-    let mut best: Option<f64> = None;
-    // Depth-first over sequences: (node, cost so far).
-    fn walk(
-        ctx: &(&Planner, &SkywayGraph, &[f64], f64, usize, SharingPolicy),
-        u: usize,
-        cost_min: f64,
-        visited: &mut Vec<bool>,
-        best: &mut Option<f64>,
-    ) {
-        let (planner, graph, full, speed, destination, sharing) = *ctx;
-        if let Some(path) = graph.shortest_path(u, destination) {
-            let plain = planner
-                .fly(&path, full, SharingPolicy::None, HopEnd::NoStop)
-                .unwrap();
-            let flies = plain.outcome.feasible
-                || sharing.shares()
-                    && planner
-                        .fly(&path, full, sharing, HopEnd::NoStop)
-                        .unwrap()
-                        .outcome
-                        .feasible;
-            if flies {
-                let dt = cost_min + path.distance_m / speed;
-                if best.is_none_or(|b| dt < b) {
-                    *best = Some(dt);
-                }
-            }
-        }
-        for v in 0..graph.node_count() {
-            if visited[v] || v == destination || graph.pads(v) == 0 {
-                continue;
-            }
-            let Some(path) = graph.shortest_paths_to(u).reversed_path_from(v) else {
-                continue;
-            };
-            let flight = planner.fly(&path, full, sharing, HopEnd::Stop).unwrap();
-            if !flight.outcome.feasible {
-                continue;
-            }
-            let stop = planner
-                .stop_at(v, &flight.outcome.final_battery_mah)
-                .unwrap()
-                .unwrap();
-            visited[v] = true;
-            let cost = cost_min + path.distance_m / speed + stop.nt_min;
-            walk(ctx, v, cost, visited, best);
-            visited[v] = false;
-        }
-    }
-    let ctx = (
-        &planner,
-        graph,
-        full.as_slice(),
-        speed,
-        destination,
-        sharing,
-    );
-    walk(&ctx, source, 0.0, &mut visited, &mut best);
-    best
 }
 
 fn checked(network: &Network, profile: &Profile, request: &Request, r: &RequestReport) {
@@ -173,7 +93,7 @@ fn optimal_route_equals_the_enumeration_of_stop_sequences_and_never_exceeds_algo
                 graph.index_of(&request.source).unwrap(),
                 graph.index_of(&request.destination).unwrap(),
             );
-            let expected = enumerate_min_dt(&graph, &profile, &opt.swarm, sharing, s, t);
+            let expected = common::enumerate_min_dt(&graph, &profile, &opt.swarm, sharing, s, t);
             let what = format!("seed {seed} {sharing}");
             match expected {
                 Some(dt) => {
@@ -284,8 +204,8 @@ fn solve_with_route_optimal_prints_an_optimal_plan() {
 }
 
 #[test]
-fn route_optimal_with_exact_or_fair_sharing_is_refused_with_e0015() {
-    for sharing in ["exact", "fair"] {
+fn route_optimal_with_fair_sharing_is_refused_with_e0015() {
+    for sharing in ["fair"] {
         let out = swarmplan(&[
             "solve",
             "--request-id",

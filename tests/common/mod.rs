@@ -331,3 +331,81 @@ pub fn integral_hop(seed: u64) -> HopProblem {
         delta_mah: rng.random_range(0..=2u32) as f64,
     }
 }
+
+/// The least delivery time over every simple sequence of distinct pad nodes from `source` to
+/// `destination` (`None` when none delivers), by enumeration: from each stop, the hop into the
+/// destination flies without sharing or with the policy; the hop into a pad node flies with the
+/// policy, and the stop's node time is that of the arrival batteries.
+pub fn enumerate_min_dt(
+    graph: &SkywayGraph,
+    profile: &Profile,
+    swarm: &swarmplan::problem::Swarm,
+    sharing: swarmplan::eaas::SharingPolicy,
+    source: usize,
+    destination: usize,
+) -> Option<f64> {
+    let planner = swarmplan::compose::Planner::new(graph, profile, swarm, sharing);
+    let full = planner.full_battery_mah();
+    let speed = planner.speed_m_per_min();
+    let mut visited = vec![false; graph.node_count()];
+    visited[source] = true;
+    let mut best: Option<f64> = None;
+    // Depth-first over sequences: (node, cost so far).
+    fn walk(
+        ctx: &(&swarmplan::compose::Planner, &SkywayGraph, &[f64], f64, usize, swarmplan::eaas::SharingPolicy),
+        u: usize,
+        cost_min: f64,
+        visited: &mut Vec<bool>,
+        best: &mut Option<f64>,
+    ) {
+        let (planner, graph, full, speed, destination, sharing) = *ctx;
+        if let Some(path) = graph.shortest_path(u, destination) {
+            let plain = planner
+                .fly(&path, full, swarmplan::eaas::SharingPolicy::None, swarmplan::compose::HopEnd::NoStop)
+                .unwrap();
+            let flies = plain.outcome.feasible
+                || sharing.shares()
+                    && planner
+                        .fly(&path, full, sharing, swarmplan::compose::HopEnd::NoStop)
+                        .unwrap()
+                        .outcome
+                        .feasible;
+            if flies {
+                let dt = cost_min + path.distance_m / speed;
+                if best.is_none_or(|b| dt < b) {
+                    *best = Some(dt);
+                }
+            }
+        }
+        for v in 0..graph.node_count() {
+            if visited[v] || v == destination || graph.pads(v) == 0 {
+                continue;
+            }
+            let Some(path) = graph.shortest_paths_to(u).reversed_path_from(v) else {
+                continue;
+            };
+            let flight = planner.fly(&path, full, sharing, swarmplan::compose::HopEnd::Stop).unwrap();
+            if !flight.outcome.feasible {
+                continue;
+            }
+            let stop = planner
+                .stop_at(v, &flight.outcome.final_battery_mah)
+                .unwrap()
+                .unwrap();
+            visited[v] = true;
+            let cost = cost_min + path.distance_m / speed + stop.nt_min;
+            walk(ctx, v, cost, visited, best);
+            visited[v] = false;
+        }
+    }
+    let ctx = (
+        &planner,
+        graph,
+        full.as_slice(),
+        speed,
+        destination,
+        sharing,
+    );
+    walk(&ctx, source, 0.0, &mut visited, &mut best);
+    best
+}
