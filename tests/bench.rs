@@ -381,3 +381,127 @@ fn request_rows_agree_with_solve() {
         assert_eq!(row["route_gap_reference"], "");
     }
 }
+
+#[test]
+fn joint_split_adds_up_agrees_with_solve_and_merges_like_one_run() {
+    let one = bench("joint-1", &["--joint", "--threads", "1"]);
+    let rows = csv_rows(&one, "requests.csv");
+    let joint = csv_rows(&one, "joint.csv");
+    let num = |r: &BTreeMap<String, String>, k: &str| -> Option<f64> {
+        (!r[k].is_empty()).then(|| r[k].parse().unwrap())
+    };
+    let mut split = 0;
+    for r in &rows {
+        let what = format!(
+            "{} {}/{}/{}",
+            r["request_id"], r["sharing"], r["positioning"], r["route"]
+        );
+        // The joint optimum is the best row of joint.csv for the request.
+        let best: Vec<_> = joint
+            .iter()
+            .filter(|j| j["request_index"] == r["request_index"] && j["best"] == "true")
+            .collect();
+        assert!(best.len() <= 1, "{what}");
+        assert_eq!(
+            num(r, "joint_dt_min"),
+            best.first().and_then(|b| num(b, "dt_min")),
+            "{what}"
+        );
+        if r["success"] == "true" {
+            assert!(num(r, "joint_dt_min").is_some(), "{what}: delivered alone");
+        }
+        let Some(total) = num(r, "gap_total_min") else {
+            continue;
+        };
+        let parts =
+            ["gap_sharing_min", "gap_route_min", "gap_swarm_min"].map(|k| num(r, k).unwrap());
+        let eps = num(r, "split_epsilon_min").unwrap();
+        assert!(
+            (parts.iter().sum::<f64>() - total).abs() <= 1e-9 * total.abs().max(1.0),
+            "{what}"
+        );
+        let dt: f64 = r["dt_min"].parse().unwrap();
+        assert!(
+            (dt - num(r, "joint_dt_min").unwrap() - total).abs() <= 1e-9 * dt,
+            "{what}"
+        );
+        assert!(
+            parts.iter().all(|&p| p >= -eps - 1e-9 * dt),
+            "{what}: {parts:?}"
+        );
+        split += 1;
+    }
+    assert!(split >= 12, "only {split} rows split");
+    // A swarm's optimum is what `solve --route optimal --sharing exact` gives.
+    let first = joint
+        .iter()
+        .find(|j| {
+            j["positioning"] == "location-aware"
+                && j["support_drones"] != "0"
+                && j["delivered"] == "true"
+        })
+        .expect("a location-aware swarm delivers");
+    let request: usize = first["request_index"].parse().unwrap();
+    let id = &rows
+        .iter()
+        .find(|r| r["request_index"] == request.to_string())
+        .unwrap()["request_id"];
+    let out = swarmplan(&[
+        "solve",
+        "--network",
+        &common::repo_arg("instances/findings-195/network.json"),
+        "--profile",
+        &common::repo_arg("instances/profiles/paper-findings.toml"),
+        "--request-id",
+        id,
+        "--route",
+        "optimal",
+        "--sharing",
+        "exact",
+        "--hop-time-limit",
+        "0.5",
+        "--json",
+    ]);
+    assert!(out.status.success(), "{}", common::stderr(&out));
+    let doc: Value = serde_json::from_slice(&out.stdout).unwrap();
+    let dt = doc["plan"]["dt_min"].as_f64().unwrap();
+    assert_eq!(dt, num(first, "dt_min").unwrap(), "request {id}");
+    // Two shards merge into the files of one run.
+    let shards: Vec<_> = (0..2)
+        .map(|i| {
+            bench(
+                &format!("joint-shard-{i}"),
+                &["--joint", "--shard", &format!("{i}/2")],
+            )
+        })
+        .collect();
+    let merged = tmp("joint-merged");
+    let _ = std::fs::remove_dir_all(&merged);
+    let run = swarmplan(&[
+        "bench",
+        "merge",
+        shards[1].to_str().unwrap(),
+        shards[0].to_str().unwrap(),
+        "--out",
+        merged.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{run:?}");
+    for file in ["config.json", "requests.csv", "joint.csv"] {
+        assert_eq!(read(&one, file), read(&merged, file), "{file}");
+    }
+    let summary: Value = serde_json::from_str(&read(&one, "summary.json")).unwrap();
+    assert!(
+        summary["joint"]["requests"].as_u64() == Some(12),
+        "{}",
+        summary["joint"]
+    );
+    assert!(
+        summary["figures"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|f| f == "figures/gap_split.svg"),
+        "{}",
+        summary["figures"]
+    );
+}

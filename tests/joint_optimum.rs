@@ -73,7 +73,11 @@ fn joint_optimum_equals_the_enumeration_and_never_exceeds_a_heuristic_or_a_same_
             Positioning::LocationAware,
             RouteMethod::Optimal,
         )];
-        for sharing in [SharingPolicy::IdleSupport, SharingPolicy::Pb, SharingPolicy::Fb] {
+        for sharing in [
+            SharingPolicy::IdleSupport,
+            SharingPolicy::Pb,
+            SharingPolicy::Fb,
+        ] {
             for route in [
                 RouteMethod::Optimal,
                 RouteMethod::Sequential,
@@ -89,16 +93,13 @@ fn joint_optimum_equals_the_enumeration_and_never_exceeds_a_heuristic_or_a_same_
             graph.index_of(&request.source).unwrap(),
             graph.index_of(&request.destination).unwrap(),
         );
-        let proof = joint.plan.route_optimality.expect("optimal records its search");
+        let proof = joint
+            .plan
+            .route_optimality
+            .expect("optimal records its search");
         assert!(proof.proven(), "seed {seed}: {proof:?}");
-        let expected = common::enumerate_min_dt(
-            &graph,
-            &profile,
-            &joint.swarm,
-            SharingPolicy::Exact,
-            s,
-            t,
-        );
+        let expected =
+            common::enumerate_min_dt(&graph, &profile, &joint.swarm, SharingPolicy::Exact, s, t);
         let what = format!("seed {seed}");
         match expected {
             Some(dt) => {
@@ -146,7 +147,10 @@ fn joint_optimum_equals_the_enumeration_and_never_exceeds_a_heuristic_or_a_same_
     // Not vacuous: routes stop, some requests fail, and exact sharing beats PB's optimum.
     assert!(with_stops * 3 >= cases, "only {with_stops} of {cases} stop");
     assert!(no_sequence > 0, "every request of the {cases} delivers");
-    assert!(below_pb > 0, "the joint optimum never beats PB's optimal route");
+    assert!(
+        below_pb > 0,
+        "the joint optimum never beats PB's optimal route"
+    );
 }
 
 #[test]
@@ -182,7 +186,10 @@ fn gap_split_parts_add_up_are_not_negative_and_no_heuristic_delivers_alone() {
             let g = split_of.as_ref().expect("every report is a heuristic");
             let what = format!("seed {seed} {:?}", report.options);
             if report.plan.delivered() {
-                assert!(joint_dt.is_some(), "{what}: delivers, the joint optimum does not");
+                assert!(
+                    joint_dt.is_some(),
+                    "{what}: delivers, the joint optimum does not"
+                );
             }
             let Some(total) = g.total_min else {
                 continue;
@@ -211,7 +218,10 @@ fn gap_split_parts_add_up_are_not_negative_and_no_heuristic_delivers_alone() {
             }
             if report.options.sharing == SharingPolicy::None {
                 // No support drone: the exact schedule is the empty one.
-                assert!(sharing.abs() <= 1e-9 * report.plan.dt_min, "{what}: {sharing}");
+                assert!(
+                    sharing.abs() <= 1e-9 * report.plan.dt_min,
+                    "{what}: {sharing}"
+                );
             }
             split += 1;
         }
@@ -225,7 +235,10 @@ fn gap_split_parts_add_up_are_not_negative_and_no_heuristic_delivers_alone() {
     }
     assert!(split > 50, "only {split} plans split");
     // Not vacuous: each part is positive for some plan.
-    assert!(positive.iter().all(|&n| n > 0), "positive parts {positive:?}");
+    assert!(
+        positive.iter().all(|&n| n > 0),
+        "positive parts {positive:?}"
+    );
 }
 
 #[test]

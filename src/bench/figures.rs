@@ -1,7 +1,7 @@
 //! The SVG figures of a bench run, drawn from its summary with plotters.
 //!
-//! Each figure kind first gathers its data from the [`Summary`] into one of three chart shapes
-//! (`Bars`, `Lines`, `GroupedBars`); one function per shape then draws it. A figure whose
+//! Each figure kind first gathers its data from the [`Summary`] into one of four chart shapes
+//! (`Bars`, `Lines`, `GroupedBars`, `StackedBars`); one function per shape then draws it. A figure whose
 //! data are absent is not written. Text is laid out by plotters itself (no system font is read)
 //! and the SVG holds no date, so the same summary gives the same bytes.
 
@@ -68,6 +68,17 @@ struct GroupedBars {
     bins: Vec<String>,
     /// Per series, its label and its count in each bin.
     series: Vec<(String, Vec<usize>)>,
+}
+
+/// One horizontal bar per category, the first at the top, made of stacked parts (each `>= 0`,
+/// negative parts drawn as 0), with a legend naming the parts.
+struct StackedBars {
+    title: String,
+    value_axis: String,
+    labels: Vec<String>,
+    parts: Vec<String>,
+    /// Per category, its value of each part.
+    values: Vec<Vec<f64>>,
 }
 
 /// Delivery time or node time, the two quantities drawn against distance.
@@ -151,6 +162,9 @@ pub fn write_figures(dir: &Path, summary: &Summary) -> Result<Vec<String>> {
             figures.push((name.to_string(), draw_grouped_bars(&h)));
         }
     }
+    if let Some(bars) = gap_split(summary) {
+        figures.push(("gap_split.svg".to_string(), draw_stacked_bars(&bars)));
+    }
 
     let mut written = Vec::new();
     if !figures.is_empty() {
@@ -200,6 +214,33 @@ fn delivered(summary: &Summary) -> Option<Bars> {
             )
         },
     )
+}
+
+/// `--joint`: the mean parts of every combination's gap to the joint optimum, minutes.
+fn gap_split(summary: &Summary) -> Option<StackedBars> {
+    let split: Vec<&MethodSummary> = summary
+        .methods
+        .iter()
+        .filter(|m| m.gap_split.as_ref().is_some_and(|g| g.split > 0))
+        .collect();
+    if split.is_empty() {
+        return None;
+    }
+    Some(StackedBars {
+        title: "Mean gap to the joint optimum, split".to_string(),
+        value_axis: "mean dt - dt_joint over the requests split (min)".to_string(),
+        labels: split.iter().map(|m| combination(&m.options)).collect(),
+        parts: ["sharing schedule", "route", "swarm"]
+            .map(String::from)
+            .to_vec(),
+        values: split
+            .iter()
+            .map(|m| {
+                let g = m.gap_split.as_ref().expect("filtered above");
+                vec![g.mean_sharing_min, g.mean_route_min, g.mean_swarm_min]
+            })
+            .collect(),
+    })
 }
 
 fn exec_time(summary: &Summary) -> Option<Bars> {
@@ -438,6 +479,51 @@ fn draw_bars(bars: &Bars) -> Drawn<String> {
                 + Text::new(bars.value_texts[i].clone(), (6, 0), beside.clone())
         }))?;
         Ok(())
+    })
+}
+
+/// Horizontal stacked bars: the categories on the y axis, the first at the top; a legend in the
+/// lower right corner.
+fn draw_stacked_bars(bars: &StackedBars) -> Drawn<String> {
+    let n = bars.labels.len();
+    let labels: Vec<String> = bars.labels.iter().rev().cloned().collect();
+    let longest = labels.iter().map(String::len).max().unwrap_or(0) as u32;
+    let height = 200 + BAR_ROW_PX * n as u32;
+    let totals = bars
+        .values
+        .iter()
+        .map(|v| v.iter().map(|x| x.max(0.0)).sum::<f64>());
+    let top = axis_top(totals.fold(0.0, f64::max), 1.1);
+    draw((WIDTH_PX, height), |root| {
+        let mut chart = chart_builder(root, &bars.title, 24 + 8 * longest)
+            .build_cartesian_2d(0.0..top, categories(n))?;
+        let category = |y: &i32| category_at(&labels, *y);
+        chart
+            .configure_mesh()
+            .disable_y_mesh()
+            .x_desc(bars.value_axis.as_str())
+            .label_style(font(SMALL_PT))
+            .axis_desc_style(font(LABEL_PT))
+            .y_label_formatter(&category)
+            .draw()?;
+        let slot = |i: usize| (n - 1 - i) as i32 * SLOT;
+        for (j, part) in bars.parts.iter().enumerate() {
+            let start = |i: usize| bars.values[i][..j].iter().map(|x| x.max(0.0)).sum::<f64>();
+            chart
+                .draw_series((0..n).map(|i| {
+                    let from = start(i);
+                    let to = from + bars.values[i][j].max(0.0);
+                    Rectangle::new(
+                        [(from, slot(i) + SLOT / 8), (to, slot(i) + SLOT - SLOT / 8)],
+                        colour(j).filled(),
+                    )
+                }))?
+                .label(part.as_str())
+                .legend(move |(x, y)| {
+                    Rectangle::new([(x, y - 6), (x + 12, y + 6)], colour(j).filled())
+                });
+        }
+        draw_legend(&mut chart, SeriesLabelPosition::LowerRight)
     })
 }
 

@@ -139,12 +139,10 @@ impl BenchConfig {
     /// The optimal route a combination's route gap is measured against, when there is one.
     pub fn reference_of(&self, combo: &PlanOptions) -> Option<PlanOptions> {
         (self.gap && combo.route != RouteMethod::Optimal && combo.sharing != SharingPolicy::Fair)
-            .then_some(
-            PlanOptions {
+            .then_some(PlanOptions {
                 route: RouteMethod::Optimal,
                 ..*combo
-            },
-        )
+            })
     }
 }
 

@@ -420,7 +420,10 @@ fn gap_split_summary(rows: &[&RequestRow]) -> GapSplitSummary {
             .iter()
             .filter(|r| r.success && r.joint_dt_min.is_none() && r.split_proven.is_some())
             .count(),
-        proven: split.iter().filter(|r| r.split_proven == Some(true)).count(),
+        proven: split
+            .iter()
+            .filter(|r| r.split_proven == Some(true))
+            .count(),
         mean_total_min: mean(|r| r.gap_total_min),
         mean_sharing_min: mean(parts[0]),
         mean_route_min: mean(parts[1]),

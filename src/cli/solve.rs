@@ -251,7 +251,10 @@ fn print_human(report: &RequestReport) -> Result<()> {
                 o.stops_unproven, o.hop_solves_unproven
             )
         } else if o.epsilon_min > 0.0 {
-            format!("proven optimal over {over} within {:.3e} min", o.epsilon_min)
+            format!(
+                "proven optimal over {over} within {:.3e} min",
+                o.epsilon_min
+            )
         } else {
             format!("proven optimal over {over}")
         };

@@ -119,9 +119,10 @@ impl Planner<'_> {
         let min_swarm_rate: f64 = min_rates.iter().sum();
         let endurance_min = self.endurance_bound_min(&full, &min_rates);
         let mut stops = vec![source];
-        stops.extend((0..graph.node_count()).filter(|&v| {
-            v != source && v != destination && graph.pads(v) > 0
-        }));
+        stops.extend(
+            (0..graph.node_count())
+                .filter(|&v| v != source && v != destination && graph.pads(v) > 0),
+        );
         stops.push(destination);
         let mut search = Search {
             stops,
@@ -129,7 +130,9 @@ impl Planner<'_> {
             arcs: HashMap::new(),
         };
         // The direct arc is flown and does not fly.
-        search.arcs.insert((source, destination), Known::Flown(None));
+        search
+            .arcs
+            .insert((source, destination), Known::Flown(None));
         let sequence = loop {
             optimality.rounds += 1;
             // Dijkstra on the current values, arcs from the lowest tail among equal labels.

@@ -3,10 +3,10 @@
 
 use super::plan::{Plan, PlanOutcome, RouteOptimality};
 use super::{Flight, HopEnd, Planner, Stop};
+use crate::eaas::milp::ExactStatus;
 use crate::eaas::SharingPolicy;
 use crate::error::{Error, Result};
 use crate::network::Route;
-use crate::eaas::milp::ExactStatus;
 use crate::solver::SolveStatus;
 
 /// The best arc found so far into a node of the stop graph: its tail, the hop path, the flight

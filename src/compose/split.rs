@@ -240,9 +240,11 @@ impl Context<'_> {
             split.label = Some(SplitLabel::NotDelivered);
             return Ok(split);
         }
-        let swaps = plan.hops.iter().flat_map(|h| &h.transfers).any(|t| {
-            t.consumer_slot != report.swarm.initial_slot[t.consumer]
-        });
+        let swaps = plan
+            .hops
+            .iter()
+            .flat_map(|h| &h.transfers)
+            .any(|t| t.consumer_slot != report.swarm.initial_slot[t.consumer]);
         if swaps && self.exact.milp.reorder == Reorder::None {
             split.label = Some(SplitLabel::DifferentPolicy);
             return Ok(split);
@@ -255,7 +257,9 @@ impl Context<'_> {
                 message: format!(
                     "E0019: request {}: the exact schedules do not fly the {} plan's route \
                      ({}); report it with the instance",
-                    report.request.id, o_name(report), replay.plan.outcome
+                    report.request.id,
+                    o_name(report),
+                    replay.plan.outcome
                 ),
             });
         }

@@ -352,7 +352,14 @@ pub fn enumerate_min_dt(
     let mut best: Option<f64> = None;
     // Depth-first over sequences: (node, cost so far).
     fn walk(
-        ctx: &(&swarmplan::compose::Planner, &SkywayGraph, &[f64], f64, usize, swarmplan::eaas::SharingPolicy),
+        ctx: &(
+            &swarmplan::compose::Planner,
+            &SkywayGraph,
+            &[f64],
+            f64,
+            usize,
+            swarmplan::eaas::SharingPolicy,
+        ),
         u: usize,
         cost_min: f64,
         visited: &mut Vec<bool>,
@@ -361,7 +368,12 @@ pub fn enumerate_min_dt(
         let (planner, graph, full, speed, destination, sharing) = *ctx;
         if let Some(path) = graph.shortest_path(u, destination) {
             let plain = planner
-                .fly(&path, full, swarmplan::eaas::SharingPolicy::None, swarmplan::compose::HopEnd::NoStop)
+                .fly(
+                    &path,
+                    full,
+                    swarmplan::eaas::SharingPolicy::None,
+                    swarmplan::compose::HopEnd::NoStop,
+                )
                 .unwrap();
             let flies = plain.outcome.feasible
                 || sharing.shares()
@@ -384,7 +396,9 @@ pub fn enumerate_min_dt(
             let Some(path) = graph.shortest_paths_to(u).reversed_path_from(v) else {
                 continue;
             };
-            let flight = planner.fly(&path, full, sharing, swarmplan::compose::HopEnd::Stop).unwrap();
+            let flight = planner
+                .fly(&path, full, sharing, swarmplan::compose::HopEnd::Stop)
+                .unwrap();
             if !flight.outcome.feasible {
                 continue;
             }
