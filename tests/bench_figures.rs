@@ -33,6 +33,7 @@ fn config(combos: Vec<PlanOptions>) -> BenchConfig {
         requests: "embedded test".to_string(),
         combos,
         gap: true,
+        joint: false,
         limit: 10,
         exact_limit: 2,
         milp: MilpOptions::default(),

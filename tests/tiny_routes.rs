@@ -206,3 +206,45 @@ fn solve_prints_the_hand_computed_optima_and_the_gaps() {
         );
     }
 }
+
+/// flat-joint (instances/tiny/README.md, "flat-joint.json"): S, M (1 pad), T on a line, 4 min
+/// apart; packages 0.21 and 0.44 kg with one support drone. Hand values: the joint optimum flies
+/// S → T direct in 8 min sharing 305.9 · 8 − 2000 = 447.2 mAh; PB and FB cannot fly it direct
+/// and stop at M (dt 8 + 19.148), idle-support too, the baseline without support 8 + 12.236.
+#[test]
+fn the_joint_optimum_beats_every_same_policy_optimum_on_flat_joint() {
+    let (network, graph, profile) = flat_instance("flat-joint.json");
+    let request = Request {
+        id: "joint".into(),
+        source: "S".into(),
+        destination: "T".into(),
+        packages_kg: vec![0.21, 0.44],
+    };
+    let context = Context::new(&network, &graph, &profile);
+    let expected = [
+        (SharingPolicy::None, 20.236, vec!["M"]),
+        (SharingPolicy::IdleSupport, 27.148, vec!["M"]),
+        (SharingPolicy::Pb, 27.148, vec!["M"]),
+        (SharingPolicy::Fb, 27.148, vec!["M"]),
+        (SharingPolicy::Exact, 8.0, vec![]),
+    ];
+    for (sharing, dt_min, stops) in expected {
+        let options = PlanOptions {
+            sharing,
+            positioning: Positioning::LocationAware,
+            route: RouteMethod::Optimal,
+            support: None,
+        };
+        let report = context.plan(&request, &options).unwrap();
+        let p = &report.plan;
+        assert!(p.delivered(), "{sharing}: {}", p.outcome);
+        assert!(close(p.dt_min, dt_min), "{sharing}: dt {} expected {dt_min}", p.dt_min);
+        assert_eq!(p.stops(), stops, "{sharing}");
+        if sharing == SharingPolicy::Exact {
+            assert!(close(p.shared_mah, 447.2), "shared {}", p.shared_mah);
+            assert!(p.route_optimality.unwrap().proven());
+        }
+        let v = check_plan(&network, &profile, &request, &report.swarm, sharing, p);
+        assert!(v.is_empty(), "{sharing}: {v:?}");
+    }
+}
