@@ -205,7 +205,8 @@ fn solve_with_route_optimal_prints_an_optimal_plan() {
 
 #[test]
 fn route_optimal_with_fair_sharing_is_refused_with_e0015() {
-    for sharing in ["fair"] {
+    {
+        let sharing = "fair";
         let out = swarmplan(&[
             "solve",
             "--request-id",

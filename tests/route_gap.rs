@@ -198,7 +198,10 @@ fn solve_gap_is_the_gap_to_a_separate_optimal_solve_and_reads_back() {
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
     let doc: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let gap = doc["route_gap"]["gap"].as_f64().unwrap();
-    assert!(gap >= -1e-9, "Algorithm 1 under exact below the joint optimum: {gap}");
+    assert!(
+        gap >= -1e-9,
+        "Algorithm 1 under exact below the joint optimum: {gap}"
+    );
 }
 
 /// With `--hop-paths any` the reference is labelled as the any-path optimum, and no heuristic

@@ -238,7 +238,11 @@ fn the_joint_optimum_beats_every_same_policy_optimum_on_flat_joint() {
         let report = context.plan(&request, &options).unwrap();
         let p = &report.plan;
         assert!(p.delivered(), "{sharing}: {}", p.outcome);
-        assert!(close(p.dt_min, dt_min), "{sharing}: dt {} expected {dt_min}", p.dt_min);
+        assert!(
+            close(p.dt_min, dt_min),
+            "{sharing}: dt {} expected {dt_min}",
+            p.dt_min
+        );
         assert_eq!(p.stops(), stops, "{sharing}");
         if sharing == SharingPolicy::Exact {
             assert!(close(p.shared_mah, 447.2), "shared {}", p.shared_mah);

@@ -5,6 +5,10 @@ use crate::error::{Error, Result};
 use crate::problem::Request;
 use rayon::prelude::*;
 
+/// What [`Context::plan_grid_rows`] keeps of a request: from its position, the request and its
+/// reports in the order of the combinations.
+pub type KeepRow<'a, T> = dyn Fn(usize, &Request, Vec<RequestReport>) -> Result<T> + Sync + 'a;
+
 impl Context<'_> {
     /// Plans every request with every combination on a pool of `threads` threads, one job per
     /// request ([`Context::plan_each`], which does the work the combinations share once), and
@@ -47,7 +51,7 @@ impl Context<'_> {
         combos: &[PlanOptions],
         threads: usize,
         done: &(dyn Fn(u64) + Sync),
-        keep_row: &(dyn Fn(usize, &Request, Vec<RequestReport>) -> Result<T> + Sync),
+        keep_row: &KeepRow<'_, T>,
     ) -> Result<Vec<T>> {
         let pool = thread_pool(threads)?;
         let rows: Vec<Result<T>> = pool.install(|| {

@@ -24,7 +24,7 @@ enum Known {
     /// A bound proves that no schedule flies the arc.
     NoSchedule,
     /// Flown: `tt + nt` at the infimum of the hop's node time, or no schedule flies (`None`).
-    Flown(Option<(f64, BestArc)>),
+    Flown(Option<(f64, Box<BestArc>)>),
 }
 
 impl Known {
@@ -141,10 +141,7 @@ impl Planner<'_> {
             let mut tail: Vec<Option<usize>> = vec![None; n];
             let mut settled = vec![false; n];
             label[source] = 0.0;
-            loop {
-                let Some(u) = super::optimal::least_unsettled(&label, &settled) else {
-                    break;
-                };
+            while let Some(u) = super::optimal::least_unsettled(&label, &settled) {
                 settled[u] = true;
                 if u == destination {
                     break;
@@ -266,7 +263,7 @@ impl Planner<'_> {
                         stop: None,
                         epsilon_min: 0.0,
                     };
-                    (cost, arc)
+                    (cost, Box::new(arc))
                 })
             } else {
                 let path = search.trees[&u]
@@ -275,7 +272,10 @@ impl Planner<'_> {
                 self.arc_into_stop(u, v, path, &full, &mut optimality)?
                     .map(|arc| {
                         let nt_min = arc.stop.as_ref().map_or(0.0, |s| s.nt_min);
-                        (arc.path.distance_m / speed + nt_min - arc.epsilon_min, arc)
+                        (
+                            arc.path.distance_m / speed + nt_min - arc.epsilon_min,
+                            Box::new(arc),
+                        )
                     })
             };
             optimality.arcs_flown += usize::from(v == destination);
@@ -292,7 +292,7 @@ impl Planner<'_> {
             let Some(Known::Flown(Some((_, arc)))) = search.arcs.remove(&(u, v)) else {
                 unreachable!("the sequence's arcs are flown and fly");
             };
-            best[v] = Some(arc);
+            best[v] = Some(*arc);
         }
         Ok(self.route_of(plan, best, source, destination, optimality))
     }
