@@ -1084,6 +1084,20 @@ pub fn solve_continuous(
     // Incumbents: the empty schedule and the heuristics' schedules of the mode.
     let mut best: Option<Candidate> = None;
     keep(objective, &mut best, candidate(problem, objective, &[])?);
+    if configs.len() == 1 {
+        // Only the empty configuration (no support drone, or no move in the mode): the empty
+        // schedule is the only schedule, and its value, with the exact node time, the optimum.
+        if best.is_some() {
+            let bound = best.as_ref().filter(|c| c.proven).map(|c| c.value);
+            finish(&mut out, objective, best, bound)?;
+            if bound.is_some() {
+                out.status = ExactStatus::Optimal;
+            }
+            out.model_objective = bound;
+        }
+        out.solve_ms = start.elapsed().as_secs_f64() * 1e3;
+        return Ok(out);
+    }
     for policy in [SharingPolicy::Pb, SharingPolicy::Fb] {
         // A heuristic refusing the hop (FB's round bound) gives no incumbent.
         if let Ok(o) = simulate_with(problem, policy, &options.readings) {
