@@ -505,3 +505,47 @@ fn joint_split_adds_up_agrees_with_solve_and_merges_like_one_run() {
         summary["figures"]
     );
 }
+
+/// Hop solves stop on node limits, not on the clock: a run on a CPU kept busy by spinning
+/// threads writes the same files (timings aside) as a run on a quiet one.
+#[test]
+fn a_loaded_cpu_gives_the_same_files() {
+    use std::sync::atomic::{AtomicBool, Ordering};
+    use std::sync::Arc;
+    let quiet = bench("quiet", &["--joint", "--threads", "2"]);
+    let stop = Arc::new(AtomicBool::new(false));
+    let spinners: Vec<_> = (0..4)
+        .map(|_| {
+            let stop = Arc::clone(&stop);
+            std::thread::spawn(move || {
+                let mut x = 0u64;
+                while !stop.load(Ordering::Relaxed) {
+                    x = x.wrapping_mul(6364136223846793005).wrapping_add(1);
+                }
+                x
+            })
+        })
+        .collect();
+    let loaded = bench("loaded", &["--joint", "--threads", "2"]);
+    stop.store(true, Ordering::Relaxed);
+    for s in spinners {
+        s.join().unwrap();
+    }
+    for file in [
+        "config.json",
+        "requests.csv",
+        "hops.csv",
+        "stops.csv",
+        "joint.csv",
+    ] {
+        assert_eq!(
+            read(&quiet, file),
+            read(&loaded, file),
+            "{file} differs under load"
+        );
+    }
+    let config: Value = serde_json::from_str(&read(&quiet, "config.json")).unwrap();
+    assert!(config["milp"]["node_limit"].as_u64().is_some(), "{config}");
+    // No wall-clock limit unless asked for.
+    assert!(config["milp"]["time_limit_s"].is_null(), "{config}");
+}

@@ -77,9 +77,13 @@ pub struct EaasArgs {
         default_value_t = MilpBackend::default()
     )]
     pub backend: MilpBackend,
-    /// Time limit of each solve, seconds.
+    /// Wall-clock limit of each solve, seconds (a solve it stops depends on the machine).
     #[arg(long, default_value_t = 60.0, allow_negative_numbers = true)]
     pub time_limit: f64,
+    /// Branch-and-bound nodes of each MILP call (`continuous`, `milp`), the same on every
+    /// machine [default: none].
+    #[arg(long, value_name = "N")]
+    pub node_limit: Option<u64>,
     /// Longest period of the MILP's grid, minutes.
     #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
     pub period_min: f64,
@@ -230,6 +234,7 @@ fn milp_options(args: &EaasArgs) -> MilpOptions {
         reorder: args.reorder,
         backend: args.backend,
         time_limit_s: args.time_limit,
+        node_limit: args.node_limit,
     }
 }
 

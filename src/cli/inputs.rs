@@ -1,7 +1,7 @@
 //! Loading and validating the instance files shared by several subcommands. Without a path, the
 //! shipped paper-195 instance and `paper` profile embedded in the binary are used.
 
-use crate::eaas::exact_hop::{ExactSettings, DEFAULT_HOP_TIME_LIMIT_S};
+use crate::eaas::exact_hop::{ExactSettings, DEFAULT_HOP_NODE_LIMIT};
 use crate::eaas::milp::{MilpOptions, Reorder};
 use crate::error::{Error, Result, Violation};
 use crate::problem::{io, validate, Instance, Network, Profile, RequestSet};
@@ -66,9 +66,15 @@ pub struct ExactArgs {
         default_value_t = MilpBackend::default()
     )]
     pub backend: MilpBackend,
-    /// Exact and fair policies: time limit of each hop solve, seconds.
-    #[arg(long = "hop-time-limit", default_value_t = DEFAULT_HOP_TIME_LIMIT_S, allow_negative_numbers = true)]
-    pub hop_time_limit_s: f64,
+    /// Exact and fair policies: wall-clock limit of each hop solve, seconds [default: none]. A
+    /// solve it stops depends on the machine and its load; without it every number is the same
+    /// on any machine.
+    #[arg(long = "hop-time-limit", allow_negative_numbers = true)]
+    pub hop_time_limit_s: Option<f64>,
+    /// Exact policy: branch-and-bound nodes of each hop solve's MILP call, the same on every
+    /// machine (a solve it stops keeps its incumbent, status `feasible`).
+    #[arg(long = "hop-node-limit", value_name = "N", default_value_t = DEFAULT_HOP_NODE_LIMIT)]
+    pub hop_node_limit: u64,
     /// Exact policy: longest period of the hop MILP's grid, minutes.
     #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
     pub period_min: f64,
@@ -78,8 +84,8 @@ pub struct ExactArgs {
 }
 
 impl ExactArgs {
-    /// The settings, checked: a grid step that is finite and positive (E4101), a time limit in
-    /// `(0, 1e6]` seconds (E4105), re-ordering other than `free` (E4113).
+    /// The settings, checked: a grid step that is finite and positive (E4101), a time limit, when
+    /// given, in `(0, 1e6]` seconds (E4105), re-ordering other than `free` (E4113).
     ///
     /// # Errors
     /// [`Error::Invalid`] with every violation.
@@ -93,15 +99,13 @@ impl ExactArgs {
                 "give the grid step in minutes, such as 1.0",
             ));
         }
-        if !(self.hop_time_limit_s > 0.0 && self.hop_time_limit_s <= 1e6) {
+        if let Some(t) = self.hop_time_limit_s.filter(|t| !(*t > 0.0 && *t <= 1e6)) {
             v.push(Violation::new(
                 "E4105",
                 "--hop-time-limit",
-                format!(
-                    "{} is not a time in (0, 1e6] seconds",
-                    self.hop_time_limit_s
-                ),
-                "give the time limit of each hop solve in seconds, such as 10",
+                format!("{t} is not a time in (0, 1e6] seconds"),
+                "give the time limit of each hop solve in seconds, such as 10, or leave it out \
+                 for none",
             ));
         }
         if self.reorder == Reorder::Free {
@@ -121,7 +125,8 @@ impl ExactArgs {
                 period_min: self.period_min,
                 reorder: self.reorder,
                 backend: self.backend,
-                time_limit_s: self.hop_time_limit_s,
+                time_limit_s: self.hop_time_limit_s.unwrap_or(f64::INFINITY),
+                node_limit: Some(self.hop_node_limit),
             },
             prune_candidates: true,
         })

@@ -169,7 +169,7 @@ pub fn milp(
         sorted_desc: &sorted,
         time_limit_s: t,
     };
-    let (pad_sorted, optimal) = run_on(backend, job)?;
+    let (pad_sorted, optimal) = run_on(backend, limits.node_limit, job)?;
     let mut pad_of = vec![0; n];
     for (pos, &j) in order.iter().enumerate() {
         pad_of[j] = pad_sorted[pos];

@@ -7,6 +7,8 @@
 
 use serde::{Deserialize, Serialize};
 
+#[cfg(feature = "microlp")]
+pub mod limited;
 pub mod lp_file;
 
 /// MILP backend.
@@ -151,22 +153,34 @@ pub trait MilpJob {
         S::Model: good_lp::WithTimeLimit + good_lp::SolverModel<Error = good_lp::ResolutionError>;
 }
 
-/// Runs `job` on `backend`, with the options every exact method uses: HiGHS on one thread (the
-/// same answer on any machine) stopping at the relative gap [`MIP_REL_GAP`] and no absolute gap.
+/// Runs `job` on `backend`, with the options every exact method uses: the relative gap
+/// [`MIP_REL_GAP`] and no absolute gap, HiGHS on one thread (the same answer on any machine),
+/// and at most `node_limit` branch-and-bound nodes (`None`: no limit), a limit that stops the
+/// search at the same point on every machine and under any load, unlike the job's wall-clock
+/// limit (an infinite one means none).
 ///
 /// # Errors
 /// Those of the job; `E0011` in a build without a MILP backend.
-pub fn run_on<J: MilpJob>(backend: MilpBackend, job: J) -> crate::error::Result<J::Output> {
+pub fn run_on<J: MilpJob>(
+    backend: MilpBackend,
+    node_limit: Option<u64>,
+    job: J,
+) -> crate::error::Result<J::Output> {
+    let _ = node_limit;
     match backend {
         #[cfg(feature = "microlp")]
-        MilpBackend::Microlp => job.solve_with(good_lp::solvers::microlp::microlp, "microlp"),
+        MilpBackend::Microlp => job.solve_with(limited::microlp_limited(node_limit), "microlp"),
         #[cfg(feature = "highs")]
         MilpBackend::Highs => job.solve_with(
-            |p| {
-                good_lp::solvers::highs::highs(p)
+            move |p| {
+                let mut model = good_lp::solvers::highs::highs(p)
                     .set_threads(1)
                     .set_option("mip_rel_gap", MIP_REL_GAP)
-                    .set_option("mip_abs_gap", 0.0)
+                    .set_option("mip_abs_gap", 0.0);
+                if let Some(n) = node_limit {
+                    model = model.set_option("mip_max_nodes", n.min(i32::MAX as u64) as i32);
+                }
+                model
             },
             "highs",
         ),
@@ -226,5 +240,25 @@ impl Gap {
             relative,
             reference: kind,
         }
+    }
+}
+
+/// Serde of a wall-clock limit in seconds where `f64::INFINITY` means none: written as `null`
+/// (JSON has no infinity), and `null` read back as infinity.
+pub mod seconds_or_none {
+    use serde::{Deserialize, Deserializer, Serializer};
+
+    /// `null` for infinity, else the number.
+    pub fn serialize<S: Serializer>(seconds: &f64, s: S) -> Result<S::Ok, S::Error> {
+        if seconds.is_infinite() {
+            s.serialize_none()
+        } else {
+            s.serialize_some(seconds)
+        }
+    }
+
+    /// Infinity for `null`, else the number.
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+        Ok(Option::<f64>::deserialize(d)?.unwrap_or(f64::INFINITY))
     }
 }

@@ -74,8 +74,13 @@ pub struct ContinuousOptions {
     pub reorder: Reorder,
     /// Backend of the LP (a MILP with the node-time objective's pad rows).
     pub backend: MilpBackend,
-    /// Wall-clock limit of each backend call, seconds (default 60).
+    /// Wall-clock limit of each backend call, seconds (default 60); `f64::INFINITY`: none.
+    #[serde(with = "crate::solver::seconds_or_none")]
     pub time_limit_s: f64,
+    /// Branch-and-bound nodes of each backend call (default `None`: no limit), the same on every
+    /// machine.
+    #[serde(default)]
+    pub node_limit: Option<u64>,
     /// Largest number of configurations (default [`DEFAULT_MAX_CONFIGURATIONS`]).
     pub max_configurations: usize,
     /// Readings of PB and FB, whose schedules are incumbents.
@@ -83,13 +88,14 @@ pub struct ContinuousOptions {
 }
 
 impl ContinuousOptions {
-    /// The options of a caller that also runs the grid MILP: its re-ordering, backend and time
-    /// limit, the default largest number of configurations, and the heuristics' readings.
+    /// The options of a caller that also runs the grid MILP: its re-ordering, backend, time and
+    /// node limits, the default largest number of configurations, and the heuristics' readings.
     pub fn like(milp: &super::milp::MilpOptions, readings: PolicyOptions) -> ContinuousOptions {
         ContinuousOptions {
             reorder: milp.reorder,
             backend: milp.backend,
             time_limit_s: milp.time_limit_s,
+            node_limit: milp.node_limit,
             max_configurations: DEFAULT_MAX_CONFIGURATIONS,
             readings,
         }
@@ -102,6 +108,7 @@ impl Default for ContinuousOptions {
             reorder: Reorder::Paper,
             backend: MilpBackend::default(),
             time_limit_s: 60.0,
+            node_limit: None,
             max_configurations: DEFAULT_MAX_CONFIGURATIONS,
             readings: PolicyOptions::default(),
         }
@@ -385,7 +392,7 @@ impl Model<'_> {
             attempt,
             time_limit_s: options.time_limit_s,
         };
-        run_on(options.backend, job)
+        run_on(options.backend, options.node_limit, job)
     }
 
     fn solve_with<S: good_lp::Solver>(

@@ -56,8 +56,14 @@ pub struct MilpOptions {
     pub reorder: Reorder,
     /// Backend (default: [`MilpBackend::default`]).
     pub backend: MilpBackend,
-    /// Wall-clock limit of each backend call, seconds (default 60).
+    /// Wall-clock limit of each backend call, seconds (default 60); `f64::INFINITY`: none, the
+    /// run is then the same on every machine.
+    #[serde(with = "crate::solver::seconds_or_none")]
     pub time_limit_s: f64,
+    /// Branch-and-bound nodes of each MILP backend call (default `None`: no limit): a limit that
+    /// stops a solve at the same point on every machine and under any load.
+    #[serde(default)]
+    pub node_limit: Option<u64>,
 }
 
 impl Default for MilpOptions {
@@ -67,6 +73,7 @@ impl Default for MilpOptions {
             reorder: Reorder::Paper,
             backend: MilpBackend::default(),
             time_limit_s: 60.0,
+            node_limit: None,
         }
     }
 }
@@ -480,7 +487,7 @@ fn run(
         relax,
         time_limit_s: options.time_limit_s,
     };
-    run_on(options.backend, job)
+    run_on(options.backend, options.node_limit, job)
 }
 
 /// Merges the consecutive periods of one leg in which a move is on into transfers, by start then

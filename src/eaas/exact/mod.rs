@@ -193,14 +193,15 @@ pub(crate) fn validate_inputs(
 }
 
 fn validate_time_limit(time_limit_s: f64) -> Result<()> {
-    if time_limit_s.is_finite() && time_limit_s > 0.0 {
+    // Infinity: no wall-clock limit.
+    if time_limit_s > 0.0 {
         Ok(())
     } else {
         Err(Error::invalid(
             "E4105",
             "time_limit_s",
-            format!("{time_limit_s} is not a finite time > 0"),
-            "give the time limit in seconds",
+            format!("{time_limit_s} is not a time > 0"),
+            "give the time limit in seconds, or none for no wall-clock limit",
         ))
     }
 }

@@ -1,0 +1,155 @@
+//! microlp through good_lp with a deterministic branch-and-bound node limit.
+//!
+//! good_lp's microlp model passes a wall-clock limit to microlp and nothing else, while microlp
+//! itself can stop after a number of branch-and-bound nodes, the same on every machine and under
+//! any load. [`NodeLimited`] is good_lp's model with microlp's `SolveOptions` filled in here: the
+//! node limit, the wall-clock limit only when one is asked for (finite), and the relative gap
+//! [`super::MIP_REL_GAP`]. The model is built by good_lp (`good_lp::solvers::microlp::microlp`),
+//! so variables and constraints are exactly good_lp's; only the call to microlp's solver is ours.
+
+use good_lp::solvers::microlp::MicroLpProblem;
+use good_lp::solvers::{ResolutionError, Solution, SolutionStatus, SolverModel, WithTimeLimit};
+use good_lp::variable::FormatWithVars;
+use good_lp::{Constraint, Variable};
+use std::time::Duration;
+
+/// good_lp's microlp model, solved with a node limit; see the module.
+pub struct NodeLimited {
+    inner: MicroLpProblem,
+    node_limit: Option<u64>,
+    time_limit_s: Option<f64>,
+}
+
+/// The solver for good_lp's `using`: microlp stopping after `node_limit` branch-and-bound nodes
+/// (`None`: none).
+pub fn microlp_limited(
+    node_limit: Option<u64>,
+) -> impl FnMut(good_lp::variable::UnsolvedProblem) -> NodeLimited {
+    move |problem| NodeLimited {
+        inner: good_lp::solvers::microlp::microlp(problem),
+        node_limit,
+        time_limit_s: None,
+    }
+}
+
+impl WithTimeLimit for NodeLimited {
+    /// A finite positive limit is passed to microlp; an infinite one means none.
+    fn with_time_limit<T: Into<f64>>(mut self, seconds: T) -> Self {
+        let s = seconds.into();
+        self.time_limit_s = (s.is_finite() && s > 0.0).then_some(s);
+        self
+    }
+}
+
+/// A solution: every variable's value by its index, and how the search ended.
+pub struct LimitedSolution {
+    values: Vec<f64>,
+    status: SolutionStatus,
+}
+
+/// The creation index of a good_lp variable: its name in good_lp's debug format, `v{index}`.
+fn index_of(variable: Variable) -> usize {
+    struct Named(Variable);
+    impl std::fmt::Display for Named {
+        fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+            self.0.format_debug(f)
+        }
+    }
+    let name = Named(variable).to_string();
+    name[1..]
+        .parse()
+        .expect("good_lp names variable i `v{i}` in its debug format")
+}
+
+impl Solution for LimitedSolution {
+    fn status(&self) -> SolutionStatus {
+        self.status
+    }
+
+    fn value(&self, variable: Variable) -> f64 {
+        self.values[index_of(variable)]
+    }
+}
+
+impl SolverModel for NodeLimited {
+    type Solution = LimitedSolution;
+    type Error = ResolutionError;
+
+    fn solve(self) -> Result<LimitedSolution, ResolutionError> {
+        let mut options = microlp::SolveOptions::default();
+        options.node_limit = self.node_limit;
+        options.time_limit = self.time_limit_s.map(Duration::from_secs_f64);
+        options.mip_gap = super::MIP_REL_GAP;
+        let outcome = self
+            .inner
+            .as_inner()
+            .solve_with(options)
+            .map_err(|e| match e {
+                microlp::Error::Infeasible => ResolutionError::Infeasible,
+                microlp::Error::Unbounded => ResolutionError::Unbounded,
+                other => ResolutionError::Str(other.to_string()),
+            })?;
+        let reason = outcome.termination_reason();
+        // An interrupted search without an incumbent: the message good_lp gives it.
+        let solution = outcome.into_solution().map_err(|_| {
+            ResolutionError::Other("Time limit reached before finding a feasible solution")
+        })?;
+        let status = match reason {
+            microlp::TerminationReason::ProvenOptimal => SolutionStatus::Optimal,
+            microlp::TerminationReason::MipGap => SolutionStatus::GapLimit,
+            _ => SolutionStatus::TimeLimit,
+        };
+        Ok(LimitedSolution {
+            values: solution.iter().map(|(_, v)| v).collect(),
+            status,
+        })
+    }
+
+    fn add_constraint(&mut self, c: Constraint) -> good_lp::constraint::ConstraintReference {
+        self.inner.add_constraint(c)
+    }
+
+    fn name() -> &'static str {
+        "Microlp"
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use good_lp::{constraint, variable, variables};
+
+    #[test]
+    fn values_follow_good_lps_variables_and_the_node_limit_stops_the_search() {
+        // max x + 2y over integers with x + y <= 3.5, y <= 1.5: y <= 1, then x <= 2.5 so x <= 2;
+        // (2, 1) gives 4, the only other maximal point (3, 0) gives 3.
+        let mut vars = variables!();
+        let x = vars.add(variable().integer().min(0).max(10));
+        let y = vars.add(variable().integer().min(0).max(10));
+        let solution = vars
+            .maximise(x + 2 * y)
+            .using(microlp_limited(None))
+            .with(constraint!(x + y <= 3.5))
+            .with(constraint!(y <= 1.5))
+            .solve()
+            .unwrap();
+        assert_eq!(solution.status(), SolutionStatus::Optimal);
+        assert!((solution.value(x) - 2.0).abs() < 1e-9);
+        assert!((solution.value(y) - 1.0).abs() < 1e-9);
+        // With no node beyond the root, whose relaxation (2.5, 1) is fractional, the search
+        // stops without proving: no incumbent, or one at the limit.
+        let mut vars = variables!();
+        let x = vars.add(variable().integer().min(0).max(10));
+        let y = vars.add(variable().integer().min(0).max(10));
+        let stopped = vars
+            .maximise(x + 2 * y)
+            .using(microlp_limited(Some(0)))
+            .with(constraint!(x + y <= 3.5))
+            .with(constraint!(y <= 1.5))
+            .solve();
+        match stopped {
+            Ok(s) => assert_eq!(s.status(), SolutionStatus::TimeLimit),
+            Err(e) => assert!(e.to_string().contains("Time limit"), "{e}"),
+        }
+    }
+}
