@@ -206,6 +206,7 @@ fn main() {
                                 reorder,
                                 backend,
                                 time_limit_s: args.grid_time_limit,
+                                node_limit: None,
                             },
                         )
                         .expect("valid hop");

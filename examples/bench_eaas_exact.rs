@@ -76,6 +76,7 @@ fn main() {
                             reorder,
                             backend,
                             time_limit_s,
+                            node_limit: None,
                         },
                     )
                     .expect("valid hop");

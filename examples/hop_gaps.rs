@@ -188,6 +188,7 @@ fn run(args: &Args) -> Result<()> {
         reorder: Reorder::Paper,
         backend,
         time_limit_s: args.time_limit,
+        node_limit: None,
     };
     let mut all = Rows::default();
     let next = std::sync::atomic::AtomicUsize::new(0);

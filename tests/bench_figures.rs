@@ -28,6 +28,8 @@ fn combo(sharing: SharingPolicy, positioning: Positioning, route: RouteMethod) -
 fn config(combos: Vec<PlanOptions>) -> BenchConfig {
     BenchConfig {
         schema_version: SUMMARY_SCHEMA_VERSION,
+        version: "test".to_string(),
+        inputs_sha256: "test".to_string(),
         network: "embedded test".to_string(),
         profile: "embedded test".to_string(),
         requests: "embedded test".to_string(),

@@ -285,7 +285,7 @@ proptest! {
                 match o.status {
                     ExactStatus::Infeasible => {
                         for period_min in [1.0, 0.5] {
-                            let g = solve_milp(&p, &NT2, &MilpOptions { period_min, reorder, backend, time_limit_s: 60.0 }).unwrap();
+                            let g = solve_milp(&p, &NT2, &MilpOptions { period_min, reorder, backend, time_limit_s: 60.0, node_limit: None }).unwrap();
                             prop_assert_eq!(g.status, ExactStatus::Infeasible);
                         }
                         values.push((reorder, f64::INFINITY));
@@ -297,7 +297,7 @@ proptest! {
                 let bound = o.bound.unwrap();
                 prop_assert!(at_most(fl.bound.unwrap(), bound), "fluid {:?} above {}", fl.bound, bound);
                 for period_min in [1.0, 0.5] {
-                    let g = solve_milp(&p, &NT2, &MilpOptions { period_min, reorder, backend, time_limit_s: 60.0 }).unwrap();
+                    let g = solve_milp(&p, &NT2, &MilpOptions { period_min, reorder, backend, time_limit_s: 60.0, node_limit: None }).unwrap();
                     if g.status == ExactStatus::Optimal {
                         prop_assert!(at_most(bound, g.objective.unwrap()), "grid {:?} below {}", g.objective, bound);
                     }

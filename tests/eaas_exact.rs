@@ -32,6 +32,7 @@ fn options(backend: MilpBackend, reorder: Reorder, period_min: f64) -> MilpOptio
         reorder,
         backend,
         time_limit_s: 60.0,
+        node_limit: None,
     }
 }
 

@@ -20,7 +20,9 @@ mod files;
 mod findings;
 mod summary;
 
-pub use files::{merge, read_data, write_outputs, CONFIG_FILE, DATA_FILES};
+pub use files::{
+    merge, read_data, unmark_complete, write_outputs, COMPLETE_FILE, CONFIG_FILE, DATA_FILES,
+};
 pub use findings::{findings, Finding, Verdict};
 pub use summary::{
     DistanceBucket, GapHistogram, GapSplitSummary, HopGapSummary, JointSummary, MethodSummary,
@@ -93,6 +95,11 @@ impl std::fmt::Display for Shard {
 pub struct BenchConfig {
     /// Version of the output files' schema, [`SUMMARY_SCHEMA_VERSION`].
     pub schema_version: u32,
+    /// The tool's version (`swarmplan --version`).
+    pub version: String,
+    /// SHA-256 of the network, profile and requests considered, as read (their JSON): shards of
+    /// the same files under the same names merge, others do not.
+    pub inputs_sha256: String,
     /// The network, profile and request set, as given (`embedded ...` for the shipped ones).
     pub network: String,
     /// The profile.
@@ -678,6 +685,27 @@ fn keep_report(
         });
     }
     Ok(kept)
+}
+
+/// SHA-256, in hex, of the JSON of `network`, `profile` and `requests` as read: the fingerprint
+/// of a run's inputs in [`BenchConfig::inputs_sha256`].
+///
+/// # Errors
+/// Only if the inputs do not serialise (they always do).
+pub fn inputs_sha256(
+    network: &crate::problem::Network,
+    profile: &crate::problem::Profile,
+    requests: &[Request],
+) -> Result<String> {
+    use sha2::{Digest, Sha256};
+    let json = serde_json::to_vec(&(network, profile, requests)).map_err(|e| Error::Backend {
+        backend: "bench".into(),
+        message: format!("the inputs do not serialise: {e}"),
+    })?;
+    Ok(Sha256::digest(&json)
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect())
 }
 
 /// The name of a reference kind as in JSON.

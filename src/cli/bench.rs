@@ -167,6 +167,7 @@ pub fn run(args: BenchArgs) -> Result<i32> {
     match args.command {
         Some(BenchCommand::Merge(m)) => {
             may_write(&m.out, m.force)?;
+            bench::unmark_complete(&m.out)?;
             let dirs: Vec<&Path> = m.dirs.iter().map(PathBuf::as_path).collect();
             let (config, data) = bench::merge(&dirs)?;
             let summary = bench::write_outputs(&m.out, &config, &data, command)?;
@@ -200,6 +201,7 @@ fn run_grid(args: RunArgs, command: Vec<String>) -> Result<i32> {
         ));
     }
     may_write(&out, args.force)?;
+    bench::unmark_complete(&out)?;
     let combos = combinations(&args);
     for c in &combos {
         c.validate()?;
@@ -240,6 +242,12 @@ fn run_grid(args: RunArgs, command: Vec<String>) -> Result<i32> {
     };
     let config = BenchConfig {
         schema_version: bench::SUMMARY_SCHEMA_VERSION,
+        version: env!("CARGO_PKG_VERSION").to_string(),
+        inputs_sha256: bench::inputs_sha256(
+            &instance.network,
+            &instance.profile,
+            &instance.requests,
+        )?,
         network: name(&args.network, FINDINGS_195.network_name),
         profile: name(&args.profile, FINDINGS_195.profile_name)
             + if args.literal { " (--literal)" } else { "" },
