@@ -4,7 +4,7 @@
 //! resource-constrained shortest-path search from `u`. See models/compose.md, "Optimal route",
 //! "Any hop path".
 
-use super::optimal::{improves, least_unsettled, relax, BestArc};
+use super::optimal::{improves, least_unsettled, relax, BestArc, Start};
 use super::plan::{Plan, PlanOutcome, RouteOptimality};
 use super::{HopEnd, HopPaths, Planner};
 use crate::eaas::{SharingPolicy, ENERGY_TOL_MAH};
@@ -159,23 +159,16 @@ impl Planner<'_> {
         let graph = self.graph();
         let speed = self.speed_m_per_min();
         let n = graph.node_count();
-        let mut plan = self.empty_plan(source, destination);
         let mut optimality = RouteOptimality {
             hop_paths: HopPaths::Any,
             ..RouteOptimality::default()
         };
-        if source == destination {
-            plan.route_optimality = Some(optimality);
-            return Ok(plan.finish());
-        }
+        let (mut plan, direct) =
+            match self.start_search(source, destination, &mut optimality, false)? {
+                Start::Done(plan) => return Ok(plan),
+                Start::Search { plan, direct, .. } => (plan, direct),
+            };
         let full = self.full_battery_mah();
-        let Some(direct) = graph.shortest_path(source, destination) else {
-            plan.route_optimality = Some(optimality);
-            return Ok(plan.fail(PlanOutcome::NoRoute {
-                from: graph.id_of(source).to_string(),
-                to: graph.id_of(destination).to_string(),
-            }));
-        };
         let mut uses: Vec<Option<Vec<f64>>> = vec![None; 2 * graph.edge_count()];
         let mut cost_min = vec![f64::INFINITY; n];
         let mut best: Vec<Option<BestArc>> = (0..n).map(|_| None).collect();

@@ -3,7 +3,7 @@
 //! path on the stop graph whose arc costs are refined from cheap lower bounds to exact hop
 //! solves only where the search needs them. See models/compose.md, "Joint optimum".
 
-use super::optimal::BestArc;
+use super::optimal::{BestArc, Start};
 use super::plan::{Plan, PlanOutcome, RouteOptimality};
 use super::Planner;
 use crate::eaas::fluid;
@@ -93,28 +93,17 @@ impl Planner<'_> {
     pub(crate) fn compose_joint(&self, source: usize, destination: usize) -> Result<Plan> {
         let graph = self.graph();
         let speed = self.speed_m_per_min();
-        let mut plan = self.empty_plan(source, destination);
         let mut optimality = RouteOptimality::default();
-        if source == destination {
-            plan.route_optimality = Some(optimality);
-            return Ok(plan.finish());
-        }
+        let (mut plan, direct_failure) =
+            match self.start_search(source, destination, &mut optimality, true)? {
+                Start::Done(plan) => return Ok(plan),
+                Start::Search {
+                    plan,
+                    direct_failure,
+                    ..
+                } => (plan, direct_failure),
+            };
         let full = self.full_battery_mah();
-        let Some(direct) = graph.shortest_path(source, destination) else {
-            plan.route_optimality = Some(optimality);
-            return Ok(plan.fail(PlanOutcome::NoRoute {
-                from: graph.id_of(source).to_string(),
-                to: graph.id_of(destination).to_string(),
-            }));
-        };
-        // The direct hop flies: no route with stops is shorter.
-        let (flight, direct_failure) = self.fly_to_destination(&direct, &full, &mut optimality)?;
-        optimality.arcs_flown += 1;
-        if let Some(flight) = flight {
-            plan.push(self.hop(&direct, &full, flight, None));
-            plan.route_optimality = Some(optimality);
-            return Ok(plan.finish());
-        }
         let min_rates = self.min_rates_mah_per_min()?;
         let min_swarm_rate: f64 = min_rates.iter().sum();
         let endurance_min = self.endurance_bound_min(&full, &min_rates);

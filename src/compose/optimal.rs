@@ -21,6 +21,21 @@ pub(super) struct BestArc {
     pub(super) epsilon_min: f64,
 }
 
+/// How a search over stop sequences starts ([`Planner::start_search`]).
+pub(super) enum Start {
+    /// The plan is decided: the source is the destination, no path joins them, or the direct
+    /// hop flies.
+    Done(Plan),
+    /// The search goes on from the empty plan.
+    Search {
+        plan: Plan,
+        /// The shortest path from the source to the destination.
+        direct: Route,
+        /// The direct hop's first failure, when it was flown.
+        direct_failure: Option<crate::eaas::HopFailure>,
+    },
+}
+
 /// The coded error of `--route optimal` with `--sharing fair`.
 pub(crate) fn optimal_with_solved_sharing(sharing: SharingPolicy) -> Error {
     Error::invalid(
@@ -76,28 +91,17 @@ impl Planner<'_> {
         let graph = self.graph();
         let speed = self.speed_m_per_min();
         let n = graph.node_count();
-        let mut plan = self.empty_plan(source, destination);
         let mut optimality = RouteOptimality::default();
-        if source == destination {
-            plan.route_optimality = Some(optimality);
-            return Ok(plan.finish());
-        }
+        let (mut plan, direct_failure) =
+            match self.start_search(source, destination, &mut optimality, true)? {
+                Start::Done(plan) => return Ok(plan),
+                Start::Search {
+                    plan,
+                    direct_failure,
+                    ..
+                } => (plan, direct_failure),
+            };
         let full = self.full_battery_mah();
-        let Some(direct) = graph.shortest_path(source, destination) else {
-            plan.route_optimality = Some(optimality);
-            return Ok(plan.fail(PlanOutcome::NoRoute {
-                from: graph.id_of(source).to_string(),
-                to: graph.id_of(destination).to_string(),
-            }));
-        };
-        // The direct hop flies: no route with stops is shorter.
-        let (flight, direct_failure) = self.fly_to_destination(&direct, &full, &mut optimality)?;
-        optimality.arcs_flown += 1;
-        if let Some(flight) = flight {
-            plan.push(self.hop(&direct, &full, flight, None));
-            plan.route_optimality = Some(optimality);
-            return Ok(plan.finish());
-        }
         let min_rates = self.min_rates_mah_per_min()?;
         let min_swarm_rate: f64 = min_rates.iter().sum();
         let endurance_min = self.endurance_bound_min(&full, &min_rates);
@@ -169,6 +173,55 @@ impl Planner<'_> {
             }
         }
         Ok(self.route_of(plan, best, source, destination, optimality))
+    }
+
+    /// The start of a search over stop sequences: done when the source is the destination, no
+    /// path joins them, or (with `fly_direct`) the direct hop flies, which no route with stops
+    /// beats; else the empty plan, the direct path and, when flown, its first failure. Counts
+    /// the direct hop in `optimality` and puts `optimality` on a plan it returns done.
+    ///
+    /// # Errors
+    /// Those of [`Planner::fly`].
+    pub(super) fn start_search(
+        &self,
+        source: usize,
+        destination: usize,
+        optimality: &mut RouteOptimality,
+        fly_direct: bool,
+    ) -> Result<Start> {
+        let graph = self.graph();
+        let mut plan = self.empty_plan(source, destination);
+        if source == destination {
+            plan.route_optimality = Some(*optimality);
+            return Ok(Start::Done(plan.finish()));
+        }
+        let Some(direct) = graph.shortest_path(source, destination) else {
+            plan.route_optimality = Some(*optimality);
+            return Ok(Start::Done(plan.fail(PlanOutcome::NoRoute {
+                from: graph.id_of(source).to_string(),
+                to: graph.id_of(destination).to_string(),
+            })));
+        };
+        if !fly_direct {
+            return Ok(Start::Search {
+                plan,
+                direct,
+                direct_failure: None,
+            });
+        }
+        let full = self.full_battery_mah();
+        let (flight, direct_failure) = self.fly_to_destination(&direct, &full, optimality)?;
+        optimality.arcs_flown += 1;
+        if let Some(flight) = flight {
+            plan.push(self.hop(&direct, &full, flight, None));
+            plan.route_optimality = Some(*optimality);
+            return Ok(Start::Done(plan.finish()));
+        }
+        Ok(Start::Search {
+            plan,
+            direct,
+            direct_failure,
+        })
     }
 
     /// The arc `u -> v` into a node with pads along `path`, flown from full batteries `full`

@@ -3,8 +3,8 @@
 //! good_lp's microlp model passes a wall-clock limit to microlp and nothing else, while microlp
 //! itself can stop after a number of branch-and-bound nodes, the same on every machine and under
 //! any load. [`NodeLimited`] is good_lp's model with microlp's `SolveOptions` filled in here: the
-//! node limit, the wall-clock limit only when one is asked for (finite), and the relative gap
-//! [`super::MIP_REL_GAP`]. The model is built by good_lp (`good_lp::solvers::microlp::microlp`),
+//! node limit and the wall-clock limit only when one is asked for (finite); microlp proves
+//! optimality outright (no relative gap), as through good_lp. The model is built by good_lp (`good_lp::solvers::microlp::microlp`),
 //! so variables and constraints are exactly good_lp's; only the call to microlp's solver is ours.
 
 use good_lp::solvers::microlp::MicroLpProblem;
@@ -79,7 +79,6 @@ impl SolverModel for NodeLimited {
         let mut options = microlp::SolveOptions::default();
         options.node_limit = self.node_limit;
         options.time_limit = self.time_limit_s.map(Duration::from_secs_f64);
-        options.mip_gap = super::MIP_REL_GAP;
         let outcome = self
             .inner
             .as_inner()
