@@ -94,19 +94,19 @@ impl Planner<'_> {
         let graph = self.graph();
         let speed = self.speed_m_per_min();
         let mut optimality = RouteOptimality::default();
-        let (mut plan, direct_failure) =
+        let (mut plan, direct_failure, bounds) =
             match self.start_search(source, destination, &mut optimality, true)? {
                 Start::Done(plan) => return Ok(plan),
                 Start::Search {
                     plan,
                     direct_failure,
+                    bounds,
                     ..
-                } => (plan, direct_failure),
+                } => (plan, direct_failure, bounds),
             };
         let full = self.full_battery_mah();
-        let min_rates = self.min_rates_mah_per_min()?;
-        let min_swarm_rate: f64 = min_rates.iter().sum();
-        let endurance_min = self.endurance_bound_min(&full, &min_rates);
+        let (min_swarm_rate, endurance_min) =
+            (bounds.min_swarm_rate_mah_per_min, bounds.endurance_min);
         let mut stops = vec![source];
         stops.extend(
             (0..graph.node_count())

@@ -33,7 +33,17 @@ pub(super) enum Start {
         direct: Route,
         /// The direct hop's first failure, when it was flown.
         direct_failure: Option<crate::eaas::HopFailure>,
+        /// The bounds every arc is screened with.
+        bounds: SearchBounds,
     },
+}
+
+/// Bounds of a search from full batteries: the swarm's least total consumption rate over every
+/// edge and slot, and the endurance bound (no hop longer flies).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct SearchBounds {
+    pub(super) min_swarm_rate_mah_per_min: f64,
+    pub(super) endurance_min: f64,
 }
 
 /// The coded error of `--route optimal` with `--sharing fair`.
@@ -92,19 +102,19 @@ impl Planner<'_> {
         let speed = self.speed_m_per_min();
         let n = graph.node_count();
         let mut optimality = RouteOptimality::default();
-        let (mut plan, direct_failure) =
+        let (mut plan, direct_failure, bounds) =
             match self.start_search(source, destination, &mut optimality, true)? {
                 Start::Done(plan) => return Ok(plan),
                 Start::Search {
                     plan,
                     direct_failure,
+                    bounds,
                     ..
-                } => (plan, direct_failure),
+                } => (plan, direct_failure, bounds),
             };
         let full = self.full_battery_mah();
-        let min_rates = self.min_rates_mah_per_min()?;
-        let min_swarm_rate: f64 = min_rates.iter().sum();
-        let endurance_min = self.endurance_bound_min(&full, &min_rates);
+        let (min_swarm_rate, endurance_min) =
+            (bounds.min_swarm_rate_mah_per_min, bounds.endurance_min);
         let mut cost_min = vec![f64::INFINITY; n];
         let mut best: Vec<Option<BestArc>> = (0..n).map(|_| None).collect();
         let mut settled = vec![false; n];
@@ -178,7 +188,8 @@ impl Planner<'_> {
     /// The start of a search over stop sequences: done when the source is the destination, no
     /// path joins them, or (with `fly_direct`) the direct hop flies, which no route with stops
     /// beats; else the empty plan, the direct path and, when flown, its first failure. Counts
-    /// the direct hop in `optimality` and puts `optimality` on a plan it returns done.
+    /// the direct hop in `optimality` and puts `optimality` on a plan it returns done; the
+    /// search's bounds.
     ///
     /// # Errors
     /// Those of [`Planner::fly`].
@@ -202,14 +213,20 @@ impl Planner<'_> {
                 to: graph.id_of(destination).to_string(),
             })));
         };
+        let full = self.full_battery_mah();
+        let min_rates = self.min_rates_mah_per_min()?;
+        let bounds = SearchBounds {
+            min_swarm_rate_mah_per_min: min_rates.iter().sum(),
+            endurance_min: self.endurance_bound_min(&full, &min_rates),
+        };
         if !fly_direct {
             return Ok(Start::Search {
                 plan,
                 direct,
                 direct_failure: None,
+                bounds,
             });
         }
-        let full = self.full_battery_mah();
         let (flight, direct_failure) = self.fly_to_destination(&direct, &full, optimality)?;
         optimality.arcs_flown += 1;
         if let Some(flight) = flight {
@@ -221,6 +238,7 @@ impl Planner<'_> {
             plan,
             direct,
             direct_failure,
+            bounds,
         })
     }
 
