@@ -312,8 +312,9 @@ struct Model<'a> {
 enum Pads<'a> {
     /// The exact assignment rows, binaries in `[0, 1]`: a lower bound.
     Relaxed,
-    /// The exact assignment rows with binaries: the model of the theorem.
-    Integral,
+    /// The exact assignment rows with binaries: the model of the theorem; the pads' symmetry
+    /// broken along the drones' ranks (see `PadRows::add`).
+    Integral(&'a [usize]),
     /// A fixed assignment, the pad of every drone: an LP whose value bounds the optimum from
     /// above.
     Fixed(&'a [usize]),
@@ -462,8 +463,10 @@ impl Model<'_> {
                 Some(vars.add(variable().min(0.0).name("M"))),
                 match pad_mode {
                     Pads::Fixed(_) => None,
-                    Pads::Relaxed => Some(PadRows::add(&mut vars, n, pads, true)),
-                    Pads::Integral => Some(PadRows::add(&mut vars, n, pads, false)),
+                    Pads::Relaxed => Some(PadRows::add(&mut vars, n, pads, true, None)),
+                    Pads::Integral(rank) => {
+                        Some(PadRows::add(&mut vars, n, pads, false, Some(rank)))
+                    }
                 },
             ),
             Objective::MaxMinArrival => (Some(vars.add(variable().name("g"))), None),
@@ -612,6 +615,24 @@ impl Model<'_> {
 
     /// For the node time, the pad of every drone in the best assignment (the exact P||Cmax
     /// search) of the batteries `theta` leaves; `None` for the other objectives.
+    /// Every drone's rank by its charge time under `theta`, longest first (ties: lower index).
+    fn rank_by_charge_time(&self, theta: &[Vec<f64>]) -> Vec<usize> {
+        let deficit: Vec<f64> = self
+            .problem
+            .drones
+            .iter()
+            .zip(self.final_battery(theta))
+            .map(|(d, b)| d.capacity_mah - b)
+            .collect();
+        let mut order: Vec<usize> = (0..deficit.len()).collect();
+        order.sort_by(|&a, &b| deficit[b].total_cmp(&deficit[a]).then(a.cmp(&b)));
+        let mut rank = vec![0; order.len()];
+        for (r, &d) in order.iter().enumerate() {
+            rank[d] = r;
+        }
+        rank
+    }
+
     fn pad_assignment(
         &self,
         objective: &Objective,
@@ -1154,6 +1175,8 @@ pub fn solve_continuous(
     );
     // The pad assignment the margin attempts fix: the best one for the latest time shares.
     let mut assignment = model.pad_assignment(objective, &relaxed.theta)?;
+    // The pad MILP's symmetry breaking: the relaxation's longest charge times first.
+    let rank = model.rank_by_charge_time(&relaxed.theta);
     if let Some(a) = assignment.as_deref().filter(|_| !reached(&best, bound)) {
         // The relaxation's assignment fixed: an LP whose schedule often reaches the bound.
         if let Solved::Values(v) =
@@ -1168,7 +1191,7 @@ pub fn solve_continuous(
     }
     if has_binaries && !reached(&best, bound) {
         // The pad MILP: a microlp failure leaves the relaxation's bound, said so by epsilon.
-        match model.solve(objective, options, Attempt::exact(Pads::Integral)) {
+        match model.solve(objective, options, Attempt::exact(Pads::Integral(&rank))) {
             Ok(Solved::Values(v)) => {
                 if v.bound.is_some() {
                     bound = v.bound;
@@ -1221,7 +1244,7 @@ pub fn solve_continuous(
                 start_min,
                 pads: match &assignment {
                     Some(a) => Pads::Fixed(a),
-                    None => Pads::Integral,
+                    None => Pads::Integral(&rank),
                 },
                 rescale: 1.0,
             };

@@ -265,7 +265,7 @@ where
     // Objective variables.
     let (goal, pad_vars) = match *objective {
         Objective::NodeTime { pads, .. } => {
-            let rows = PadRows::add(&mut vars, n, pads, relax);
+            let rows = PadRows::add(&mut vars, n, pads, relax, None);
             (Some(vars.add(variable().min(0.0).name("M"))), Some(rows))
         }
         Objective::MaxMinArrival => (Some(vars.add(variable().name("g"))), None),

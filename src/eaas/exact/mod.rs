@@ -374,18 +374,22 @@ pub(crate) struct PadRows {
 }
 
 impl PadRows {
-    /// Adds the variables for `n` drones on `pads` pads (`x` in `[0, 1]` when `relax`).
+    /// Adds the variables for `n` drones on `pads` pads (`x` in `[0, 1]` when `relax`). The
+    /// pads' symmetry is broken along `rank` (drone `d` may use pads `0..=min(rank[d], m - 1)`:
+    /// relabel the pads in the order the ranked drones first use them), the drone index when
+    /// `None`; any order is valid, one with the longest charge times first branches best.
     pub(crate) fn add(
         vars: &mut good_lp::ProblemVariables,
         n: usize,
         pads: usize,
         relax: bool,
+        rank: Option<&[usize]>,
     ) -> PadRows {
         use good_lp::variable;
         let m = pads.min(n);
         let x: Vec<Vec<good_lp::Variable>> = (0..n)
             .map(|d| {
-                (0..=d.min(m.max(1) - 1))
+                (0..=rank.map_or(d, |r| r[d]).min(m.max(1) - 1))
                     .map(|i| {
                         let name = format!("x_d{d}_p{i}");
                         if relax {
@@ -420,7 +424,7 @@ impl PadRows {
         makespan: good_lp::Variable,
     ) {
         use good_lp::{constraint, Expression};
-        let m = self.x.last().map_or(0, |xd| xd.len());
+        let m = self.x.iter().map(Vec::len).max().unwrap_or(0);
         for (d, &cap) in capacity.iter().enumerate() {
             let ct = (cap - final_battery[d].clone()) * (1.0 / pad_rate_mah_per_min);
             let big = cap / pad_rate_mah_per_min;
@@ -435,7 +439,12 @@ impl PadRows {
             model.add_constraint(constraint!(ct <= makespan));
         }
         for i in 0..m {
-            let load: Expression = self.w[i..].iter().map(|wd| wd[i]).sum();
+            let load: Expression = self
+                .w
+                .iter()
+                .filter(|wd| wd.len() > i)
+                .map(|wd| wd[i])
+                .sum();
             model.add_constraint(constraint!(load <= makespan));
         }
     }
