@@ -1191,7 +1191,18 @@ pub fn solve_continuous(
     }
     if has_binaries && !reached(&best, bound) {
         // The pad MILP: a microlp failure leaves the relaxation's bound, said so by epsilon.
-        match model.solve(objective, options, Attempt::exact(Pads::Integral(&rank))) {
+        // Its symmetry broken along the charge times first; when microlp fails numerically on
+        // that, along the drone index.
+        let by_index: Vec<usize> = (0..problem.drones.len()).collect();
+        let mut answer = model.solve(objective, options, Attempt::exact(Pads::Integral(&rank)));
+        if matches!(answer, Err(Error::Backend { .. })) && rank != by_index {
+            answer = model.solve(
+                objective,
+                options,
+                Attempt::exact(Pads::Integral(&by_index)),
+            );
+        }
+        match answer {
             Ok(Solved::Values(v)) => {
                 if v.bound.is_some() {
                     bound = v.bound;
