@@ -211,6 +211,7 @@ pub struct RequestRow {
     /// sharing schedules and pads, min (empty when it does not deliver or was not computed).
     pub joint_dt_min: Option<f64>,
     /// `--joint`: why the split below is not (wholly) taken: `not_delivered`, `no_reference`,
+    /// `unproven` (a hop solve stopped by a limit left a reference undecided),
     /// `different_policy`, `outside_reference` (a hop off the hop-path rule: only the sharing
     /// part); empty when every part is taken or for a reference row.
     pub split_label: String,

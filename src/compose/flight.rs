@@ -467,7 +467,9 @@ impl<'a> Planner<'a> {
         } else {
             Objective::Feasible
         };
-        let (outcome, solve) = exact_hop::fly_exact(&problem, policy, &objective, &self.exact)?;
+        let readings = eaas::PolicyOptions::from(&self.profile.readings);
+        let (outcome, solve) =
+            exact_hop::fly_exact(&problem, policy, &objective, &self.exact, &readings)?;
         self.solves.borrow_mut().add(&solve);
         let flight = Flight {
             outcome,

@@ -12,6 +12,11 @@ use crate::error::Result;
 use crate::network::ShortestPathsTo;
 use std::collections::HashMap;
 
+/// Relative margin by which the fluid LP's bound is lowered: clarabel's answers are accurate to
+/// about its tolerances (1e-8 relative when solved, looser when only almost solved), far below
+/// this, and far below the gap between the bound and the arc's cost.
+const FLUID_BOUND_MARGIN: f64 = 1e-5;
+
 /// How far an arc's cost is known: each level is a lower bound on the next, the last is the
 /// cost itself.
 enum Known {
@@ -48,9 +53,10 @@ struct Search<'g> {
 
 impl Planner<'_> {
     /// `tt` plus the fluid LP's bound on the node time at `v` of flying `path` from full
-    /// batteries, lowered by a relative `1e-9`; `None` when the LP proves that no schedule flies.
-    /// A failed LP bounds nothing (`tt`).
-    fn fluid_bound_min(&self, path: &crate::network::Route, v: usize) -> Result<Option<f64>> {
+    /// batteries, lowered by a relative [`FLUID_BOUND_MARGIN`]. An interior-point answer is
+    /// trusted as a bound only: an infeasible (or nearly infeasible) LP, or a failed one, bounds
+    /// nothing (`tt`), and the arc is then flown, whose exact solve proves what it proves.
+    fn fluid_bound_min(&self, path: &crate::network::Route, v: usize) -> Result<f64> {
         let tt_min = path.distance_m / self.speed_m_per_min();
         let problem = self.hop_problem(path, &self.full_battery_mah())?;
         let objective = Objective::NodeTime {
@@ -64,11 +70,10 @@ impl Planner<'_> {
             settings.milp.reorder,
             settings.milp.time_limit_s,
         ) {
-            Ok(o) if o.status == ExactStatus::Infeasible => return Ok(None),
-            Ok(o) => o.bound.unwrap_or(0.0).max(0.0),
-            Err(_) => 0.0,
+            Ok(o) if o.status == ExactStatus::Optimal => o.bound.unwrap_or(0.0).max(0.0),
+            Ok(_) | Err(_) => 0.0,
         };
-        Ok(Some((tt_min + nt_min) * (1.0 - 1e-9)))
+        Ok((tt_min + nt_min) * (1.0 - FLUID_BOUND_MARGIN))
     }
 
     /// [`Planner::compose_optimal`] under the exact policy: the least `dt` over stop sequences,
@@ -151,7 +156,7 @@ impl Planner<'_> {
                                 f64::INFINITY
                             } else if v == destination {
                                 distance_m / speed
-                            } else if distance_m / speed > endurance_min {
+                            } else if distance_m / speed > endurance_min * (1.0 + 1e-9) {
                                 f64::INFINITY
                             } else {
                                 self.distance_bound_min(v, distance_m, 0.0, min_swarm_rate)
@@ -222,10 +227,7 @@ impl Planner<'_> {
                         .reversed_path_from(v)
                         .expect("a finite distance has a path");
                     let before = search.arcs[&(u, v)].cost_min();
-                    let known = match self.fluid_bound_min(&path, v)? {
-                        Some(bound) => Known::FluidBound(bound.max(before)),
-                        None => Known::NoSchedule,
-                    };
+                    let known = Known::FluidBound(self.fluid_bound_min(&path, v)?.max(before));
                     search.arcs.insert((u, v), known);
                     optimality.arcs_fluid_bounded += 1;
                 }

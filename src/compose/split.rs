@@ -70,6 +70,10 @@ impl JointOptimum {
 pub enum SplitLabel {
     /// The heuristic plan does not deliver.
     NotDelivered,
+    /// The plan's route flown with exact schedules ended unproven and did not deliver, or its
+    /// swarm's optimum did not deliver what the replay delivered (a hop solve stopped by a
+    /// limit): no part is taken.
+    Unproven,
     /// The joint optimum does not deliver (nor, then, does the heuristic).
     NoReference,
     /// A hop of the plan swaps slots, which `--reorder none` does not contain: no part is taken.
@@ -104,9 +108,11 @@ pub struct GapSplit {
     /// drones) costs against the best of the swarms considered.
     pub swarm_min: Option<f64>,
     /// The parts are `>= -epsilon_min` (0 when every hop optimum is attained): the certified
-    /// distances of the exact-schedule replay and of the swarm optimum, summed.
+    /// distances of the exact-schedule replay, of the plan's swarm's optimum and of the best
+    /// swarm's, summed.
     pub epsilon_min: f64,
-    /// Whether every solve behind the three references is proven.
+    /// Whether every solve behind the three references (the replay, the plan's swarm's optimum,
+    /// the best swarm's) is proven.
     pub proven: bool,
 }
 
@@ -177,7 +183,6 @@ impl Context<'_> {
             .map(|s| s.dt_min().unwrap_or(f64::INFINITY))
             .collect();
         let best = least_unsettled(&dts, &vec![false; dts.len()]);
-        let joint_dt = best.map(|b| dts[b]);
         let mut splits = Vec::with_capacity(reports.len());
         for report in reports {
             let o = report.options;
@@ -189,11 +194,12 @@ impl Context<'_> {
                 .iter()
                 .position(|(_, c)| c.swarm == report.swarm)
                 .expect("every report's swarm is among the swarms considered");
+            let best_swarm = best.map(|b| &swarms[b]);
             splits.push(Some(self.split_one(
                 report,
                 &planners[s],
                 &swarms[s],
-                joint_dt,
+                best_swarm,
             )?));
         }
         let proven = swarms.iter().all(|s| s.optimality().proven());
@@ -211,15 +217,22 @@ impl Context<'_> {
     }
 
     /// The gap split of one heuristic report whose swarm `planner` flies under `exact`, with
-    /// that swarm's optimum `own` and the joint optimum's `joint_dt`.
+    /// that swarm's optimum `own` and the best swarm's, the joint optimum (`None` when no swarm
+    /// delivers).
     fn split_one(
         &self,
         report: &RequestReport,
         planner: &Planner,
         own: &SwarmOptimum,
-        joint_dt: Option<f64>,
+        best: Option<&SwarmOptimum>,
     ) -> Result<GapSplit> {
         let plan = &report.plan;
+        let joint_dt = best.and_then(SwarmOptimum::dt_min);
+        // The references: the own swarm's optimum and, when another, the best swarm's.
+        let mut references = vec![own.optimality()];
+        if let Some(b) = best.filter(|b| !std::ptr::eq(*b, own)) {
+            references.push(b.optimality());
+        }
         let mut split = GapSplit {
             label: None,
             exact_schedule_dt_min: None,
@@ -229,8 +242,8 @@ impl Context<'_> {
             sharing_min: None,
             route_min: None,
             swarm_min: None,
-            epsilon_min: own.optimality().epsilon_min,
-            proven: own.optimality().proven(),
+            epsilon_min: references.iter().map(|o| o.epsilon_min).sum(),
+            proven: references.iter().all(RouteOptimality::proven),
         };
         let Some(joint_dt) = joint_dt else {
             split.label = Some(SplitLabel::NoReference);
@@ -251,6 +264,10 @@ impl Context<'_> {
         }
         let replay = planner.replay_exact(plan)?;
         if !replay.plan.delivered() {
+            if !replay.proven {
+                split.label = Some(SplitLabel::Unproven);
+                return Ok(split);
+            }
             // The exact model contains the heuristic's schedules: a bug if reached.
             return Err(crate::error::Error::Backend {
                 backend: "compose".into(),
@@ -271,9 +288,22 @@ impl Context<'_> {
             split.label = Some(SplitLabel::OutsideReference);
             return Ok(split);
         }
-        let own_dt = own
-            .dt_min()
-            .expect("a swarm whose replayed route delivers has an optimum that delivers");
+        let Some(own_dt) = own.dt_min() else {
+            // The search refused an arc the replay flies: only a limit can do that.
+            if !split.proven {
+                split.label = Some(SplitLabel::Unproven);
+                return Ok(split);
+            }
+            return Err(crate::error::Error::Backend {
+                backend: "compose".into(),
+                message: format!(
+                    "E0019: request {}: the {} plan's route flies with exact schedules, its \
+                     swarm's proven optimum does not deliver; report it with the instance",
+                    report.request.id,
+                    o_name(report)
+                ),
+            });
+        };
         split.route_min = Some(replay.plan.dt_min - own_dt);
         split.swarm_min = Some(own_dt - joint_dt);
         split.total_min = Some(plan.dt_min - joint_dt);
@@ -343,15 +373,23 @@ impl Planner<'_> {
                     .map(|f| (f, None, 0.0)),
             };
             let Some((flight, stop, epsilon_min)) = arc else {
-                let failure = self
-                    .fly(&path, &full, self.sharing(), HopEnd::NoStop)?
-                    .outcome
-                    .failure;
+                // The flight that failed, from the planner's cache.
+                let end = match hop.stop {
+                    Some(_) => HopEnd::Stop,
+                    None => HopEnd::NoStop,
+                };
+                let failure = self.fly(&path, &full, self.sharing(), end)?.outcome.failure;
                 replay.proven &= optimality.proven();
                 replay.plan = replay.plan.fail(PlanOutcome::HopInfeasible {
                     from: hop.from.clone(),
                     to: hop.to.clone(),
-                    failure: failure.expect("an infeasible hop reports its first failure"),
+                    failure: failure.ok_or_else(|| crate::error::Error::Backend {
+                        backend: "compose".into(),
+                        message: format!(
+                            "E0019: the hop from {} does not fly and reports no failure",
+                            hop.from
+                        ),
+                    })?,
                 });
                 return Ok(replay);
             };

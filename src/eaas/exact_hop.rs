@@ -231,6 +231,7 @@ impl HopSolveCounts {
 /// * `objective` - [`Objective::NodeTime`] when the hop ends at a stop, else
 ///   [`Objective::Feasible`].
 /// * `settings` - grid, re-ordering, backend, time limit.
+/// * `readings` - the readings of PB and FB, whose schedules are the solve's first incumbents.
 ///
 /// # Returns
 /// The flown schedule replayed by the hop evaluation (infeasible when no schedule of the
@@ -249,6 +250,7 @@ pub fn fly_exact(
     policy: SharingPolicy,
     objective: &Objective,
     settings: &ExactSettings,
+    readings: &PolicyOptions,
 ) -> Result<(HopOutcome, HopSolve)> {
     let milp = &settings.milp;
     if milp.reorder == Reorder::Free {
@@ -270,7 +272,7 @@ pub fn fly_exact(
         SharingPolicy::Exact => match solve_continuous(
             problem,
             objective,
-            &ContinuousOptions::like(milp, PolicyOptions::default()),
+            &ContinuousOptions::like(milp, *readings),
         ) {
             Ok(o) => Ok(o),
             Err(Error::Backend { backend, message }) => Err(format!("{backend}: {message}")),

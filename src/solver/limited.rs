@@ -6,6 +6,9 @@
 //! node limit and the wall-clock limit only when one is asked for (finite); microlp proves
 //! optimality outright (no relative gap), as through good_lp. The model is built by good_lp (`good_lp::solvers::microlp::microlp`),
 //! so variables and constraints are exactly good_lp's; only the call to microlp's solver is ours.
+//! One check of good_lp's is skipped with it: an integer variable whose bounds hold no integer,
+//! or lie outside `i32`, which good_lp reports when solving. The models here use binaries and
+//! continuous variables only.
 
 use good_lp::solvers::microlp::MicroLpProblem;
 use good_lp::solvers::{ResolutionError, Solution, SolutionStatus, SolverModel, WithTimeLimit};
