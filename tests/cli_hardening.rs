@@ -206,7 +206,6 @@ fn unreadable_and_non_utf8_files_exit_2_with_e0008_and_e0009() {
 fn usage_errors_exit_2_with_e0007_and_help_and_version_exit_0() {
     for args in [
         vec!["no-such-command"],
-        vec![],
         vec!["solve", "--no-such-flag"],
         vec!["node-time", "--pads"],
         vec!["node-time", "--pads", "three", "--times", "1"],
@@ -216,6 +215,12 @@ fn usage_errors_exit_2_with_e0007_and_help_and_version_exit_0() {
         let out = swarmplan(&args);
         assert_exit_2_with(&out, "E0007", &["command line"]);
     }
+    // `swarmplan` alone prints the help, without an error prefix, and exits 2.
+    let out = swarmplan(&[]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = stderr(&out);
+    assert!(err.contains("Usage: swarmplan <COMMAND>"), "{err}");
+    assert!(!err.contains("error") && !err.contains("E0007"), "{err}");
     // A value parser's own code is kept, not replaced by E0007.
     let out = swarmplan(&["generate", "network", "--nodes", "ten", "-o", "x.json"]);
     assert_exit_2_with(&out, "E1901", &[]);

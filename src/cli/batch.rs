@@ -219,7 +219,7 @@ pub fn run(args: BatchArgs) -> Result<i32> {
         }
     }
     let bar = super::progress::bar((combos.len() * requests.len()) as u64, "requests");
-    bar.set_message(format!("x {} combinations", combos.len()));
+    bar.set_message(format!("x {}", super::count(combos.len(), "combination")));
     let start = Instant::now();
     let grid = context.plan_grid(requests, &combos, threads, &|n| bar.inc(n), &|_, r| {
         Planned::of(r)
@@ -266,9 +266,10 @@ pub fn run(args: BatchArgs) -> Result<i32> {
     }
     if !args.json {
         eprintln!(
-            "{} requests x {} combinations on {threads} threads in {grid_ms:.0} ms",
-            requests.len(),
-            combos.len()
+            "{} x {} on {} in {grid_ms:.0} ms",
+            super::count(requests.len(), "request"),
+            super::count(combos.len(), "combination"),
+            super::count(threads, "thread")
         );
     }
     if let Some(path) = &args.per_request {

@@ -265,9 +265,9 @@ fn run_grid(args: RunArgs, command: Vec<String>) -> Result<i32> {
     let planned = (0..config.limit).filter(|&i| config.shard.holds(i)).count();
     let bar = super::progress::bar((planned * config.planned_combos().len()) as u64, "plans");
     bar.set_message(format!(
-        "{} requests x {} combinations",
-        planned,
-        config.planned_combos().len()
+        "{} x {}",
+        super::count(planned, "request"),
+        super::count(config.planned_combos().len(), "combination")
     ));
     let start = Instant::now();
     let data = bench::run(&context, &instance.requests, &config, threads, &|n| {
@@ -277,8 +277,10 @@ fn run_grid(args: RunArgs, command: Vec<String>) -> Result<i32> {
     let elapsed_s = start.elapsed().as_secs_f64();
     let summary = bench::write_outputs(&out, &config, &data, command)?;
     eprintln!(
-        "{planned} requests x {} combinations on {threads} threads in {elapsed_s:.1} s",
-        config.planned_combos().len()
+        "{} x {} on {} in {elapsed_s:.1} s",
+        super::count(planned, "request"),
+        super::count(config.planned_combos().len(), "combination"),
+        super::count(threads, "thread")
     );
     report(&summary, &out, args.json)
 }

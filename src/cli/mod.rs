@@ -99,7 +99,8 @@ pub fn main() -> i32 {
 
 /// The message of a command-line error, with a code: its own when a value parser gave one (the
 /// `E19xx`, `E39xx` checks of `generate`), else `E0007` (an unknown or missing argument, a value
-/// that does not parse). `None` for `--help` and `--version`, which are not errors.
+/// that does not parse). `None` for `--help` and `--version`, which are not errors; the help
+/// without a code for `swarmplan` alone.
 ///
 /// # Example
 /// ```
@@ -108,12 +109,18 @@ pub fn main() -> i32 {
 /// assert!(swarmplan::cli::coded_usage_error(&e).unwrap().contains("[E0007]"));
 /// let help = swarmplan::cli::Cli::try_parse_from(["swarmplan", "--help"]).unwrap_err();
 /// assert!(swarmplan::cli::coded_usage_error(&help).is_none());
+/// let bare = swarmplan::cli::Cli::try_parse_from(["swarmplan"]).unwrap_err();
+/// assert!(!swarmplan::cli::coded_usage_error(&bare).unwrap().contains("[E0007]"));
 /// ```
 pub fn coded_usage_error(e: &clap::Error) -> Option<String> {
     if !e.use_stderr() {
         return None;
     }
     let text = e.render().to_string();
+    // `swarmplan` alone: the help, as asked for, without an error prefix (still exit 2).
+    if e.kind() == clap::error::ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand {
+        return Some(text);
+    }
     if has_code(&text) {
         return Some(text);
     }
@@ -138,4 +145,13 @@ pub fn print_json<T: Serialize>(value: &T) -> crate::error::Result<()> {
         serde_json::to_string_pretty(value).expect("serialising plain data cannot fail")
     );
     Ok(())
+}
+
+/// `n` and `word`, with an `s` unless `n` is 1: "1 combination", "20 combinations".
+pub(crate) fn count(n: usize, word: &str) -> String {
+    if n == 1 {
+        format!("{n} {word}")
+    } else {
+        format!("{n} {word}s")
+    }
 }

@@ -51,8 +51,8 @@ pub enum RouteMethod {
     /// The least delivery time over every sequence of stops (Dijkstra on the stop graph, each
     /// hop along the shortest path between its stops, under the sharing policy): the proven
     /// optimum the heuristics are measured against; under `exact`, the joint optimum over stop
-    /// sequences, sharing schedules and pad assignments. Not with `fair`. Not in
-    /// [`RouteMethod::ALL`]: asked for by name.
+    /// sequences, sharing schedules and pad assignments. Not with `fair`. Not part of `--all`
+    /// (the paper's grid): asked for by name.
     Optimal,
 }
 
