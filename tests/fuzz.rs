@@ -440,7 +440,11 @@ proptest! {
         use clap::Parser;
         let argv = std::iter::once("swarmplan".to_string()).chain(args);
         if let Err(e) = swarmplan::cli::Cli::try_parse_from(argv) {
+            let help_only =
+                e.kind() == clap::error::ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand;
             match swarmplan::cli::coded_usage_error(&e) {
+                // A command given alone: its help, as `--help` prints it (exit 2).
+                Some(message) if help_only => prop_assert!(message.contains("Usage:"), "{message}"),
                 Some(message) => prop_assert!(message.contains("[E"), "{message}"),
                 None => prop_assert!(!e.use_stderr()),
             }
