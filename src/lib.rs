@@ -42,6 +42,7 @@ pub mod check;
 pub mod cli;
 pub mod compose;
 pub mod eaas;
+pub mod evaluate;
 pub mod energy;
 pub mod error;
 pub mod formation;

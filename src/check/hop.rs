@@ -12,7 +12,7 @@
 //! `delta` (C3013); the outcome's feasibility, first failure, final and lowest batteries and
 //! shared total match the re-integration (C3014-C3018).
 
-use crate::eaas::{HopOutcome, HopProblem, Transfer};
+use crate::eaas::{FailureReason, HopFailure, HopOutcome, HopProblem, Transfer};
 use crate::error::Violation;
 use crate::problem::Role;
 
@@ -89,6 +89,56 @@ pub fn check_hop(problem: &HopProblem, outcome: &HopOutcome) -> Vec<Violation> {
     out.extend(c3017_lowest_batteries_match(outcome, &run));
     out.extend(c3018_shared_total_matches(outcome));
     out
+}
+
+/// Flies a schedule exactly as written (by hand, or by another program): the batteries come
+/// from this checker's own re-integration, and every rule the schedule breaks is listed.
+///
+/// # Returns
+/// The outcome (`None` when a transfer names a drone or slot that does not exist, or has a
+/// time that is not a finite number, so that nothing can be integrated) and every broken rule
+/// (codes `C3001`-`C3013`; the outcome's own figures match by construction).
+///
+/// # Complexity
+/// That of [`check_hop`].
+pub fn fly_as_written(
+    problem: &HopProblem,
+    transfers: &[Transfer],
+) -> (Option<HopOutcome>, Vec<Violation>) {
+    let hop = HopView::new(problem);
+    let mut out = Vec::new();
+    for (i, x) in transfers.iter().enumerate() {
+        let f = format!("transfers[{i}]");
+        out.extend(c3001_transfer_names_existing_drones(&hop, &f, x));
+        if !(x.start_min.is_finite() && x.end_min.is_finite() && x.energy_mah.is_finite()) {
+            out.push(v(
+                "C3004",
+                f,
+                format!(
+                    "start {}, end {} or energy {} is not a finite number",
+                    x.start_min, x.end_min, x.energy_mah
+                ),
+            ));
+        }
+    }
+    if !out.is_empty() {
+        return (None, out);
+    }
+    let run = integrate(&hop, transfers);
+    let outcome = HopOutcome {
+        feasible: run.first_below.is_none(),
+        failure: run.first_below.map(|(drone, time_min)| HopFailure {
+            drone,
+            time_min,
+            reason: FailureReason::BatteryDepleted,
+        }),
+        transfers: transfers.to_vec(),
+        final_battery_mah: run.battery,
+        min_battery_mah: run.lowest,
+        shared_mah: transfers.iter().fold(0.0, |a, t| a + t.energy_mah),
+    };
+    let violations = check_hop(problem, &outcome);
+    (Some(outcome), violations)
 }
 
 /// The hop problem with what every rule needs of it.

@@ -11,6 +11,6 @@ pub mod plan_file;
 pub mod report;
 
 pub use free_hop::check_free_hop;
-pub use hop::check_hop;
+pub use hop::{check_hop, fly_as_written};
 pub use plan::check_plan;
 pub use report::check_report;

@@ -179,6 +179,52 @@ pub fn run(args: BenchArgs) -> Result<i32> {
 
 fn run_grid(args: RunArgs, command: Vec<String>) -> Result<i32> {
     let out = args.out.clone().expect("clap requires --out");
+    let json = args.json;
+    let bar = super::progress::bar(0, "plans");
+    let run = run_grid_with(args, command, &|total, what| {
+        bar.set_length(total);
+        bar.set_message(what);
+    }, &|n| bar.inc(n))?;
+    bar.finish_and_clear();
+    eprintln!(
+        "{} on {} in {:.1} s",
+        run.what,
+        super::count(run.threads, "thread"),
+        run.elapsed_s
+    );
+    report(&run.summary, &out, json)
+}
+
+/// A bench run's results, as [`run_grid_with`] returns them.
+#[derive(Debug)]
+pub struct GridRun {
+    /// The summary, as written to `summary.json`.
+    pub summary: Summary,
+    /// The run's configuration, as written to `config.json`.
+    pub config: BenchConfig,
+    /// The tables, as written and read back.
+    pub data: bench::BenchData,
+    /// `N requests x M combinations`.
+    pub what: String,
+    /// Worker threads.
+    pub threads: usize,
+    /// Wall-clock time of the planning, s.
+    pub elapsed_s: f64,
+}
+
+/// Runs `swarmplan bench` (not `merge`) as the command line does, without printing: the files
+/// are written to `--out`. `start(total, what)` is called once with the number of request x
+/// combination plans; `done(n)` as `n` more are made (from worker threads).
+///
+/// # Errors
+/// Those of `swarmplan bench`.
+pub fn run_grid_with(
+    args: RunArgs,
+    command: Vec<String>,
+    start: &dyn Fn(u64, String),
+    done: &(dyn Fn(u64) + Sync),
+) -> Result<GridRun> {
+    let out = args.out.clone().expect("clap requires --out");
     let threads = args.threads.unwrap_or_else(|| {
         std::thread::available_parallelism()
             .map(|n| n.get())
@@ -263,26 +309,28 @@ fn run_grid(args: RunArgs, command: Vec<String>) -> Result<i32> {
         shard: args.shard.unwrap_or(Shard::WHOLE),
     };
     let planned = (0..config.limit).filter(|&i| config.shard.holds(i)).count();
-    let bar = super::progress::bar((planned * config.planned_combos().len()) as u64, "plans");
-    bar.set_message(format!(
+    let what = format!(
         "{} x {}",
         super::count(planned, "request"),
         super::count(config.planned_combos().len(), "combination")
-    ));
-    let start = Instant::now();
-    let data = bench::run(&context, &instance.requests, &config, threads, &|n| {
-        bar.inc(n)
-    })?;
-    bar.finish_and_clear();
-    let elapsed_s = start.elapsed().as_secs_f64();
-    let summary = bench::write_outputs(&out, &config, &data, command)?;
-    eprintln!(
-        "{} x {} on {} in {elapsed_s:.1} s",
-        super::count(planned, "request"),
-        super::count(config.planned_combos().len(), "combination"),
-        super::count(threads, "thread")
     );
-    report(&summary, &out, args.json)
+    start(
+        (planned * config.planned_combos().len()) as u64,
+        what.clone(),
+    );
+    let clock = Instant::now();
+    let data = bench::run(&context, &instance.requests, &config, threads, done)?;
+    let elapsed_s = clock.elapsed().as_secs_f64();
+    let summary = bench::write_outputs(&out, &config, &data, command)?;
+    let (config, data) = bench::read_data(&out)?;
+    Ok(GridRun {
+        summary,
+        config,
+        data,
+        what,
+        threads,
+        elapsed_s,
+    })
 }
 
 /// The combinations asked, in the order route, sharing, positioning; the baseline `none` once

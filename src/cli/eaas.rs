@@ -20,10 +20,10 @@
 //! re-ordering mode of the exact models is labelled `different_policy` instead.
 
 use super::inputs::{self, InstanceArgs};
-use crate::compose::{Context, PlanOptions, Planner, RouteMethod};
+use crate::compose::{Context, PlanOptions, RouteMethod};
 use crate::eaas::compare::{label_gaps, run_method};
 pub use crate::eaas::compare::{HopMethod, MethodRow};
-use crate::eaas::hop_file::{read_hop_file, write_hop_file, HopEnd, HopFile};
+use crate::eaas::hop_file::{read_hop_file, write_hop_file, HopFile};
 use crate::eaas::milp::{write_lp, MilpOptions, Objective, Reorder};
 use crate::eaas::{HopProblem, PolicyOptions, SharingPolicy};
 use crate::error::{Error, Result};
@@ -181,49 +181,22 @@ fn planned_hop(args: &EaasArgs) -> Result<(HopFile, PolicyOptions)> {
         route: RouteMethod::Sequential,
         support: None,
     };
-    let report = context.plan(&request, &options)?;
-    let hops = &report.plan.hops;
-    let hop = hops.get(args.hop).ok_or_else(|| {
-        Error::invalid(
-            "E4110",
-            "--hop",
-            format!("hop {} of a plan with {} hop(s)", args.hop, hops.len()),
-            "give a hop index below the number of hops (see `swarmplan solve`)",
-        )
-    })?;
-    let planner = Planner::new(
-        &instance.graph,
-        &instance.profile,
-        &report.swarm,
-        SharingPolicy::Pb,
-    );
-    let (problem, objective) = planner.studied_hop(hop)?;
-    let end = match objective {
-        Objective::NodeTime {
-            pads,
-            pad_rate_mah_per_min,
-        } => Some(HopEnd {
-            pads,
-            pad_rate_mah_per_min,
-        }),
-        Objective::MaxMinArrival | Objective::Feasible => None,
-    };
     let profile = if args.instance.literal {
         format!("{} (--literal)", instance.profile.name)
     } else {
         instance.profile.name.clone()
     };
-    let file = HopFile {
-        schema_version: crate::eaas::hop_file::HOP_FILE_SCHEMA_VERSION,
-        request_id: request.id.clone(),
-        hop_index: args.hop,
-        from: hop.path.first().cloned().unwrap_or_default(),
-        to: hop.path.last().cloned().unwrap_or_default(),
-        path: hop.path.clone(),
-        profile: Some(profile),
-        end,
-        hop: problem,
-    };
+    let file = context
+        .hop_file(&request, &options, args.hop, &profile)
+        .map_err(|e| match e {
+            Error::Invalid(mut list) => {
+                for v in list.iter_mut().filter(|v| v.code == "E4110") {
+                    v.field = "--hop".to_string();
+                }
+                Error::Invalid(list)
+            }
+            other => other,
+        })?;
     Ok((file, PolicyOptions::from(&instance.profile.readings)))
 }
 

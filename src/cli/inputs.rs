@@ -4,41 +4,11 @@
 use crate::eaas::exact_hop::{ExactSettings, DEFAULT_HOP_NODE_LIMIT};
 use crate::eaas::milp::{MilpOptions, Reorder};
 use crate::error::{Error, Result, Violation};
-use crate::problem::{io, validate, Instance, Network, Profile, RequestSet};
+use crate::problem::{io, shipped, Instance, Network, Profile, RequestSet};
 use crate::solver::MilpBackend;
 use std::path::{Path, PathBuf};
 
-const EMBEDDED_REQUESTS: &str = include_str!("../../instances/paper-195/requests.json");
-
-/// A network and profile shipped in the binary, used when no file is given.
-#[derive(Debug, Clone, Copy)]
-pub struct Shipped {
-    /// The network's JSON.
-    pub network: &'static str,
-    /// Its name in messages and reports.
-    pub network_name: &'static str,
-    /// The profile's TOML.
-    pub profile: &'static str,
-    /// Its name in messages and reports.
-    pub profile_name: &'static str,
-}
-
-/// paper-195 with the `paper` profile: the default of every planning command but `bench`.
-pub const PAPER_195: Shipped = Shipped {
-    network: include_str!("../../instances/paper-195/network.json"),
-    network_name: "embedded paper-195 network",
-    profile: include_str!("../../instances/profiles/paper.toml"),
-    profile_name: "embedded paper profile",
-};
-
-/// findings-195 with the `paper-findings` profile: the instance of the paper's findings, the
-/// default of `bench`.
-pub const FINDINGS_195: Shipped = Shipped {
-    network: include_str!("../../instances/findings-195/network.json"),
-    network_name: "embedded findings-195 network",
-    profile: include_str!("../../instances/profiles/paper-findings.toml"),
-    profile_name: "embedded paper-findings profile",
-};
+pub use crate::problem::shipped::{Shipped, FINDINGS_195, PAPER_195};
 
 /// File arguments shared by the planning subcommands.
 #[derive(Debug, Clone, clap::Args)]
@@ -184,15 +154,9 @@ impl InstanceArgs {
 /// header and ids (E3001, E3002, E3102); the requests themselves are checked by the caller
 /// against the network.
 pub fn load_requests(path: Option<&Path>) -> Result<RequestSet> {
-    let set: RequestSet = match path {
-        Some(p) => io::read_json(p)?,
-        None => io::parse_json(EMBEDDED_REQUESTS, "embedded paper-195 requests")?,
-    };
-    let violations = validate::validate_request_set_header(&set);
-    if violations.is_empty() {
-        Ok(set)
-    } else {
-        Err(Error::Invalid(violations))
+    match path {
+        Some(p) => shipped::checked_set(io::read_json(p)?),
+        None => shipped::requests(),
     }
 }
 

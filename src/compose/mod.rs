@@ -20,6 +20,7 @@ mod plan;
 mod request;
 mod sequential;
 mod split;
+mod studied;
 
 pub use any_path::MAX_HOP_PATH_LABELS;
 pub use baselines::BaselineCosts;

@@ -8,6 +8,7 @@ pub mod io;
 pub mod network;
 pub mod profile;
 pub mod request;
+pub mod shipped;
 pub mod swarm;
 pub mod validate;
 pub mod wind;

@@ -275,15 +275,19 @@ pub fn objective_of(
 /// One possible transfer pattern in a period: `support` serves `consumer` flying in `slot`; when
 /// `partner` is set it holds the consumer's initial slot meanwhile.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Move {
+pub struct Move {
+    /// The giving support drone.
     pub support: usize,
+    /// The receiving delivery drone.
     pub consumer: usize,
+    /// The slot the consumer flies in.
     pub slot: usize,
+    /// The delivery drone holding the consumer's own slot meanwhile, when the consumer moves.
     pub partner: Option<usize>,
 }
 
 /// Moves allowed by `reorder` (`free` uses every support-consumer pair; slots come from `z`).
-pub(crate) fn moves(problem: &HopProblem, mode: Reorder) -> Vec<Move> {
+pub fn moves(problem: &HopProblem, mode: Reorder) -> Vec<Move> {
     let n = problem.drones.len();
     let role = |d: usize| problem.drones[d].role;
     let mut out = Vec::new();

@@ -1,0 +1,73 @@
+//! One hop of a request's plan taken out as a hop file: the problem `swarmplan eaas` studies and
+//! the Python package's `Instance.hop` returns.
+
+use super::{Context, PlanOptions, RequestReport};
+use crate::eaas::hop_file::{HopEnd, HopFile, HOP_FILE_SCHEMA_VERSION};
+use crate::eaas::milp::Objective;
+use crate::error::{Error, Result};
+use crate::problem::Request;
+
+impl Context<'_> {
+    /// Plans `request` with `options` and returns hop `index` of the plan as a hop file: its
+    /// path, its departure batteries as planned, and the pads at its end (none into the
+    /// destination), recorded as made with the profile called `profile_name`.
+    ///
+    /// # Errors
+    /// E4110 (field `hop`) when the plan has no hop `index`; those of [`Context::plan`] and
+    /// [`super::Planner::studied_hop`].
+    pub fn hop_file(
+        &self,
+        request: &Request,
+        options: &PlanOptions,
+        index: usize,
+        profile_name: &str,
+    ) -> Result<HopFile> {
+        let report = self.plan(request, options)?;
+        self.hop_file_of(&report, index, profile_name)
+    }
+
+    /// Hop `index` of a planned request's report as a hop file (see [`Context::hop_file`]).
+    ///
+    /// # Errors
+    /// E4110 (field `hop`) when the plan has no hop `index`; those of
+    /// [`super::Planner::studied_hop`].
+    pub fn hop_file_of(
+        &self,
+        report: &RequestReport,
+        index: usize,
+        profile_name: &str,
+    ) -> Result<HopFile> {
+        let hops = &report.plan.hops;
+        let hop = hops.get(index).ok_or_else(|| {
+            Error::invalid(
+                "E4110",
+                "hop",
+                format!("hop {index} of a plan with {} hop(s)", hops.len()),
+                "give a hop index below the number of hops of the request's plan",
+            )
+        })?;
+        let planner = self.planner(&report.swarm, report.options.sharing);
+        let (problem, objective) = planner.studied_hop(hop)?;
+        let end = match objective {
+            Objective::NodeTime {
+                pads,
+                pad_rate_mah_per_min,
+            } => Some(HopEnd {
+                pads,
+                pad_rate_mah_per_min,
+            }),
+            Objective::MaxMinArrival | Objective::Feasible => None,
+        };
+        Ok(HopFile {
+            schema_version: HOP_FILE_SCHEMA_VERSION,
+            request_id: report.request.id.clone(),
+            hop_index: index,
+            from: hop.path.first().cloned().unwrap_or_default(),
+            to: hop.path.last().cloned().unwrap_or_default(),
+            path: hop.path.clone(),
+            profile: Some(profile_name.to_string()),
+            end,
+            hop: problem,
+        })
+    }
+}
