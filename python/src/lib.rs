@@ -14,7 +14,9 @@ use std::sync::Arc;
 use std::time::Duration;
 use swarmplan::cli::bench::{run_grid_with, GridRun};
 use swarmplan::cli::inputs::ExactArgs;
-use swarmplan::compose::{Context, HopPaths, PlanOptions, RequestReport, RouteGap, RouteMethod, RoutePair};
+use swarmplan::compose::{
+    Context, HopPaths, PlanOptions, RequestReport, RouteGap, RouteMethod, RoutePair,
+};
 use swarmplan::eaas::compare::{label_gaps, run_method, HopMethod};
 use swarmplan::eaas::hop_file::{parse_hop_file, HopFile};
 use swarmplan::eaas::milp::{MilpOptions, Reorder};
@@ -139,7 +141,13 @@ fn run_detached<T: Send + 'static>(
 
 /// Serde data as Python objects (dicts, lists, floats; `None` for JSON null).
 fn py_of<T: Serialize>(py: Python<'_>, value: &T) -> PyResult<Py<PyAny>> {
-    Ok(pythonize(py, value)?.unbind())
+    Ok(pythonize(py, &json(value))?.unbind())
+}
+
+/// Serde data as JSON's data model, so that sequences become lists (as `json.loads` of the
+/// command line's output gives), never tuples.
+fn json<T: Serialize>(value: &T) -> serde_json::Value {
+    serde_json::to_value(value).expect("plain data serialises")
 }
 
 /// A Python object read as serde data, E0026 naming `field` when it has the wrong shape.
@@ -186,7 +194,12 @@ fn backend_of(py: Python<'_>, name: &str) -> PyResult<MilpBackend> {
     match swarmplan::solver::backend_not_built(name) {
         Some(cause) => Err(to_py_err(
             py,
-            invalid("E0026", "backend", cause, "give microlp, or build the package with the highs feature"),
+            invalid(
+                "E0026",
+                "backend",
+                cause,
+                "give microlp, or build the package with the highs feature",
+            ),
         )),
         None => choice(py, "backend", name),
     }
@@ -319,7 +332,12 @@ impl Instance {
     }
 }
 
-fn load_profile(py: Python<'_>, profile: Option<&str>, fallback: &str, literal: bool) -> PyResult<(swarmplan::problem::Profile, String)> {
+fn load_profile(
+    py: Python<'_>,
+    profile: Option<&str>,
+    fallback: &str,
+    literal: bool,
+) -> PyResult<(swarmplan::problem::Profile, String)> {
     let name = profile.unwrap_or(fallback);
     let (mut p, label) = if shipped::PROFILES.iter().any(|(n, _)| *n == name) {
         (
@@ -337,7 +355,11 @@ fn load_profile(py: Python<'_>, profile: Option<&str>, fallback: &str, literal: 
     if literal {
         p.readings = swarmplan::problem::profile::Readings::literal();
     }
-    let label = if literal { format!("{label} (literal)") } else { label };
+    let label = if literal {
+        format!("{label} (literal)")
+    } else {
+        label
+    };
     Ok((p, label))
 }
 
@@ -349,7 +371,12 @@ impl Instance {
     /// the shipped 10,000 requests. `literal` reads the paper word for word (`--literal`).
     #[staticmethod]
     #[pyo3(signature = (network = "paper-195", profile = None, literal = false))]
-    fn embedded(py: Python<'_>, network: &str, profile: Option<&str>, literal: bool) -> PyResult<Instance> {
+    fn embedded(
+        py: Python<'_>,
+        network: &str,
+        profile: Option<&str>,
+        literal: bool,
+    ) -> PyResult<Instance> {
         let net = shipped::network(network).map_err(|e| to_py_err(py, e))?;
         let fallback = shipped::default_profile(network).unwrap_or("paper");
         let (p, profile_label) = load_profile(py, profile, fallback, literal)?;
@@ -384,7 +411,9 @@ impl Instance {
                 shipped::requests().map_err(|e| to_py_err(py, e))?,
                 shipped::REQUESTS_NAME.to_string(),
             ),
-            Some(r) if r.extract::<std::path::PathBuf>().is_ok() && !r.is_instance_of::<PyList>() => {
+            Some(r)
+                if r.extract::<std::path::PathBuf>().is_ok() && !r.is_instance_of::<PyList>() =>
+            {
                 let path: std::path::PathBuf = r.extract()?;
                 let set: RequestSet = io::read_json(&path)
                     .and_then(shipped::checked_set)
@@ -435,7 +464,9 @@ impl Instance {
         max_package_kg: f64,
         profile: Option<&str>,
     ) -> PyResult<Instance> {
-        use swarmplan::generate::{generate_network, generate_requests, NetworkParams, RequestParams};
+        use swarmplan::generate::{
+            generate_network, generate_requests, NetworkParams, RequestParams,
+        };
         let net = generate_network(&NetworkParams {
             nodes,
             seed,
@@ -484,7 +515,12 @@ impl Instance {
     /// Ids of the requests, in the set's order.
     #[getter]
     fn request_ids(&self) -> Vec<String> {
-        self.inner.instance.requests.iter().map(|r| r.id.clone()).collect()
+        self.inner
+            .instance
+            .requests
+            .iter()
+            .map(|r| r.id.clone())
+            .collect()
     }
 
     /// The network as its JSON reads (nodes with pads, edges with wind).
@@ -546,7 +582,7 @@ impl Instance {
             let mut context = exact.context(py, &self.inner, node_limit)?;
             context.hop_paths = hop_paths;
             context.validate(&options).map_err(|e| to_py_err(py, e))?;
-            context.exact.clone()
+            context.exact
         };
         let data = self.inner.clone();
         let report = run_detached(
@@ -579,13 +615,15 @@ impl Instance {
         let report = swarmplan::check::plan_file::parse_plan_file(&text, "the plan given")
             .map_err(|e| to_py_err(py, e))?;
         let i = &self.inner.instance;
-        let violations = swarmplan::check::check_report(&i.network, &i.profile, &i.requests, &report);
+        let violations =
+            swarmplan::check::check_report(&i.network, &i.profile, &i.requests, &report);
         py_of(py, &violations)
     }
 
     /// Hop `index` of a request's plan (as `swarmplan eaas` takes it: by default the plan of
     /// PB sharing, location-aware positioning and Algorithm 1).
     #[pyo3(signature = (request, index = 0, sharing = "pb", positioning = "location-aware", route = "sequential", support = None))]
+    #[allow(clippy::too_many_arguments)]
     fn hop(
         &self,
         py: Python<'_>,
@@ -690,7 +728,12 @@ impl Instance {
                     Ok(s) => s,
                     Err(e) => {
                         py_error = Some(e);
-                        return Err(invalid("E0026", &field, "raised".into(), "see the exception"));
+                        return Err(invalid(
+                            "E0026",
+                            &field,
+                            "raised".into(),
+                            "see the exception",
+                        ));
                     }
                 }
             };
@@ -719,7 +762,7 @@ impl Instance {
         let mut evaluation = evaluation.map_err(|e| to_py_err(py, e))?;
         if reference {
             let data = self.inner.clone();
-            let settings = context.exact.clone();
+            let settings = context.exact;
             let node_limit = context.node_limit;
             let request = request.clone();
             let found = run_detached(
@@ -971,7 +1014,13 @@ impl Hop {
     /// Battery capacity of every drone, mAh (numpy array).
     #[getter]
     fn capacity_mah(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
-        let v: Vec<f64> = self.file.hop.drones.iter().map(|d| d.capacity_mah).collect();
+        let v: Vec<f64> = self
+            .file
+            .hop
+            .drones
+            .iter()
+            .map(|d| d.capacity_mah)
+            .collect();
         numpy(py, PyList::new(py, v)?.into_any())
     }
 
@@ -1085,7 +1134,16 @@ impl Hop {
         period_min: f64,
         backend: &str,
     ) -> PyResult<Py<PyAny>> {
-        let rows = self.compare(py, vec![method.to_string()], reorder, time_limit_s, node_limit, period_min, backend, false)?;
+        let rows = self.compare(
+            py,
+            vec![method.to_string()],
+            reorder,
+            time_limit_s,
+            node_limit,
+            period_min,
+            backend,
+            false,
+        )?;
         let first = rows.bind(py).get_item(0)?;
         Ok(first.unbind())
     }
@@ -1196,7 +1254,11 @@ impl Hop {
 /// of records, one list per CSV). `progress(done, total)` is called as plans are made.
 #[pyfunction]
 #[pyo3(signature = (args, progress = None))]
-fn run_bench(py: Python<'_>, args: Vec<String>, progress: Option<Py<PyAny>>) -> PyResult<Py<PyAny>> {
+fn run_bench(
+    py: Python<'_>,
+    args: Vec<String>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Py<PyAny>> {
     let argv: Vec<String> = ["swarmplan", "bench"]
         .iter()
         .map(|s| s.to_string())
@@ -1204,10 +1266,19 @@ fn run_bench(py: Python<'_>, args: Vec<String>, progress: Option<Py<PyAny>>) -> 
         .collect();
     let cli = swarmplan::cli::Cli::try_parse_from(&argv).map_err(|e| {
         let text = e.render().to_string();
-        let cause = text.strip_prefix("error: ").unwrap_or(&text).trim().to_string();
+        let cause = text
+            .strip_prefix("error: ")
+            .unwrap_or(&text)
+            .trim()
+            .to_string();
         to_py_err(
             py,
-            invalid("E0007", "bench arguments", cause, "see `swarmplan bench --help`"),
+            invalid(
+                "E0007",
+                "bench arguments",
+                cause,
+                "see `swarmplan bench --help`",
+            ),
         )
     })?;
     let swarmplan::cli::Command::Bench(bench) = cli.command else {
@@ -1216,7 +1287,12 @@ fn run_bench(py: Python<'_>, args: Vec<String>, progress: Option<Py<PyAny>>) -> 
     if bench.command.is_some() {
         return Err(to_py_err(
             py,
-            invalid("E0007", "bench arguments", "merge is not a run".into(), "merge shards with `swarmplan bench merge`"),
+            invalid(
+                "E0007",
+                "bench arguments",
+                "merge is not a run".into(),
+                "merge shards with `swarmplan bench merge`",
+            ),
         ));
     }
     let total = Arc::new(AtomicU64::new(0));
@@ -1248,14 +1324,14 @@ fn run_bench(py: Python<'_>, args: Vec<String>, progress: Option<Py<PyAny>>) -> 
         },
     )?;
     let out = PyDict::new(py);
-    out.set_item("summary", pythonize(py, &run.summary)?)?;
-    out.set_item("config", pythonize(py, &run.config)?)?;
+    out.set_item("summary", pythonize(py, &json(&run.summary))?)?;
+    out.set_item("config", pythonize(py, &json(&run.config))?)?;
     let tables = PyDict::new(py);
-    tables.set_item("requests", pythonize(py, &run.data.requests)?)?;
-    tables.set_item("hops", pythonize(py, &run.data.hops)?)?;
-    tables.set_item("stops", pythonize(py, &run.data.stops)?)?;
-    tables.set_item("timings", pythonize(py, &run.data.timings)?)?;
-    tables.set_item("joint", pythonize(py, &run.data.joint)?)?;
+    tables.set_item("requests", pythonize(py, &json(&run.data.requests))?)?;
+    tables.set_item("hops", pythonize(py, &json(&run.data.hops))?)?;
+    tables.set_item("stops", pythonize(py, &json(&run.data.stops))?)?;
+    tables.set_item("timings", pythonize(py, &json(&run.data.timings))?)?;
+    tables.set_item("joint", pythonize(py, &json(&run.data.joint))?)?;
     out.set_item("tables", tables)?;
     out.set_item("elapsed_s", run.elapsed_s)?;
     Ok(out.into_any().unbind())

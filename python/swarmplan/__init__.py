@@ -64,6 +64,8 @@ class BenchResult:
 
     def frame(self, table: str = "requests") -> Any:
         """One table as a pandas DataFrame (pandas is needed for this method only)."""
+        if table not in self.tables:
+            raise KeyError(f"no table {table!r}; the tables are {sorted(self.tables)}")
         try:
             import pandas
         except ImportError as e:  # pragma: no cover - depends on the environment
@@ -71,8 +73,6 @@ class BenchResult:
                 "BenchResult.frame needs pandas (pip install pandas); "
                 "the rows are in BenchResult.tables without it"
             ) from e
-        if table not in self.tables:
-            raise KeyError(f"no table {table!r}; the tables are {sorted(self.tables)}")
         return pandas.DataFrame.from_records(self.tables[table])
 
     def __repr__(self) -> str:

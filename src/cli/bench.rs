@@ -181,10 +181,15 @@ fn run_grid(args: RunArgs, command: Vec<String>) -> Result<i32> {
     let out = args.out.clone().expect("clap requires --out");
     let json = args.json;
     let bar = super::progress::bar(0, "plans");
-    let run = run_grid_with(args, command, &|total, what| {
-        bar.set_length(total);
-        bar.set_message(what);
-    }, &|n| bar.inc(n))?;
+    let run = run_grid_with(
+        args,
+        command,
+        &|total, what| {
+            bar.set_length(total);
+            bar.set_message(what);
+        },
+        &|n| bar.inc(n),
+    )?;
     bar.finish_and_clear();
     eprintln!(
         "{} on {} in {:.1} s",

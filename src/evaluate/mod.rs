@@ -17,7 +17,9 @@ use crate::compose::{Context, PlanOptions, RouteMethod, Stop};
 use crate::eaas::compare::{reference, run_method, HopMethod};
 use crate::eaas::hop_file::{HopEnd, HopFile, HOP_FILE_SCHEMA_VERSION};
 use crate::eaas::milp::{objective_of, ExactStatus, MilpOptions, Objective, Reorder};
-use crate::eaas::{travel_time_min, HopFailure, HopProblem, PolicyOptions, SharingPolicy, Transfer};
+use crate::eaas::{
+    travel_time_min, HopFailure, HopProblem, PolicyOptions, SharingPolicy, Transfer,
+};
 use crate::error::{Error, Result, Violation};
 use crate::precompose::Positioning;
 use crate::problem::Request;
@@ -200,10 +202,22 @@ pub fn evaluate_hop(
     let (outcome, violations) = fly_as_written(problem, &transfers);
     let outcome = match outcome {
         Some(o) if violations.is_empty() => o,
-        _ => return Err(Error::Invalid(violations)),
+        _ => {
+            // The checker's own action reads as a planner's bug; here the schedule is the user's.
+            let mut violations = violations;
+            for v in &mut violations {
+                v.action = "change the schedule so that it keeps the rules of the hop model                             (models/eaas.md; the codes in README.md)"
+                    .into();
+            }
+            return Err(Error::Invalid(violations));
+        }
     };
     let value = if outcome.feasible {
-        Some(objective_of(problem, objective, &outcome.final_battery_mah)?)
+        Some(objective_of(
+            problem,
+            objective,
+            &outcome.final_battery_mah,
+        )?)
     } else {
         None
     };
@@ -420,8 +434,8 @@ pub fn evaluate_route(
             hop: problem,
         };
         let written = schedule(&file)?;
-        let evaluation = evaluate_hop(&file.hop, &file.objective(), &written, None).map_err(
-            |e| match e {
+        let evaluation =
+            evaluate_hop(&file.hop, &file.objective(), &written, None).map_err(|e| match e {
                 Error::Invalid(list) => Error::Invalid(
                     list.into_iter()
                         .map(|mut x| {
@@ -431,8 +445,7 @@ pub fn evaluate_route(
                         .collect(),
                 ),
                 other => other,
-            },
-        )?;
+            })?;
         if !contains(mode, evaluation.mode) {
             mode = evaluation.mode;
         }

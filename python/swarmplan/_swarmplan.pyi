@@ -1,0 +1,235 @@
+"""Type stubs of the native part of swarmplan (built from python/src/lib.rs)."""
+
+from os import PathLike
+from typing import Any, Callable, Dict, List, Literal, Optional, Sequence, Union
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+Sharing = Literal["none", "idle-support", "pb", "fb", "exact", "fair"]
+Positioning = Literal["location-aware", "energy-aware"]
+Route = Literal["sequential", "astar", "dijkstra", "floyd-warshall", "optimal"]
+HopPaths = Literal["rule", "any"]
+Reorder = Literal["paper", "none", "free"]
+Method = Literal["none", "pb", "fb", "continuous", "milp", "fluid", "fair"]
+Transfer = Union[Dict[str, Any], Sequence[float]]
+Schedule = Sequence[Transfer]
+RequestLike = Union[str, Dict[str, Any]]
+
+class SwarmplanError(Exception):
+    """An error of swarmplan, with the code of the command line's error table or of the
+    checker (``E4111``, ``C3006``), the field concerned, the cause, what to do, and every
+    violation as a dict with those four keys."""
+
+    code: Optional[str]
+    field: Optional[str]
+    cause: Optional[str]
+    action: Optional[str]
+    violations: List[Dict[str, str]]
+
+class Instance:
+    """A skyway network, a parameter profile and a request set, validated together."""
+
+    @staticmethod
+    def embedded(
+        network: str = "paper-195", profile: Optional[str] = None, literal: bool = False
+    ) -> Instance:
+        """A shipped network (``paper-195``, ``findings-195``, ``sparse-195``) with a shipped
+        profile or a TOML file (default: the network's own) and the shipped 10,000 requests."""
+    @staticmethod
+    def from_files(
+        network: Union[str, PathLike[str]],
+        profile: Optional[str] = None,
+        requests: Union[None, str, PathLike[str], Sequence[Dict[str, Any]]] = None,
+        literal: bool = False,
+    ) -> Instance:
+        """A network file, a profile (shipped name or TOML file, default ``paper``) and a
+        request file, a list of request dicts, or ``None`` for the shipped requests."""
+    @staticmethod
+    def generate(
+        seed: int,
+        nodes: int = 195,
+        spacing_m: float = 500.0,
+        requests: int = 100,
+        requests_seed: Optional[int] = None,
+        max_package_kg: float = 1.4,
+        profile: Optional[str] = None,
+    ) -> Instance:
+        """A seeded synthetic network and request set (``swarmplan generate``)."""
+    @property
+    def network_name(self) -> str:
+        """The network's name."""
+    @property
+    def profile_name(self) -> str:
+        """The profile's name."""
+    @property
+    def requests_name(self) -> str:
+        """The request set's name."""
+    @property
+    def request_ids(self) -> List[str]:
+        """Ids of the requests, in order."""
+    @property
+    def network(self) -> Dict[str, Any]:
+        """The network as its JSON reads."""
+    @property
+    def profile(self) -> Dict[str, Any]:
+        """The profile as its TOML reads."""
+    def request(self, id: RequestLike) -> Dict[str, Any]:
+        """One request as a dict."""
+    def plan(
+        self,
+        request: RequestLike,
+        sharing: Sharing = "pb",
+        positioning: Positioning = "location-aware",
+        route: Route = "sequential",
+        support: Optional[int] = None,
+        hop_paths: HopPaths = "rule",
+        node_limit: int = 20_000_000,
+        gap: bool = False,
+        backend: str = "microlp",
+        hop_time_limit_s: Optional[float] = None,
+        hop_node_limit: int = 20_000,
+        period_min: float = 1.0,
+        reorder: Reorder = "paper",
+    ) -> Dict[str, Any]:
+        """Plans one request; the document ``swarmplan solve --json`` prints."""
+    def check(self, plan: Union[str, Dict[str, Any]]) -> List[Dict[str, str]]:
+        """Every violation the independent checker finds in a plan (empty: it passes)."""
+    def hop(
+        self,
+        request: RequestLike,
+        index: int = 0,
+        sharing: Sharing = "pb",
+        positioning: Positioning = "location-aware",
+        route: Route = "sequential",
+        support: Optional[int] = None,
+    ) -> Hop:
+        """Hop ``index`` of the request's plan (by default as ``swarmplan eaas`` takes it)."""
+    def evaluate_route(
+        self,
+        request: RequestLike,
+        stops: Sequence[str],
+        policy: Union[Callable[[Hop], Schedule], Sequence[Schedule]],
+        positioning: Positioning = "location-aware",
+        support: Optional[int] = None,
+        reference: bool = True,
+        reorder: Reorder = "paper",
+        backend: str = "microlp",
+        hop_time_limit_s: Optional[float] = None,
+        hop_node_limit: int = 20_000,
+        node_limit: int = 20_000_000,
+    ) -> Dict[str, Any]:
+        """Flies the request along ``stops`` with a schedule per hop and measures the delivery
+        time against the joint optimum of the same swarm."""
+
+class Hop:
+    """One hop's in-flight sharing problem and what it is scored by."""
+
+    @staticmethod
+    def from_file(path: Union[str, PathLike[str]], profile: Optional[str] = None) -> Hop:
+        """Reads a hop file (``swarmplan eaas --write-hop``)."""
+    @staticmethod
+    def from_json(text: str, profile: Optional[str] = None) -> Hop:
+        """A hop from a hop file's JSON text."""
+    def to_json(self) -> str:
+        """The hop file's JSON text."""
+    def write(self, path: Union[str, PathLike[str]]) -> None:
+        """Writes the hop file."""
+    @property
+    def request_id(self) -> str:
+        """The request whose plan holds the hop."""
+    @property
+    def index(self) -> int:
+        """Index of the hop in the plan."""
+    @property
+    def path(self) -> List[str]:
+        """Node ids flown over."""
+    @property
+    def end(self) -> Optional[Dict[str, float]]:
+        """The pads at the hop's end, or ``None`` into a destination."""
+    @property
+    def objective(self) -> Union[str, Dict[str, Any]]:
+        """``{"node_time": {...}}`` (minimise, min) or ``"max_min_arrival"`` (maximise, mAh)."""
+    @property
+    def problem(self) -> Dict[str, Any]:
+        """The whole problem, as the hop file's ``hop`` object."""
+    @property
+    def drones(self) -> int:
+        """Number of drones (delivery drones first)."""
+    @property
+    def roles(self) -> List[str]:
+        """``"delivery"`` or ``"support"`` per drone."""
+    @property
+    def capacity_mah(self) -> npt.NDArray[np.float64]:
+        """Battery capacity per drone, mAh."""
+    @property
+    def battery_mah(self) -> npt.NDArray[np.float64]:
+        """Battery per drone at departure, mAh."""
+    @property
+    def durations_min(self) -> npt.NDArray[np.float64]:
+        """Duration per leg, min."""
+    @property
+    def rates_mah_per_min(self) -> npt.NDArray[np.float64]:
+        """Consumption rates ``[leg, drone, slot]``, mAh/min."""
+    @property
+    def slots_m(self) -> npt.NDArray[np.float64]:
+        """Slot positions ``[slot, 2]`` in the body frame, m."""
+    @property
+    def initial_slot(self) -> List[int]:
+        """Slot of every drone outside transfers."""
+    @property
+    def rho_mah_per_min(self) -> float:
+        """Sharing rate, mAh/min."""
+    @property
+    def range_m(self) -> float:
+        """Largest support-consumer distance of a transfer, m."""
+    @property
+    def delta_mah(self) -> float:
+        """Support reserve, mAh."""
+    @property
+    def tt_min(self) -> float:
+        """Travel time, min."""
+    def moves(self, reorder: Reorder = "paper") -> List[Dict[str, Optional[int]]]:
+        """The moves a transfer may use in a re-ordering mode (``none`` or ``paper``)."""
+    def solve(
+        self,
+        method: Method = "continuous",
+        reorder: Reorder = "paper",
+        time_limit_s: Optional[float] = 60.0,
+        node_limit: Optional[int] = None,
+        period_min: float = 1.0,
+        backend: str = "microlp",
+    ) -> Dict[str, Any]:
+        """One method's row of ``swarmplan eaas --json``."""
+    def compare(
+        self,
+        methods: Sequence[Method] = ("pb", "fb", "continuous", "milp", "fluid", "fair"),
+        reorder: Reorder = "paper",
+        time_limit_s: Optional[float] = 60.0,
+        node_limit: Optional[int] = None,
+        period_min: float = 1.0,
+        backend: str = "microlp",
+        label: bool = True,
+    ) -> List[Dict[str, Any]]:
+        """Several methods side by side, gaps labelled against the best reference."""
+    def evaluate(
+        self,
+        schedule: Schedule,
+        reference: bool = True,
+        reorder: Reorder = "paper",
+        time_limit_s: Optional[float] = None,
+        node_limit: Optional[int] = 20_000,
+        backend: str = "microlp",
+    ) -> Dict[str, Any]:
+        """Flies a schedule as written, checked by the independent checker, and scores it
+        against the continuous-time optimum of the ``reorder`` mode."""
+
+def run_bench(
+    args: Sequence[str], progress: Optional[Callable[[int, int], None]] = None
+) -> Dict[str, Any]:
+    """``swarmplan bench`` with command-line arguments; see :func:`swarmplan.bench`."""
+
+def shipped_names() -> Dict[str, List[str]]:
+    """The names of the shipped networks and profiles."""

@@ -1,0 +1,91 @@
+"""Planning a request: the same document as `swarmplan solve --json`, checked by the
+independent checker; bad options get coded errors."""
+
+import copy
+import json
+
+import pytest
+
+import swarmplan
+from conftest import without_times
+
+COMBINATIONS = [
+    ("none", "location-aware", "sequential"),
+    ("pb", "location-aware", "sequential"),
+    ("fb", "energy-aware", "astar"),
+    ("pb", "energy-aware", "dijkstra"),
+    ("fb", "location-aware", "floyd-warshall"),
+    ("pb", "location-aware", "optimal"),
+    ("exact", "location-aware", "sequential"),
+    ("exact", "location-aware", "optimal"),
+    ("fair", "location-aware", "astar"),
+]
+
+
+@pytest.mark.parametrize("sharing,positioning,route", COMBINATIONS)
+def test_plan_is_the_command_lines_plan(paper, cli_json, sharing, positioning, route):
+    got = paper.plan("r00023", sharing=sharing, positioning=positioning, route=route)
+    want = cli_json(
+        "solve", "--request-id", "r00023", "--sharing", sharing,
+        "--positioning", positioning, "--route", route, "--json",
+    )
+    assert without_times(got) == without_times(want)
+    assert paper.check(got) == []
+
+
+def test_plan_with_gap_is_solve_gap(paper, cli_json):
+    got = paper.plan("r00042", gap=True)
+    want = cli_json("solve", "--request-id", "r00042", "--gap", "--json")
+    assert got["route_gap"] == want["route_gap"]
+    optimal = paper.plan("r00042", route="optimal")["plan"]["dt_min"]
+    assert got["route_gap"]["optimal_dt_min"] == optimal
+    assert got["route_gap"]["gap"] == pytest.approx((got["plan"]["dt_min"] - optimal) / optimal)
+
+
+def test_plan_of_a_request_given_as_a_dict(paper, cli_json):
+    got = paper.plan({"source": "n000", "destination": "n194", "packages_kg": [1.2, 0.8, 0.5]}, sharing="fb")
+    want = cli_json("solve", "--from", "n000", "--to", "n194", "--packages", "1.2,0.8,0.5", "--sharing", "fb", "--json")
+    assert without_times(got)["plan"] == without_times(want)["plan"]
+
+
+def test_plans_are_reproducible(paper):
+    a = paper.plan("r00100", sharing="exact", route="optimal")
+    b = paper.plan("r00100", sharing="exact", route="optimal")
+    assert without_times(a) == without_times(b)
+
+
+def test_check_finds_a_changed_number_and_accepts_json_text(paper):
+    plan = paper.plan("r00001")
+    assert paper.check(json.dumps(plan)) == []
+    bad = copy.deepcopy(plan)
+    bad["plan"]["dt_min"] += 5.0
+    codes = {v["code"] for v in paper.check(bad)}
+    assert codes and all(c.startswith("P5") for c in codes)
+    with pytest.raises(swarmplan.SwarmplanError) as e:
+        paper.check("{not json")
+    assert e.value.code == "E6001"
+
+
+def test_bad_options_are_coded_errors(paper):
+    with pytest.raises(swarmplan.SwarmplanError) as e:
+        paper.plan("r00001", sharing="pbx")
+    assert e.value.code == "E0026" and e.value.field == "sharing" and "fb" in e.value.action
+    with pytest.raises(swarmplan.SwarmplanError) as e:
+        paper.plan("r00001", sharing="fair", route="optimal")
+    assert e.value.code == "E0015"
+    with pytest.raises(swarmplan.SwarmplanError) as e:
+        paper.plan("r00001", sharing="pb", route="optimal", hop_paths="any")
+    assert e.value.code == "E0016"
+    with pytest.raises(swarmplan.SwarmplanError) as e:
+        paper.plan("r00001", sharing="exact", period_min=float("nan"))
+    assert e.value.code == "E4101"
+    with pytest.raises(swarmplan.SwarmplanError) as e:
+        paper.plan("r00001", backend="cplex")
+    assert e.value.code == "E0026"
+    with pytest.raises(swarmplan.SwarmplanError) as e:
+        paper.plan("r00001", support=99)
+    assert e.value.code == "E0006"
+    with pytest.raises(TypeError):
+        paper.plan("r00001", support="two")
+    with pytest.raises(OverflowError):
+        paper.plan("r00001", support=-1)
