@@ -432,7 +432,8 @@ fn p5035_failure_names_where_the_swarm_is(raw: &Raw, plan: &Plan) -> Option<Viol
                 return None;
             }
             format!(
-                "no sequence of stops from {from} to {to}, but the swarm is at {at} and heads                  for {}",
+                "no sequence of stops from {from} to {to}, but the swarm is at {at} and heads \
+                 for {}",
                 raw.request.destination
             )
         }

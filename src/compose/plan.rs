@@ -218,7 +218,9 @@ impl fmt::Display for PlanOutcome {
                 direct,
             } => write!(
                 f,
-                "no sequence of stops reaches {to} from {from}: {stops_reached} recharging nodes                  reached, none of them nor {from} reaches {to} without stopping (flying straight                  from {from}, {})",
+                "no sequence of stops reaches {to} from {from}: {stops_reached} recharging nodes \
+                 reached, none of them nor {from} reaches {to} without stopping (flying straight \
+                 from {from}, {})",
                 first(direct)
             ),
         }

@@ -188,7 +188,8 @@ fn contains(outer: Reorder, inner: Reorder) -> bool {
 ///   [`default_reference`]), or `None` for no reference (no solve).
 ///
 /// # Errors
-/// [`Error::Invalid`] with the checker's codes (`C3001`-`C3013`, each naming `transfers[i]`)
+/// [`Error::Invalid`] with E4103/E4104 for an objective with no pads or a pad rate that is not
+/// a finite number > 0; with the checker's codes (`C3001`-`C3013`, each naming `transfers[i]`)
 /// when the schedule breaks a rule of the hop model; those of the hop's validation and of the
 /// continuous model.
 pub fn evaluate_hop(
@@ -198,6 +199,7 @@ pub fn evaluate_hop(
     reference: Option<&MilpOptions>,
 ) -> Result<HopEvaluation> {
     crate::eaas::validate(problem)?;
+    crate::eaas::milp::validate_objective(objective)?;
     let transfers: Vec<Transfer> = transfers.iter().map(|t| t.complete(problem)).collect();
     let (outcome, violations) = fly_as_written(problem, &transfers);
     let outcome = match outcome {
@@ -206,7 +208,8 @@ pub fn evaluate_hop(
             // The checker's own action reads as a planner's bug; here the schedule is the user's.
             let mut violations = violations;
             for v in &mut violations {
-                v.action = "change the schedule so that it keeps the rules of the hop model                             (models/eaas.md; the codes in README.md)"
+                v.action = "change the schedule so that it keeps the rules of the hop model \
+                     (models/eaas.md; the codes in README.md)"
                     .into();
             }
             return Err(Error::Invalid(violations));
@@ -362,7 +365,8 @@ fn stop_error(code: &'static str, field: String, cause: String, fix: &str) -> Er
 ///
 /// # Errors
 /// E0022 (the stops do not begin at the source and end at the destination), E0023 (an unknown
-/// node id), E0024 (a stop between without pads), E0025 (two equal consecutive stops); the
+/// node id), E0024 (a stop between without pads), E0025 (two equal consecutive stops, or two the
+/// network does not connect); the
 /// checker's codes for a schedule that breaks a rule; those of `schedule` and the models.
 pub fn evaluate_route(
     context: &Context,
