@@ -14,9 +14,7 @@ use std::sync::Arc;
 use std::time::Duration;
 use swarmplan::cli::bench::{run_grid_with, GridRun};
 use swarmplan::cli::inputs::ExactArgs;
-use swarmplan::compose::{
-    Context, HopPaths, PlanOptions, RequestReport, RouteGap, RouteMethod, RoutePair,
-};
+use swarmplan::compose::{Context, HopPaths, PlanOptions, RequestReport};
 use swarmplan::eaas::compare::{label_gaps, run_method, HopMethod};
 use swarmplan::eaas::hop_file::{parse_hop_file, HopFile};
 use swarmplan::eaas::milp::{MilpOptions, Reorder};
@@ -25,7 +23,7 @@ use swarmplan::error::{Error, Violation};
 use swarmplan::evaluate::{self, WrittenTransfer};
 use swarmplan::precompose::Positioning;
 use swarmplan::problem::{io, shipped, Instance as Problem, Request, RequestSet};
-use swarmplan::solver::{MilpBackend, ReferenceKind};
+use swarmplan::solver::MilpBackend;
 
 pyo3::create_exception!(
     swarmplan,
@@ -802,24 +800,7 @@ fn plan_with_gap(
 ) -> Result<RequestReport> {
     let mut report = context.plan(request, options)?;
     if gap {
-        let optimal = PlanOptions {
-            route: RouteMethod::Optimal,
-            ..*options
-        };
-        context.validate(&optimal)?;
-        let best = context.plan(request, &optimal)?.plan;
-        let pair = RoutePair {
-            heuristic_dt_min: report.plan.delivered().then_some(report.plan.dt_min),
-            optimal_dt_min: best.delivered().then_some(best.dt_min),
-            optimal_proven: best.route_optimality.is_none_or(|o| o.proven()),
-        };
-        report.route_gap = Some(RouteGap {
-            reference: ReferenceKind::Optimal,
-            hop_paths: context.hop_paths,
-            optimal_dt_min: pair.optimal_dt_min,
-            gap: pair.gap(),
-            optimal_proven: pair.optimal_proven,
-        });
+        report.route_gap = Some(context.route_gap(request, &report)?);
     }
     Ok(report)
 }

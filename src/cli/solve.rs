@@ -1,14 +1,11 @@
 //! `swarmplan solve`: plan one request and print the plan.
 
 use super::inputs::{self, ExactArgs, InstanceArgs};
-use crate::compose::{
-    Context, HopPaths, PlanOptions, RequestReport, RouteGap, RouteMethod, RoutePair,
-};
+use crate::compose::{Context, HopPaths, PlanOptions, RequestReport, RouteMethod};
 use crate::eaas::SharingPolicy;
 use crate::error::{Error, Result};
 use crate::precompose::Positioning;
 use crate::problem::Request;
-use crate::solver::ReferenceKind;
 use std::path::PathBuf;
 
 /// Plan one request: route, sharing schedules, node times, delivery time.
@@ -129,24 +126,7 @@ pub fn run(args: SolveArgs) -> Result<i32> {
         .then(|| super::progress::spinner(format!("planning request {}", request.id)));
     let mut report = context.plan(&request, &options)?;
     if args.gap {
-        let optimal = PlanOptions {
-            route: RouteMethod::Optimal,
-            ..options
-        };
-        context.validate(&optimal)?;
-        let best = context.plan(&request, &optimal)?.plan;
-        let pair = RoutePair {
-            heuristic_dt_min: report.plan.delivered().then_some(report.plan.dt_min),
-            optimal_dt_min: best.delivered().then_some(best.dt_min),
-            optimal_proven: best.route_optimality.is_none_or(|o| o.proven()),
-        };
-        report.route_gap = Some(RouteGap {
-            reference: ReferenceKind::Optimal,
-            hop_paths: args.hop_paths,
-            optimal_dt_min: pair.optimal_dt_min,
-            gap: pair.gap(),
-            optimal_proven: pair.optimal_proven,
-        });
+        report.route_gap = Some(context.route_gap(&request, &report)?);
     }
     drop(spinner);
     if args.json {

@@ -261,6 +261,33 @@ impl<'a> Context<'a> {
         Ok(reports.pop().expect("one report per combination"))
     }
 
+    /// The gap of a planned request against the optimal route of the same combination (`solve
+    /// --gap`): the request planned again with `--route optimal`, same sharing, positioning and
+    /// support drones.
+    ///
+    /// # Errors
+    /// E0015 for `fair` ([`PlanOptions::validate`]); those of [`Context::plan`].
+    pub fn route_gap(&self, request: &Request, report: &RequestReport) -> Result<RouteGap> {
+        let optimal = PlanOptions {
+            route: super::RouteMethod::Optimal,
+            ..report.options
+        };
+        self.validate(&optimal)?;
+        let best = self.plan(request, &optimal)?.plan;
+        let pair = super::RoutePair {
+            heuristic_dt_min: report.plan.delivered().then_some(report.plan.dt_min),
+            optimal_dt_min: best.delivered().then_some(best.dt_min),
+            optimal_proven: best.route_optimality.is_none_or(|o| o.proven()),
+        };
+        Ok(RouteGap {
+            reference: crate::solver::ReferenceKind::Optimal,
+            hop_paths: self.hop_paths,
+            optimal_dt_min: pair.optimal_dt_min,
+            gap: pair.gap(),
+            optimal_proven: pair.optimal_proven,
+        })
+    }
+
     /// Plans one validated request with each of several method combinations, doing once the work
     /// they share: the swarm of each (positioning, support drones) pair; one [`Planner`], with its
     /// cache of consumption rates per edge, for each swarm and sharing policy, whatever the route
