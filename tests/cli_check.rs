@@ -384,3 +384,80 @@ fn solve_json_piped_into_check_passes_and_solve_check_checks_what_it_prints() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("passes the independent checker"), "{err}");
 }
+
+/// A plan records the network and profile it was made on (SHA-256 of their JSON); checked
+/// against another network or profile it gets one coded error naming the mismatch, exit 2,
+/// before any model check; without the record (an earlier version's plan) it is checked as
+/// before.
+#[test]
+fn a_plan_checked_on_another_instance_names_the_mismatch() {
+    let out = swarmplan(&["solve", "--request-id", "r00042", "--json"]);
+    assert!(out.status.success());
+    let plan = stdout_json(&out);
+    let made_on = &plan["made_on"];
+    // SHA-256 in hex of the network's and the profile's JSON.
+    for key in ["network_sha256", "profile_sha256"] {
+        let h = made_on[key].as_str().unwrap();
+        assert_eq!(h.len(), 64);
+        assert!(h.chars().all(|c| c.is_ascii_hexdigit()));
+    }
+    let path = write("made_on.json", &plan.to_string());
+    assert!(swarmplan(&["check", "--plan", &path]).status.success());
+
+    let other = swarmplan(&[
+        "check",
+        "--plan",
+        &path,
+        "--network",
+        &repo("instances/findings-195/network.json"),
+    ]);
+    assert_eq!(other.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&other.stderr);
+    assert!(err.contains("1 problem(s)"), "{err}");
+    assert!(
+        err.contains("[E6004]") && err.contains("made on another network"),
+        "{err}"
+    );
+    assert!(!err.contains("P50"), "{err}");
+
+    let profile = swarmplan(&[
+        "check",
+        "--plan",
+        &path,
+        "--profile",
+        &repo("instances/profiles/fast-sharing.toml"),
+    ]);
+    assert_eq!(profile.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&profile.stderr);
+    assert!(
+        err.contains("1 problem(s)") && err.contains("[E6005]"),
+        "{err}"
+    );
+
+    // The same file read from disk is the same network: no mismatch.
+    let same = swarmplan(&[
+        "check",
+        "--plan",
+        &path,
+        "--network",
+        &repo("instances/paper-195/network.json"),
+    ]);
+    assert!(
+        same.status.success(),
+        "{}",
+        String::from_utf8_lossy(&same.stderr)
+    );
+
+    // Without the record, a plan on another network reads as broken rules (exit 1).
+    let mut old = plan.clone();
+    old.as_object_mut().unwrap().remove("made_on");
+    let old_path = write("made_on_absent.json", &old.to_string());
+    let unrecorded = swarmplan(&[
+        "check",
+        "--plan",
+        &old_path,
+        "--network",
+        &repo("instances/findings-195/network.json"),
+    ]);
+    assert_eq!(unrecorded.status.code(), Some(1));
+}

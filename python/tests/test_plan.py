@@ -89,3 +89,13 @@ def test_bad_options_are_coded_errors(paper):
         paper.plan("r00001", support="two")
     with pytest.raises(OverflowError):
         paper.plan("r00001", support=-1)
+
+
+def test_a_plan_checked_on_another_instance_names_the_mismatch(paper):
+    plan = paper.plan("r00042")
+    findings = swarmplan.Instance.embedded("findings-195", profile="paper")
+    assert [v["code"] for v in findings.check(plan)] == ["E6004"]
+    fast = swarmplan.Instance.embedded("paper-195", profile="fast-sharing")
+    assert [v["code"] for v in fast.check(plan)] == ["E6005"]
+    both = swarmplan.Instance.embedded("findings-195")
+    assert [v["code"] for v in both.check(plan)] == ["E6004", "E6005"]

@@ -698,15 +698,9 @@ pub fn inputs_sha256(
     profile: &crate::problem::Profile,
     requests: &[Request],
 ) -> Result<String> {
-    use sha2::{Digest, Sha256};
-    let json = serde_json::to_vec(&(network, profile, requests)).map_err(|e| Error::Backend {
-        backend: "bench".into(),
-        message: format!("the inputs do not serialise: {e}"),
-    })?;
-    Ok(Sha256::digest(&json)
-        .iter()
-        .map(|b| format!("{b:02x}"))
-        .collect())
+    Ok(crate::problem::fingerprint::sha256_json(&(
+        network, profile, requests,
+    )))
 }
 
 /// The name of a reference kind as in JSON.

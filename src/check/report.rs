@@ -6,6 +6,7 @@
 use super::check_plan;
 use crate::compose::RequestReport;
 use crate::error::Violation;
+use crate::problem::fingerprint::Fingerprint;
 use crate::problem::{Network, Profile, Request};
 
 fn v(code: &'static str, field: impl Into<String>, cause: impl Into<String>) -> Violation {
@@ -26,7 +27,9 @@ fn v(code: &'static str, field: impl Into<String>, cause: impl Into<String>) -> 
 /// * `report` - the document read back (see [`super::plan_file::read_plan_file`]).
 ///
 /// # Returns
-/// Every broken rule (codes `P5xxx`); empty when the document passes. The plan is checked
+/// E6004 and E6005 alone when the document records another network or profile than the ones
+/// given (see [`made_on_another_instance`]); else every broken rule (codes `P5xxx`); empty when
+/// the document passes. The plan is checked
 /// against the request set's request when the set has the document's request id, else against
 /// the document's own request.
 ///
@@ -38,6 +41,10 @@ pub fn check_report(
     requests: &[Request],
     report: &RequestReport,
 ) -> Vec<Violation> {
+    let mismatch = made_on_another_instance(network, profile, report);
+    if !mismatch.is_empty() {
+        return mismatch;
+    }
     let mut out = Vec::new();
     let found = requests.iter().find(|r| r.id == report.request.id);
     out.extend(p5041_request_is_in_the_request_set(report, found));
@@ -52,6 +59,55 @@ pub fn check_report(
         report.options.sharing,
         &report.plan,
     ));
+    out
+}
+
+/// E6004, E6005: the document was made on another network, another profile (its fingerprint
+/// differs from theirs): a user's mix-up, not a broken model, so nothing else is checked. A
+/// document without a fingerprint (an earlier version's) is checked as it is.
+pub fn made_on_another_instance(
+    network: &Network,
+    profile: &Profile,
+    report: &RequestReport,
+) -> Vec<Violation> {
+    let Some(made_on) = &report.made_on else {
+        return Vec::new();
+    };
+    let given = Fingerprint::of(network, profile);
+    let short = |h: &str| h.chars().take(12).collect::<String>();
+    let mut out = Vec::new();
+    if made_on.network_sha256 != given.network_sha256 {
+        out.push(Violation::new(
+            "E6004",
+            "made_on.network_sha256",
+            format!(
+                "this plan was made on another network (sha256 {}..., the network given is {}...{})",
+                short(&made_on.network_sha256),
+                short(&given.network_sha256),
+                network
+                    .name
+                    .as_ref()
+                    .map_or(String::new(), |n| format!(", named `{n}`"))
+            ),
+            "check it with the network it was made on (--network FILE; without it, the shipped \
+             paper-195)",
+        ));
+    }
+    if made_on.profile_sha256 != given.profile_sha256 {
+        out.push(Violation::new(
+            "E6005",
+            "made_on.profile_sha256",
+            format!(
+                "this plan was made with another profile (sha256 {}..., the profile given is \
+                 {}..., named `{}`)",
+                short(&made_on.profile_sha256),
+                short(&given.profile_sha256),
+                profile.name
+            ),
+            "check it with the profile it was made with (--profile FILE, and --literal if it was \
+             planned with it)",
+        ));
+    }
     out
 }
 

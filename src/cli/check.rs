@@ -29,6 +29,15 @@ pub fn run(args: CheckArgs) -> Result<i32> {
     let instance = args.instance.load()?;
     let set = inputs::load_requests(args.requests.as_deref())?;
     let report = read_plan(&args.plan)?;
+    // Another instance is the user's mix-up (exit 2), not a plan that breaks the model.
+    let mismatch = crate::check::report::made_on_another_instance(
+        &instance.network,
+        &instance.profile,
+        &report,
+    );
+    if !mismatch.is_empty() {
+        return Err(Error::Invalid(mismatch));
+    }
     let violations = check_report(&instance.network, &instance.profile, &set.requests, &report);
     if args.json {
         super::print_json(&violations)?;

@@ -6,6 +6,7 @@ use crate::eaas::exact_hop::ExactSettings;
 use crate::eaas::SharingPolicy;
 use crate::error::{Error, Result};
 use crate::precompose::{self, Positioning, SupportDecision};
+use crate::problem::fingerprint::Fingerprint;
 use crate::problem::FormationKind;
 use crate::problem::SkywayGraph;
 use crate::problem::Swarm;
@@ -63,6 +64,8 @@ pub struct Context<'a> {
     pub hop_paths: HopPaths,
     /// The energy model's leg factors, shared by every request's planner.
     factors: EdgeFactorCache,
+    /// The network and profile, fingerprinted for the plans made here.
+    fingerprint: Fingerprint,
 }
 
 /// The planned request: the document `solve --json` prints and `check --plan` reads back.
@@ -87,6 +90,10 @@ pub struct RequestReport {
     pub plan: Plan,
     /// Wall-clock time of pre-composition and composition, ms (not reproducible, unlike the rest).
     pub execution_ms: f64,
+    /// The network and profile the plan was made on (absent in plans of earlier versions);
+    /// `check` compares it with the instance it is given before any model check.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub made_on: Option<Fingerprint>,
     /// `solve --gap`: the plan against the optimal route of the same request and combination.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub route_gap: Option<RouteGap>,
@@ -146,7 +153,13 @@ impl<'a> Context<'a> {
             node_limit: Some(crate::node_time::DEFAULT_STOP_NODE_LIMIT),
             hop_paths: HopPaths::Rule,
             factors: EdgeFactorCache::new(graph),
+            fingerprint: Fingerprint::of(network, profile),
         }
+    }
+
+    /// The fingerprint of the network and the profile, recorded in every plan made here.
+    pub fn fingerprint(&self) -> &Fingerprint {
+        &self.fingerprint
     }
 
     /// The profile.
@@ -469,6 +482,7 @@ impl<'a> Context<'a> {
                     swarm: choice.swarm.clone(),
                     plan,
                     execution_ms,
+                    made_on: Some(self.fingerprint.clone()),
                     route_gap: None,
                 }
             })

@@ -67,6 +67,7 @@ impl Context<'_> {
             path: hop.path.clone(),
             profile: Some(profile_name.to_string()),
             end,
+            made_on: Some(self.fingerprint().clone()),
             hop: problem,
         })
     }

@@ -10,7 +10,8 @@
 //!
 //! `end` holds the pads at the hop's end node, or is `null` (or absent) when that node has none,
 //! as at a request's destination; it decides the objective of the exact models
-//! ([`HopFile::objective`]). The other fields besides `hop` record where the hop comes from.
+//! ([`HopFile::objective`]). The other fields besides `hop` record where the hop comes from
+//! (`made_on`, optional: the fingerprint of the network and profile it was taken from).
 //! Unknown fields are rejected; codes `E4111` (unreadable file), `E4112` (schema version),
 //! `E4115` (path and ends disagree), and the hop's and the end's own rules (`E4001`-`E4013`,
 //! `E4103`, `E4104`) under `hop.` and `end.`.
@@ -55,6 +56,9 @@ pub struct HopFile {
     pub profile: Option<String>,
     /// Pads at `to`, or `None` when it has none (a request's destination).
     pub end: Option<HopEnd>,
+    /// The network and profile the hop was taken from, when known.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub made_on: Option<crate::problem::fingerprint::Fingerprint>,
     /// The hop's sharing problem.
     pub hop: HopProblem,
 }

@@ -435,6 +435,7 @@ pub fn evaluate_route(
                 .collect(),
             profile: Some(context.profile().name.clone()),
             end,
+            made_on: Some(context.fingerprint().clone()),
             hop: problem,
         };
         let written = schedule(&file)?;

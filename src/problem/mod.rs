@@ -2,6 +2,7 @@
 //! `deny_unknown_fields`, a `schema_version`, and units in every field name. Nothing here knows about
 //! solvers.
 
+pub mod fingerprint;
 pub mod graph;
 pub mod instance;
 pub mod io;
