@@ -25,6 +25,13 @@ def test_embedded_instances_are_the_shipped_files(paper):
     assert paper.request_ids == [r["id"] for r in requests]
     assert paper.request("r00042") == next(r for r in requests if r["id"] == "r00042")
     assert paper.profile["name"] == "paper"
+    assert paper.network_name == "embedded paper-195 network"
+    assert paper.profile_name == "embedded paper profile"
+    assert paper.requests_name == "embedded paper-195 requests"
+    assert repr(paper) == (
+        "Instance(embedded paper-195 network, embedded paper profile, "
+        "10000 request(s) of embedded paper-195 requests)"
+    )
 
 
 def test_findings_network_takes_its_own_profile_and_another_on_request():
