@@ -163,3 +163,68 @@ fn a_closed_stdout_ends_quietly_and_a_full_disk_is_reported() {
         );
     }
 }
+
+/// A solve stopped by its node limit reports its incumbent with a gap against the search's own
+/// lower bound, which on this hard class is above the trivial bound `max(sum/k, max t)`; a
+/// proven solve reports gap 0 against the optimum. The trivial bound is computed here from the
+/// file; the relative gap from the two numbers printed.
+#[test]
+fn a_stopped_solve_reports_its_gap_against_a_non_trivial_bound() {
+    let file = tmp("nu3-25-5.json");
+    let file = file.to_str().unwrap();
+    let (code, _, err) = swarmplan(&[
+        "generate",
+        "node-time",
+        "--class",
+        "nu3",
+        "--jobs",
+        "25",
+        "--pads",
+        "5",
+        "--seed",
+        "1",
+        "-o",
+        file,
+        "--force",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let instance: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(file).unwrap()).unwrap();
+    let times: Vec<f64> = instance["charge_times_min"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|t| t.as_f64().unwrap())
+        .collect();
+    let trivial = (times.iter().sum::<f64>() / 5.0).max(times.iter().cloned().fold(0.0, f64::max));
+
+    let (code, out, err) = swarmplan(&["node-time", "--file", file, "--node-limit", "1", "--json"]);
+    assert_eq!(code, 0, "{err}");
+    let stopped: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(stopped["status"], "feasible");
+    let (ms, lb) = (
+        stopped["makespan_min"].as_f64().unwrap(),
+        stopped["lower_bound_min"].as_f64().unwrap(),
+    );
+    assert!(lb > trivial, "bound {lb} not above the trivial {trivial}");
+    assert!(ms > lb);
+    assert_eq!(stopped["gap"]["reference"], "bound");
+    let relative = stopped["gap"]["relative"].as_f64().unwrap();
+    assert!((relative - (ms - lb) / lb).abs() < 1e-12);
+
+    let (_, human, _) = swarmplan(&["node-time", "--file", file, "--node-limit", "1"]);
+    assert!(
+        human.contains(&format!(
+            "gap: {:.4}% against the lower bound",
+            100.0 * relative
+        )),
+        "{human}"
+    );
+
+    let (_, out, _) = swarmplan(&["node-time", "--file", file, "--json"]);
+    let proven: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(proven["status"], "optimal");
+    assert!(proven["makespan_min"].as_f64().unwrap() >= lb);
+    assert_eq!(proven["gap"]["reference"], "optimal");
+    assert_eq!(proven["gap"]["relative"].as_f64(), Some(0.0));
+}

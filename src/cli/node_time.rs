@@ -45,6 +45,10 @@ pub struct NodeTimeArgs {
     /// with its lower bound.
     #[arg(long, allow_negative_numbers = true, default_value_t = 10.0)]
     pub time_limit: f64,
+    /// Node limit of the search (branch-and-bound nodes, the same on every machine); a solve it
+    /// stops reports its incumbent as `feasible` with its lower bound and gap [default: none].
+    #[arg(long, value_name = "N")]
+    pub node_limit: Option<u64>,
     /// Print the result as JSON on stdout.
     #[arg(long)]
     pub json: bool,
@@ -96,7 +100,7 @@ pub fn run(args: NodeTimeArgs) -> Result<i32> {
     };
     let limits = Limits {
         time_limit_s: Some(args.time_limit),
-        node_limit: None,
+        node_limit: args.node_limit,
     };
     let spinner = (args.method != NodeTimeMethod::Lpt).then(|| {
         super::progress::spinner(format!(
@@ -107,11 +111,41 @@ pub fn run(args: NodeTimeArgs) -> Result<i32> {
     let solution = node_time::solve(args.method, args.backend, pads, &times, &limits)?;
     drop(spinner);
     if args.json {
-        crate::cli::print_json(&solution)?;
+        crate::cli::print_json(&Report {
+            solution: &solution,
+            gap: gap_of(&solution),
+        })?;
     } else {
         print_human(&solution, &times, args.backend)?;
     }
     Ok(0)
+}
+
+/// The JSON report: the solution and its gap.
+#[derive(serde::Serialize)]
+struct Report<'a> {
+    #[serde(flatten)]
+    solution: &'a NodeTimeSolution,
+    /// `(makespan - reference) / reference`: 0 against the optimum when proven, else against
+    /// the method's own lower bound (`bound`); `None` without an assignment.
+    gap: Option<crate::solver::Gap>,
+}
+
+fn gap_of(s: &NodeTimeSolution) -> Option<crate::solver::Gap> {
+    use crate::solver::{Gap, ReferenceKind};
+    match s.status {
+        SolveStatus::Optimal => Some(Gap::new(
+            s.makespan_min,
+            s.makespan_min,
+            ReferenceKind::Optimal,
+        )),
+        SolveStatus::Feasible => Some(Gap::new(
+            s.makespan_min,
+            s.lower_bound_min,
+            ReferenceKind::Bound,
+        )),
+        SolveStatus::Infeasible => None,
+    }
 }
 
 fn print_human(s: &NodeTimeSolution, times: &[f64], backend: MilpBackend) -> Result<()> {
@@ -132,6 +166,15 @@ fn print_human(s: &NodeTimeSolution, times: &[f64], backend: MilpBackend) -> Res
         min(s.makespan_min)
     );
     outln!("lower bound: {} min", min(s.lower_bound_min));
+    if let Some(g) = gap_of(s).filter(|_| s.status == SolveStatus::Feasible) {
+        outln!(
+            "gap: {} against the lower bound (the solve stopped at its limit)",
+            g.relative.map_or("n/a (bound 0)".to_string(), |r| format!(
+                "{:.4}%",
+                100.0 * r
+            ))
+        );
+    }
     for (i, pad) in s.assignment.iter().enumerate() {
         let load: f64 = pad.iter().map(|&j| times[j]).sum();
         let drones: Vec<String> = pad
