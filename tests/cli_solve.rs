@@ -487,7 +487,7 @@ fn counts_beyond_their_stated_bounds_are_coded_errors() {
     ]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{err}");
-    assert!(err.contains("[E3304] requests[0].packages_kg"), "{err}");
+    assert!(err.contains("[E3304] --packages:"), "{err}");
 }
 
 /// `--sharing exact` on flat-stop (arithmetic in tests/exact_route.rs): dt 25.295 against PB's
@@ -530,4 +530,32 @@ fn exact_sharing_solves_each_hop_and_bad_settings_exit_2() {
             "{flag} {value}: {err}"
         );
     }
+}
+
+/// A request given on the command line is reported under the options that gave it, and an id
+/// written without its zeros is pointed at the id of the set.
+#[test]
+fn command_line_requests_are_reported_under_their_options() {
+    let out = swarmplan(&["solve", "--from", "n0", "--to", "n194", "--packages", "1"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("[E3201] --from:"), "{err}");
+    let out = swarmplan(&[
+        "solve",
+        "--from",
+        "n000",
+        "--to",
+        "n194",
+        "--packages",
+        "1,-2",
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("[E3302] --packages[1]:"), "{err}");
+    let out = swarmplan(&["solve", "--request-id", "r42"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("[E3401]") && err.contains("did you mean `r00042`?"),
+        "{err}"
+    );
 }

@@ -75,26 +75,27 @@ pub fn run(args: SolveArgs) -> Result<i32> {
         .is_some()
         .then(|| inputs::load_requests(args.requests.as_deref()));
     let (instance, set) = inputs::both(args.instance.load(), set.transpose())?;
-    let instance = match (&args.request_id, &args.from, &args.to, &args.packages) {
-        (Some(id), None, None, None) => {
-            let set = set.expect("read above, with --request-id");
-            instance.with_request_from(&set, id)?
-        }
-        (None, Some(from), Some(to), Some(packages)) => instance.with_requests(vec![Request {
-            id: "cli".to_string(),
-            source: from.clone(),
-            destination: to.clone(),
-            packages_kg: inputs::parse_list(packages, "--packages", "E0003")?,
-        }])?,
-        _ => {
-            return Err(Error::invalid(
+    let instance =
+        match (&args.request_id, &args.from, &args.to, &args.packages) {
+            (Some(id), None, None, None) => {
+                let set = set.expect("read above, with --request-id");
+                instance.with_request_from(&set, id)?
+            }
+            (None, Some(from), Some(to), Some(packages)) => instance
+                .with_requests(vec![Request {
+                    id: "cli".to_string(),
+                    source: from.clone(),
+                    destination: to.clone(),
+                    packages_kg: inputs::parse_list(packages, "--packages", "E0003")?,
+                }])
+                .map_err(options_named)?,
+            _ => return Err(Error::invalid(
                 "E3402",
                 "--request-id | --from/--to/--packages",
                 "no request given",
                 "pass --request-id ID (with --requests F), or --from A --to B --packages 1.2,0.8",
-            ))
-        }
-    };
+            )),
+        };
     let request = instance.requests[0].clone();
     let mut context = Context::new(&instance.network, &instance.graph, &instance.profile);
     context.exact = args.exact.settings()?;
@@ -140,6 +141,30 @@ pub fn run(args: SolveArgs) -> Result<i32> {
     } else {
         1
     })
+}
+
+/// The violations of a request given by `--from`, `--to`, `--packages`, named after the options
+/// rather than the request's fields (`requests[0].source` is `--from`).
+fn options_named(e: Error) -> Error {
+    match e {
+        Error::Invalid(mut list) => {
+            for v in &mut list {
+                for (field, option) in [
+                    ("requests[0].source", "--from"),
+                    ("requests[0].destination", "--to"),
+                    ("requests[0].packages_kg", "--packages"),
+                    ("request cli.source", "--from"),
+                    ("request cli.destination", "--to"),
+                ] {
+                    if let Some(rest) = v.field.strip_prefix(field) {
+                        v.field = format!("{option}{rest}");
+                    }
+                }
+            }
+            Error::Invalid(list)
+        }
+        other => other,
+    }
 }
 
 /// `--check`: the report written as JSON, read back and re-verified by

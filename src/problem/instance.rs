@@ -88,7 +88,11 @@ impl Instance {
             return Err(Error::invalid(
                 "E3401",
                 "--request-id",
-                format!("no request with id `{id}` in the request file"),
+                format!(
+                    "no request with id `{id}` in the request file{}",
+                    similar_id(set, id)
+                        .map_or(String::new(), |s| format!(" (did you mean `{s}`?)"))
+                ),
                 "give an id present in the file's `requests[].id`",
             ));
         };
@@ -106,4 +110,19 @@ impl Instance {
             Err(Error::Invalid(violations))
         }
     }
+}
+
+/// An id of the set with the same letters and number as `id` written otherwise (`r42` for
+/// `r00042`): what a user who dropped the zeros meant.
+fn similar_id<'a>(set: &'a RequestSet, id: &str) -> Option<&'a str> {
+    let split = |s: &str| -> Option<(String, u64)> {
+        let digits = s.len() - s.trim_start_matches(|c: char| !c.is_ascii_digit()).len();
+        let (prefix, number) = s.split_at(digits);
+        Some((prefix.to_string(), number.parse().ok()?))
+    };
+    let wanted = split(id)?;
+    set.requests
+        .iter()
+        .map(|r| r.id.as_str())
+        .find(|r| split(r).as_ref() == Some(&wanted))
 }
