@@ -198,10 +198,11 @@ fn corrupted_plans_are_rejected_with_their_code() {
     p.dt_min -= dtt;
     assert_eq!(check(&p), vec!["P5013"], "tt mismatch");
 
-    // A per-leg breakdown whose travel times do not add up to the hop's.
+    // A per-leg breakdown whose travel times do not add up to the hop's (P5033), with a leg
+    // whose travel time is not its edge's length over the speed (P5044).
     let mut p = good.clone();
     p.hops[0].legs[0].tt_min += 1.0;
-    assert_eq!(check(&p), vec!["P5033"], "leg tt");
+    assert_eq!(check(&p), vec!["P5033", "P5044"], "leg tt");
 
     // dt that is not tt + nt.
     let mut p = good.clone();

@@ -461,3 +461,37 @@ fn a_plan_checked_on_another_instance_names_the_mismatch() {
     ]);
     assert_eq!(unrecorded.status.code(), Some(1));
 }
+
+/// Every number of a leg is its edge's: a plan whose leg states another length, heading, wind
+/// or travel time (changed to x * 1.5 + 3, never the same number nor, for an angle, the same
+/// direction: the change 0.5 x + 3 lies in [3, 183) degrees) is rejected with P5044 naming that
+/// field.
+#[test]
+fn a_changed_leg_number_is_rejected_with_its_field() {
+    let out = swarmplan(&["solve", "--request-id", "r00042", "--json"]);
+    let plan = stdout_json(&out);
+    let path = write("legs.json", &plan.to_string());
+    assert!(swarmplan(&["check", "--plan", &path]).status.success());
+    for field in [
+        "distance_m",
+        "heading_deg",
+        "wind_speed_mps",
+        "wind_from_deg",
+        "tt_min",
+    ] {
+        let mut changed = plan.clone();
+        let leg = &mut changed["plan"]["hops"][0]["legs"][1];
+        let x = leg[field].as_f64().unwrap();
+        leg[field] = serde_json::json!(x * 1.5 + 3.0);
+        let path = write(&format!("legs-{field}.json"), &changed.to_string());
+        let out = swarmplan(&["check", "--plan", &path, "--json"]);
+        assert_eq!(out.status.code(), Some(1), "{field}");
+        let violations = stdout_json(&out);
+        let hit = violations
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|v| v["code"] == "P5044" && v["field"] == format!("hops[0].legs[1].{field}"));
+        assert!(hit, "{field}: {violations}");
+    }
+}

@@ -562,6 +562,7 @@ fn check_flight(out: &mut Vec<Violation>, raw: &Raw, f: &str, hop: &Hop, swarm_o
     out.extend(p5012_distance_is_the_edges(f, hop, distance_m));
     out.extend(p5013_tt_is_distance_over_speed(raw, f, hop, distance_m));
     out.extend(p5033_legs_follow_the_path(raw, f, hop, distance_m));
+    out.extend(p5044_legs_are_the_edges(raw, f, hop, &legs));
     out.extend(p5014_departs_full(raw, f, hop));
     let n = raw.swarm.drones.len();
     if hop.departure_battery_mah.len() != n || hop.arrival_battery_mah.len() != n {
@@ -717,6 +718,70 @@ fn p5033_legs_follow_the_path(raw: &Raw, f: &str, hop: &Hop, distance_m: f64) ->
             ),
         )
     })
+}
+
+/// P5044: every leg listed states its edge's numbers: length, heading from the node coordinates
+/// (modulo 360 degrees), wind speed and direction, and travel time `distance / v_g`; one
+/// violation per number that differs, with the stated and the recomputed value. A leg that does
+/// not follow the path (P5033) is not compared.
+fn p5044_legs_are_the_edges(raw: &Raw, f: &str, hop: &Hop, legs: &[RawLeg]) -> Vec<Violation> {
+    let angle_close = |a: f64, b: f64| {
+        let d = (a - b).rem_euclid(360.0);
+        d.min(360.0 - d) <= 1e-6 * 360.0
+    };
+    let mut out = Vec::new();
+    for (j, ((stated, raw_leg), ends)) in hop
+        .legs
+        .iter()
+        .zip(legs)
+        .zip(hop.path.windows(2))
+        .enumerate()
+    {
+        if stated.from != ends[0] || stated.to != ends[1] {
+            continue;
+        }
+        let tt = raw_leg.distance_m / raw.speed_m_per_min;
+        let numbers = [
+            (
+                "distance_m",
+                stated.distance_m,
+                raw_leg.distance_m,
+                close(stated.distance_m, raw_leg.distance_m),
+            ),
+            (
+                "heading_deg",
+                stated.heading_deg,
+                raw_leg.heading_deg,
+                angle_close(stated.heading_deg, raw_leg.heading_deg),
+            ),
+            (
+                "wind_speed_mps",
+                stated.wind_speed_mps,
+                raw_leg.wind.speed_mps,
+                close(stated.wind_speed_mps, raw_leg.wind.speed_mps),
+            ),
+            (
+                "wind_from_deg",
+                stated.wind_from_deg,
+                raw_leg.wind.from_deg,
+                angle_close(stated.wind_from_deg, raw_leg.wind.from_deg),
+            ),
+            ("tt_min", stated.tt_min, tt, close(stated.tt_min, tt)),
+        ];
+        for (name, got, want, ok) in numbers {
+            if !ok {
+                out.push(v(
+                    "P5044",
+                    format!("{f}.legs[{j}].{name}"),
+                    format!(
+                        "states {got}, the edge {} - {} gives {want}",
+                        stated.from, stated.to
+                    ),
+                ));
+            }
+        }
+    }
+    out
 }
 
 /// P5014: the hop departs with every battery full, and lists one departure and one arrival
