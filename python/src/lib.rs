@@ -884,13 +884,8 @@ fn milp_options(
             "give the time limit in seconds, or None for none",
         ));
     }
-    if !(period_min.is_finite() && period_min > 0.0) {
-        v.push(Violation::new(
-            "E4101",
-            "period_min",
-            format!("{period_min} is not a finite duration > 0"),
-            "give the grid step in minutes, such as 1.0",
-        ));
+    if let Err(Error::Invalid(list)) = swarmplan::eaas::milp::validate_period_min(period_min) {
+        v.extend(list);
     }
     if !v.is_empty() {
         return Err(to_py_err(py, Error::Invalid(v)));
