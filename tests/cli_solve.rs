@@ -559,3 +559,37 @@ fn command_line_requests_are_reported_under_their_options() {
         "{err}"
     );
 }
+
+/// Human output names things as the JSON does: the formation and the stop status in `solve`,
+/// the status and the gap's reference in `eaas`.
+#[test]
+fn human_output_uses_the_json_names() {
+    let json: Value =
+        serde_json::from_slice(&swarmplan(&["solve", "--request-id", "r00001", "--json"]).stdout)
+            .unwrap();
+    let human = String::from_utf8_lossy(&swarmplan(&["solve", "--request-id", "r00001"]).stdout)
+        .to_string();
+    let formation = json["formation"].as_str().unwrap();
+    assert!(
+        human.contains(&format!("formation {formation},")),
+        "{human}"
+    );
+    let status = json["plan"]["hops"][0]["stop"]["status"].as_str().unwrap();
+    assert!(human.contains(&format!(" min ({status}), pads")), "{human}");
+    let eaas = String::from_utf8_lossy(
+        &swarmplan(&[
+            "eaas",
+            "--request-id",
+            "r00001",
+            "--methods",
+            "pb,continuous",
+        ])
+        .stdout,
+    )
+    .to_string();
+    assert!(
+        eaas.contains("status optimal") && eaas.contains("vs optimal"),
+        "{eaas}"
+    );
+    assert!(!eaas.contains("Optimal"), "{eaas}");
+}

@@ -19,6 +19,7 @@
 //! limit (`incumbent`), or the fluid LP bound (`bound`); a PB or FB schedule outside the
 //! re-ordering mode of the exact models is labelled `different_policy` instead.
 
+use super::human::json_name;
 use super::inputs::{self, InstanceArgs};
 use crate::compose::{Context, PlanOptions, RouteMethod};
 use crate::eaas::compare::{label_gaps, run_method};
@@ -267,16 +268,16 @@ fn print_human(r: &EaasReport) -> Result<()> {
         let gap = match (row.gap, row.gap_label) {
             (_, Some(label)) => label.to_string(),
             (Some(g), None) => match g.relative {
-                Some(x) => format!("{:+.4}% vs {:?}", 100.0 * x, g.reference),
-                None => format!("n/a vs {:?}", g.reference),
+                Some(x) => format!("{:+.4}% vs {}", 100.0 * x, json_name(&g.reference)),
+                None => format!("n/a vs {}", json_name(&g.reference)),
             },
             (None, None) => "-".to_string(),
         };
         outln!(
             "  {:<10} {:<16} status {:<24} feasible {:<5} objective {:<12} bound {:<12} gap {:<24} {}{}{:.1} ms, {} transfer(s)",
-            format!("{:?}", row.method).to_lowercase(),
+            row.method.to_string(),
             row.kind,
-            row.status.map_or("-".to_string(), |s| format!("{s:?}")),
+            row.status.map_or("-".to_string(), |s| json_name(&s)),
             row.feasible.map_or("-".to_string(), |f| f.to_string()),
             match row.objective {
                 Some(v) if !row.objective_proven => format!("<={v:.4}"),

@@ -1,5 +1,6 @@
 //! `swarmplan inspect`: describe a network and, for a request, the swarm it would fly.
 
+use super::human::json_name;
 use super::inputs::InstanceArgs;
 use crate::compose::Context;
 use crate::energy;
@@ -167,12 +168,12 @@ fn print_human(report: &InspectReport) -> Result<()> {
         n.pad_nodes
     );
     outln!(
-        "wind: mean {:.2} m/s, max {:.2} m/s; averaged wind {:.2} m/s from {:.0} deg; formation {:?}",
+        "wind: mean {:.2} m/s, max {:.2} m/s; averaged wind {:.2} m/s from {:.0} deg; formation {}",
         n.mean_wind_speed_mps,
         n.max_wind_speed_mps,
         n.average_wind.speed_mps,
         n.average_wind.from_deg,
-        n.formation
+        json_name(&n.formation)
     );
     if let Some(r) = &report.request {
         outln!(
@@ -189,7 +190,7 @@ fn print_human(report: &InspectReport) -> Result<()> {
             outln!(
                 "  {:>5} {:<9} {:>10.3} {:>12.0} {:>4} {:>6.2} {:>6.2} {:>13.2} {:>18.2}",
                 d.id,
-                format!("{:?}", d.role),
+                json_name(&d.role),
                 d.payload_kg,
                 d.capacity_mah,
                 slot,

@@ -1,5 +1,6 @@
 //! `swarmplan solve`: plan one request and print the plan.
 
+use super::human::json_name;
 use super::inputs::{self, ExactArgs, InstanceArgs};
 use crate::compose::{Context, HopPaths, PlanOptions, RequestReport, RouteMethod};
 use crate::eaas::SharingPolicy;
@@ -192,11 +193,11 @@ fn check_as_printed(instance: &crate::problem::Instance, report: &RequestReport)
 fn print_human(report: &RequestReport) -> Result<()> {
     let plan = &report.plan;
     outln!(
-        "request {}: {} -> {}, formation {:?}, {} delivery + {} support drones",
+        "request {}: {} -> {}, formation {}, {} delivery + {} support drones",
         report.request.id,
         plan.source,
         plan.destination,
-        report.formation,
+        json_name(&report.formation),
         report.swarm.drones.len() - report.support_drones,
         report.support_drones
     );
@@ -213,11 +214,11 @@ fn print_human(report: &RequestReport) -> Result<()> {
         );
         if let Some(stop) = &hop.stop {
             outln!(
-                "  recharge at {} on {} pad(s): nt {:.2} min ({:?}), pads {:?}",
+                "  recharge at {} on {} pad(s): nt {:.2} min ({}), pads {:?}",
                 stop.node,
                 stop.pads,
                 stop.nt_min,
-                stop.status,
+                json_name(&stop.status),
                 stop.assignment
             );
         }
