@@ -193,26 +193,26 @@ fn the_empty_schedule_runs_the_delivery_drone_out_at_the_hand_computed_time() {
     let p = two_drones();
     // d0: 80 - 10 t reaches 0 at t = 8 min and ends at 80 - 100 = -20; d1: 500 - 5 * 10 = 450.
     let e = evaluate_hop(&p, &Objective::MaxMinArrival, &[], None).unwrap();
-    assert!(!e.feasible);
-    let f = e.failure.expect("a failure");
+    assert!(!e.outcome.feasible);
+    let f = e.outcome.failure.expect("a failure");
     assert_eq!((f.drone, f.reason), (0, FailureReason::BatteryDepleted));
     assert_close(f.time_min, 8.0, "failure time");
-    assert_all_close(&e.final_battery_mah, &[-20.0, 450.0], "final");
-    assert_all_close(&e.min_battery_mah, &[-20.0, 450.0], "lowest");
+    assert_all_close(&e.outcome.final_battery_mah, &[-20.0, 450.0], "final");
+    assert_all_close(&e.outcome.min_battery_mah, &[-20.0, 450.0], "lowest");
     assert_eq!(e.value, None);
-    assert_eq!(e.shared_mah, 0.0);
+    assert_eq!(e.outcome.shared_mah, 0.0);
     assert_eq!(e.mode, Reorder::None);
     assert_eq!((e.reference, e.gap, e.gap_label), (None, None, None));
 
     // A short transfer delays the failure: on [0, 1] d0 nets -10 + 4 = -6 mAh/min, 74 mAh at
     // t = 1, then 74 / 10 = 7.4 min more: empty at 8.4 min.
     let e = evaluate_hop(&p, &Objective::MaxMinArrival, &[wt(1, 0, 0.0, 1.0)], None).unwrap();
-    assert!(!e.feasible);
-    let f = e.failure.unwrap();
+    assert!(!e.outcome.feasible);
+    let f = e.outcome.failure.unwrap();
     assert_eq!(f.drone, 0);
     assert_close(f.time_min, 8.4, "failure time after 1 min of sharing");
     // 80 - 100 + 4 = -16; 500 - 50 - 4 = 446.
-    assert_all_close(&e.final_battery_mah, &[-16.0, 446.0], "final");
+    assert_all_close(&e.outcome.final_battery_mah, &[-16.0, 446.0], "final");
 
     // With a reference an infeasible schedule has no gap, and says why.
     let e = evaluate_hop(
@@ -234,15 +234,15 @@ fn a_written_transfer_gives_the_hand_computed_batteries_value_and_gap() {
     // Sharing on [2, 8]: 4 * 6 = 24 mAh. d0 = 80 - 100 + 24 = 4, falling all along (net -10 or
     // -6 mAh/min): its lowest is its final 4. d1 = 500 - 50 - 24 = 426, lowest 426.
     let e = evaluate_hop(&p, &Objective::MaxMinArrival, &[wt(1, 0, 2.0, 8.0)], None).unwrap();
-    assert!(e.feasible, "{e:?}");
-    assert_eq!(e.failure, None);
-    assert_all_close(&e.final_battery_mah, &[4.0, 426.0], "final");
-    assert_all_close(&e.min_battery_mah, &[4.0, 426.0], "lowest");
-    assert_close(e.shared_mah, 24.0, "shared");
+    assert!(e.outcome.feasible, "{e:?}");
+    assert_eq!(e.outcome.failure, None);
+    assert_all_close(&e.outcome.final_battery_mah, &[4.0, 426.0], "final");
+    assert_all_close(&e.outcome.min_battery_mah, &[4.0, 426.0], "lowest");
+    assert_close(e.outcome.shared_mah, 24.0, "shared");
     // The defaults filled in: rho x duration and the consumer's own slot.
-    assert_eq!(e.transfers.len(), 1);
-    assert_close(e.transfers[0].energy_mah, 24.0, "energy");
-    assert_eq!(e.transfers[0].consumer_slot, 0);
+    assert_eq!(e.outcome.transfers.len(), 1);
+    assert_close(e.outcome.transfers[0].energy_mah, 24.0, "energy");
+    assert_eq!(e.outcome.transfers[0].consumer_slot, 0);
     // Max-min arrival: the only delivery drone's arrival battery.
     assert_close(e.value.unwrap(), 4.0, "value");
     assert!(e.value_proven);
@@ -346,7 +346,7 @@ fn the_hand_schedules_of_the_known_optima_reach_the_continuous_optimum() {
     )
     .unwrap();
     assert_close(e.value.unwrap(), 15.0, "rising consumer");
-    assert_all_close(&e.final_battery_mah, &[85.0, 185.0], "final");
+    assert_all_close(&e.outcome.final_battery_mah, &[85.0, 185.0], "final");
     assert_close(e.reference.unwrap().value.unwrap(), 15.0, "reference");
     assert!(relative_gap(&e).abs() <= 1e-6, "{e:?}");
 }
@@ -388,14 +388,14 @@ fn a_schedule_is_measured_against_an_infimum_the_model_only_approaches() {
         Some(&default_reference()),
     )
     .unwrap();
-    assert!(e.feasible, "{e:?}");
+    assert!(e.outcome.feasible, "{e:?}");
     assert_all_close(
-        &e.final_battery_mah,
+        &e.outcome.final_battery_mah,
         &[290.0 / 3.0, 290.0 / 3.0, 1000.0 - 10.0 - 40.0 / 3.0],
         "final",
     );
     assert_all_close(
-        &e.min_battery_mah,
+        &e.outcome.min_battery_mah,
         &[280.0 / 3.0, 290.0 / 3.0, 1000.0 - 10.0 - 40.0 / 3.0],
         "lowest",
     );
@@ -560,7 +560,7 @@ fn the_mode_of_a_schedule_follows_the_papers_move_rules() {
         Some(&default_reference()),
     )
     .unwrap();
-    assert!(e.feasible);
+    assert!(e.outcome.feasible);
     assert_eq!(e.mode, Reorder::Free);
     // Outside the `paper` reference: no gap.
     assert_eq!((e.gap, e.gap_label), (None, Some("outside_reference")));
@@ -599,9 +599,9 @@ fn a_swapping_schedule_is_scored_against_paper_and_left_out_of_none() {
         Some(&reference_in(Reorder::Paper)),
     )
     .unwrap();
-    assert!(e.feasible);
-    assert_all_close(&e.final_battery_mah, &[58.0, 58.0, 55.0], "final");
-    assert_close(e.shared_mah, 20.0, "shared");
+    assert!(e.outcome.feasible);
+    assert_all_close(&e.outcome.final_battery_mah, &[58.0, 58.0, 55.0], "final");
+    assert_close(e.outcome.shared_mah, 20.0, "shared");
     assert_eq!(e.mode, Reorder::Paper);
     assert_close(e.value.unwrap(), 58.0, "value");
     assert_close(
@@ -660,20 +660,24 @@ fn policies_fed_back(problem: &HopProblem, objective: &Objective, what: &str) ->
     let pb = simulate_with(problem, SharingPolicy::Pb, &PolicyOptions::default()).unwrap();
     let written: Vec<WrittenTransfer> = pb.transfers.iter().map(WrittenTransfer::from).collect();
     let e = evaluate_hop(problem, objective, &written, Some(&reference)).unwrap();
-    assert_eq!(e.feasible, pb.feasible, "{what}: PB feasibility");
+    assert_eq!(e.outcome.feasible, pb.feasible, "{what}: PB feasibility");
     assert_all_close(
-        &e.final_battery_mah,
+        &e.outcome.final_battery_mah,
         &pb.final_battery_mah,
         &format!("{what}: PB final"),
     );
     assert_all_close(
-        &e.min_battery_mah,
+        &e.outcome.min_battery_mah,
         &pb.min_battery_mah,
         &format!("{what}: PB lowest"),
     );
-    assert_close(e.shared_mah, pb.shared_mah, &format!("{what}: PB shared"));
+    assert_close(
+        e.outcome.shared_mah,
+        pb.shared_mah,
+        &format!("{what}: PB shared"),
+    );
     assert_eq!(
-        e.failure.map(|f| f.drone),
+        e.outcome.failure.map(|f| f.drone),
         pb.failure.map(|f| f.drone),
         "{what}: PB failure"
     );
@@ -723,7 +727,10 @@ fn policies_fed_back(problem: &HopProblem, objective: &Objective, what: &str) ->
         let written: Vec<WrittenTransfer> =
             row.transfers.iter().map(WrittenTransfer::from).collect();
         let e = evaluate_hop(problem, objective, &written, Some(&reference)).unwrap();
-        assert!(e.feasible, "{what}: continuous schedule infeasible: {e:?}");
+        assert!(
+            e.outcome.feasible,
+            "{what}: continuous schedule infeasible: {e:?}"
+        );
         assert_close(
             e.value.unwrap(),
             row.objective.unwrap(),
@@ -836,7 +843,7 @@ fn a_route_without_sharing_on_flat_stop_has_the_hand_computed_delivery_time_and_
     let departure: Vec<f64> = h0.hop.hop.drones.iter().map(|d| d.battery_mah).collect();
     assert_all_close(&departure, &[1000.0, 1000.0, 1000.0, 2000.0], "departure");
     assert_all_close(
-        &h0.evaluation.final_battery_mah,
+        &h0.evaluation.outcome.final_battery_mah,
         &[334.5, 334.5, 136.0, 1136.0],
         "arrival at M",
     );
@@ -890,9 +897,9 @@ fn pb_schedules_on_flat_stop_give_the_hand_computed_overshared_stop() {
     assert!(r.delivered);
     let shared = 120.0 * (5.0 - 500.0 / 172.8);
     let h0 = &r.hops[0].evaluation;
-    assert_close(h0.shared_mah, shared, "shared into M");
+    assert_close(h0.outcome.shared_mah, shared, "shared into M");
     assert_all_close(
-        &h0.final_battery_mah,
+        &h0.outcome.final_battery_mah,
         &[334.5, 334.5, 136.0 + shared, 1136.0 - shared],
         "arrival at M",
     );
@@ -913,7 +920,7 @@ fn a_route_that_runs_out_is_not_delivered_and_has_no_gap() {
     assert!(!r.delivered);
     assert_eq!(r.dt_min, None);
     assert_eq!(r.hops.len(), 1);
-    let f = r.hops[0].evaluation.failure.expect("a failure");
+    let f = r.hops[0].evaluation.outcome.failure.expect("a failure");
     assert_eq!(f.drone, 2);
     assert_close(f.time_min, 1000.0 / 172.8, "failure time");
     assert_close(r.tt_min, 10.0, "tt of the hop flown");
@@ -966,11 +973,11 @@ fn a_route_is_flown_up_to_its_first_hop_that_runs_out() {
     assert_close(r.nt_min, 2.0 * 5.324, "nt of the stops made");
     assert_close(r.tt_min, 4.0 + 4.0 + 14.0, "tt of the hops flown");
     assert_all_close(
-        &r.hops[0].evaluation.final_battery_mah,
+        &r.hops[0].evaluation.outcome.final_battery_mah,
         &[467.6],
         "arrival at M1",
     );
-    let f = r.hops[2].evaluation.failure.unwrap();
+    let f = r.hops[2].evaluation.outcome.failure.unwrap();
     assert_eq!(f.drone, 0);
     assert_close(f.time_min, 1000.0 / 133.1, "failure time");
     // No route delivers either: M2, the pad node nearest B, is 14 min away.
@@ -1137,7 +1144,7 @@ fn fed_back(
         let w = format!("{what}: hop {i}");
         assert_close(got.tt_min, hop.tt_min, &format!("{w} tt"));
         assert_all_close(
-            &got.evaluation.final_battery_mah,
+            &got.evaluation.outcome.final_battery_mah,
             &hop.arrival_battery_mah,
             &format!("{w} arrival"),
         );

@@ -18,7 +18,7 @@ use crate::eaas::compare::{reference, run_method, HopMethod};
 use crate::eaas::hop_file::{HopEnd, HopFile, HOP_FILE_SCHEMA_VERSION};
 use crate::eaas::milp::{objective_of, ExactStatus, MilpOptions, Objective, Reorder};
 use crate::eaas::{
-    travel_time_min, HopFailure, HopProblem, PolicyOptions, SharingPolicy, Transfer,
+    travel_time_min, HopOutcome, HopProblem, PolicyOptions, SharingPolicy, Transfer,
 };
 use crate::error::{Error, Result, Violation};
 use crate::precompose::Positioning;
@@ -113,18 +113,10 @@ pub struct HopReference {
 /// A hop schedule flown as written and scored.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct HopEvaluation {
-    /// No battery below zero at any instant.
-    pub feasible: bool,
-    /// The first drone below zero, when infeasible.
-    pub failure: Option<HopFailure>,
-    /// The transfers, defaults filled in.
-    pub transfers: Vec<Transfer>,
-    /// Every drone's battery at the hop's end, mAh.
-    pub final_battery_mah: Vec<f64>,
-    /// Every drone's lowest battery, mAh.
-    pub min_battery_mah: Vec<f64>,
-    /// Total energy shared, mAh.
-    pub shared_mah: f64,
+    /// The flight as written: feasibility, first failure, the transfers (defaults filled in),
+    /// final and lowest batteries, shared total (flattened into the same object in JSON).
+    #[serde(flatten)]
+    pub outcome: HopOutcome,
     /// What the hop is scored by.
     pub objective: Objective,
     /// The schedule's objective when feasible: node time (min, by the exact pad assignment) or
@@ -239,12 +231,7 @@ pub fn evaluate_hop(
         },
     };
     Ok(HopEvaluation {
-        feasible: outcome.feasible,
-        failure: outcome.failure,
-        transfers,
-        final_battery_mah: outcome.final_battery_mah,
-        min_battery_mah: outcome.min_battery_mah,
-        shared_mah: outcome.shared_mah,
+        outcome,
         objective: *objective,
         value: value.map(|v| v.value),
         value_proven: value.is_none_or(|v| v.proven),
@@ -456,9 +443,9 @@ pub fn evaluate_route(
         }
         let tt_min = travel_time_min(&file.hop);
         out.tt_min += tt_min;
-        let feasible = evaluation.feasible;
+        let feasible = evaluation.outcome.feasible;
         let stop = if feasible && into_stop {
-            planner.stop_at(v, &evaluation.final_battery_mah)?
+            planner.stop_at(v, &evaluation.outcome.final_battery_mah)?
         } else {
             None
         };
