@@ -495,3 +495,92 @@ fn a_changed_leg_number_is_rejected_with_its_field() {
         assert!(hit, "{field}: {violations}");
     }
 }
+
+/// `check --node-time`: the paper's example (70 min on 3 pads: loads 60, 50 + 20, 40 + 30)
+/// passes; the same result stating 80 min is rejected with P5502 alone (the bound, 70, is still
+/// the largest pad load), exit 1; given another instance file, P5506 names the charge time that
+/// differs.
+#[test]
+fn node_time_results_are_checked() {
+    let out = swarmplan(&[
+        "node-time",
+        "--pads",
+        "3",
+        "--times",
+        "60,50,40,30,20",
+        "--json",
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{out:?}");
+    let mut result = stdout_json(&out);
+    assert_eq!(result["pads"], 3);
+    let path = write("node-time.json", &result.to_string());
+    let ok = swarmplan(&["check", "--node-time", &path, "--json"]);
+    assert_eq!(ok.status.code(), Some(0), "{ok:?}");
+    assert_eq!(stdout_json(&ok), serde_json::json!([]));
+    result["makespan_min"] = 80.0.into();
+    let changed = write("node-time-80.json", &result.to_string());
+    let bad = swarmplan(&["check", "--node-time", &changed, "--json"]);
+    assert_eq!(bad.status.code(), Some(1), "{bad:?}");
+    let codes: Vec<String> = stdout_json(&bad)
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| {
+            format!(
+                "{} {}",
+                v["code"].as_str().unwrap(),
+                v["field"].as_str().unwrap()
+            )
+        })
+        .collect();
+    assert_eq!(codes, vec!["P5502 makespan_min"]);
+    let other = write(
+        "node-time-instance.json",
+        r#"{"pads": 3, "charge_times_min": [60, 50, 40, 30, 25]}"#,
+    );
+    let mismatch = swarmplan(&[
+        "check",
+        "--node-time",
+        &path,
+        "--node-time-instance",
+        &other,
+        "--json",
+    ]);
+    assert_eq!(mismatch.status.code(), Some(1), "{mismatch:?}");
+    assert_eq!(stdout_json(&mismatch)[0]["field"], "charge_times_min[4]");
+}
+
+/// `check --hop-file`: the hop `eaas --write-hop` writes passes; its first leg said to last a
+/// minute longer is rejected with P5603 naming that leg; no document at all is a usage error.
+#[test]
+fn hop_files_are_checked() {
+    let t = tiny();
+    let path = tmp("stop-hop.json");
+    let mut args = t.args("eaas");
+    args.extend([
+        "--request-id",
+        "stop",
+        "--write-hop",
+        &path,
+        "--methods",
+        "pb",
+    ]);
+    let out = swarmplan(&args);
+    assert_eq!(out.status.code(), Some(0), "{out:?}");
+    let mut args = t.args("check");
+    args.extend(["--hop-file", &path, "--json"]);
+    let ok = swarmplan(&args);
+    assert_eq!(ok.status.code(), Some(0), "{ok:?}");
+    let mut hop: Value = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    let minutes = hop["hop"]["legs"][0]["duration_min"].as_f64().unwrap();
+    hop["hop"]["legs"][0]["duration_min"] = (minutes + 1.0).into();
+    let changed = write("stop-hop-longer.json", &hop.to_string());
+    let mut args = t.args("check");
+    args.extend(["--hop-file", &changed, "--json"]);
+    let bad = swarmplan(&args);
+    assert_eq!(bad.status.code(), Some(1), "{bad:?}");
+    let found = stdout_json(&bad);
+    assert_eq!(found[0]["code"], "P5603");
+    assert_eq!(found[0]["field"], "hop.legs[0].duration_min");
+    assert_eq!(swarmplan(&["check"]).status.code(), Some(2));
+}

@@ -2,13 +2,18 @@
 //! (only the input and output types are shared).
 //!
 //! Codes `C3xxx` concern hop schedules ([`hop`]), codes `P5xxx` whole plans ([`plan`]) and plan
-//! documents read from a file ([`report`], read by [`plan_file`], whose errors are `E6xxx`).
+//! documents read from a file ([`report`], read by [`plan_file`], whose errors are `E6xxx`),
+//! `P55xx` node-time results ([`node_time`]) and `P56xx` hop files ([`hop_file`]).
 
+pub mod decision;
 pub mod free_hop;
 pub mod hop;
+pub mod hop_file;
+pub mod node_time;
 pub mod plan;
 pub mod plan_file;
 pub mod report;
+pub mod search;
 
 pub use free_hop::check_free_hop;
 pub use hop::{check_hop, fly_as_written};

@@ -76,10 +76,10 @@ struct Raw<'a> {
 }
 
 /// One directed leg rebuilt from the raw network.
-struct RawLeg {
-    distance_m: f64,
-    heading_deg: f64,
-    wind: Wind,
+pub(super) struct RawLeg {
+    pub(super) distance_m: f64,
+    pub(super) heading_deg: f64,
+    pub(super) wind: Wind,
 }
 
 /// Checks `plan` against the raw instance.
@@ -273,22 +273,28 @@ fn p5039_drones_are_the_profiles(raw: &Raw) -> Vec<Violation> {
         .drones
         .iter()
         .enumerate()
-        .filter_map(|(i, d)| {
+        .flat_map(|(i, d)| {
             let (capacity, payload) = match d.role {
                 Role::Delivery => (p.drone.battery_mah, d.payload_kg),
                 Role::Support => (p.support_capacity_mah(), p.support_payload_kg()),
             };
-            (!close(d.capacity_mah, capacity) || !close(d.payload_kg, payload)).then(|| {
-                v(
-                    "P5039",
-                    format!("swarm.drones[{i}]"),
-                    format!(
-                        "{:?} drone with {} mAh and {} kg, the profile gives {capacity} mAh and \
-                         {payload} kg",
-                        d.role, d.capacity_mah, d.payload_kg
-                    ),
-                )
-            })
+            let mut out = Vec::new();
+            for (field, stated, expected, unit) in [
+                ("capacity_mah", d.capacity_mah, capacity, "mAh"),
+                ("payload_kg", d.payload_kg, payload, "kg"),
+            ] {
+                if !close(stated, expected) {
+                    out.push(v(
+                        "P5039",
+                        format!("swarm.drones[{i}].{field}"),
+                        format!(
+                            "{:?} drone with {stated} {unit}, the profile gives {expected} {unit}",
+                            d.role
+                        ),
+                    ));
+                }
+            }
+            out
         })
         .collect()
 }
@@ -478,18 +484,21 @@ fn p5036_no_route_only_between_unconnected_nodes(raw: &Raw, plan: &Plan) -> Opti
 // ---- Totals.
 
 /// P5030: the plan's `tt` and `nt` are the sums over its hops and stops.
-fn p5030_totals_are_the_sums(plan: &Plan) -> Option<Violation> {
-    let (tt, nt) = (sum_tt(plan), sum_nt(plan));
-    (!close(plan.tt_min, tt) || !close(plan.nt_min, nt)).then(|| {
+fn p5030_totals_are_the_sums(plan: &Plan) -> Vec<Violation> {
+    [
+        ("tt_min", plan.tt_min, sum_tt(plan), "hops' travel times"),
+        ("nt_min", plan.nt_min, sum_nt(plan), "stops' node times"),
+    ]
+    .into_iter()
+    .filter(|(_, stated, sum, _)| !close(*stated, *sum))
+    .map(|(field, stated, sum, what)| {
         v(
             "P5030",
-            "tt_min, nt_min",
-            format!(
-                "reported tt {} and nt {}, the hops sum to tt {tt} and nt {nt}",
-                plan.tt_min, plan.nt_min
-            ),
+            field,
+            format!("reported {stated}, the {what} sum to {sum}"),
         )
     })
+    .collect()
 }
 
 /// P5031: `dt = sum tt + sum nt`.
@@ -639,7 +648,7 @@ fn p5011_path_follows_edges(
 }
 
 /// The edge joining `a` and `b` in either direction, rebuilt as the leg `a -> b`.
-fn raw_leg(network: &Network, a: usize, b: usize) -> Option<RawLeg> {
+pub(super) fn raw_leg(network: &Network, a: usize, b: usize) -> Option<RawLeg> {
     let (na, nb) = (&network.nodes[a], &network.nodes[b]);
     let seg = network
         .edges
@@ -881,11 +890,28 @@ fn p5015_schedule_passes_the_hop_checker(
         .map(|x| {
             v(
                 "P5015",
-                format!("{f}: {}", x.field),
-                format!("[{}] {}", x.code, x.cause),
+                plan_field_of_hop_field(f, &x.field),
+                format!("[{}] {} (hop checker field `{}`)", x.code, x.cause, x.field),
             )
         })
         .collect()
+}
+
+/// The plan's field a hop checker's field stands for: a hop outcome's batteries are the hop's
+/// arrival batteries, its transfers and shared energy the hop's own; anything else (a drone, the
+/// hop's feasibility) is the hop as a whole.
+fn plan_field_of_hop_field(hop: &str, field: &str) -> String {
+    let rest = field
+        .strip_prefix("final_battery_mah")
+        .or_else(|| field.strip_prefix("min_battery_mah"))
+        .map(|rest| format!("arrival_battery_mah{rest}"));
+    match rest {
+        Some(battery) => format!("{hop}.{battery}"),
+        None if field.starts_with("transfers") || field.starts_with("shared_mah") => {
+            format!("{hop}.{field}")
+        }
+        None => hop.to_string(),
+    }
 }
 
 // ---- Each stop.
@@ -1141,7 +1167,8 @@ fn p5027_nt_above_the_lower_bound(
 /// Optimal makespan of `ct` on `pads` identical pads by exhaustive search: each drone in turn goes
 /// on a pad already used or on the first empty one (pads are interchangeable), cut when the
 /// partial makespan reaches the best found.
-fn optimal_makespan_min(ct: &[f64], pads: usize) -> f64 {
+/// The optimal makespan of `ct` on `pads` pads by exhaustive search (0 without drones).
+pub(super) fn optimal_makespan_min(ct: &[f64], pads: usize) -> f64 {
     fn go(i: usize, ct: &[f64], load: &mut Vec<f64>, pads: usize, best: &mut f64) {
         let makespan = load.iter().copied().fold(0.0, f64::max);
         if makespan >= *best {

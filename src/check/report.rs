@@ -1,9 +1,12 @@
 //! Re-verifies a plan document ([`RequestReport`], the output of `swarmplan solve --json`) read
 //! from a file: its request is the request set's (P5041, P5042), its summary fields agree with
-//! its swarm (P5043), and its plan passes [`check_plan`] against the raw instance, the request
+//! its swarm (P5043), its support decision is the instance's (P5045, P5046), its search report agrees with the plan
+//! and with the method run again (P5047, P5048, [`super::search`]), and its plan passes [`check_plan`] against the raw instance, the request
 //! set's request and the document's swarm and sharing policy.
 
 use super::check_plan;
+use super::decision::check_support_decision;
+use super::search;
 use crate::compose::RequestReport;
 use crate::error::Violation;
 use crate::problem::fingerprint::Fingerprint;
@@ -51,6 +54,9 @@ pub fn check_report(
     out.extend(p5042_request_is_the_request_sets(report, found));
     out.extend(p5043_summary_matches_the_swarm(report));
     let request = found.unwrap_or(&report.request);
+    out.extend(check_support_decision(network, profile, request, report));
+    out.extend(search::check_consistency(report));
+    out.extend(search::check_rerun(network, profile, request, report));
     out.extend(check_plan(
         network,
         profile,
@@ -70,9 +76,18 @@ pub fn made_on_another_instance(
     profile: &Profile,
     report: &RequestReport,
 ) -> Vec<Violation> {
-    let Some(made_on) = &report.made_on else {
-        return Vec::new();
-    };
+    match &report.made_on {
+        Some(made_on) => fingerprint_mismatch(network, profile, made_on),
+        None => Vec::new(),
+    }
+}
+
+/// E6004, E6005: `made_on` differs from the fingerprint of `network`, of `profile`.
+pub fn fingerprint_mismatch(
+    network: &Network,
+    profile: &Profile,
+    made_on: &Fingerprint,
+) -> Vec<Violation> {
     let given = Fingerprint::of(network, profile);
     let short = |h: &str| h.chars().take(12).collect::<String>();
     let mut out = Vec::new();
@@ -128,22 +143,38 @@ fn p5041_request_is_in_the_request_set(
     })
 }
 
-/// P5042: the document's request is the request set's, field for field.
+/// P5042: the document's request is the request set's, field for field (one violation per
+/// field that differs).
 fn p5042_request_is_the_request_sets(
     report: &RequestReport,
     found: Option<&Request>,
-) -> Option<Violation> {
-    let file = found?;
-    (*file != report.request).then(|| {
-        v(
-            "P5042",
-            "request",
-            format!(
-                "the plan's request {:?} differs from the request file's {:?}",
-                report.request, file
-            ),
-        )
-    })
+) -> Vec<Violation> {
+    let Some(file) = found else {
+        return Vec::new();
+    };
+    let stated = &report.request;
+    let mut out = Vec::new();
+    let mut differs = |field: &str, stated: String, file: String| {
+        if stated != file {
+            out.push(v(
+                "P5042",
+                format!("request.{field}"),
+                format!("the plan's request states {stated}, the request file's {file}"),
+            ));
+        }
+    };
+    differs("source", stated.source.clone(), file.source.clone());
+    differs(
+        "destination",
+        stated.destination.clone(),
+        file.destination.clone(),
+    );
+    differs(
+        "packages_kg",
+        format!("{:?}", stated.packages_kg),
+        format!("{:?}", file.packages_kg),
+    );
+    out
 }
 
 /// P5043: the document's formation and support-drone count are its swarm's, and a support
@@ -162,18 +193,37 @@ fn p5043_summary_matches_the_swarm(report: &RequestReport) -> Vec<Violation> {
         ));
     }
     let flown = swarm.support_count();
-    let expected = if report.options.sharing.flies_support() {
-        report.options.support.unwrap_or(report.support_drones)
-    } else {
-        0
-    };
-    if report.support_drones != flown || expected != flown {
+    if report.support_drones != flown {
         out.push(v(
             "P5043",
             "support_drones",
             format!(
-                "support_drones {} (options.support {:?}, sharing {:?}), the swarm flies {flown}",
-                report.support_drones, report.options.support, report.options.sharing
+                "support_drones {}, the swarm flies {flown}",
+                report.support_drones
+            ),
+        ));
+    }
+    let given = report
+        .options
+        .support
+        .filter(|_| report.options.sharing.flies_support());
+    if given.is_some_and(|n| n != flown) {
+        out.push(v(
+            "P5043",
+            "options.support",
+            format!(
+                "options.support {given:?} (sharing {:?}), the swarm flies {flown}",
+                report.options.sharing
+            ),
+        ));
+    }
+    if !report.options.sharing.flies_support() && flown != 0 {
+        out.push(v(
+            "P5043",
+            "support_drones",
+            format!(
+                "sharing {:?} flies no support drone, the swarm has {flown}",
+                report.options.sharing
             ),
         ));
     }

@@ -7,8 +7,10 @@ use crate::error::{Error, Result, Violation};
 use std::io::Read;
 use std::path::PathBuf;
 
-/// Re-verify a plan written by `solve --json`: exit 0 valid, 1 invalid, 2 malformed input.
+/// Re-verify a plan written by `solve --json` (or a hop file, or a node-time result): exit 0
+/// valid, 1 invalid, 2 malformed input.
 #[derive(Debug, clap::Args)]
+#[group(id = "document", required = true, args = ["plan", "hop_file", "node_time"])]
 pub struct CheckArgs {
     /// Network and profile the plan was made with.
     #[command(flatten)]
@@ -18,7 +20,19 @@ pub struct CheckArgs {
     pub requests: Option<PathBuf>,
     /// The plan: the JSON `solve --json` prints (`-` reads standard input).
     #[arg(long, value_name = "FILE")]
-    pub plan: PathBuf,
+    pub plan: Option<PathBuf>,
+    /// A hop file (`eaas --write-hop`): every number of its hop rebuilt from the instance and
+    /// the request it names.
+    #[arg(long, value_name = "FILE")]
+    pub hop_file: Option<PathBuf>,
+    /// A node-time result (`node-time --json`): its assignment, makespan, bound and gap
+    /// re-verified on the instance it records.
+    #[arg(long, value_name = "FILE")]
+    pub node_time: Option<PathBuf>,
+    /// With --node-time: the instance file (`{"pads": K, "charge_times_min": [...]}`) the result
+    /// should answer.
+    #[arg(long, value_name = "FILE", requires = "node_time")]
+    pub node_time_instance: Option<PathBuf>,
     /// Print the violations as a JSON list (empty when the plan is valid).
     #[arg(long)]
     pub json: bool,
@@ -28,7 +42,28 @@ pub struct CheckArgs {
 pub fn run(args: CheckArgs) -> Result<i32> {
     let instance = args.instance.load()?;
     let set = inputs::load_requests(args.requests.as_deref())?;
-    let report = read_plan(&args.plan)?;
+    if let Some(path) = &args.node_time {
+        return check_node_time(path, args.node_time_instance.as_deref(), args.json);
+    }
+    if let Some(path) = &args.hop_file {
+        let file = crate::eaas::hop_file::read_hop_file(path)?;
+        let found = crate::check::hop_file::check_hop_file(
+            &instance.network,
+            &instance.profile,
+            &set.requests,
+            &file,
+        );
+        let what = format!(
+            "hop {} of request {} ({} -> {})",
+            file.hop_index, file.request_id, file.from, file.to
+        );
+        return print_verdict(&what, &found, args.json);
+    }
+    let report = read_plan(
+        args.plan
+            .as_deref()
+            .expect("one document, by the clap group"),
+    )?;
     // Another instance is the user's mix-up (exit 2), not a plan that breaks the model.
     let mismatch = crate::check::report::made_on_another_instance(
         &instance.network,
@@ -39,10 +74,57 @@ pub fn run(args: CheckArgs) -> Result<i32> {
         return Err(Error::Invalid(mismatch));
     }
     let violations = check_report(&instance.network, &instance.profile, &set.requests, &report);
+    if let Some(why) = crate::check::search::why_not_rerun(&report) {
+        eprintln!(
+            "note: the search report (solve statuses, bounds, counts) was checked for consistency \
+             only, not re-run: {why}"
+        );
+    }
     if args.json {
         super::print_json(&violations)?;
     } else {
         print_human(&report, &violations)?;
+    }
+    Ok(if violations.is_empty() { 0 } else { 1 })
+}
+
+/// `check --node-time R [--node-time-instance F]`.
+fn check_node_time(
+    path: &std::path::Path,
+    instance: Option<&std::path::Path>,
+    json: bool,
+) -> Result<i32> {
+    let report: crate::node_time::NodeTimeReport = crate::problem::io::read_json(path)?;
+    let given = instance
+        .map(crate::problem::io::read_json::<super::node_time::NodeTimeFile>)
+        .transpose()?;
+    let found = crate::check::node_time::check_node_time(
+        &report,
+        given
+            .as_ref()
+            .map(|f| (f.pads, f.charge_times_min.as_slice())),
+    );
+    let what = format!(
+        "node time of {} drones on {} pads ({}, {})",
+        report.charge_times_min.len(),
+        report.pads,
+        report.solution.method,
+        crate::cli::human::json_name(&report.solution.status)
+    );
+    print_verdict(&what, &found, json)
+}
+
+/// Prints the violations (or that there is none); exit code 0 or 1.
+fn print_verdict(what: &str, violations: &[Violation], json: bool) -> Result<i32> {
+    if json {
+        super::print_json(&violations)?;
+    } else if violations.is_empty() {
+        outln!("{what}: valid");
+    } else {
+        outln!("{what}: {} violation(s)", violations.len());
+        for x in violations {
+            outln!("  {x}");
+        }
     }
     Ok(if violations.is_empty() { 0 } else { 1 })
 }

@@ -111,41 +111,11 @@ pub fn run(args: NodeTimeArgs) -> Result<i32> {
     let solution = node_time::solve(args.method, args.backend, pads, &times, &limits)?;
     drop(spinner);
     if args.json {
-        crate::cli::print_json(&Report {
-            solution: &solution,
-            gap: gap_of(&solution),
-        })?;
+        crate::cli::print_json(&node_time::NodeTimeReport::new(pads, &times, solution))?;
     } else {
         print_human(&solution, &times, args.backend)?;
     }
     Ok(0)
-}
-
-/// The JSON report: the solution and its gap.
-#[derive(serde::Serialize)]
-struct Report<'a> {
-    #[serde(flatten)]
-    solution: &'a NodeTimeSolution,
-    /// `(makespan - reference) / reference`: 0 against the optimum when proven, else against
-    /// the method's own lower bound (`bound`); `None` without an assignment.
-    gap: Option<crate::solver::Gap>,
-}
-
-fn gap_of(s: &NodeTimeSolution) -> Option<crate::solver::Gap> {
-    use crate::solver::{Gap, ReferenceKind};
-    match s.status {
-        SolveStatus::Optimal => Some(Gap::new(
-            s.makespan_min,
-            s.makespan_min,
-            ReferenceKind::Optimal,
-        )),
-        SolveStatus::Feasible => Some(Gap::new(
-            s.makespan_min,
-            s.lower_bound_min,
-            ReferenceKind::Bound,
-        )),
-        SolveStatus::Infeasible => None,
-    }
 }
 
 fn print_human(s: &NodeTimeSolution, times: &[f64], backend: MilpBackend) -> Result<()> {
@@ -166,7 +136,7 @@ fn print_human(s: &NodeTimeSolution, times: &[f64], backend: MilpBackend) -> Res
         min(s.makespan_min)
     );
     outln!("lower bound: {} min", min(s.lower_bound_min));
-    if let Some(g) = gap_of(s).filter(|_| s.status == SolveStatus::Feasible) {
+    if let Some(g) = s.gap().filter(|_| s.status == SolveStatus::Feasible) {
         outln!(
             "gap: {} against the lower bound (the solve stopped at its limit)",
             g.relative.map_or("n/a (bound 0)".to_string(), |r| format!(

@@ -47,6 +47,32 @@ impl PlanOptions {
     }
 }
 
+/// The settings behind the numbers of a plan besides its method combination: the hop model of
+/// the exact and fair policies, the node limit of every stop and the paths of an optimal
+/// route's hops. With them `check` plans the request again and compares the numbers only the
+/// method's run defines (its search report, `models/plan_file.md`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlanSettings {
+    /// The hop model's settings: re-ordering, backend, wall-clock and node limits of each hop
+    /// solve (the grid step is not used by the continuous-time model).
+    pub hop_model: crate::eaas::exact::milp::MilpOptions,
+    /// Algorithm 1 under `exact`: candidates pruned by their lower bound (the default).
+    pub prune_candidates: bool,
+    /// Node limit of the exact node time at every stop (`None`: no limit).
+    pub node_limit: Option<u64>,
+    /// The paths the hops of `--route optimal` may follow.
+    pub hop_paths: HopPaths,
+}
+
+impl PlanSettings {
+    /// Whether a plan made with these settings is the same on every machine: no solve looks at
+    /// the clock.
+    pub fn deterministic(&self) -> bool {
+        !self.hop_model.time_limit_s.is_finite()
+    }
+}
+
 /// What is fixed for every request on one network with one profile.
 pub struct Context<'a> {
     graph: &'a SkywayGraph,
@@ -97,6 +123,9 @@ pub struct RequestReport {
     /// `solve --gap`: the plan against the optimal route of the same request and combination.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub route_gap: Option<RouteGap>,
+    /// The settings the plan was made with (absent in plans of earlier versions).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub settings: Option<PlanSettings>,
 }
 
 /// A plan's delivery time against the optimal route (`--route optimal`) of the same request,
@@ -155,6 +184,27 @@ impl<'a> Context<'a> {
             factors: EdgeFactorCache::new(graph),
             fingerprint: Fingerprint::of(network, profile),
         }
+    }
+
+    /// The settings recorded in every plan made here.
+    pub fn settings(&self) -> PlanSettings {
+        PlanSettings {
+            hop_model: self.exact.milp,
+            prune_candidates: self.exact.prune_candidates,
+            node_limit: self.node_limit,
+            hop_paths: self.hop_paths,
+        }
+    }
+
+    /// A context with `settings` (those a plan records, see [`Context::settings`]).
+    pub fn with_settings(mut self, settings: &PlanSettings) -> Context<'a> {
+        self.exact = ExactSettings {
+            milp: settings.hop_model,
+            prune_candidates: settings.prune_candidates,
+        };
+        self.node_limit = settings.node_limit;
+        self.hop_paths = settings.hop_paths;
+        self
     }
 
     /// The fingerprint of the network and the profile, recorded in every plan made here.
@@ -484,6 +534,7 @@ impl<'a> Context<'a> {
                     execution_ms,
                     made_on: Some(self.fingerprint.clone()),
                     route_gap: None,
+                    settings: Some(self.settings()),
                 }
             })
             .collect())

@@ -54,7 +54,7 @@
 
 use crate::error::{show, Error, Result, Violation};
 use crate::solver::{MilpBackend, SolveStatus};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 mod bounds;
 pub mod brute;
@@ -86,7 +86,7 @@ pub const DEFAULT_STOP_NODE_LIMIT: u64 = 20_000_000;
 const INTEGRAL_MAX_MIN: f64 = 1_125_899_906_842_624.0;
 
 /// Method that computes a node time.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, clap::ValueEnum)]
 #[serde(rename_all = "lowercase")]
 pub enum NodeTimeMethod {
     /// Combinatorial branch and bound, proven optimal unless a limit stops it.
@@ -113,7 +113,7 @@ pub struct Limits {
 }
 
 /// A node time and the pad assignment that achieves it.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct NodeTimeSolution {
     /// Method that produced it.
     pub method: NodeTimeMethod,
@@ -130,6 +130,55 @@ pub struct NodeTimeSolution {
     pub assignment: Vec<Vec<usize>>,
     /// Wall-clock time of the solve in milliseconds.
     pub solve_ms: f64,
+}
+
+/// The document `swarmplan node-time --json` prints and `swarmplan check --node-time` reads:
+/// the instance solved, the solution and its gap.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct NodeTimeReport {
+    /// Number of pads `k` of the instance.
+    pub pads: usize,
+    /// Charge time of every drone of the instance, minutes.
+    pub charge_times_min: Vec<f64>,
+    /// The solution.
+    #[serde(flatten)]
+    pub solution: NodeTimeSolution,
+    /// `(makespan - reference) / reference`: 0 against the optimum when proven, else against
+    /// the method's own lower bound; `None` without an assignment.
+    pub gap: Option<crate::solver::Gap>,
+}
+
+impl NodeTimeSolution {
+    /// The node time's gap: 0 against the optimum when proven, else against the method's own
+    /// lower bound; `None` without an assignment.
+    pub fn gap(&self) -> Option<crate::solver::Gap> {
+        use crate::solver::{Gap, ReferenceKind};
+        match self.status {
+            SolveStatus::Optimal => Some(Gap::new(
+                self.makespan_min,
+                self.makespan_min,
+                ReferenceKind::Optimal,
+            )),
+            SolveStatus::Feasible => Some(Gap::new(
+                self.makespan_min,
+                self.lower_bound_min,
+                ReferenceKind::Bound,
+            )),
+            SolveStatus::Infeasible => None,
+        }
+    }
+}
+
+impl NodeTimeReport {
+    /// The report of `solution` on the instance (`pads`, `charge_times_min`).
+    pub fn new(pads: usize, charge_times_min: &[f64], solution: NodeTimeSolution) -> Self {
+        NodeTimeReport {
+            pads,
+            charge_times_min: charge_times_min.to_vec(),
+            gap: solution.gap(),
+            solution,
+        }
+    }
 }
 
 /// Checks a node-time instance and reports every violation at once.

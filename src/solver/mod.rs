@@ -220,7 +220,7 @@ pub enum ReferenceKind {
 }
 
 /// Relative gap `(heuristic - reference) / reference` with the kind of its reference.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize)]
 pub struct Gap {
     /// The relative gap; `None` when the reference is zero.
     pub relative: Option<f64>,

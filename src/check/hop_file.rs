@@ -1,0 +1,307 @@
+//! Re-verifies a hop file (`swarmplan eaas --write-hop`, a [`HopFile`]) against the instance and
+//! request set it names: every number of its hop problem is rebuilt from the raw network, the
+//! profile and the request, without the planner, and compared (relative tolerance `1e-9`), one
+//! violation per number with the stated and rebuilt values:
+//!
+//! * P5601: the request `request_id` is in the request set;
+//! * P5602: the path's nodes exist and each consecutive pair is an edge;
+//! * P5603: each leg lasts its edge's length over the ground speed;
+//! * P5604: each leg's rate matrix is the energy model's for the swarm (the request's packages,
+//!   the profile's support payload) on the edge's heading and wind;
+//! * P5605: drones: delivery drones first, one per package; each has the profile's capacity and
+//!   departs with a full battery (every hop of a plan does);
+//! * P5606: the slots are a formation's at the profile's spacing, the initial slots a
+//!   permutation of them;
+//! * P5607: the sharing constants (`rho`, range, `gamma`, `lambda`, `delta`) are the profile's;
+//! * P5608: `end` holds the pads and pad rate of the end node (`null` when it has no pads).
+//!
+//! `hop_index` and the profile's name record where the hop comes from and are not checked; the
+//! fingerprint `made_on` is compared first, as for plans (E6004, E6005).
+
+use super::plan::{raw_leg, RawLeg};
+use crate::eaas::hop_file::HopFile;
+use crate::energy;
+use crate::error::Violation;
+use crate::formation;
+use crate::problem::{Drone, FormationKind, Network, Profile, Request, Role, Swarm};
+use std::collections::HashMap;
+
+/// Relative tolerance of a rebuilt number.
+const RELATIVE_TOLERANCE: f64 = 1e-9;
+
+fn close(a: f64, b: f64) -> bool {
+    a == b || (a - b).abs() <= RELATIVE_TOLERANCE * a.abs().max(b.abs()).max(1.0)
+}
+
+fn v(code: &'static str, field: impl Into<String>, cause: impl Into<String>) -> Violation {
+    Violation::new(
+        code,
+        field,
+        cause,
+        "write the hop again with `swarmplan eaas --request-id ID --hop N --write-hop FILE` on \
+         the instance it comes from",
+    )
+}
+
+/// Pushes a P-violation when `stated` is not `rebuilt`.
+fn compare(out: &mut Vec<Violation>, code: &'static str, field: String, stated: f64, rebuilt: f64) {
+    if !close(stated, rebuilt) {
+        out.push(v(
+            code,
+            field,
+            format!("states {stated}, the instance gives {rebuilt}"),
+        ));
+    }
+}
+
+/// Checks a hop file against the raw instance and a request set.
+///
+/// # Returns
+/// E6004 and E6005 alone when the file records another network or profile; else every broken
+/// rule (codes `P5601`-`P5608`); empty when the file passes.
+///
+/// # Complexity
+/// `O(N + E)` to index the network, then `O(L D S)` for `L` legs, `D` drones, `S` slots.
+pub fn check_hop_file(
+    network: &Network,
+    profile: &Profile,
+    requests: &[Request],
+    file: &HopFile,
+) -> Vec<Violation> {
+    if let Some(made_on) = &file.made_on {
+        let mismatch = super::report::fingerprint_mismatch(network, profile, made_on);
+        if !mismatch.is_empty() {
+            return mismatch;
+        }
+    }
+    let mut out = Vec::new();
+    let Some(request) = requests.iter().find(|r| r.id == file.request_id) else {
+        out.push(v(
+            "P5601",
+            "request_id",
+            format!(
+                "no request with id `{}` in the request file",
+                file.request_id
+            ),
+        ));
+        return out;
+    };
+    let hop = &file.hop;
+    let legs = match legs_of_the_path(network, &file.path) {
+        Ok(legs) => legs,
+        Err(x) => {
+            out.push(x);
+            return out;
+        }
+    };
+    // P5605: the drones.
+    let n = request.packages_kg.len();
+    let roles_ok = hop.drones.iter().enumerate().all(|(d, s)| {
+        let want = if d < n { Role::Delivery } else { Role::Support };
+        s.role == want
+    }) && hop.drones.len() >= n;
+    if !roles_ok {
+        out.push(v(
+            "P5605",
+            "hop.drones",
+            format!(
+                "roles {:?}: the request's {n} packages need {n} delivery drones first, then \
+                 support drones",
+                hop.drones.iter().map(|d| d.role).collect::<Vec<_>>()
+            ),
+        ));
+        return out;
+    }
+    for (d, s) in hop.drones.iter().enumerate() {
+        let capacity = match s.role {
+            Role::Delivery => profile.drone.battery_mah,
+            Role::Support => profile.support_capacity_mah(),
+        };
+        let f = format!("hop.drones[{d}]");
+        compare(
+            &mut out,
+            "P5605",
+            format!("{f}.capacity_mah"),
+            s.capacity_mah,
+            capacity,
+        );
+        compare(
+            &mut out,
+            "P5605",
+            format!("{f}.battery_mah"),
+            s.battery_mah,
+            capacity,
+        );
+    }
+    // P5606: the slots and the initial positions.
+    let spacing_m = profile.formation.spacing_m;
+    let count = hop.drones.len();
+    let formation = FormationKind::ALL.into_iter().find(|&kind| {
+        let want = formation::slots_m(kind, count, spacing_m);
+        want.len() == hop.slots_m.len()
+            && want
+                .iter()
+                .zip(&hop.slots_m)
+                .all(|(a, b)| close(a.x, b.x) && close(a.y, b.y))
+    });
+    let Some(formation) = formation else {
+        out.push(v(
+            "P5606",
+            "hop.slots_m",
+            format!("not the slots of any formation of {count} drones at {spacing_m} m spacing"),
+        ));
+        return out;
+    };
+    let mut sorted = hop.initial_slot.clone();
+    sorted.sort_unstable();
+    if sorted != (0..count).collect::<Vec<_>>() {
+        out.push(v(
+            "P5606",
+            "hop.initial_slot",
+            format!(
+                "{:?} is not a permutation of the {count} slots",
+                hop.initial_slot
+            ),
+        ));
+        return out;
+    }
+    // P5603, P5604: every leg.
+    let swarm = Swarm {
+        formation,
+        drones: hop
+            .drones
+            .iter()
+            .enumerate()
+            .map(|(id, s)| Drone {
+                id,
+                role: s.role,
+                payload_kg: if id < n {
+                    request.packages_kg[id]
+                } else {
+                    profile.support_payload_kg()
+                },
+                capacity_mah: s.capacity_mah,
+            })
+            .collect(),
+        slots_m: hop.slots_m.clone(),
+        initial_slot: hop.initial_slot.clone(),
+    };
+    let speed_m_per_min = profile.drone.speed_kmh * 1000.0 / 60.0;
+    if hop.legs.len() != legs.len() {
+        out.push(v(
+            "P5603",
+            "hop.legs",
+            format!("{} legs, the path has {} edges", hop.legs.len(), legs.len()),
+        ));
+        return out;
+    }
+    for (l, (stated, raw)) in hop.legs.iter().zip(&legs).enumerate() {
+        let f = format!("hop.legs[{l}]");
+        compare(
+            &mut out,
+            "P5603",
+            format!("{f}.duration_min"),
+            stated.duration_min,
+            raw.distance_m / speed_m_per_min,
+        );
+        let rates = energy::rate_matrix_mah_per_min(profile, &swarm, raw.heading_deg, &raw.wind);
+        for (d, row) in rates.iter().enumerate() {
+            for (q, &rate) in row.iter().enumerate() {
+                let got = stated
+                    .rate_mah_per_min
+                    .get(d)
+                    .and_then(|r| r.get(q))
+                    .copied()
+                    .unwrap_or(f64::NAN);
+                compare(
+                    &mut out,
+                    "P5604",
+                    format!("{f}.rate_mah_per_min[{d}][{q}]"),
+                    got,
+                    rate,
+                );
+            }
+        }
+    }
+    // P5607: the sharing constants.
+    let s = &profile.sharing;
+    for (field, stated, given) in [
+        ("rho_mah_per_min", hop.rho_mah_per_min, s.rate_mah_per_min),
+        ("range_m", hop.range_m, s.range_m),
+        ("gamma_mah", hop.gamma_mah, s.gamma_mah),
+        ("lambda_mah", hop.lambda_mah, s.lambda_mah),
+        ("delta_mah", hop.delta_mah, s.delta_mah),
+    ] {
+        compare(&mut out, "P5607", format!("hop.{field}"), stated, given);
+    }
+    // P5608: the end node's pads.
+    let end = network.nodes.iter().find(|x| x.id == file.to);
+    let pads = end.map_or(0, |x| x.pads);
+    match (&file.end, end) {
+        (Some(e), Some(node)) if pads > 0 => {
+            compare(
+                &mut out,
+                "P5608",
+                "end.pads".into(),
+                e.pads as f64,
+                pads as f64,
+            );
+            let rate = node
+                .pad_charge_rate_mah_per_min
+                .unwrap_or(profile.pads.charge_rate_mah_per_min);
+            compare(
+                &mut out,
+                "P5608",
+                "end.pad_rate_mah_per_min".into(),
+                e.pad_rate_mah_per_min,
+                rate,
+            );
+        }
+        (None, _) if pads == 0 => {}
+        (stated, _) => out.push(v(
+            "P5608",
+            "end",
+            format!(
+                "states {stated:?}, the end node `{}` has {pads} pads",
+                file.to
+            ),
+        )),
+    }
+    out
+}
+
+/// P5602: the legs of `path`, rebuilt from the network.
+fn legs_of_the_path(network: &Network, path: &[String]) -> Result<Vec<RawLeg>, Violation> {
+    let index: HashMap<&str, usize> = network
+        .nodes
+        .iter()
+        .enumerate()
+        .map(|(i, n)| (n.id.as_str(), i))
+        .collect();
+    let mut nodes = Vec::with_capacity(path.len());
+    for (i, id) in path.iter().enumerate() {
+        match index.get(id.as_str()) {
+            Some(&k) => nodes.push(k),
+            None => {
+                return Err(v(
+                    "P5602",
+                    format!("path[{i}]"),
+                    format!("`{id}` is not a node of the network"),
+                ))
+            }
+        }
+    }
+    nodes
+        .windows(2)
+        .enumerate()
+        .map(|(i, w)| {
+            raw_leg(network, w[0], w[1]).ok_or_else(|| {
+                v(
+                    "P5602",
+                    format!("path[{}]", i + 1),
+                    format!("no edge joins {} and {}", path[i], path[i + 1]),
+                )
+            })
+        })
+        .collect()
+}

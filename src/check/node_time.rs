@@ -1,0 +1,207 @@
+//! Re-verifies a node-time result (`swarmplan node-time --json`, a [`NodeTimeReport`]) from the
+//! instance it records, without the node-time solvers: the assignment is a partition of the
+//! drones over at most `k` pads (P5501), the makespan is its largest pad load (P5502), the lower
+//! bound lies in `[0, makespan]` and equals the makespan when `optimal` (P5503); with at most [`OPTIMALITY_CHECK_DRONES`] drones the optimum found by
+//! exhaustive search bounds both (P5504); the gap is the makespan's against the optimum or the
+//! bound as the status says (P5505); and, when an instance is given, the recorded one is it
+//! (P5506). `solve_ms` is a measurement and `method` a choice: neither is checked.
+
+use super::plan::{optimal_makespan_min, OPTIMALITY_CHECK_DRONES};
+use crate::error::Violation;
+use crate::node_time::NodeTimeReport;
+use crate::solver::{ReferenceKind, SolveStatus};
+
+/// Relative tolerance of a recomputed sum of charge times.
+const RELATIVE_TOLERANCE: f64 = 1e-9;
+
+fn close(a: f64, b: f64) -> bool {
+    a == b || (a - b).abs() <= RELATIVE_TOLERANCE * a.abs().max(b.abs()).max(1.0)
+}
+
+fn v(code: &'static str, field: impl Into<String>, cause: impl Into<String>) -> Violation {
+    Violation::new(
+        code,
+        field,
+        cause,
+        "solve the instance again with `swarmplan node-time --json`",
+    )
+}
+
+/// Checks a node-time result.
+///
+/// # Arguments
+/// * `report` - the result as read.
+/// * `instance` - the instance it should answer (`pads`, charge times), when given.
+///
+/// # Returns
+/// Every broken rule (codes `P5501`-`P5506`); empty when the result passes.
+///
+/// # Complexity
+/// `O(n)` for `n` drones, plus the exhaustive search (at most `k^n / k!` assignments) when
+/// `n <= OPTIMALITY_CHECK_DRONES`.
+pub fn check_node_time(
+    report: &NodeTimeReport,
+    instance: Option<(usize, &[f64])>,
+) -> Vec<Violation> {
+    let mut out = Vec::new();
+    if let Some((pads, times)) = instance {
+        if pads != report.pads {
+            out.push(v(
+                "P5506",
+                "pads",
+                format!("states {} pads, the instance has {pads}", report.pads),
+            ));
+        }
+        if times.len() != report.charge_times_min.len() {
+            out.push(v(
+                "P5506",
+                "charge_times_min",
+                format!(
+                    "states {} charge times, the instance has {}",
+                    report.charge_times_min.len(),
+                    times.len()
+                ),
+            ));
+        } else {
+            for (j, (&stated, &given)) in report.charge_times_min.iter().zip(times).enumerate() {
+                if stated != given {
+                    out.push(v(
+                        "P5506",
+                        format!("charge_times_min[{j}]"),
+                        format!("states {stated} min, the instance has {given} min"),
+                    ));
+                }
+            }
+        }
+    }
+    let s = &report.solution;
+    let times = &report.charge_times_min;
+    let n = times.len();
+    // P5501: a partition over at most k pads.
+    let mut seen = vec![0usize; n];
+    for (p, pad) in s.assignment.iter().enumerate() {
+        for (i, &j) in pad.iter().enumerate() {
+            match seen.get_mut(j) {
+                Some(count) => *count += 1,
+                None => out.push(v(
+                    "P5501",
+                    format!("assignment[{p}][{i}]"),
+                    format!("drone {j}, the instance has {n} drones"),
+                )),
+            }
+        }
+    }
+    if s.assignment.len() > report.pads {
+        out.push(v(
+            "P5501",
+            "assignment",
+            format!(
+                "{} pads used, the node has {}",
+                s.assignment.len(),
+                report.pads
+            ),
+        ));
+    }
+    let unassigned: Vec<usize> = (0..n).filter(|&j| seen[j] != 1).collect();
+    let partition = out.iter().all(|x| x.code != "P5501") && unassigned.is_empty();
+    if !unassigned.is_empty() && s.status != SolveStatus::Infeasible {
+        out.push(v(
+            "P5501",
+            "assignment",
+            format!("drones {unassigned:?} are not charged exactly once"),
+        ));
+    }
+    if !partition {
+        return out;
+    }
+    // P5502: the makespan is the largest pad load.
+    let makespan = s
+        .assignment
+        .iter()
+        .map(|pad| pad.iter().map(|&j| times[j]).sum::<f64>())
+        .fold(0.0, f64::max);
+    if !close(s.makespan_min, makespan) {
+        out.push(v(
+            "P5502",
+            "makespan_min",
+            format!(
+                "states {}, the assignment's largest pad load is {makespan}",
+                s.makespan_min
+            ),
+        ));
+    }
+    // P5503: the bound.
+    let slack = RELATIVE_TOLERANCE * makespan.max(1.0);
+    let bound_ok = match s.status {
+        SolveStatus::Optimal => close(s.lower_bound_min, makespan),
+        _ => s.lower_bound_min >= 0.0 && s.lower_bound_min <= makespan + slack,
+    };
+    if !bound_ok {
+        out.push(v(
+            "P5503",
+            "lower_bound_min",
+            format!(
+                "states {} with status {:?}: a lower bound lies in [0, {makespan}], equal to the \
+                 makespan when optimal",
+                s.lower_bound_min, s.status
+            ),
+        ));
+    }
+    // P5504: the optimum by exhaustive search.
+    if n <= OPTIMALITY_CHECK_DRONES && report.pads > 0 {
+        let best = optimal_makespan_min(times, report.pads);
+        let slack = 1e-6 * (1.0 + best);
+        if s.lower_bound_min > best + slack {
+            out.push(v(
+                "P5504",
+                "lower_bound_min",
+                format!(
+                    "states {}, above the optimum {best} found by exhaustive search",
+                    s.lower_bound_min
+                ),
+            ));
+        }
+        if s.status == SolveStatus::Optimal && makespan > best + slack {
+            out.push(v(
+                "P5504",
+                "makespan_min",
+                format!("optimal {makespan}, but an assignment with makespan {best} exists"),
+            ));
+        }
+    }
+    // P5505: the gap as the status defines it.
+    let expected = s.gap();
+    let gap_ok = match (&report.gap, &expected) {
+        (Some(a), Some(b)) => {
+            a.reference == b.reference
+                && match (a.relative, b.relative) {
+                    (Some(x), Some(y)) => close(x, y),
+                    (x, y) => x.is_none() && y.is_none(),
+                }
+        }
+        (a, b) => a.is_none() && b.is_none(),
+    };
+    if !gap_ok {
+        let field = match (&report.gap, &expected) {
+            (Some(a), Some(b)) if a.reference != b.reference => "gap.reference",
+            (Some(_), Some(_)) => "gap.relative",
+            _ => "gap",
+        };
+        out.push(v(
+            "P5505",
+            field,
+            format!(
+                "states {:?}, status {:?} gives {:?} (against {})",
+                report.gap,
+                s.status,
+                expected,
+                match expected.map(|g| g.reference) {
+                    Some(ReferenceKind::Optimal) => "the optimum",
+                    Some(_) => "the lower bound",
+                    None => "nothing",
+                }
+            ),
+        ));
+    }
+    out
+}
