@@ -10,6 +10,7 @@ mod common;
 
 use common::paper_195;
 use serde_json::Value;
+use swarmplan::check::bench_rows::check_bench_rows;
 use swarmplan::check::check_report;
 use swarmplan::check::hop_file::check_hop_file;
 use swarmplan::check::node_time::check_node_time;
@@ -57,7 +58,9 @@ fn leaf<'v>(value: &'v mut Value, path: &str) -> &'v mut Value {
         let (key, indices) = part
             .split_once('[')
             .map_or((part, ""), |(k, rest)| (k, rest));
-        at = &mut at[key];
+        if !key.is_empty() {
+            at = &mut at[key];
+        }
         for index in indices.split('[').filter(|s| !s.is_empty()) {
             at = &mut at[index.trim_end_matches(']').parse::<usize>().unwrap()];
         }
@@ -501,5 +504,66 @@ fn every_changed_number_of_a_node_time_result_is_rejected() {
         "lower_bound_min",
         "assignment[][]",
         "gap.relative",
+    ]);
+}
+
+/// Every number of the rows of a bench run (`--joint`: route gaps and the gap split included),
+/// changed in turn in the rows of its first request, is rejected by `check --bench`'s rules
+/// naming the row and the column.
+#[test]
+fn every_changed_number_of_a_bench_row_is_rejected() {
+    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("check_bench_rows");
+    let _ = std::fs::remove_dir_all(&dir);
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_swarmplan"))
+        .args([
+            "bench",
+            "--limit",
+            "2",
+            "--joint",
+            "--exact-limit",
+            "0",
+            "--out",
+        ])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0), "{out:?}");
+    let (config, data) = swarmplan::bench::read_data(&dir).unwrap();
+    let (network, _, profile, requests) = findings();
+    let requests = &requests[..config.limit];
+    let first: Vec<_> = data
+        .requests
+        .iter()
+        .filter(|r| r.request_index == 0)
+        .cloned()
+        .collect();
+    assert!(first.len() >= 10, "every combination has a row");
+    let document = serde_json::to_value(&first).unwrap();
+    let check = |doc: &Value| -> Result<Vec<Violation>, String> {
+        let rows: Vec<swarmplan::bench::RequestRow> =
+            serde_json::from_value(doc.clone()).map_err(|e| e.to_string())?;
+        let found = check_bench_rows(&network, &profile, requests, &config, &rows, 1)
+            .map_err(|e| e.to_string())?;
+        assert!(found.skipped.is_none());
+        Ok(found
+            .violations
+            .into_iter()
+            .map(|mut v| {
+                v.field = v.field.trim_start_matches("requests.csv").to_string();
+                v
+            })
+            .collect())
+    };
+    let mut tally = Tally::default();
+    tally.change_every_number("rows of r00000", &document, |_| false, "", check);
+    tally.assert_all_rejected(&[
+        "[].distance_m",
+        "[].dt_min",
+        "[].lpt_gap_sum",
+        "[].optimal_dt_min",
+        "[].route_gap",
+        "[].joint_dt_min",
+        "[].gap_route_min",
+        "[].split_epsilon_min",
     ]);
 }

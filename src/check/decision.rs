@@ -238,7 +238,7 @@ impl PartialOrd for Label {
 
 /// Shortest distance from `source` to `destination` over the edges (either direction, the
 /// file's `distance_m`, else Euclidean), m; infinite when no path joins them.
-fn shortest_distance_m(network: &Network, source: &str, destination: &str) -> f64 {
+pub(super) fn shortest_distance_m(network: &Network, source: &str, destination: &str) -> f64 {
     let index: HashMap<&str, usize> = network
         .nodes
         .iter()

@@ -3,8 +3,10 @@
 //!
 //! Codes `C3xxx` concern hop schedules ([`hop`]), codes `P5xxx` whole plans ([`plan`]) and plan
 //! documents read from a file ([`report`], read by [`plan_file`], whose errors are `E6xxx`),
-//! `P55xx` node-time results ([`node_time`]) and `P56xx` hop files ([`hop_file`]).
+//! `P55xx` node-time results ([`node_time`]), `P56xx` hop files ([`hop_file`]) and `P57xx` the
+//! rows of a bench run ([`bench_rows`]).
 
+pub mod bench_rows;
 pub mod decision;
 pub mod free_hop;
 pub mod hop;

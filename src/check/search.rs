@@ -163,6 +163,7 @@ pub fn check_consistency(report: &RequestReport) -> Vec<Violation> {
     if let Some(gap) = &report.route_gap {
         let expected = match (plan.delivered(), gap.optimal_dt_min) {
             (true, Some(best)) if best > 0.0 => Some((plan.dt_min - best) / best),
+            (true, Some(_)) => Some(0.0),
             _ => None,
         };
         let agrees = match (gap.gap, expected) {

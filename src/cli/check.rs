@@ -10,7 +10,7 @@ use std::path::PathBuf;
 /// Re-verify a plan written by `solve --json` (or a hop file, or a node-time result): exit 0
 /// valid, 1 invalid, 2 malformed input.
 #[derive(Debug, clap::Args)]
-#[group(id = "document", required = true, args = ["plan", "hop_file", "node_time"])]
+#[group(id = "document", required = true, args = ["plan", "hop_file", "node_time", "bench"])]
 pub struct CheckArgs {
     /// Network and profile the plan was made with.
     #[command(flatten)]
@@ -29,6 +29,15 @@ pub struct CheckArgs {
     /// re-verified on the instance it records.
     #[arg(long, value_name = "FILE")]
     pub node_time: Option<PathBuf>,
+    /// A bench run's directory (`bench --out DIR`): the rows of its `requests.csv`, each request
+    /// planned again with the row's combination and the run's settings, the plan checked and
+    /// every column compared with it.
+    #[arg(long, value_name = "DIR")]
+    pub bench: Option<PathBuf>,
+    /// With --bench: the number of requests whose rows are checked (the first in the file)
+    /// [default: all].
+    #[arg(long, value_name = "N", requires = "bench")]
+    pub limit: Option<usize>,
     /// With --node-time: the instance file (`{"pads": K, "charge_times_min": [...]}`) the result
     /// should answer.
     #[arg(long, value_name = "FILE", requires = "node_time")]
@@ -40,6 +49,9 @@ pub struct CheckArgs {
 
 /// Runs the subcommand; exit code 0 when the plan passes, 1 when it breaks a rule.
 pub fn run(args: CheckArgs) -> Result<i32> {
+    if let Some(dir) = &args.bench {
+        return check_bench(&args, dir);
+    }
     let instance = args.instance.load()?;
     let set = inputs::load_requests(args.requests.as_deref())?;
     if let Some(path) = &args.node_time {
@@ -112,6 +124,59 @@ fn check_node_time(
         crate::cli::human::json_name(&report.solution.status)
     );
     print_verdict(&what, &found, json)
+}
+
+/// `check --bench DIR [--limit N]`: the run's inputs are the files given, or, when none is,
+/// the shipped instance the run names (findings-195 is the bench's default).
+fn check_bench(args: &CheckArgs, dir: &std::path::Path) -> Result<i32> {
+    let (config, data) = crate::bench::read_data(dir)?;
+    let shipped = if config.network == inputs::FINDINGS_195.network_name
+        || config.profile == inputs::FINDINGS_195.profile_name
+    {
+        &inputs::FINDINGS_195
+    } else {
+        &inputs::PAPER_195
+    };
+    let (instance, set) = inputs::both(
+        args.instance.load_or(shipped),
+        inputs::load_requests(args.requests.as_deref()),
+    )?;
+    let requests = &set.requests[..config.limit.min(set.requests.len())];
+    let given = crate::bench::inputs_sha256(&instance.network, &instance.profile, requests)?;
+    if given != config.inputs_sha256 {
+        return Err(Error::invalid(
+            "E6006",
+            format!("{}: config.json inputs_sha256", dir.display()),
+            format!(
+                "this run was made on other inputs (network, profile and requests: sha256 \
+                 {}..., the files given: {}...)",
+                config.inputs_sha256.chars().take(12).collect::<String>(),
+                given.chars().take(12).collect::<String>()
+            ),
+            format!(
+                "check it with the inputs it was made on (config.json: {}, {}, {})",
+                config.network, config.profile, config.requests
+            ),
+        ));
+    }
+    let found = crate::check::bench_rows::check_bench_rows(
+        &instance.network,
+        &instance.profile,
+        requests,
+        &config,
+        &data.requests,
+        args.limit.unwrap_or(usize::MAX),
+    )?;
+    if let Some(why) = found.skipped {
+        eprintln!("note: the rows were not planned again: {why}");
+    }
+    let what = format!(
+        "bench run {}: {} rows of {} requests",
+        dir.display(),
+        found.rows,
+        found.requests
+    );
+    print_verdict(&what, &found.violations, args.json)
 }
 
 /// Prints the violations (or that there is none); exit code 0 or 1.

@@ -28,7 +28,7 @@ pub use factors::{EdgeFactorCache, EdgeFactors};
 pub use flight::{Flight, HopEnd, Planner};
 pub use gaps::{lpt_gap, lpt_node_time_gaps, LptGapSummary, RouteGapSummary, RoutePair};
 pub use plan::{Hop, LegFlown, Plan, PlanOutcome, RouteOptimality, Stop};
-pub use request::{Context, PlanOptions, RequestReport, RouteGap, SwarmChoice};
+pub use request::{Context, PlanOptions, PlanSettings, RequestReport, RouteGap, SwarmChoice};
 pub use split::{GapSplit, JointOptimum, JointSplit, SplitLabel, SwarmOptimum};
 
 use crate::eaas::SharingPolicy;

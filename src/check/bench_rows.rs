@@ -1,0 +1,344 @@
+//! Re-verifies the rows of a bench run's `requests.csv` (`swarmplan check --bench DIR`): each
+//! row states the numbers of a plan that is not written, so the request is planned again with
+//! the row's combination and the settings of the run's `config.json`, that plan is checked by
+//! [`check_report`] like any plan file (P5702 wraps a violation), and every column is compared
+//! with it (P5701, one violation per column with the stated and recomputed values):
+//!
+//! * from the request and the plan, by the checker's own code: ids, source, destination,
+//!   packages, `distance_m` (the checker's Dijkstra), support drones, success, outcome, `dt`,
+//!   `tt`, `nt`, stops, energy shared; LPT's node time at every proven stop (the checker's own
+//!   LPT) and its gap against the stop's `nt`; the route gap `(dt - optimal_dt) / optimal_dt`;
+//! * from the method run again: the optimal route's `dt` and whether it is proven, and with
+//!   `--joint` the joint optimum and the parts of the gap split.
+//!
+//! Rows of a run made with a wall-clock limit (`--hop-time-limit`) cannot be planned again to
+//! the same numbers; [`BenchCheck::skipped`] says so. Codes P5703 (a row's request is not the
+//! request set's at its index) and P5704 (a row's combination is not one of the run's).
+
+use super::check_report;
+use super::decision::shortest_distance_m;
+use crate::bench::{BenchConfig, RequestRow};
+use crate::compose::{Context, HopPaths, PlanSettings, RequestReport};
+use crate::error::{Result, Violation};
+use crate::problem::{Network, Profile, Request, SkywayGraph};
+use crate::solver::SolveStatus;
+
+/// Relative tolerance of a recomputed number (the CSV writes every digit of a float).
+const RELATIVE_TOLERANCE: f64 = 1e-9;
+
+fn close(a: f64, b: f64) -> bool {
+    a == b || (a - b).abs() <= RELATIVE_TOLERANCE * a.abs().max(b.abs()).max(1.0)
+}
+
+fn v(code: &'static str, field: impl Into<String>, cause: impl Into<String>) -> Violation {
+    Violation::new(
+        code,
+        field,
+        cause,
+        "run the bench again: its rows are the plans of its combinations and settings",
+    )
+}
+
+/// What checking a run's rows found.
+#[derive(Debug, Default)]
+pub struct BenchCheck {
+    /// Every broken rule.
+    pub violations: Vec<Violation>,
+    /// Requests planned again.
+    pub requests: usize,
+    /// Rows compared.
+    pub rows: usize,
+    /// Why the rows were not planned again, if they were not.
+    pub skipped: Option<&'static str>,
+}
+
+/// Checks the rows of the first `limit` requests of a run.
+///
+/// # Arguments
+/// * `network`, `profile`, `requests` - the run's inputs (their fingerprint is compared with
+///   `config.inputs_sha256` by the caller).
+/// * `config`, `rows` - the run's `config.json` and `requests.csv`.
+/// * `limit` - requests whose rows are checked, in the order of the file.
+///
+/// # Errors
+/// Those of planning a request again (an input the run could plan always plans again).
+///
+/// # Complexity
+/// Planning each request again with every combination of the run (and the joint optimum with
+/// `--joint`), plus [`check_report`] on each plan.
+pub fn check_bench_rows(
+    network: &Network,
+    profile: &Profile,
+    requests: &[Request],
+    config: &BenchConfig,
+    rows: &[RequestRow],
+    limit: usize,
+) -> Result<BenchCheck> {
+    let mut out = BenchCheck::default();
+    if config.milp.time_limit_s.is_finite() {
+        out.skipped = Some(
+            "the run was made with a wall-clock limit on its hop solves (--hop-time-limit), so \
+             its plans depend on the machine",
+        );
+        return Ok(out);
+    }
+    let graph = SkywayGraph::new(network)?;
+    let context = Context::new(network, &graph, profile).with_settings(&PlanSettings {
+        hop_model: config.milp,
+        prune_candidates: true,
+        node_limit: config.node_limit,
+        hop_paths: HopPaths::Rule,
+    });
+    let combos = config.planned_combos();
+    // Every row names its request by position and id, as the request set has them.
+    for (k, row) in rows.iter().enumerate() {
+        let found = requests.get(row.request_index).map(|r| &r.id);
+        if found != Some(&row.request_id) {
+            out.violations.push(v(
+                "P5703",
+                format!("requests.csv[{k}].request_index"),
+                format!(
+                    "request {} at index {}: the run's requests have {found:?} there",
+                    row.request_id, row.request_index
+                ),
+            ));
+        }
+    }
+    let mut k = 0;
+    while k < rows.len() && out.requests < limit {
+        let index = rows[k].request_index;
+        let end = k + rows[k..]
+            .iter()
+            .take_while(|r| r.request_index == index)
+            .count();
+        out.requests += 1;
+        let Some(request) = requests.get(index).filter(|r| r.id == rows[k].request_id) else {
+            k = end;
+            continue;
+        };
+        let reports = combos
+            .iter()
+            .map(|c| context.plan(request, c))
+            .collect::<Result<Vec<_>>>()?;
+        let joint = if config.joint {
+            Some(context.joint_split(request, &reports)?)
+        } else {
+            None
+        };
+        let distance_m = shortest_distance_m(network, &request.source, &request.destination);
+        for (r, row) in rows.iter().enumerate().take(end).skip(k) {
+            out.rows += 1;
+            let f = format!("requests.csv[{r}]");
+            let Some(j) = combos.iter().position(|c| {
+                (c.sharing, c.positioning, c.route) == (row.sharing, row.positioning, row.route)
+            }) else {
+                out.violations.push(v(
+                    "P5704",
+                    format!("{f}.sharing"),
+                    format!(
+                        "combination {:?}/{:?}/{:?} is not one of the run's",
+                        row.sharing, row.positioning, row.route
+                    ),
+                ));
+                continue;
+            };
+            let report = &reports[j];
+            for x in check_report(network, profile, requests, report) {
+                out.violations.push(v(
+                    "P5702",
+                    format!("{f}: {}", x.field),
+                    format!("the plan behind the row breaks [{}]: {}", x.code, x.cause),
+                ));
+            }
+            let reference = config
+                .reference_of(&combos[j])
+                .and_then(|c| combos.iter().position(|x| *x == c))
+                .map(|i| &reports[i]);
+            let split = joint
+                .as_ref()
+                .and_then(|s| s.splits.get(j).cloned().flatten());
+            let mut columns = Columns {
+                out: &mut out.violations,
+                f: &f,
+            };
+            columns.compare_plan(row, request, report, distance_m);
+            columns.compare_reference(row, report, reference);
+            if let Some(joint) = &joint {
+                columns.compare_split(row, joint.joint.dt_min(), split.as_ref());
+            }
+        }
+        k = end;
+    }
+    Ok(out)
+}
+
+/// Column comparisons of one row.
+struct Columns<'a> {
+    out: &'a mut Vec<Violation>,
+    f: &'a str,
+}
+
+impl Columns<'_> {
+    fn differs(&mut self, column: &str, stated: String, recomputed: String) {
+        self.out.push(v(
+            "P5701",
+            format!("{}.{column}", self.f),
+            format!(
+                "states {stated}, the plan made again with the row's combination and the run's \
+                 settings gives {recomputed}"
+            ),
+        ));
+    }
+
+    fn number(&mut self, column: &str, stated: f64, recomputed: f64) {
+        let same = close(stated, recomputed) || (stated.is_nan() && recomputed.is_nan());
+        if !same {
+            self.differs(column, stated.to_string(), recomputed.to_string());
+        }
+    }
+
+    fn option(&mut self, column: &str, stated: Option<f64>, recomputed: Option<f64>) {
+        let same = match (stated, recomputed) {
+            (Some(a), Some(b)) => close(a, b),
+            (a, b) => a.is_none() && b.is_none(),
+        };
+        if !same {
+            self.differs(column, format!("{stated:?}"), format!("{recomputed:?}"));
+        }
+    }
+
+    fn exact<T: PartialEq + std::fmt::Debug>(&mut self, column: &str, stated: T, recomputed: T) {
+        if stated != recomputed {
+            self.differs(column, format!("{stated:?}"), format!("{recomputed:?}"));
+        }
+    }
+
+    /// The columns a plan states.
+    fn compare_plan(
+        &mut self,
+        row: &RequestRow,
+        request: &Request,
+        report: &RequestReport,
+        distance_m: f64,
+    ) {
+        let plan = &report.plan;
+        self.exact("source", &row.source, &request.source);
+        self.exact("destination", &row.destination, &request.destination);
+        self.exact("packages", row.packages, request.packages_kg.len());
+        self.number("distance_m", row.distance_m, distance_m);
+        self.exact("support_drones", row.support_drones, report.support_drones);
+        self.exact("success", row.success, plan.delivered());
+        self.exact("outcome", row.outcome.clone(), plan.outcome.kind());
+        self.number("dt_min", row.dt_min, plan.dt_min);
+        self.number("tt_min", row.tt_min, plan.tt_min);
+        self.number("nt_min", row.nt_min, plan.nt_min);
+        let stops: Vec<_> = plan.hops.iter().filter_map(|h| h.stop.as_ref()).collect();
+        self.exact("stops", row.stops, stops.len());
+        self.number("shared_mah", row.shared_mah, plan.shared_mah);
+        // LPT at every proven stop of a delivered plan, by the checker's own LPT.
+        let (mut proven, mut equal, mut gap_sum) = (0usize, 0usize, 0.0);
+        if plan.delivered() {
+            for stop in stops.iter().filter(|s| s.status == SolveStatus::Optimal) {
+                let lpt = lpt_makespan_min(&stop.charge_times_min, stop.pads as usize);
+                let gap = if stop.nt_min > 0.0 {
+                    (lpt - stop.nt_min) / stop.nt_min
+                } else {
+                    0.0
+                };
+                proven += 1;
+                equal += usize::from(gap.abs() <= 1e-9);
+                gap_sum += gap;
+            }
+        }
+        self.exact("lpt_stops", row.lpt_stops, proven);
+        self.exact("lpt_optimal", row.lpt_optimal, equal);
+        self.number("lpt_gap_sum", row.lpt_gap_sum, gap_sum);
+    }
+
+    /// The route gap columns against the optimal route of the same combination.
+    fn compare_reference(
+        &mut self,
+        row: &RequestRow,
+        report: &RequestReport,
+        reference: Option<&RequestReport>,
+    ) {
+        let Some(best) = reference else {
+            self.exact("route_gap_reference", row.route_gap_reference.as_str(), "");
+            return;
+        };
+        let optimal_dt = best.plan.delivered().then_some(best.plan.dt_min);
+        let proven = best.plan.route_optimality.is_none_or(|o| o.proven());
+        let gap = match (report.plan.delivered(), optimal_dt) {
+            (true, Some(b)) if b > 0.0 => Some((report.plan.dt_min - b) / b),
+            (true, Some(_)) => Some(0.0),
+            _ => None,
+        };
+        self.exact(
+            "route_gap_reference",
+            row.route_gap_reference.as_str(),
+            "optimal",
+        );
+        self.option("optimal_dt_min", row.optimal_dt_min, optimal_dt);
+        self.exact("optimal_proven", row.optimal_proven, Some(proven));
+        self.option("route_gap", row.route_gap, gap);
+    }
+
+    /// `--joint`: the joint optimum and the parts of the gap split.
+    fn compare_split(
+        &mut self,
+        row: &RequestRow,
+        joint_dt: Option<f64>,
+        split: Option<&crate::compose::GapSplit>,
+    ) {
+        let Some(s) = split else {
+            self.option("joint_dt_min", row.joint_dt_min, None);
+            return;
+        };
+        self.option("joint_dt_min", row.joint_dt_min, joint_dt);
+        let label = s
+            .label
+            .and_then(|l| serde_json::to_value(l).ok())
+            .and_then(|l| l.as_str().map(String::from))
+            .unwrap_or_default();
+        self.exact("split_label", row.split_label.clone(), label);
+        for (column, stated, recomputed) in [
+            (
+                "exact_schedule_dt_min",
+                row.exact_schedule_dt_min,
+                s.exact_schedule_dt_min,
+            ),
+            (
+                "swarm_optimum_dt_min",
+                row.swarm_optimum_dt_min,
+                s.swarm_optimum_dt_min,
+            ),
+            ("gap_total_min", row.gap_total_min, s.total_min),
+            ("gap_sharing_min", row.gap_sharing_min, s.sharing_min),
+            ("gap_route_min", row.gap_route_min, s.route_min),
+            ("gap_swarm_min", row.gap_swarm_min, s.swarm_min),
+            (
+                "split_epsilon_min",
+                row.split_epsilon_min,
+                Some(s.epsilon_min),
+            ),
+        ] {
+            self.option(column, stated, recomputed);
+        }
+        self.exact("split_proven", row.split_proven, Some(s.proven));
+    }
+}
+
+/// Longest processing time first (Graham 1969): drones by charge time, longest first, each on
+/// the least loaded pad; its makespan (which ties do not change).
+fn lpt_makespan_min(times: &[f64], pads: usize) -> f64 {
+    let mut sorted = times.to_vec();
+    sorted.sort_by(|a, b| b.total_cmp(a));
+    let mut load = vec![0.0f64; pads.max(1)];
+    for t in sorted {
+        let least = (0..load.len())
+            .min_by(|&a, &b| load[a].total_cmp(&load[b]))
+            .expect("one pad at least");
+        load[least] += t;
+    }
+    load.into_iter().fold(0.0, f64::max)
+}
