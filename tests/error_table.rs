@@ -1,0 +1,136 @@
+//! The README's error table is complete: every error code the code can return (`E` and four
+//! digits, in the code of `src/` and `python/src/`, comments aside) is covered by a row of the
+//! table under "| codes | what |" (a code, a range `E0003–E0006` or a family `E39xx`), and every
+//! code the table names alone is one the code returns.
+
+use std::collections::BTreeSet;
+use std::path::Path;
+
+fn rust_files(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            rust_files(&path, out);
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            out.push(path);
+        }
+    }
+}
+
+/// Every `E` followed by exactly four digits in `text`.
+fn codes_in(text: &str) -> Vec<u32> {
+    let b = text.as_bytes();
+    let mut out = Vec::new();
+    for i in 0..b.len() {
+        let digits = |k: usize| b.get(i + k).is_some_and(u8::is_ascii_digit);
+        let before_ok = i == 0 || !b[i - 1].is_ascii_alphanumeric();
+        if b[i] == b'E' && before_ok && (1..=4).all(digits) && !digits(5) {
+            out.push(text[i + 1..i + 5].parse().unwrap());
+        }
+    }
+    out
+}
+
+/// The codes the code returns: every `E####` outside `//` comments.
+fn codes_in_the_code() -> BTreeSet<u32> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files = Vec::new();
+    rust_files(&root.join("src"), &mut files);
+    rust_files(&root.join("python/src"), &mut files);
+    let mut out = BTreeSet::new();
+    for file in files {
+        for line in std::fs::read_to_string(&file).unwrap().lines() {
+            let code = line.split("//").next().unwrap_or("");
+            out.extend(codes_in(code));
+        }
+    }
+    out
+}
+
+/// What the README's table covers: single codes, ranges and families.
+struct Table {
+    single: BTreeSet<u32>,
+    ranges: Vec<(u32, u32)>,
+    families: Vec<u32>,
+}
+
+fn readme_table() -> Table {
+    let readme =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md")).unwrap();
+    let mut lines = readme
+        .lines()
+        .skip_while(|l| !l.starts_with("| codes | what |"));
+    lines.next().expect("the README has an error table");
+    let mut table = Table {
+        single: BTreeSet::new(),
+        ranges: Vec::new(),
+        families: Vec::new(),
+    };
+    for line in lines.skip(1).take_while(|l| l.starts_with('|')) {
+        let cell = line.split('|').nth(1).unwrap().trim();
+        for item in cell.split(',').map(str::trim) {
+            if let Some((a, b)) = item.split_once('–') {
+                let (a, b) = (codes_in(a), codes_in(b));
+                table.ranges.push((a[0], b[0]));
+            } else if let Some(prefix) = item.strip_prefix('E').and_then(|s| s.strip_suffix("xx")) {
+                table.families.push(prefix.parse::<u32>().unwrap() * 100);
+            } else {
+                let found = codes_in(item);
+                assert_eq!(
+                    found.len(),
+                    1,
+                    "a table cell item reads as one code: {item}"
+                );
+                table.single.insert(found[0]);
+            }
+        }
+    }
+    table
+}
+
+impl Table {
+    fn covers(&self, code: u32) -> bool {
+        self.single.contains(&code)
+            || self.ranges.iter().any(|&(a, b)| (a..=b).contains(&code))
+            || self.families.iter().any(|&f| (f..f + 100).contains(&code))
+    }
+}
+
+#[test]
+fn every_error_code_is_in_the_readme_table_and_back() {
+    let code = codes_in_the_code();
+    let table = readme_table();
+    assert!(
+        code.len() > 100,
+        "the code's error codes are found: {}",
+        code.len()
+    );
+    let missing: Vec<String> = code
+        .iter()
+        .filter(|&&c| !table.covers(c))
+        .map(|c| format!("E{c:04}"))
+        .collect();
+    assert!(
+        missing.is_empty(),
+        "codes not in the README table: {missing:?}"
+    );
+    let unknown: Vec<String> = table
+        .single
+        .iter()
+        .chain(table.ranges.iter().flat_map(|(a, b)| [a, b]))
+        .filter(|c| !code.contains(c))
+        .map(|c| format!("E{c:04}"))
+        .collect();
+    assert!(
+        unknown.is_empty(),
+        "README codes the code never returns: {unknown:?}"
+    );
+}
+
+#[test]
+fn the_code_reader_finds_codes_and_only_codes() {
+    assert_eq!(
+        codes_in(r#"Error::invalid("E0123", x) [E4567] E12345 XE1111 E12"#),
+        vec![123, 4567]
+    );
+}
