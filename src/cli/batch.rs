@@ -73,6 +73,11 @@ pub struct BatchArgs {
     /// identical for any count.
     #[arg(long, value_name = "N")]
     pub threads: Option<usize>,
+    /// Wall-clock budget of the whole run, seconds: no request is started after it, and the
+    /// output is that of the requests before the first one left out (the same numbers as
+    /// `--limit K` for that K, said on stderr with the remaining work) [default: none].
+    #[arg(long, value_name = "S")]
+    pub time_budget: Option<f64>,
     /// Write every request's outcome (id, success, dt, stops, failure) as JSON to this file.
     #[arg(long, value_name = "FILE")]
     pub per_request: Option<PathBuf>,
@@ -196,6 +201,7 @@ pub fn run(args: BatchArgs) -> Result<i32> {
     context.exact = args.exact.settings()?;
     context.node_limit = Some(args.node_limit);
     context.hop_paths = args.hop_paths;
+    context.deadline = super::inputs::deadline(args.time_budget)?;
     let shown = combinations(&args);
     // With --gap, the optimal route of each compared combination, planned with it.
     let mut combos = shown.clone();
@@ -226,6 +232,8 @@ pub fn run(args: BatchArgs) -> Result<i32> {
     })?;
     let grid_ms = start.elapsed().as_secs_f64() * 1e3;
     bar.finish_and_clear();
+    super::inputs::report_budget(grid.len(), requests.len(), grid.len());
+    let requests = &requests[..grid.len()];
     let mut summaries = Vec::new();
     let mut outcomes = Vec::new();
     for (c, &options) in shown.iter().enumerate() {

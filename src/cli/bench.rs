@@ -146,6 +146,12 @@ pub struct RunArgs {
     /// Worker threads [default: the number of available cores].
     #[arg(long, value_name = "N")]
     pub threads: Option<usize>,
+    /// Wall-clock budget of the whole run, seconds: no request is started after it, and the
+    /// files are those of the requests before the first one left out (`config.json` records
+    /// that `--limit`, so they are the files of `--limit K` for that K; stderr says what
+    /// remains) [default: none].
+    #[arg(long, value_name = "S")]
+    pub time_budget: Option<f64>,
     /// Output directory.
     #[arg(long, short = 'o', value_name = "DIR", required = true)]
     pub out: Option<PathBuf>,
@@ -287,11 +293,12 @@ pub fn run_grid_with(
     }
     .settings()?;
     context.node_limit = Some(args.node_limit);
+    context.deadline = super::inputs::deadline(args.time_budget)?;
     let name = |p: &Option<PathBuf>, shipped: &str| {
         p.as_ref()
             .map_or(shipped.to_string(), |p| p.display().to_string())
     };
-    let config = BenchConfig {
+    let mut config = BenchConfig {
         schema_version: bench::SUMMARY_SCHEMA_VERSION,
         version: env!("CARGO_PKG_VERSION").to_string(),
         inputs_sha256: bench::inputs_sha256(
@@ -326,6 +333,19 @@ pub fn run_grid_with(
     let clock = Instant::now();
     let data = bench::run(&context, &instance.requests, &config, threads, done)?;
     let elapsed_s = clock.elapsed().as_secs_f64();
+    // A run the time budget stopped is the run of the requests before the first left out.
+    let positions: std::collections::BTreeSet<usize> =
+        data.requests.iter().map(|r| r.request_index).collect();
+    if positions.len() < planned {
+        let limit = positions.last().map_or(0, |p| p + 1);
+        super::inputs::report_budget(positions.len(), planned, limit);
+        config.limit = limit;
+        config.inputs_sha256 = bench::inputs_sha256(
+            &instance.network,
+            &instance.profile,
+            &instance.requests[..limit],
+        )?;
+    }
     let summary = bench::write_outputs(&out, &config, &data, command)?;
     let (config, data) = bench::read_data(&out)?;
     Ok(GridRun {

@@ -199,3 +199,37 @@ pub fn parse_list(text: &str, field: &str, code: &'static str) -> Result<Vec<f64
         Err(Error::Invalid(violations))
     }
 }
+
+/// The deadline of `--time-budget S` from now.
+///
+/// # Errors
+/// E0028 when `S` is not a time in (0, 1e7] seconds.
+pub fn deadline(budget_s: Option<f64>) -> Result<Option<std::time::Instant>> {
+    let Some(s) = budget_s else {
+        return Ok(None);
+    };
+    if !(s > 0.0 && s <= 1e7) {
+        return Err(Error::invalid(
+            "E0028",
+            "--time-budget",
+            format!("{s} is not a time in (0, 1e7] seconds"),
+            "give the run's budget in seconds, such as 600, or leave it out for none",
+        ));
+    }
+    Ok(Some(
+        std::time::Instant::now() + std::time::Duration::from_secs_f64(s),
+    ))
+}
+
+/// Says on stderr, when `--time-budget` stopped a run after `planned` of `asked` requests,
+/// what was planned (the output of `--limit limit`) and what remains.
+pub fn report_budget(planned: usize, asked: usize, limit: usize) {
+    if planned < asked {
+        eprintln!(
+            "time budget reached: {planned} of {asked} requests planned (the output is the one \
+             --limit {limit} gives); {} requests remain: run again without --time-budget, or \
+             with a larger one, to plan them",
+            asked - planned
+        );
+    }
+}

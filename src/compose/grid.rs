@@ -4,6 +4,8 @@ use super::{Context, PlanOptions, RequestReport};
 use crate::error::{Error, Result};
 use crate::problem::Request;
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
 
 /// What [`Context::plan_grid_rows`] keeps of a request: from its position, the request and its
 /// reports in the order of the combinations.
@@ -40,6 +42,10 @@ impl Context<'_> {
     /// request, reports in the order of combos)` returns: for work on a request's reports
     /// together (the joint optimum and the gap splits).
     ///
+    /// With a [`Context::deadline`], a request not started by then is not planned, and the rows
+    /// returned are those of the requests before the first one left out: the rows of the same
+    /// call on that prefix alone (work on later requests already made is dropped).
+    ///
     /// # Errors
     /// As [`Context::plan_grid`].
     ///
@@ -54,18 +60,37 @@ impl Context<'_> {
         keep_row: &KeepRow<'_, T>,
     ) -> Result<Vec<T>> {
         let pool = thread_pool(threads)?;
-        let rows: Vec<Result<T>> = pool.install(|| {
-            requests
-                .par_iter()
-                .enumerate()
-                .map(|(i, r)| {
-                    let reports = self.plan_each(r, combos)?;
+        // Requests are handed out in order from one counter, so that a deadline leaves a prefix
+        // planned; each result goes to its request's slot, whatever thread made it.
+        let next = AtomicUsize::new(0);
+        let slots: Vec<Mutex<Option<Result<T>>>> =
+            requests.iter().map(|_| Mutex::new(None)).collect();
+        pool.install(|| {
+            (0..threads.max(1)).into_par_iter().for_each(|_| loop {
+                let i = next.fetch_add(1, Ordering::Relaxed);
+                let Some(r) = requests.get(i) else { break };
+                if self
+                    .deadline
+                    .is_some_and(|d| std::time::Instant::now() >= d)
+                {
+                    break;
+                }
+                let row = self.plan_each(r, combos).and_then(|reports| {
                     done(combos.len() as u64);
                     keep_row(i, r, reports)
-                })
-                .collect()
+                });
+                *slots[i].lock().unwrap_or_else(|e| e.into_inner()) = Some(row);
+            })
         });
-        rows.into_iter().collect()
+        // The requests before the first one the deadline left unplanned.
+        let mut out = Vec::with_capacity(requests.len());
+        for slot in slots {
+            match slot.into_inner().unwrap_or_else(|e| e.into_inner()) {
+                Some(row) => out.push(row?),
+                None => break,
+            }
+        }
+        Ok(out)
     }
 }
 

@@ -88,6 +88,10 @@ pub struct Context<'a> {
     pub node_limit: Option<u64>,
     /// The paths the hops of `--route optimal` may follow (default [`HopPaths::Rule`]).
     pub hop_paths: HopPaths,
+    /// A whole run's wall-clock budget (`--time-budget`): [`Context::plan_grid_rows`] starts no
+    /// request after it (default `None`). Every limit inside a request counts work, so the
+    /// requests planned get the same numbers on any machine; how many there are does not.
+    pub deadline: Option<std::time::Instant>,
     /// The energy model's leg factors, shared by every request's planner.
     factors: EdgeFactorCache,
     /// The network and profile, fingerprinted for the plans made here.
@@ -181,6 +185,7 @@ impl<'a> Context<'a> {
             exact: ExactSettings::default(),
             node_limit: Some(crate::node_time::DEFAULT_STOP_NODE_LIMIT),
             hop_paths: HopPaths::Rule,
+            deadline: None,
             factors: EdgeFactorCache::new(graph),
             fingerprint: Fingerprint::of(network, profile),
         }
