@@ -228,3 +228,49 @@ fn a_stopped_solve_reports_its_gap_against_a_non_trivial_bound() {
     assert_eq!(proven["gap"]["reference"], "optimal");
     assert_eq!(proven["gap"]["relative"].as_f64(), Some(0.0));
 }
+
+/// A stopped search reports the best bound there is: on `l6`, 100 drones on 40 pads, seed 2,
+/// stopped after one search node, the bound is not the root bound `ceil(sum / 40) = 615`
+/// (computed here from the instance) but the bin-packing LP's 618, the optimum (proven by the
+/// arc-flow MILP, README "HiGHS backend"), and the gap is taken against it.
+#[test]
+fn a_stopped_search_reports_the_lp_bound_and_its_gap() {
+    let file = tmp("l6-100-40-2.json");
+    let path = file.to_str().unwrap();
+    let (code, _, stderr) = swarmplan(&[
+        "generate",
+        "node-time",
+        "--class",
+        "l6",
+        "--jobs",
+        "100",
+        "--pads",
+        "40",
+        "--seed",
+        "2",
+        "-o",
+        path,
+        "--force",
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    let instance: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&file).unwrap()).unwrap();
+    let sum: f64 = instance["charge_times_min"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|t| t.as_f64().unwrap())
+        .sum();
+    assert_eq!((sum / 40.0).ceil(), 615.0);
+    let (code, stdout, stderr) =
+        swarmplan(&["node-time", "--file", path, "--node-limit", "1", "--json"]);
+    assert_eq!(code, 0, "{stderr}");
+    let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    assert_eq!(v["status"], "feasible");
+    assert_eq!(v["lower_bound_min"], 618.0);
+    let makespan = v["makespan_min"].as_f64().unwrap();
+    assert!(makespan > 618.0);
+    let gap = v["gap"]["relative"].as_f64().unwrap();
+    assert!((gap - (makespan - 618.0) / 618.0).abs() < 1e-12);
+    assert_eq!(v["gap"]["reference"], "bound");
+}
