@@ -104,7 +104,7 @@ pub struct RunArgs {
     /// Also compute each request's joint optimum (`--route optimal --sharing exact` over the
     /// swarms of both positionings and the swarm without support drones) and split every
     /// heuristic combination's gap to it into sharing, route and swarm parts (`joint.csv`, the
-    /// `gap_*` columns of `requests.csv`, the split table and `figures/gap_split.svg`).
+    /// `gap_*` columns of `requests.csv`, the split table and `figures/gap-split.svg`).
     #[arg(long)]
     pub joint: bool,
     /// Requests (the first of the set) whose hops under PB and FB are solved again by the
