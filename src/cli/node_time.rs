@@ -3,6 +3,7 @@
 //! ```text
 //! swarmplan node-time --pads 3 --times 60,50,40,30,20
 //! swarmplan node-time --file stop.json --method milp --backend microlp --time-limit 10 --json
+//! swarmplan node-time --pads 3 --times 60,50,40,30,20 --write-lp stop.mps --method lpt
 //! ```
 //! where `stop.json` is `{"pads": 3, "charge_times_min": [60, 50, 40, 30, 20]}`.
 
@@ -49,6 +50,10 @@ pub struct NodeTimeArgs {
     /// stops reports its incumbent as `feasible` with its lower bound and gap [default: none].
     #[arg(long, value_name = "N")]
     pub node_limit: Option<u64>,
+    /// Write the assignment MILP of `--method milp` for this instance (free MPS when FILE ends
+    /// in `.mps`, CPLEX LP otherwise) before solving with the method asked for.
+    #[arg(long, value_name = "FILE")]
+    pub write_lp: Option<PathBuf>,
     /// Print the result as JSON on stdout.
     #[arg(long)]
     pub json: bool,
@@ -98,6 +103,18 @@ pub fn run(args: NodeTimeArgs) -> Result<i32> {
             }
         }
     };
+    if let Some(path) = &args.write_lp {
+        let about = format!("{} drones on {pads} pads", times.len());
+        let (size, format) = node_time::milp::write_model(pads, &times, &about, path)?;
+        eprintln!(
+            "wrote {} file {}: {} variables ({} binary), {} constraints",
+            format.name(),
+            path.display(),
+            size.variables,
+            size.binaries,
+            size.constraints
+        );
+    }
     let limits = Limits {
         time_limit_s: Some(args.time_limit),
         node_limit: args.node_limit,
