@@ -3,12 +3,13 @@
 //!
 //! ```text
 //! cargo run --release --example bench_pcmax_classes -- [--classes u1,nu1,...] [--sizes 50x5,100x10,...]
-//!     [--limit-s 10] [--reps 10] [--seed 1]
+//!     [--time-limit 10] [--reps 10] [--seed 1]
 //! ```
 //!
 //! Per class and size `n x m`, `--reps` instances with seeds `seed, seed + 1, ...` (the same files
 //! as `swarmplan generate node-time --class C --jobs n --pads m --seed s`), each solved by
-//! `node_time::exact` with a wall-clock limit of `--limit-s` seconds. Reports the instances proven
+//! `node_time::exact` with a wall-clock limit of `--time-limit` seconds (as `node-time
+//! --time-limit`; `--limit-s`, its former name, still works). Reports the instances proven
 //! optimal, the median and worst solve time, and how each proven optimum was cross-checked:
 //! - every returned assignment is re-evaluated from the raw times (each job once, makespan = the
 //!   largest load), independently of the solver;
@@ -121,7 +122,9 @@ fn arg<'a>(args: &'a [String], key: &str) -> Option<&'a str> {
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
-    let limit_s: f64 = arg(&args, "--limit-s").map_or(10.0, |s| s.parse().expect("--limit-s"));
+    let limit_s: f64 = arg(&args, "--time-limit")
+        .or_else(|| arg(&args, "--limit-s"))
+        .map_or(10.0, |s| s.parse().expect("--time-limit: seconds"));
     let reps: u64 = arg(&args, "--reps").map_or(10, |s| s.parse().expect("--reps"));
     let seed0: u64 = arg(&args, "--seed").map_or(1, |s| s.parse().expect("--seed"));
     let classes: Vec<PcmaxClass> = match arg(&args, "--classes") {

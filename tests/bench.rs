@@ -508,7 +508,7 @@ fn joint_split_adds_up_agrees_with_solve_and_merges_like_one_run() {
             .as_array()
             .unwrap()
             .iter()
-            .any(|f| f == "figures/gap_split.svg"),
+            .any(|f| f == "figures/gap-split.svg"),
         "{}",
         summary["figures"]
     );

@@ -145,6 +145,7 @@ fn full_summary() -> Summary {
         m.exec_ms_median = exec_ms;
         m.by_distance = by_distance;
         m.route_gap_histogram = gaps.as_deref().map(histogram);
+        m.route_gaps = gaps;
     }
     s.hop_gaps = vec![
         hop_gaps(SharingPolicy::Pb, &[0.0, 0.1]),
@@ -243,14 +244,14 @@ fn every_figure_with_data_is_written_in_order() {
         written,
         [
             "figures/delivered.svg",
-            "figures/dt_by_distance_location-aware.svg",
-            "figures/dt_by_distance_energy-aware.svg",
-            "figures/nt_by_distance_location-aware.svg",
-            "figures/nt_by_distance_energy-aware.svg",
-            "figures/exec_time.svg",
-            "figures/route_gap_histogram.svg",
-            "figures/hop_gap_histogram.svg",
-            "figures/stop_gap_histogram.svg",
+            "figures/dt-by-distance-location-aware.svg",
+            "figures/dt-by-distance-energy-aware.svg",
+            "figures/nt-by-distance-location-aware.svg",
+            "figures/nt-by-distance-energy-aware.svg",
+            "figures/exec-time.svg",
+            "figures/route-gap-cdf.svg",
+            "figures/hop-gap-histogram.svg",
+            "figures/stop-gap-histogram.svg",
         ]
     );
     for relative in &written {
@@ -276,7 +277,7 @@ fn bar_charts_have_one_labelled_bar_per_combination() {
     for count in ["6 of 10", "9 of 10", "8 of 10", "0 of 10"] {
         assert_eq!(count_text(&delivered, count), 1, "delivered: value {count}");
     }
-    let exec = svg(&dir, "figures/exec_time.svg");
+    let exec = svg(&dir, "figures/exec-time.svg");
     assert_has_text(&exec, "exec_time", "Median execution time per request");
     assert_has_text(&exec, "exec_time", "median execution time per request (ms)");
     for (label, ms) in [
@@ -329,7 +330,7 @@ fn distance_figures_have_one_line_per_combination_of_their_positioning_with_data
         ),
     ];
     for (prefix, positioning, time, series, points) in cases {
-        let relative = format!("figures/{prefix}_by_distance_{positioning}.svg");
+        let relative = format!("figures/{prefix}-by-distance-{positioning}.svg");
         let text = svg(&dir, &relative);
         assert_has_text(
             &text,
@@ -368,31 +369,23 @@ fn distance_figures_have_one_line_per_combination_of_their_positioning_with_data
 }
 
 #[test]
-fn gap_histograms_have_one_series_per_combination_or_heuristic() {
+fn gap_histograms_have_one_series_per_heuristic() {
     let dir = temp_dir("histograms");
     write_figures(&dir, &full_summary()).unwrap();
     let bins = histogram(&[]).bins;
-    let cases: [(&str, &str, &[&str], &[&str]); 3] = [
+    let cases: [(&str, &str, &[&str]); 2] = [
         (
-            "route_gap_histogram",
-            "Route gap against the optimal route, per request",
-            &[NONE_LA_SEQ, PB_LA_SEQ],
-            &[PB_EA_SEQ, FB_EA_ASTAR],
-        ),
-        (
-            "hop_gap_histogram",
+            "hop-gap-histogram",
             "Sharing heuristics' loss against the hop's continuous-time optimum, per hop",
             &["pb", "fb"],
-            &[],
         ),
         (
-            "stop_gap_histogram",
+            "stop-gap-histogram",
             "LPT's gap against the exact node time, per stop",
             &["LPT"],
-            &[],
         ),
     ];
-    for (name, title, series, absent) in cases {
+    for (name, title, series) in cases {
         let relative = format!("figures/{name}.svg");
         let text = svg(&dir, &relative);
         assert_has_text(&text, &relative, title);
@@ -404,8 +397,166 @@ fn gap_histograms_have_one_series_per_combination_or_heuristic() {
         for label in series {
             assert_eq!(count_text(&text, label), 1, "{relative}: legend {label}");
         }
-        for label in absent {
-            assert_eq!(count_text(&text, label), 0, "{relative}: legend {label}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+const ROUTE_GAP_CDF: &str = "figures/route-gap-cdf.svg";
+
+/// Five combinations with route gaps: Dijkstra's and Floyd–Warshall's under PB are the same.
+///
+/// | combination | gaps | panel | legend entry |
+/// | --- | --- | --- | --- |
+/// | none/location-aware/sequential | 0, 0, 2% | sharing none | location-aware/sequential (3 requests) |
+/// | pb/location-aware/sequential | 0, 30% | sharing pb | location-aware/sequential (2 requests) |
+/// | pb/location-aware/dijkstra | -10%, 0, 50% | sharing pb | location-aware/dijkstra = floyd-warshall (3 requests) |
+/// | pb/location-aware/floyd-warshall | -10%, 0, 50% | (merged) | |
+/// | pb/energy-aware/sequential | 0, 0, 10%, 900% | sharing pb | energy-aware/sequential (4 requests) |
+fn cdf_summary() -> Summary {
+    use Positioning::{EnergyAware, LocationAware};
+    use RouteMethod::{Dijkstra, FloydWarshall, Sequential};
+    use SharingPolicy::{None, Pb};
+    let combos = [
+        (None, LocationAware, Sequential),
+        (Pb, LocationAware, Sequential),
+        (Pb, LocationAware, Dijkstra),
+        (Pb, LocationAware, FloydWarshall),
+        (Pb, EnergyAware, Sequential),
+    ]
+    .map(|(s, p, r)| combo(s, p, r))
+    .to_vec();
+    let mut s = Summary::of(
+        &config(combos),
+        &BenchData::default(),
+        vec!["test".to_string()],
+    );
+    let gaps: [&[f64]; 5] = [
+        &[0.0, 0.0, 0.02],
+        &[0.0, 0.3],
+        &[-0.1, 0.0, 0.5],
+        &[-0.1, 0.0, 0.5],
+        &[0.0, 0.0, 0.1, 9.0],
+    ];
+    for (m, g) in s.methods.iter_mut().zip(gaps) {
+        m.route_gaps = Some(g.to_vec());
+    }
+    s
+}
+
+/// The `y` attribute of every `<text>` element reading exactly `label`.
+fn text_ys(svg: &str, label: &str) -> Vec<f64> {
+    svg.split("<text")
+        .skip(1)
+        .filter(|t| {
+            t.find('>')
+                .zip(t.find("</text>"))
+                .is_some_and(|(a, b)| t[a + 1..b].trim() == label)
+        })
+        .filter_map(|t| attribute(t, "y"))
+        .collect()
+}
+
+/// The number in the attribute `name="..."` of the element text `element`.
+fn attribute(element: &str, name: &str) -> Option<f64> {
+    let key = format!(" {name}=\"");
+    let at = element.find(&key)? + key.len();
+    element[at..at + element[at..].find('"')?].parse().ok()
+}
+
+/// WCAG's relative luminance of `#RRGGBB`.
+fn luminance(hex: &str) -> f64 {
+    let channel = |i: usize| {
+        let c = f64::from(u8::from_str_radix(&hex[i..i + 2], 16).unwrap()) / 255.0;
+        if c <= 0.03928 {
+            c / 12.92
+        } else {
+            ((c + 0.055) / 1.055).powf(2.4)
+        }
+    };
+    0.2126 * channel(1) + 0.7152 * channel(3) + 0.0722 * channel(5)
+}
+
+#[test]
+fn route_gap_cdf_has_a_panel_per_sharing_policy_and_one_line_per_distinct_series() {
+    let dir = temp_dir("cdf");
+    let written = write_figures(&dir, &cdf_summary()).unwrap();
+    assert!(written.iter().any(|w| w == ROUTE_GAP_CDF), "{written:?}");
+    let text = svg(&dir, ROUTE_GAP_CDF);
+    assert_has_text(
+        &text,
+        ROUTE_GAP_CDF,
+        "Route gap against the optimal route: share of the requests at or below each gap",
+    );
+    for panel in ["sharing none", "sharing pb"] {
+        assert_eq!(count_text(&text, panel), 1, "panel {panel}");
+    }
+    for entry in [
+        "location-aware/sequential (3 requests)",
+        "location-aware/sequential (2 requests)",
+        "location-aware/dijkstra = floyd-warshall (3 requests)",
+        "energy-aware/sequential (4 requests)",
+    ] {
+        assert_eq!(count_text(&text, entry), 1, "legend {entry}");
+    }
+    for absent in [
+        "location-aware/dijkstra (3 requests)",
+        "location-aware/floyd-warshall (3 requests)",
+    ] {
+        assert_eq!(count_text(&text, absent), 0, "legend {absent}");
+    }
+    // The gaps span -10% to 900%: on log10(1 + gap), -0.0458 to 1, padded by 4% of that span
+    // (0.0418) to -0.0876 .. 1.0418. Ticks keep 0.1129 (a tenth) apart from 0 outwards: -25%
+    // (-0.125) is outside; 10% (0.041) and 25% (0.097) too close to 0; then 50% (0.176), 100%
+    // (0.301), 200% (0.477), 500% (0.778), 1000% (1.041); each in both panels.
+    for tick in ["0%", "50%", "100%", "200%", "500%", "1000%"] {
+        assert_eq!(count_text(&text, tick), 2, "tick {tick}");
+    }
+    for absent in ["-25%", "10%", "25%", "2000%"] {
+        assert_eq!(count_text(&text, absent), 0, "tick {absent}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn route_gap_cdf_is_in_dark_colours_with_its_legends_below_the_data() {
+    let dir = temp_dir("cdf-style");
+    write_figures(&dir, &cdf_summary()).unwrap();
+    let text = svg(&dir, ROUTE_GAP_CDF);
+    // The series and the legend samples are the 2 px strokes; a contrast ratio of at least 2.6
+    // against white is a relative luminance below 0.35.
+    let strokes: Vec<&str> = text
+        .lines()
+        .filter(|l| l.starts_with("<polyline") && l.contains(r#"stroke-width="2""#))
+        .collect();
+    assert!(!strokes.is_empty());
+    for line in &strokes {
+        let at = line.find("stroke=\"#").unwrap() + "stroke=\"".len();
+        let hex = &line[at..at + 7];
+        assert!(luminance(hex) < 0.35, "pale colour {hex} in {line}");
+    }
+    // Solid series are one polyline of more than 2 points; the lowest point of the data is
+    // above (smaller y than) every legend entry.
+    let lowest_point = strokes
+        .iter()
+        .filter_map(|l| {
+            let at = l.find(r#"points=""#)? + r#"points=""#.len();
+            let points: Vec<f64> = l[at..at + l[at..].find('"')?]
+                .split_whitespace()
+                .filter_map(|p| p.split(',').nth(1)?.parse().ok())
+                .collect();
+            (points.len() > 2).then(|| points.into_iter().fold(f64::MIN, f64::max))
+        })
+        .fold(f64::MIN, f64::max);
+    assert!(lowest_point > 0.0, "no series polyline found");
+    for entry in [
+        "location-aware/sequential (3 requests)",
+        "energy-aware/sequential (4 requests)",
+    ] {
+        for y in text_ys(&text, entry) {
+            assert!(
+                y > lowest_point,
+                "legend {entry} at y {y}, data down to {lowest_point}"
+            );
         }
     }
     std::fs::remove_dir_all(&dir).unwrap();
@@ -417,6 +568,7 @@ fn figures_without_data_are_not_written() {
     let mut s = full_summary();
     for m in &mut s.methods {
         m.route_gap_histogram = None;
+        m.route_gaps = None;
         if m.options.positioning == Positioning::EnergyAware {
             m.by_distance.clear();
         }
@@ -430,24 +582,24 @@ fn figures_without_data_are_not_written() {
         written,
         [
             "figures/delivered.svg",
-            "figures/dt_by_distance_location-aware.svg",
-            "figures/nt_by_distance_location-aware.svg",
-            "figures/exec_time.svg",
+            "figures/dt-by-distance-location-aware.svg",
+            "figures/nt-by-distance-location-aware.svg",
+            "figures/exec-time.svg",
         ]
     );
     for name in [
-        "dt_by_distance_energy-aware",
-        "nt_by_distance_energy-aware",
-        "route_gap_histogram",
-        "hop_gap_histogram",
-        "stop_gap_histogram",
+        "dt-by-distance-energy-aware",
+        "nt-by-distance-energy-aware",
+        "route-gap-cdf",
+        "hop-gap-histogram",
+        "stop-gap-histogram",
     ] {
         assert!(
             !dir.join(format!("figures/{name}.svg")).exists(),
             "{name} written"
         );
     }
-    let dt = svg(&dir, "figures/dt_by_distance_location-aware.svg");
+    let dt = svg(&dir, "figures/dt-by-distance-location-aware.svg");
     assert_eq!(count_text(&dt, PB_LA_SEQ), 1);
     assert_eq!(count_text(&dt, NONE_LA_SEQ), 0);
 

@@ -517,7 +517,7 @@ fn every_changed_number_of_a_bench_row_is_rejected() {
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_swarmplan"))
         .args([
             "bench",
-            "--limit",
+            "--request-limit",
             "2",
             "--joint",
             "--exact-limit",

@@ -245,6 +245,9 @@ fn inspect_json_reports_formation_support_count_and_positions() {
     assert_eq!(r["network"]["formation"], "column");
     assert_eq!(r["network"]["pad_nodes"], 1);
     let req = &r["request"];
+    // The request's id under the name of request files and of `solve`'s `request` object.
+    assert_eq!(req["id"], "pb-fb");
+    assert!(req.get("request_id").is_none(), "{req}");
     assert!(close(req["route_distance_m"].as_f64().unwrap(), 3250.0));
     assert_eq!(req["support_decision"]["probability_pct"], 0.0);
     assert_eq!(req["support_decision"]["level"], "n+1");

@@ -352,3 +352,19 @@ fn generate_does_not_overwrite_a_file_without_force() {
     );
     assert_eq!(std::fs::read_to_string(&out_file).unwrap(), written);
 }
+
+#[test]
+fn request_limit_counts_requests_and_limit_is_its_former_name() {
+    for flag in ["--request-limit", "--limit"] {
+        let out = swarmplan(&["batch", flag, "3", "--json"]);
+        assert_eq!(out.status.code(), Some(0), "{flag}: {}", stderr(&out));
+        let summary = json(&out);
+        // One combination (the default pb/location-aware/sequential) over the first 3 requests.
+        assert_eq!(summary.as_array().map(Vec::len), Some(1), "{flag}");
+        assert_eq!(summary[0]["requests"], 3, "{flag}");
+    }
+    // The former name stays out of the help.
+    let help = stdout(&swarmplan(&["batch", "--help"]));
+    assert!(help.contains("--request-limit <N>"), "{help}");
+    assert!(!help.contains("--limit <N>"), "{help}");
+}

@@ -6,6 +6,7 @@
 
 mod common;
 
+use common::model_files::{read_lp, Lp};
 use common::{close, known_optima, tmp, Known, TOL};
 use std::collections::HashMap;
 use swarmplan::eaas::milp::{
@@ -23,83 +24,6 @@ fn options(reorder: Reorder, period_min: f64) -> MilpOptions {
         time_limit_s: 60.0,
         ..MilpOptions::default()
     }
-}
-
-/// Terms `coefficient name` of a linear expression.
-type Terms = Vec<(f64, String)>;
-
-/// A CPLEX LP file as far as these models use it.
-#[derive(Debug, Default)]
-struct Lp {
-    header: Vec<String>,
-    maximise: bool,
-    objective: Terms,
-    /// (terms, operator, rhs)
-    rows: Vec<(Terms, String, f64)>,
-    /// name -> (lower, upper)
-    bounds: HashMap<String, (f64, f64)>,
-    generals: Vec<String>,
-}
-
-fn terms(tokens: &[&str]) -> Terms {
-    assert!(tokens.len().is_multiple_of(2), "terms {tokens:?}");
-    tokens
-        .chunks(2)
-        .map(|p| (p[0].parse().unwrap(), p[1].to_string()))
-        .collect()
-}
-
-fn read_lp(text: &str) -> Lp {
-    let mut lp = Lp::default();
-    let mut section = "";
-    for line in text.lines() {
-        let l = line.trim();
-        if let Some(c) = line.strip_prefix("\\ ") {
-            lp.header.push(c.to_string());
-            continue;
-        }
-        match l {
-            "" => continue,
-            "Maximize" | "Minimize" => {
-                lp.maximise = l == "Maximize";
-                section = "obj";
-                continue;
-            }
-            "Subject To" | "Bounds" | "Generals" | "End" => {
-                section = l;
-                continue;
-            }
-            _ => {}
-        }
-        let tokens: Vec<&str> = l.split_whitespace().collect();
-        match section {
-            "obj" => {
-                assert_eq!(tokens[0], "obj:");
-                lp.objective = terms(&tokens[1..]);
-            }
-            "Subject To" => {
-                assert!(tokens[0].starts_with('c') && tokens[0].ends_with(':'));
-                let n = tokens.len();
-                lp.rows.push((
-                    terms(&tokens[1..n - 2]),
-                    tokens[n - 2].to_string(),
-                    tokens[n - 1].parse().unwrap(),
-                ));
-            }
-            "Bounds" => {
-                let b = match tokens.as_slice() {
-                    [lo, "<=", name, "<=", up] => (name, lo.parse().unwrap(), up.parse().unwrap()),
-                    [lo, "<=", name] => (name, lo.parse().unwrap(), f64::INFINITY),
-                    [name, "free"] => (name, f64::NEG_INFINITY, f64::INFINITY),
-                    _ => panic!("bound line `{l}`"),
-                };
-                lp.bounds.insert(b.0.to_string(), (b.1, b.2));
-            }
-            "Generals" => lp.generals.push(l.to_string()),
-            _ => panic!("line `{l}` outside a section"),
-        }
-    }
-    lp
 }
 
 /// The header line starting with `key: `, without it.

@@ -12,9 +12,9 @@ use std::process::Command;
 /// Lines run with a smaller `--limit` (the README says so next to them): the text replaced and
 /// its replacement.
 const SHORTER: [(&str, &str, &str); 1] = [(
-    "bench --limit 500 --out bench-out --force",
-    "--limit 500",
-    "--limit 20",
+    "bench --request-limit 500 --out bench-out --force",
+    "--request-limit 500",
+    "--request-limit 20",
 )];
 
 /// Lines not run here, by how they start, and where they run instead.
@@ -157,7 +157,7 @@ fn readme_lines_join_continuations_and_drop_comments() {
         .all(|l| !l.contains(" #") && !l.ends_with('\\')));
     assert!(lines
         .iter()
-        .any(|l| l.starts_with("cargo run --release -- bench --limit 500")));
+        .any(|l| l.starts_with("cargo run --release -- bench --request-limit 500")));
     let b = Path::new("/b/swarmplan");
     assert_eq!(
         with_binary("swarmplan solve --json | swarmplan check --plan -", b),

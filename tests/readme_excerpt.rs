@@ -35,7 +35,7 @@ fn the_readme_excerpt_is_the_main_jobs_output() {
         .split_whitespace()
         .collect();
     assert!(
-        args.contains(&"--limit") && args.contains(&"500"),
+        args.contains(&"--request-limit") && args.contains(&"500"),
         "{args:?}"
     );
     let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("readme_excerpt");

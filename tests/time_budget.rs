@@ -1,6 +1,6 @@
 //! `--time-budget` of `batch` and `bench`: a run the budget stops is the run of the requests
 //! before the first one left out, number for number (`batch`'s summaries but their times;
-//! `bench`'s files, `config.json` included, which records that `--limit`), and says on stderr
+//! `bench`'s files, `config.json` included, which records that `--request-limit`), and says on stderr
 //! how many were planned and how many remain. How many fit in the budget depends on the
 //! machine; the property holds for any count, so the test does not pin one.
 
@@ -33,7 +33,7 @@ fn without_times(summaries: &Value) -> Value {
 fn a_batch_stopped_by_its_budget_is_the_batch_of_its_prefix() {
     let out = swarmplan(&[
         "batch",
-        "--limit",
+        "--request-limit",
         "3000",
         "--sharing",
         "pb,fb",
@@ -50,7 +50,14 @@ fn a_batch_stopped_by_its_budget_is_the_batch_of_its_prefix() {
         return;
     }
     let limit = k.to_string();
-    let again = swarmplan(&["batch", "--limit", &limit, "--sharing", "pb,fb", "--json"]);
+    let again = swarmplan(&[
+        "batch",
+        "--request-limit",
+        &limit,
+        "--sharing",
+        "pb,fb",
+        "--json",
+    ]);
     assert_eq!(again.status.code(), Some(0));
     assert!(planned(&stderr(&again)).is_none());
     let full: Value = serde_json::from_slice(&again.stdout).unwrap();
@@ -63,7 +70,7 @@ fn a_bench_stopped_by_its_budget_writes_the_files_of_its_prefix() {
     let _ = (std::fs::remove_dir_all(&a), std::fs::remove_dir_all(&b));
     let out = swarmplan(&[
         "bench",
-        "--limit",
+        "--request-limit",
         "300",
         "--time-budget",
         "0.5",
@@ -82,7 +89,7 @@ fn a_bench_stopped_by_its_budget_writes_the_files_of_its_prefix() {
     let limit = k.to_string();
     let again = swarmplan(&[
         "bench",
-        "--limit",
+        "--request-limit",
         &limit,
         "--no-gap",
         "--out",
@@ -102,7 +109,7 @@ fn a_bench_stopped_by_its_budget_writes_the_files_of_its_prefix() {
 fn a_budget_that_is_not_a_time_is_refused() {
     for bad in ["0", "-1", "nan", "1e8"] {
         let arg = format!("--time-budget={bad}");
-        let out = swarmplan(&["batch", "--limit", "10", &arg]);
+        let out = swarmplan(&["batch", "--request-limit", "10", &arg]);
         assert_eq!(out.status.code(), Some(2), "{bad}");
         assert!(
             stderr(&out).contains("[E0028] --time-budget"),

@@ -2,7 +2,7 @@
 # Submits a bench sweep to Slurm: N shard tasks (a job array), then the merge, which starts only
 # when every shard task succeeded. Run from the repository after `cargo build --release`:
 #
-#   examples/slurm/submit.sh --shards 16 --out sweep -- --limit 10000 --sharing none,pb,fb
+#   examples/slurm/submit.sh --shards 16 --out sweep -- --request-limit 10000 --sharing none,pb,fb
 #
 # Everything after `--` is passed to every shard's `swarmplan bench` (any bench option but
 # --shard, --out, --threads). Writes OUT/shards/shard-I (each shard's files), OUT/logs (Slurm's

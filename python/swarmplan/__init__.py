@@ -131,7 +131,7 @@ def bench(
         force = True
     args: List[str] = ["--out", os.fspath(out)]
     if limit is not None:
-        args += ["--limit", str(limit)]
+        args += ["--request-limit", str(limit)]
     if force:
         args.append("--force")
     for key, value in options.items():

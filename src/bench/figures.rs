@@ -5,14 +5,16 @@
 //! data are absent is not written. Text is laid out by plotters itself (no system font is read)
 //! and the SVG holds no date, so the same summary gives the same bytes.
 
+use super::summary::ZERO_GAP_TOL;
 use super::{DistanceBucket, GapHistogram, MethodSummary, Summary};
-use crate::compose::PlanOptions;
+use crate::compose::{PlanOptions, RouteMethod};
 use crate::eaas::SharingPolicy;
 use crate::error::{Error, Result};
 use crate::precompose::Positioning;
 use plotters::coord::combinators::WithKeyPoints;
 use plotters::coord::types::RangedCoordi32;
 use plotters::coord::Shift;
+use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 use std::path::Path;
@@ -81,6 +83,33 @@ struct StackedBars {
     values: Vec<Vec<f64>>,
 }
 
+/// Empirical distribution functions of a gap, in panels side by side sharing their axes, each
+/// with its legend below it.
+struct GapCdfs {
+    title: String,
+    x_axis: String,
+    y_axis: String,
+    panels: Vec<CdfPanel>,
+}
+
+/// One panel of [`GapCdfs`].
+struct CdfPanel {
+    title: String,
+    series: Vec<CdfSeries>,
+}
+
+/// The gaps of one or more combinations with the same gaps.
+struct CdfSeries {
+    /// The combinations' names (without the panel's part).
+    names: Vec<String>,
+    /// The first combination's route, which picks the colour.
+    route: RouteMethod,
+    /// Drawn dashed (energy-aware positioning) or solid.
+    dashed: bool,
+    /// The gaps, ascending.
+    gaps: Vec<f64>,
+}
+
 /// Delivery time or node time, the two quantities drawn against distance.
 #[derive(Clone, Copy)]
 enum Time {
@@ -115,16 +144,21 @@ impl Time {
 /// `dir`, in a fixed order:
 ///
 /// - `delivered.svg`: requests delivered per combination;
-/// - `dt_by_distance_{positioning}.svg`, `nt_by_distance_{positioning}.svg`: mean delivery time
+/// - `dt-by-distance-{positioning}.svg`, `nt-by-distance-{positioning}.svg`: mean delivery time
 ///   and mean node time of the delivered (min) against the source–destination distance (km), one
 ///   line per combination of that positioning (the combinations without sharing in both);
-/// - `exec_time.svg`: median execution time per request (ms) per combination;
-/// - `route_gap_histogram.svg`: the route gaps of the combinations that measured them;
-/// - `hop_gap_histogram.svg`: each sharing heuristic's loss per hop against the hop's
+/// - `exec-time.svg`: median execution time per request (ms) per combination;
+/// - `route-gap-cdf.svg`: the empirical distribution of the route gap of the combinations that
+///   measured it, one panel per sharing policy, one line per combination (combinations with
+///   the same gaps drawn once, their names joined by ` = `);
+/// - `hop-gap-histogram.svg`: each sharing heuristic's loss per hop against the hop's
 ///   continuous-time optimum;
-/// - `stop_gap_histogram.svg`: LPT's gap against the exact node time per stop.
+/// - `stop-gap-histogram.svg`: LPT's gap against the exact node time per stop;
+/// - `gap-split.svg`: with `--joint`, the mean parts of each combination's gap to the joint
+///   optimum.
 ///
-/// Only the figures whose data exist are written.
+/// The names are written with hyphens, as the copies shipped under `instances/`. Only the
+/// figures whose data exist are written.
 ///
 /// # Errors
 /// [`crate::Error::Io`] when a file cannot be written or plotters fails to draw it.
@@ -144,18 +178,20 @@ pub fn write_figures(dir: &Path, summary: &Summary) -> Result<Vec<String>> {
     for time in [Time::Delivery, Time::Node] {
         for positioning in [Positioning::LocationAware, Positioning::EnergyAware] {
             if let Some(lines) = time_by_distance(summary, positioning, time) {
-                let name = format!("{}_by_distance_{positioning}.svg", time.file_prefix());
+                let name = format!("{}-by-distance-{positioning}.svg", time.file_prefix());
                 figures.push((name, draw_lines(&lines)));
             }
         }
     }
     if let Some(bars) = exec_time(summary) {
-        figures.push(("exec_time.svg".to_string(), draw_bars(&bars)));
+        figures.push(("exec-time.svg".to_string(), draw_bars(&bars)));
+    }
+    if let Some(cdfs) = route_gap_cdfs(summary) {
+        figures.push(("route-gap-cdf.svg".to_string(), draw_cdfs(&cdfs)));
     }
     let histograms = [
-        ("route_gap_histogram.svg", route_gaps(summary)),
-        ("hop_gap_histogram.svg", hop_gaps(summary)),
-        ("stop_gap_histogram.svg", stop_gaps(summary)),
+        ("hop-gap-histogram.svg", hop_gaps(summary)),
+        ("stop-gap-histogram.svg", stop_gaps(summary)),
     ];
     for (name, histogram) in histograms {
         if let Some(h) = histogram {
@@ -163,7 +199,7 @@ pub fn write_figures(dir: &Path, summary: &Summary) -> Result<Vec<String>> {
         }
     }
     if let Some(bars) = gap_split(summary) {
-        figures.push(("gap_split.svg".to_string(), draw_stacked_bars(&bars)));
+        figures.push(("gap-split.svg".to_string(), draw_stacked_bars(&bars)));
     }
 
     let mut written = Vec::new();
@@ -305,18 +341,85 @@ fn time_by_distance(summary: &Summary, positioning: Positioning, time: Time) -> 
     })
 }
 
-fn route_gaps(summary: &Summary) -> Option<GroupedBars> {
-    let series: Vec<(String, &GapHistogram)> = summary
-        .methods
-        .iter()
-        .filter_map(|m| Some((combination(&m.options), m.route_gap_histogram.as_ref()?)))
-        .collect();
-    gap_histogram(
-        "Route gap against the optimal route, per request",
-        "route gap (% of the optimal route's delivery time)",
-        "requests",
-        series,
-    )
+/// The route gaps' empirical distribution functions, one panel per sharing policy in the order
+/// of the combinations; `None` when no combination measured a gap.
+fn route_gap_cdfs(summary: &Summary) -> Option<GapCdfs> {
+    let mut panels: Vec<(SharingPolicy, Vec<CdfSeries>)> = Vec::new();
+    for m in &summary.methods {
+        let Some(gaps) = m.route_gaps.as_ref().filter(|g| !g.is_empty()) else {
+            continue;
+        };
+        let o = &m.options;
+        let at = match panels.iter().position(|p| p.0 == o.sharing) {
+            Some(at) => at,
+            None => {
+                panels.push((o.sharing, Vec::new()));
+                panels.len() - 1
+            }
+        };
+        let series = &mut panels[at].1;
+        let name = without_sharing(o);
+        match series.iter_mut().find(|s| same_gaps(&s.gaps, gaps)) {
+            Some(same) => same.names.push(name),
+            None => series.push(CdfSeries {
+                names: vec![name],
+                route: o.route,
+                dashed: o.positioning == Positioning::EnergyAware,
+                gaps: gaps.clone(),
+            }),
+        }
+    }
+    (!panels.is_empty()).then(|| GapCdfs {
+        title: "Route gap against the optimal route: share of the requests at or below each gap"
+            .to_string(),
+        x_axis: "route gap (%), log scale of 1 + gap = dt / dt_opt".to_string(),
+        y_axis: "share of the requests both deliver".to_string(),
+        panels: panels
+            .into_iter()
+            .map(|(sharing, series)| CdfPanel {
+                title: format!("sharing {sharing}"),
+                series,
+            })
+            .collect(),
+    })
+}
+
+/// `positioning/route`, with the support drones when the combination fixes them.
+fn without_sharing(o: &PlanOptions) -> String {
+    match o.support {
+        Some(k) => format!("{}/{}/{k} support", o.positioning, o.route),
+        None => format!("{}/{}", o.positioning, o.route),
+    }
+}
+
+/// Whether two ascending gap lists are the same, each gap within [`ZERO_GAP_TOL`] (relative).
+fn same_gaps(a: &[f64], b: &[f64]) -> bool {
+    a.len() == b.len()
+        && a.iter()
+            .zip(b)
+            .all(|(x, y)| (x - y).abs() <= ZERO_GAP_TOL * (1.0 + x.abs()))
+}
+
+/// The names of series drawn as one, joined by ` = `, the `/`-separated fields they share at the
+/// front written once: `location-aware/dijkstra = floyd-warshall`.
+fn merged_name(names: &[String]) -> String {
+    let fields: Vec<Vec<&str>> = names.iter().map(|n| n.split('/').collect()).collect();
+    let shortest = fields.iter().map(Vec::len).min().unwrap_or(0);
+    // Keep at least one field of each name of its own.
+    let shared = (0..shortest.saturating_sub(1))
+        .take_while(|&i| fields.iter().all(|f| f[i] == fields[0][i]))
+        .count();
+    let rests: Vec<String> = fields.iter().map(|f| f[shared..].join("/")).collect();
+    let prefix = fields
+        .first()
+        .map(|f| {
+            f[..shared]
+                .iter()
+                .map(|x| format!("{x}/"))
+                .collect::<String>()
+        })
+        .unwrap_or_default();
+    format!("{prefix}{}", rests.join(" = "))
 }
 
 fn hop_gaps(summary: &Summary) -> Option<GroupedBars> {
@@ -611,6 +714,208 @@ fn draw_grouped_bars(h: &GroupedBars) -> Drawn<String> {
     })
 }
 
+/// Colours that stay dark and distinct in print: Okabe and Ito's colour-blind-safe set without
+/// its yellow and sky blue, then three dark spares. Each has a relative luminance below 0.3.
+const PRINT_COLOURS: [RGBColor; 8] = [
+    RGBColor(0x00, 0x00, 0x00), // black
+    RGBColor(0x00, 0x72, 0xB2), // blue
+    RGBColor(0xD5, 0x5E, 0x00), // vermillion
+    RGBColor(0x00, 0x9E, 0x73), // bluish green
+    RGBColor(0xCC, 0x79, 0xA7), // reddish purple
+    RGBColor(0xA6, 0x61, 0x1A), // ochre
+    RGBColor(0x6A, 0x3D, 0x9A), // violet
+    RGBColor(0x59, 0x59, 0x59), // grey
+];
+
+/// Width of one panel of the route gap's distribution, px (at least).
+const PANEL_PX: u32 = 440;
+/// Height of a panel's chart above its legend, px.
+const CDF_CHART_PX: u32 = 460;
+/// Height of one legend entry, px.
+const LEGEND_ROW_PX: u32 = 20;
+
+/// Units of the route gap's x axis per unit of `log10(1 + gap)` (plotters labels key points
+/// with a formatter on an integer axis only).
+const X_UNITS: f64 = 10_000.0;
+
+/// `x` on the integer x axis.
+fn x_at(x: f64) -> i32 {
+    (x * X_UNITS).round() as i32
+}
+
+/// The x coordinate of `gap` on the log scale of `1 + gap` (= dt / dt_opt); a gap of -100% (a
+/// delivery time of 0) is drawn at -99.9%.
+fn log_ratio(gap: f64) -> f64 {
+    (1.0 + gap).max(1e-3).log10()
+}
+
+/// A gap in %, as labelled on the axis.
+fn percent_label(percent: f64) -> String {
+    format!("{}%", percent + 0.0)
+}
+
+/// The gaps (%) labelled on the x axis from `from` to `to` (log scale of `1 + gap`): 0, then
+/// outwards the round values at least a tenth of the axis apart.
+fn gap_ticks(from: f64, to: f64) -> Vec<f64> {
+    const ABOVE: [f64; 17] = [
+        10.0, 25.0, 50.0, 100.0, 200.0, 500.0, 1e3, 2e3, 5e3, 1e4, 2e4, 5e4, 1e5, 2e5, 5e5, 1e6,
+        1e7,
+    ];
+    const BELOW: [f64; 5] = [-25.0, -50.0, -75.0, -90.0, -99.0];
+    let step = (to - from) / 10.0;
+    let x = |percent: f64| log_ratio(percent / 100.0);
+    let outwards = |candidates: &[f64], inside: &dyn Fn(f64) -> bool| {
+        let mut kept = vec![0.0];
+        for &c in candidates {
+            if inside(x(c)) && (x(c) - x(kept[kept.len() - 1])).abs() >= step {
+                kept.push(c);
+            }
+        }
+        kept.remove(0);
+        kept
+    };
+    let mut ticks: Vec<f64> = outwards(&BELOW, &|v| v >= from);
+    ticks.reverse();
+    ticks.push(0.0);
+    ticks.extend(outwards(&ABOVE, &|v| v <= to));
+    ticks
+}
+
+/// The empirical distribution function of `gaps` (ascending) as a step polyline on the axis
+/// from `from` to `to`: `(x, share of the gaps <= the gap at x)`. Gaps less than `resolution`
+/// apart on the axis make one step.
+fn cdf_steps(gaps: &[f64], from: f64, to: f64, resolution: f64) -> Vec<(f64, f64)> {
+    let n = gaps.len() as f64;
+    let mut points = vec![(from, 0.0)];
+    let (mut i, mut share) = (0, 0.0);
+    while i < gaps.len() {
+        let x = log_ratio(gaps[i]);
+        let j = i + gaps[i..]
+            .iter()
+            .take_while(|&&g| log_ratio(g) - x <= resolution)
+            .count();
+        points.push((x, share));
+        share = j as f64 / n;
+        points.push((x, share));
+        i = j;
+    }
+    points.push((to, share));
+    points
+}
+
+/// Each series' colour (index into [`PRINT_COLOURS`]) and whether it is dashed: the colour of
+/// its route, or the next one free when an earlier series of the panel has that style.
+fn cdf_styles(series: &[CdfSeries]) -> Vec<(usize, bool)> {
+    let mut styles: Vec<(usize, bool)> = Vec::new();
+    for s in series {
+        let first = RouteMethod::ALL
+            .iter()
+            .position(|&r| r == s.route)
+            .unwrap_or(RouteMethod::ALL.len());
+        let colour = (0..PRINT_COLOURS.len())
+            .map(|k| (first + k) % PRINT_COLOURS.len())
+            .find(|&c| !styles.contains(&(c, s.dashed)))
+            .unwrap_or(first);
+        styles.push((colour, s.dashed));
+    }
+    styles
+}
+
+/// Empirical distribution functions in panels side by side, sharing their axes, each with its
+/// legend below its chart.
+fn draw_cdfs(c: &GapCdfs) -> Drawn<String> {
+    let xs = || {
+        c.panels
+            .iter()
+            .flat_map(|p| p.series.iter().flat_map(|s| s.gaps.iter()))
+            .map(|&g| log_ratio(g))
+    };
+    let (lo, hi) = (xs().fold(0.0, f64::min), xs().fold(2f64.log10(), f64::max));
+    let pad = (hi - lo) * 0.04;
+    let (from, to) = (lo - pad, hi + pad);
+    let ticks: Vec<(i32, String)> = gap_ticks(from, to)
+        .into_iter()
+        .map(|p| (x_at(log_ratio(p / 100.0)), percent_label(p)))
+        .collect();
+    let tick_label = |x: &i32| {
+        ticks
+            .iter()
+            .find(|t| t.0 == *x)
+            .map(|t| t.1.clone())
+            .unwrap_or_default()
+    };
+    let labels: Vec<Vec<String>> = c
+        .panels
+        .iter()
+        .map(|p| {
+            p.series
+                .iter()
+                .map(|s| format!("{} ({} requests)", merged_name(&s.names), s.gaps.len()))
+                .collect()
+        })
+        .collect();
+    let longest = labels.iter().flatten().map(|l| l.chars().count()).max();
+    let panel_px = PANEL_PX.max(90 + 7 * longest.unwrap_or(0) as u32);
+    let rows = labels.iter().map(Vec::len).max().unwrap_or(0) as u32;
+    let size = (
+        WIDTH_PX.max(panel_px * c.panels.len() as u32),
+        50 + CDF_CHART_PX + 16 + LEGEND_ROW_PX * rows,
+    );
+    draw(size, |root| {
+        let body = root.titled(&c.title, font(TITLE_PT))?;
+        let areas = body.split_evenly((1, c.panels.len()));
+        for (k, (area, panel)) in areas.iter().zip(&c.panels).enumerate() {
+            let (top, legend) = area.split_vertically(CDF_CHART_PX);
+            let mut chart = ChartBuilder::on(&top)
+                .caption(&panel.title, font(LABEL_PT))
+                .margin(12)
+                .x_label_area_size(50)
+                .y_label_area_size(if k == 0 { 70 } else { 40 })
+                .build_cartesian_2d(
+                    (x_at(from)..x_at(to)).with_key_points(ticks.iter().map(|t| t.0).collect()),
+                    0.0..1.02,
+                )?;
+            let mut mesh = chart.configure_mesh();
+            mesh.x_desc(c.x_axis.as_str())
+                .y_max_light_lines(1)
+                .label_style(font(SMALL_PT))
+                .axis_desc_style(font(LABEL_PT))
+                .x_label_formatter(&tick_label)
+                .y_label_formatter(&|y| format!("{y:.1}"));
+            if k == 0 {
+                mesh.y_desc(c.y_axis.as_str());
+            }
+            mesh.draw()?;
+            let resolution = (to - from) / 2000.0;
+            let styles = cdf_styles(&panel.series);
+            for (s, &(colour, dashed)) in panel.series.iter().zip(&styles) {
+                let points = cdf_steps(&s.gaps, from, to, resolution)
+                    .into_iter()
+                    .map(|(x, y)| (x_at(x), y));
+                let stroke = PRINT_COLOURS[colour].stroke_width(2);
+                if dashed {
+                    chart.draw_series(DashedLineSeries::new(points, 9, 5, stroke))?;
+                } else {
+                    chart.draw_series(LineSeries::new(points, stroke))?;
+                }
+            }
+            let beside = font(SMALL_PT).pos(Pos::new(HPos::Left, VPos::Center));
+            for (i, (label, &(colour, dashed))) in labels[k].iter().zip(&styles).enumerate() {
+                let y = 12 + (LEGEND_ROW_PX * i as u32) as i32;
+                let sample = vec![(24, y), (60, y)];
+                let stroke = PRINT_COLOURS[colour].stroke_width(2);
+                if dashed {
+                    legend.draw(&DashedPathElement::new(sample, 9, 5, stroke))?;
+                } else {
+                    legend.draw(&PathElement::new(sample, stroke))?;
+                }
+                legend.draw(&Text::new(label.as_str(), (68, y), beside.clone()))?;
+            }
+        }
+        Ok(())
+    })
+}
+
 /// The series' labels, framed, at `position`.
 fn draw_legend<'a, 's: 'a, X: Ranged, Y: Ranged>(
     chart: &mut ChartContext<'a, SVGBackend<'s>, Cartesian2d<X, Y>>,
@@ -624,4 +929,67 @@ fn draw_legend<'a, 's: 'a, X: Ranged, Y: Ranged>(
         .border_style(BLACK)
         .draw()?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cdf_steps_rise_by_each_gaps_share_at_its_gap() {
+        // Gaps 0, 0, 2%: 2 of 3 at or below 0, all 3 at or below 2%.
+        let x2 = 1.02f64.log10();
+        let steps = cdf_steps(&[0.0, 0.0, 0.02], -0.1, 0.5, 0.0);
+        let expected = [
+            (-0.1, 0.0),
+            (0.0, 0.0),
+            (0.0, 2.0 / 3.0),
+            (x2, 2.0 / 3.0),
+            (x2, 1.0),
+            (0.5, 1.0),
+        ];
+        assert_eq!(steps.len(), expected.len(), "{steps:?}");
+        for (got, want) in steps.iter().zip(expected) {
+            assert!(
+                (got.0 - want.0).abs() < 1e-12 && (got.1 - want.1).abs() < 1e-12,
+                "{steps:?}"
+            );
+        }
+        // 0.1% is log10(1.001) = 0.000434 from 0 on the axis: one step at resolution 0.01.
+        let merged = cdf_steps(&[0.0, 0.001], -0.1, 0.5, 0.01);
+        assert_eq!(merged, [(-0.1, 0.0), (0.0, 0.0), (0.0, 1.0), (0.5, 1.0)]);
+    }
+
+    #[test]
+    fn merged_names_write_their_shared_fields_once() {
+        let names = |n: &[&str]| n.iter().map(|s| s.to_string()).collect::<Vec<_>>();
+        assert_eq!(
+            merged_name(&names(&[
+                "location-aware/dijkstra",
+                "location-aware/floyd-warshall"
+            ])),
+            "location-aware/dijkstra = floyd-warshall"
+        );
+        assert_eq!(
+            merged_name(&names(&["location-aware/astar", "energy-aware/astar"])),
+            "location-aware/astar = energy-aware/astar"
+        );
+        assert_eq!(
+            merged_name(&names(&["energy-aware/sequential"])),
+            "energy-aware/sequential"
+        );
+    }
+
+    #[test]
+    fn gap_ticks_start_at_zero_and_keep_a_tenth_of_the_axis_apart() {
+        // Axis from log10(0.5) (-50%) to log10(11) (1000%): span 1.342, ticks 0.134 apart.
+        let ticks: Vec<String> = gap_ticks(0.5f64.log10(), 11f64.log10())
+            .into_iter()
+            .map(percent_label)
+            .collect();
+        // From 0 up: 10% (0.041), 25% (0.097) too close; 50% (0.176) kept; 100% (0.301) only
+        // 0.125 above it; 200% (0.477), 500% (0.778), 1000% (1.041) kept. Down: -25% (-0.125)
+        // too close, -50% (-0.301) kept.
+        assert_eq!(ticks, ["-50%", "0%", "50%", "200%", "500%", "1000%"]);
+    }
 }

@@ -183,7 +183,7 @@ pub fn merge(dirs: &[&Path]) -> Result<(BenchConfig, BenchData)> {
                     "its run's configuration differs from that of {} beyond the shard",
                     first_dir.display()
                 ),
-                "merge only the shards of one run: same instance, request set, --limit, methods \
+                "merge only the shards of one run: same instance, request set, --request-limit, methods \
                  and exact settings",
             ));
         }

@@ -171,7 +171,7 @@ pub fn findings(methods: &[MethodSummary], data: &BenchData) -> Vec<Finding> {
             )
         }),
         verdict: verdict(c.is_some_and(|c| c.0 > 0), c.is_some_and(|(_, a, b)| b < a)),
-        figure: "figures/dt_by_distance_energy-aware.svg",
+        figure: "figures/dt-by-distance-energy-aware.svg",
     });
 
     // 2: location-aware delivers more requests (PB + FB).
@@ -221,7 +221,7 @@ pub fn findings(methods: &[MethodSummary], data: &BenchData) -> Vec<Finding> {
             measured,
             measured && cp.unwrap().2 < cp.unwrap().1 && cf.unwrap().2 < cf.unwrap().1,
         ),
-        figure: "figures/dt_by_distance_energy-aware.svg",
+        figure: "figures/dt-by-distance-energy-aware.svg",
     });
 
     // 4a: PB beats FB on delivery time (common requests).
@@ -244,7 +244,7 @@ pub fn findings(methods: &[MethodSummary], data: &BenchData) -> Vec<Finding> {
             measured,
             measured && c_la.unwrap().1 < c_la.unwrap().2 && c_ea.unwrap().1 < c_ea.unwrap().2,
         ),
-        figure: "figures/dt_by_distance_location-aware.svg",
+        figure: "figures/dt-by-distance-location-aware.svg",
     });
 
     // 4b: PB beats FB on execution time (machine-dependent).
@@ -267,7 +267,7 @@ pub fn findings(methods: &[MethodSummary], data: &BenchData) -> Vec<Finding> {
             String::new()
         },
         verdict: verdict(measured, measured && t[0] < t[1] && t[2] < t[3]),
-        figure: "figures/exec_time.svg",
+        figure: "figures/exec-time.svg",
     });
 
     // 5: Dijkstra and Floyd–Warshall deliver fewer than Algorithm 1 (no sharing).

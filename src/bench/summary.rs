@@ -108,6 +108,10 @@ pub struct MethodSummary {
     pub route_gap: Option<RouteGapSummary>,
     /// The route gaps' histogram.
     pub route_gap_histogram: Option<GapHistogram>,
+    /// The route gaps of the requests both deliver, ascending: the data of the figure
+    /// `route-gap-cdf.svg`. Not in `summary.json`: `requests.csv` holds them, per request.
+    #[serde(skip)]
+    pub route_gaps: Option<Vec<f64>>,
     /// `--joint`: the gap to the joint optimum split into its parts.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub gap_split: Option<GapSplitSummary>,
@@ -332,8 +336,14 @@ fn method_summary(config: &BenchConfig, data: &BenchData, o: &PlanOptions) -> Me
             optimal_proven: r.optimal_proven.unwrap_or(true),
         }))
     });
-    let route_gap_histogram =
-        measured.then(|| GapHistogram::of(rows.iter().filter_map(|r| r.route_gap)));
+    let route_gaps = measured.then(|| {
+        let mut gaps: Vec<f64> = rows.iter().filter_map(|r| r.route_gap).collect();
+        gaps.sort_by(f64::total_cmp);
+        gaps
+    });
+    let route_gap_histogram = route_gaps
+        .as_ref()
+        .map(|gaps| GapHistogram::of(gaps.iter().copied()));
     let width = config.distance_bucket_m;
     let mut by_distance: Vec<DistanceBucket> = Vec::new();
     let buckets = rows
@@ -381,6 +391,7 @@ fn method_summary(config: &BenchConfig, data: &BenchData, o: &PlanOptions) -> Me
         lpt_mean_gap: total(delivered.iter().map(|r| r.lpt_gap_sum)) / lpt_stops.max(1) as f64,
         route_gap,
         route_gap_histogram,
+        route_gaps,
         gap_split: config.joint.then(|| gap_split_summary(&rows)),
         by_distance,
         exec_ms_total: total(times.iter().copied()),

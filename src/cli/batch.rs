@@ -42,8 +42,9 @@ pub struct BatchArgs {
     /// Request set (JSON) [default: the shipped paper-195 requests].
     #[arg(long, alias = "request-file", value_name = "FILE")]
     pub requests: Option<PathBuf>,
-    /// Plan only the first N requests.
-    #[arg(long, value_name = "N")]
+    /// Plan only the first N requests (a count of requests; every limit in seconds says so:
+    /// `--time-limit`, `--hop-time-limit`). `--limit` is its former name.
+    #[arg(long = "request-limit", alias = "limit", value_name = "N")]
     pub limit: Option<usize>,
     /// Sharing policies, comma-separated.
     #[arg(long, value_enum, value_delimiter = ',', default_value = "pb")]
@@ -75,7 +76,7 @@ pub struct BatchArgs {
     pub threads: Option<usize>,
     /// Wall-clock budget of the whole run, seconds: no request is started after it, and the
     /// output is that of the requests before the first one left out (the same numbers as
-    /// `--limit K` for that K, said on stderr with the remaining work) [default: none].
+    /// `--request-limit K` for that K, said on stderr with the remaining work) [default: none].
     #[arg(long, value_name = "S")]
     pub time_budget: Option<f64>,
     /// Write every request's outcome (id, success, dt, stops, failure) as JSON to this file.
@@ -190,9 +191,9 @@ pub fn run(args: BatchArgs) -> Result<i32> {
     if requests.is_empty() {
         return Err(Error::invalid(
             "E0005",
-            "--limit / --requests",
+            "--request-limit / --requests",
             "no request to plan",
-            "give a request file with requests and a --limit of 1 or more",
+            "give a request file with requests and a --request-limit of 1 or more",
         ));
     }
     let instance = instance.with_requests(requests)?;

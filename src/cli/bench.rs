@@ -2,7 +2,7 @@
 //! figures; `swarmplan bench merge`: the shards of a run, merged into the files one run writes.
 //!
 //! ```text
-//! swarmplan bench --limit 1000 --out bench-out
+//! swarmplan bench --request-limit 1000 --out bench-out
 //! swarmplan bench --shard 0/4 --out shard-0      # ... 3/4, then:
 //! swarmplan bench merge shard-0 shard-1 shard-2 shard-3 --out bench-out
 //! ```
@@ -75,8 +75,9 @@ pub struct RunArgs {
     /// Request set (JSON) [default: the shipped paper-195 requests].
     #[arg(long, value_name = "FILE")]
     pub requests: Option<PathBuf>,
-    /// Consider only the first N requests of the set [default: all].
-    #[arg(long, value_name = "N")]
+    /// Consider only the first N requests of the set [default: all] (a count of requests, as
+    /// `--exact-limit`; limits in seconds are `--hop-time-limit`). `--limit` is its former name.
+    #[arg(long = "request-limit", alias = "limit", value_name = "N")]
     pub limit: Option<usize>,
     /// Sharing policies, comma-separated (`none` is the paper's baseline without support
     /// drones: planned once, under location-aware, when both positionings are asked).
@@ -104,7 +105,7 @@ pub struct RunArgs {
     /// Also compute each request's joint optimum (`--route optimal --sharing exact` over the
     /// swarms of both positionings and the swarm without support drones) and split every
     /// heuristic combination's gap to it into sharing, route and swarm parts (`joint.csv`, the
-    /// `gap_*` columns of `requests.csv`, the split table and `figures/gap_split.svg`).
+    /// `gap_*` columns of `requests.csv`, the split table and `figures/gap-split.svg`).
     #[arg(long)]
     pub joint: bool,
     /// Requests (the first of the set) whose hops under PB and FB are solved again by the
@@ -148,7 +149,7 @@ pub struct RunArgs {
     pub threads: Option<usize>,
     /// Wall-clock budget of the whole run, seconds: no request is started after it, and the
     /// files are those of the requests before the first one left out (`config.json` records
-    /// that `--limit`, so they are the files of `--limit K` for that K; stderr says what
+    /// that `--request-limit`, so they are the files of `--request-limit K` for that K; stderr says what
     /// remains) [default: none].
     #[arg(long, value_name = "S")]
     pub time_budget: Option<f64>,
@@ -277,9 +278,9 @@ pub fn run_grid_with(
     if requests.is_empty() {
         return Err(Error::invalid(
             "E0005",
-            "--limit / --requests",
+            "--request-limit / --requests",
             "no request to plan",
-            "give a request file with requests and a --limit of 1 or more",
+            "give a request file with requests and a --request-limit of 1 or more",
         ));
     }
     let instance = instance.with_requests(requests)?;

@@ -37,7 +37,7 @@ pub struct CheckArgs {
     /// With --bench: the number of requests whose rows are checked (the first in the file)
     /// [default: all].
     #[arg(long, value_name = "N", requires = "bench")]
-    pub limit: Option<usize>,
+    pub request_limit: Option<usize>,
     /// With --node-time: the instance file (`{"pads": K, "charge_times_min": [...]}`) the result
     /// should answer.
     #[arg(long, value_name = "FILE", requires = "node_time")]
@@ -126,7 +126,7 @@ fn check_node_time(
     print_verdict(&what, &found, json)
 }
 
-/// `check --bench DIR [--limit N]`: the run's inputs are the files given, or, when none is,
+/// `check --bench DIR [--request-limit N]`: the run's inputs are the files given, or, when none is,
 /// the shipped instance the run names (findings-195 is the bench's default).
 fn check_bench(args: &CheckArgs, dir: &std::path::Path) -> Result<i32> {
     let (config, data) = crate::bench::read_data(dir)?;
@@ -165,7 +165,7 @@ fn check_bench(args: &CheckArgs, dir: &std::path::Path) -> Result<i32> {
         requests,
         &config,
         &data.requests,
-        args.limit.unwrap_or(usize::MAX),
+        args.request_limit.unwrap_or(usize::MAX),
     )?;
     if let Some(why) = found.skipped {
         eprintln!("note: the rows were not planned again: {why}");

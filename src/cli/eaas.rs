@@ -11,7 +11,7 @@
 //! The request is planned as `swarmplan solve` does (PB sharing, sequential route); hop `I` of
 //! that plan (its path and departure batteries) is the hop studied, or the hop of a hop file
 //! (`--hop-file`, see [`crate::eaas::hop_file`]). `--write-hop` writes the hop as a hop file,
-//! `--write-lp` the MILP of `milp` in CPLEX LP format; the methods then run as usual. The objective is the node time
+//! `--write-lp` the MILP of `milp` in CPLEX LP format (free MPS for a name ending in `.mps`); the methods then run as usual. The objective is the node time
 //! at the hop's end when the plan stops there, else (the destination) the lowest delivery arrival battery. Each
 //! method's gap is measured against the best reference available, labelled: the continuous
 //! model's optimum (`optimal`, over every continuous-time schedule) or the infimum it approaches
@@ -25,7 +25,7 @@ use crate::compose::{Context, PlanOptions, RouteMethod};
 use crate::eaas::compare::{label_gaps, run_method};
 pub use crate::eaas::compare::{HopMethod, MethodRow};
 use crate::eaas::hop_file::{read_hop_file, write_hop_file, HopFile};
-use crate::eaas::milp::{write_lp, MilpOptions, Objective, Reorder};
+use crate::eaas::milp::{write_lp, MilpOptions, ModelFormat, Objective, Reorder};
 use crate::eaas::{HopProblem, PolicyOptions, SharingPolicy};
 use crate::error::{Error, Result};
 use crate::precompose::Positioning;
@@ -59,8 +59,8 @@ pub struct EaasArgs {
     /// Write the hop as a hop file (JSON) before running the methods.
     #[arg(long, value_name = "FILE")]
     pub write_hop: Option<PathBuf>,
-    /// Write the hop's MILP (objective, `--reorder`, `--period-min` as for `milp`) in CPLEX LP
-    /// format before running the methods.
+    /// Write the hop's MILP (objective, `--reorder`, `--period-min` as for `milp`) before
+    /// running the methods: free MPS when FILE ends in `.mps`, CPLEX LP otherwise.
     #[arg(long, value_name = "FILE")]
     pub write_lp: Option<PathBuf>,
     /// Methods, comma-separated.
@@ -143,7 +143,8 @@ pub fn run(args: EaasArgs) -> Result<i32> {
         );
         let size = write_lp(&hop.hop, &objective, &milp_options(&args), &about, path)?;
         eprintln!(
-            "wrote LP file {}: {} variables ({} binary), {} constraints",
+            "wrote {} file {}: {} variables ({} binary), {} constraints",
+            ModelFormat::of_path(path).name(),
             path.display(),
             size.variables,
             size.binaries,

@@ -222,12 +222,12 @@ pub fn deadline(budget_s: Option<f64>) -> Result<Option<std::time::Instant>> {
 }
 
 /// Says on stderr, when `--time-budget` stopped a run after `planned` of `asked` requests,
-/// what was planned (the output of `--limit limit`) and what remains.
+/// what was planned (the output of `--request-limit limit`) and what remains.
 pub fn report_budget(planned: usize, asked: usize, limit: usize) {
     if planned < asked {
         eprintln!(
             "time budget reached: {planned} of {asked} requests planned (the output is the one \
-             --limit {limit} gives); {} requests remain: run again without --time-budget, or \
+             --request-limit {limit} gives); {} requests remain: run again without --time-budget, or \
              with a larger one, to plan them",
             asked - planned
         );

@@ -61,8 +61,8 @@ pub struct NetworkReport {
 /// A request's swarm.
 #[derive(Debug, Serialize)]
 pub struct SwarmReport {
-    /// Request id.
-    pub request_id: String,
+    /// Request id: `id`, as in request files and in `solve`'s `request` object.
+    pub id: String,
     /// Shortest-path distance source to destination, m.
     pub route_distance_m: f64,
     /// Support decision of the redundancy table.
@@ -128,7 +128,7 @@ pub fn run(args: InspectArgs) -> Result<i32> {
             };
             let heading = average_wind.from_deg;
             Some(SwarmReport {
-                request_id: r.id.clone(),
+                id: r.id.clone(),
                 route_distance_m,
                 support_decision,
                 support_drones,
@@ -178,7 +178,7 @@ fn print_human(report: &InspectReport) -> Result<()> {
     if let Some(r) = &report.request {
         outln!(
             "request {}: route {:.0} m, {} support drone(s) (table: {})",
-            r.request_id,
+            r.id,
             r.route_distance_m,
             r.support_drones,
             r.support_decision.count

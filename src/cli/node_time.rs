@@ -3,8 +3,11 @@
 //! ```text
 //! swarmplan node-time --pads 3 --times 60,50,40,30,20
 //! swarmplan node-time --file stop.json --method milp --backend microlp --time-limit 10 --json
+//! swarmplan node-time --pads 3 --times 60,50,40,30,20 --write-lp stop.mps --method lpt
+//! swarmplan node-time --instance instances/node_time/pcmax-u1-n10-m3-seed1.txt
 //! ```
-//! where `stop.json` is `{"pads": 3, "charge_times_min": [60, 50, 40, 30, 20]}`.
+//! where `stop.json` is `{"pads": 3, "charge_times_min": [60, 50, 40, 30, 20]}` and `--instance`
+//! reads the published P||Cmax text format ([`crate::problem::pcmax_file`]).
 
 use super::human::round;
 use crate::error::{Error, Result};
@@ -18,19 +21,27 @@ use std::path::PathBuf;
 #[derive(Debug, clap::Args)]
 pub struct NodeTimeArgs {
     /// Number of identical charging pads at the node (with --times).
-    #[arg(long, required_unless_present = "file", conflicts_with = "file")]
+    #[arg(
+        long,
+        required_unless_present_any = ["file", "instance"],
+        conflicts_with_all = ["file", "instance"]
+    )]
     pub pads: Option<usize>,
     /// Charge time of each drone in minutes, comma-separated, e.g. 60,50,40.
     #[arg(
         long,
-        required_unless_present = "file",
-        conflicts_with = "file",
+        required_unless_present_any = ["file", "instance"],
+        conflicts_with_all = ["file", "instance"],
         allow_hyphen_values = true
     )]
     pub times: Option<String>,
     /// JSON file `{"pads": K, "charge_times_min": [...]}` instead of --pads and --times.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "instance")]
     pub file: Option<PathBuf>,
+    /// A P||Cmax instance in the published benchmark text format (m machines = pads, n jobs,
+    /// then the n processing times = charge times, min) instead of --pads and --times.
+    #[arg(long, value_name = "FILE")]
+    pub instance: Option<PathBuf>,
     /// Method: exact branch and bound, MILP, LPT heuristic, or the paper's brute force.
     #[arg(long, value_enum, default_value_t = NodeTimeMethod::Exact)]
     pub method: NodeTimeMethod,
@@ -49,6 +60,10 @@ pub struct NodeTimeArgs {
     /// stops reports its incumbent as `feasible` with its lower bound and gap [default: none].
     #[arg(long, value_name = "N")]
     pub node_limit: Option<u64>,
+    /// Write the assignment MILP of `--method milp` for this instance (free MPS when FILE ends
+    /// in `.mps`, CPLEX LP otherwise) before solving with the method asked for.
+    #[arg(long, value_name = "FILE")]
+    pub write_lp: Option<PathBuf>,
     /// Print the result as JSON on stdout.
     #[arg(long)]
     pub json: bool,
@@ -69,8 +84,12 @@ pub struct NodeTimeFile {
 
 /// Runs the subcommand; returns the exit code.
 pub fn run(args: NodeTimeArgs) -> Result<i32> {
-    let (pads, times) = match &args.file {
-        Some(path) => {
+    let (pads, times) = match (&args.file, &args.instance) {
+        (_, Some(path)) => {
+            let i = crate::problem::pcmax_file::read_pcmax(path)?;
+            (i.pads, i.charge_times_min)
+        }
+        (Some(path), None) => {
             let f: NodeTimeFile = read_json(path)?;
             if let Some(v) = f.schema_version.filter(|&v| v != 1) {
                 return Err(Error::invalid(
@@ -82,7 +101,7 @@ pub fn run(args: NodeTimeArgs) -> Result<i32> {
             }
             (f.pads, f.charge_times_min)
         }
-        None => {
+        (None, None) => {
             let pads = args.pads.unwrap_or(0);
             match super::inputs::parse_list(args.times.as_deref().unwrap_or(""), "--times", "E5007")
             {
@@ -98,6 +117,18 @@ pub fn run(args: NodeTimeArgs) -> Result<i32> {
             }
         }
     };
+    if let Some(path) = &args.write_lp {
+        let about = format!("{} drones on {pads} pads", times.len());
+        let (size, format) = node_time::milp::write_model(pads, &times, &about, path)?;
+        eprintln!(
+            "wrote {} file {}: {} variables ({} binary), {} constraints",
+            format.name(),
+            path.display(),
+            size.variables,
+            size.binaries,
+            size.constraints
+        );
+    }
     let limits = Limits {
         time_limit_s: Some(args.time_limit),
         node_limit: args.node_limit,

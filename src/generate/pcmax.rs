@@ -16,7 +16,9 @@
 //!
 //! What is uncertain in these definitions (we could read none of the original papers, only how later
 //! papers and the benchmark repositories describe them) is stated on each class, on
-//! [`PcmaxClass::note`] and in `models/generate.md`. The published `(n, m)` grid of each class is
+//! [`PcmaxClass::note`] and in `models/generate.md`; the published files themselves, when at hand,
+//! are read as published by [`crate::problem::pcmax_file`] (`node-time --instance FILE`). The
+//! published `(n, m)` grid of each class is
 //! [`PcmaxClass::published_grid`]; the generator accepts any `n >= 1`, `m >= 1`.
 //!
 //! Random numbers: one `ChaCha8Rng::seed_from_u64(seed)`, raw `next_u64` only (see

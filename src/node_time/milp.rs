@@ -18,27 +18,24 @@ use super::{
     Limits, NodeTimeMethod, NodeTimeSolution,
 };
 use crate::error::{Error, Result};
+use crate::solver::lp_file::{write_model_file, LpCapture, LpSize, ModelFormat};
 use crate::solver::{run_on, MilpBackend, MilpJob, SolveStatus};
 use good_lp::{
     constraint, variable, Expression, ProblemVariables, Solution, SolutionStatus, SolverModel,
     Variable, WithTimeLimit,
 };
+use std::path::Path;
 use std::time::Instant;
 
-/// Solves the assignment MILP for times sorted in decreasing order on any good_lp solver.
-///
-/// Returns the pad of each sorted job and whether the backend proved optimality (a stop at the
-/// relative MIP gap asked for, at most [`super::REL_TOL`], counts as proven).
-///
-/// # Errors
-/// [`Error::Backend`] when the backend fails or stops without any feasible assignment.
-pub fn solve_with<S: good_lp::Solver>(
+/// The assignment MILP for `pads` (`m <= n`) and times sorted in decreasing order, built on any
+/// good_lp solver: the model, `C` and `x[j][i]` (variables added in the order `C`, then `x` by
+/// job and pad).
+fn build<S: good_lp::Solver>(
     solver: S,
-    backend_name: &str,
     pads: usize,
     sorted_desc: &[f64],
     time_limit_s: Option<f64>,
-) -> Result<(Vec<usize>, bool)>
+) -> (S::Model, Vec<Vec<Variable>>)
 where
     S::Model: WithTimeLimit,
 {
@@ -71,6 +68,28 @@ where
             .sum();
         model.add_constraint(constraint!(load <= c));
     }
+    (model, x)
+}
+
+/// Solves the assignment MILP for times sorted in decreasing order on any good_lp solver.
+///
+/// Returns the pad of each sorted job and whether the backend proved optimality (a stop at the
+/// relative MIP gap asked for, at most [`super::REL_TOL`], counts as proven).
+///
+/// # Errors
+/// [`Error::Backend`] when the backend fails or stops without any feasible assignment.
+pub fn solve_with<S: good_lp::Solver>(
+    solver: S,
+    backend_name: &str,
+    pads: usize,
+    sorted_desc: &[f64],
+    time_limit_s: Option<f64>,
+) -> Result<(Vec<usize>, bool)>
+where
+    S::Model: WithTimeLimit,
+{
+    let n = sorted_desc.len();
+    let (model, x) = build(solver, pads, sorted_desc, time_limit_s);
     let solution = model.solve().map_err(|e| Error::Backend {
         backend: backend_name.to_string(),
         message: format!("{e}; if a time limit was set, raise it"),
@@ -189,4 +208,102 @@ pub fn milp(
         assignment,
         solve_ms: elapsed_ms(start),
     })
+}
+
+/// The assignment MILP [`milp`] solves for this instance, in `format`, for any MILP solver.
+///
+/// The model is built by the same code as for [`milp`]'s backends and handed to
+/// [`LpCapture`] instead of a solver. The jobs are the drones sorted by decreasing charge time
+/// (the header lists job `j` -> drone and `p_j`); variables are named as in
+/// `models/node_time.md`: `C` (the node time, min) and `x_j{j}_i{i}` (job `j` on pad `i`, for
+/// `i <= min(j, m - 1)`). The file's optimum is the node time.
+///
+/// # Arguments
+/// * `pads`, `charge_times_min` - the instance, as in [`validate`].
+/// * `format` - CPLEX LP or free MPS.
+/// * `about` - one line naming the instance for the header.
+///
+/// # Returns
+/// The text, and the model's size: `1 + sum_j (min(j, m - 1) + 1)` variables, all but `C`
+/// binary, `n + m` constraints (`m = min(k, n)`).
+///
+/// # Errors
+/// Those of [`validate`]; [`Error::Backend`] if the model cannot be captured.
+///
+/// # Example
+/// ```
+/// use swarmplan::node_time::milp::model_text;
+/// use swarmplan::solver::lp_file::ModelFormat;
+/// let (mps, size) = model_text(2, &[3.0, 5.0, 4.0], ModelFormat::Mps, "example").unwrap();
+/// // C, x_j0_i0, x_j1_i0, x_j1_i1, x_j2_i0, x_j2_i1; 3 jobs placed once, 2 pad loads.
+/// assert_eq!((size.variables, size.binaries, size.constraints), (6, 5, 5));
+/// assert!(mps.contains("x_j2_i1"));
+/// ```
+pub fn model_text(
+    pads: usize,
+    charge_times_min: &[f64],
+    format: ModelFormat,
+    about: &str,
+) -> Result<(String, LpSize)> {
+    validate(pads, charge_times_min)?;
+    let n = charge_times_min.len();
+    let m = pads.min(n);
+    let (order, sorted) = sort_desc(charge_times_min);
+    let capture = LpCapture::new();
+    let (model, x) = build(capture.solver(), m, &sorted, None);
+    let lost = |what: String| Error::Backend {
+        backend: "lp-file".into(),
+        message: format!("the model was not captured ({what})"),
+    };
+    model.solve().map_err(|e| lost(e.to_string()))?;
+    let mut captured = capture.take().ok_or_else(|| lost("empty capture".into()))?;
+    let mut names = vec!["C".to_string()];
+    for (j, xj) in x.iter().enumerate() {
+        names.extend((0..xj.len()).map(|i| format!("x_j{j}_i{i}")));
+    }
+    captured.rename(&names)?;
+    let size = captured.size();
+    let mut header = vec![
+        format!("swarmplan node-time assignment MILP (models/node_time.md): {about}"),
+        format!("pads: k = {pads}, m = min(k, n) = {m} used; drones: n = {n}"),
+        "objective: minimise C, the node time (makespan), min".to_string(),
+        "x_j{j}_i{i} = 1 iff job j charges on pad i (i <= min(j, m - 1): pads numbered by their \
+         longest job)"
+            .to_string(),
+        format!(
+            "size: {} variables ({} binary), {} constraints",
+            size.variables, size.binaries, size.constraints
+        ),
+        "jobs by decreasing charge time: job j = drone d, p_j min".to_string(),
+    ];
+    header.extend(
+        order
+            .iter()
+            .zip(&sorted)
+            .enumerate()
+            .map(|(j, (d, p))| format!("  job {j} = drone {d}, p = {p}")),
+    );
+    Ok((
+        captured.to_text(format, "swarmplan_node_time_milp", &header),
+        size,
+    ))
+}
+
+/// Writes [`model_text`] to `path`: free MPS when its name ends in `.mps`, CPLEX LP otherwise.
+///
+/// # Returns
+/// The size of the model and the format written.
+///
+/// # Errors
+/// Those of [`model_text`]; [`Error::Io`] when the file cannot be written.
+pub fn write_model(
+    pads: usize,
+    charge_times_min: &[f64],
+    about: &str,
+    path: &Path,
+) -> Result<(LpSize, ModelFormat)> {
+    let format = ModelFormat::of_path(path);
+    let (text, size) = model_text(pads, charge_times_min, format, about)?;
+    write_model_file(path, &text)?;
+    Ok((size, format))
 }

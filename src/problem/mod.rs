@@ -7,6 +7,7 @@ pub mod graph;
 pub mod instance;
 pub mod io;
 pub mod network;
+pub mod pcmax_file;
 pub mod profile;
 pub mod request;
 pub mod shipped;

@@ -1,7 +1,9 @@
-//! A model in CPLEX LP format, for any solver: the good_lp model a generic `solve_with<S:
-//! good_lp::Solver>` builds is handed to [`LpCapture`] through good_lp's `lp-solvers` backend
-//! (`good_lp::solvers::lp_solvers::LpSolver`), which keeps it instead of running a solver, and
-//! [`CapturedModel::to_lp`] prints it with `lp_solvers`' LP writer.
+//! A model in CPLEX LP or free MPS format, for any solver: the good_lp model a generic
+//! `solve_with<S: good_lp::Solver>` builds is handed to [`LpCapture`] through good_lp's
+//! `lp-solvers` backend (`good_lp::solvers::lp_solvers::LpSolver`), which keeps it instead of
+//! running a solver. [`CapturedModel::to_lp`] prints it with `lp_solvers`' LP writer;
+//! [`CapturedModel::to_mps`] is our own free MPS writer (good_lp 1.15 and `lp_solvers` 1.2 write
+//! no MPS). Both models that export, the hop MILP and the node-time MILP, go through here.
 //!
 //! The `lp-solvers` backend keeps only the letters of each variable name (`y_k3_t7` becomes
 //! `ykt` with a counter), so the captured model is renamed from the names the model gave its
@@ -15,6 +17,7 @@ use std::cell::RefCell;
 use std::cmp::Ordering;
 use std::collections::{HashMap, HashSet};
 use std::fmt;
+use std::path::Path;
 use std::rc::Rc;
 
 /// A good_lp "solver" (through `LpSolver`) that captures the model it is asked to solve and
@@ -305,4 +308,162 @@ fn holds(r: &Row) -> bool {
         Ordering::Equal => r.rhs == 0.0,
         Ordering::Greater => 0.0 >= r.rhs,
     }
+}
+
+/// The file formats of an exported model, chosen by the file's name.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ModelFormat {
+    /// CPLEX LP ([`CapturedModel::to_lp`]).
+    Lp,
+    /// Free MPS ([`CapturedModel::to_mps`]).
+    Mps,
+}
+
+impl ModelFormat {
+    /// Free MPS for a name ending in `.mps` (any case), CPLEX LP for any other, as solvers read
+    /// a model file by its extension.
+    pub fn of_path(path: &Path) -> ModelFormat {
+        match path.extension().and_then(|e| e.to_str()) {
+            Some(e) if e.eq_ignore_ascii_case("mps") => ModelFormat::Mps,
+            _ => ModelFormat::Lp,
+        }
+    }
+
+    /// The format's name in messages: `CPLEX LP` or `free MPS`.
+    pub fn name(self) -> &'static str {
+        match self {
+            ModelFormat::Lp => "CPLEX LP",
+            ModelFormat::Mps => "free MPS",
+        }
+    }
+}
+
+/// Writes the text of an exported model to `path` (replaced if it exists).
+///
+/// # Errors
+/// [`Error::Io`] when the file cannot be written.
+pub fn write_model_file(path: &Path, text: &str) -> Result<()> {
+    std::fs::write(path, text).map_err(|source| Error::Io {
+        path: path.display().to_string(),
+        source,
+    })
+}
+
+impl CapturedModel {
+    /// The model in `format`, as [`CapturedModel::to_lp`] or [`CapturedModel::to_mps`].
+    pub fn to_text(&self, format: ModelFormat, name: &str, comment: &[String]) -> String {
+        match format {
+            ModelFormat::Lp => self.to_lp(name, comment),
+            ModelFormat::Mps => self.to_mps(name, comment),
+        }
+    }
+
+    /// The model in free MPS format (fields separated by spaces, names of any length without
+    /// spaces), `comment` lines first (each behind `* `): the same rows as [`CapturedModel::to_lp`]
+    /// under the same names `c0, c1, ...` (constraints without a variable that always hold are
+    /// left out; one that never holds is a row without entries and its right-hand side), the
+    /// objective row `obj`, `OBJSENSE MAX` when maximising. Integer variables are framed by
+    /// `INTORG`/`INTEND` markers and always get both bounds (`LO`/`MI` and `UP`/`PL`), since
+    /// some readers bound an integer column without an `UP` by 1; a continuous one gets the
+    /// bounds that differ from `[0, +inf)`. A variable in no row is listed with objective
+    /// coefficient 0, so every bound names a known column.
+    pub fn to_mps(&self, name: &str, comment: &[String]) -> String {
+        use std::fmt::Write;
+        let rows: Vec<&Row> = self
+            .constraints
+            .iter()
+            .filter(|r| !(r.terms.is_empty() && holds(r)))
+            .collect();
+        let index: HashMap<&str, usize> = self
+            .variables
+            .iter()
+            .enumerate()
+            .map(|(i, v)| (v.name.as_str(), i))
+            .collect();
+        // Per variable, its (row, coefficient) in the order of the rows, the objective first.
+        let mut columns: Vec<Vec<(String, f64)>> = vec![Vec::new(); self.variables.len()];
+        for (c, n) in &self.objective {
+            columns[index[n.as_str()]].push(("obj".to_string(), *c));
+        }
+        for (r, row) in rows.iter().enumerate() {
+            for (c, n) in &row.terms {
+                columns[index[n.as_str()]].push((format!("c{r}"), *c));
+            }
+        }
+        let mut out = String::new();
+        for line in comment {
+            let _ = writeln!(out, "* {line}");
+        }
+        let _ = writeln!(out, "NAME {name}");
+        if self.maximise {
+            let _ = writeln!(out, "OBJSENSE\n    MAX");
+        }
+        let _ = writeln!(out, "ROWS\n N  obj");
+        for (r, row) in rows.iter().enumerate() {
+            let kind = match row.operator {
+                Ordering::Less => 'L',
+                Ordering::Equal => 'E',
+                Ordering::Greater => 'G',
+            };
+            let _ = writeln!(out, " {kind}  c{r}");
+        }
+        let _ = writeln!(out, "COLUMNS");
+        let mut integer = false;
+        for (v, entries) in self.variables.iter().zip(&columns) {
+            if v.is_integer != integer {
+                let marker = if v.is_integer { "INTORG" } else { "INTEND" };
+                let _ = writeln!(out, "    MARKER 'MARKER' '{marker}'");
+                integer = v.is_integer;
+            }
+            if entries.is_empty() {
+                let _ = writeln!(out, "    {} obj 0", v.name);
+            }
+            for (row, c) in entries {
+                let _ = writeln!(out, "    {} {row} {c}", v.name);
+            }
+        }
+        if integer {
+            let _ = writeln!(out, "    MARKER 'MARKER' 'INTEND'");
+        }
+        let _ = writeln!(out, "RHS");
+        for (r, row) in rows.iter().enumerate() {
+            if row.rhs != 0.0 {
+                let _ = writeln!(out, "    RHS c{r} {}", row.rhs);
+            }
+        }
+        let _ = writeln!(out, "BOUNDS");
+        for v in &self.variables {
+            for (kind, value) in mps_bounds(v) {
+                let _ = match value {
+                    Some(x) => writeln!(out, " {kind} BND {} {x}", v.name),
+                    None => writeln!(out, " {kind} BND {}", v.name),
+                };
+            }
+        }
+        out.push_str("ENDATA\n");
+        out
+    }
+}
+
+/// The MPS bound lines of `v`: kind and value (none for `MI`, `PL`, `FR`).
+fn mps_bounds(v: &Var) -> Vec<(&'static str, Option<f64>)> {
+    let (lo, up) = (v.lower, v.upper);
+    if lo == up {
+        return vec![("FX", Some(lo))];
+    }
+    if lo == f64::NEG_INFINITY && up == f64::INFINITY && !v.is_integer {
+        return vec![("FR", None)];
+    }
+    let mut bounds = Vec::new();
+    if lo == f64::NEG_INFINITY {
+        bounds.push(("MI", None));
+    } else if lo != 0.0 || v.is_integer {
+        bounds.push(("LO", Some(lo)));
+    }
+    if up != f64::INFINITY {
+        bounds.push(("UP", Some(up)));
+    } else if v.is_integer {
+        bounds.push(("PL", None));
+    }
+    bounds
 }

@@ -3,7 +3,7 @@
 //! Backends are chosen by enum, never by string: `microlp` (pure Rust, default) and, with the
 //! `highs` feature, HiGHS. Convex models use clarabel directly. An outcome (optimal, feasible with
 //! an incumbent after a limit, infeasible) is data; `Err` is for bad input and broken backends.
-//! [`lp_file`] writes a good_lp model in CPLEX LP format instead of solving it.
+//! [`lp_file`] writes a good_lp model in CPLEX LP or free MPS format instead of solving it.
 
 use serde::{Deserialize, Serialize};
 

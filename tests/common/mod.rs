@@ -3,6 +3,8 @@
 //! the hop models and small hop builders. Each test binary uses a subset of them.
 #![allow(dead_code)]
 
+pub mod model_files;
+
 use nalgebra::Vector2;
 use serde::Deserialize;
 use std::path::PathBuf;

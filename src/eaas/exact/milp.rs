@@ -32,8 +32,9 @@ pub use super::{
 use crate::eaas::simulate::evaluate;
 use crate::eaas::{reorder, sharing_budget_mah, HopProblem, Role, Transfer, TIME_TOL_MIN};
 use crate::error::{Error, Result};
-use crate::solver::lp_file::LpCapture;
 pub use crate::solver::lp_file::LpSize;
+pub use crate::solver::lp_file::ModelFormat;
+use crate::solver::lp_file::{write_model_file, LpCapture};
 use crate::solver::{run_on, MilpBackend, MilpJob};
 use good_lp::{
     constraint, variable, Expression, ProblemVariables, ResolutionError, Solution, SolutionStatus,
@@ -689,8 +690,8 @@ pub fn solve_milp(
     Ok(out)
 }
 
-/// Writes the MILP [`solve_milp`] builds for this hop, objective and options (grid step,
-/// re-ordering) in CPLEX LP format, for any MILP solver.
+/// The MILP [`solve_milp`] builds for this hop, objective and options (grid step, re-ordering)
+/// in CPLEX LP format, for any MILP solver; [`model_text`] in free MPS too.
 ///
 /// The model is built by the same code as for [`solve_milp`]'s backends and handed to
 /// [`crate::solver::lp_file::LpCapture`] instead of a solver. Variables are named after
@@ -722,6 +723,21 @@ pub fn lp_text(
     objective: &Objective,
     options: &MilpOptions,
     about: &str,
+) -> Result<(String, LpSize)> {
+    model_text(problem, objective, options, about, ModelFormat::Lp)
+}
+
+/// [`lp_text`] in `format`: CPLEX LP or free MPS (the same rows, variables and header, see
+/// [`crate::solver::lp_file::CapturedModel::to_mps`]).
+///
+/// # Errors
+/// Those of [`lp_text`].
+pub fn model_text(
+    problem: &HopProblem,
+    objective: &Objective,
+    options: &MilpOptions,
+    about: &str,
+    format: ModelFormat,
 ) -> Result<(String, LpSize)> {
     validate_inputs(problem, objective, options.time_limit_s)?;
     let grid = Grid::new(problem, options.period_min)?;
@@ -755,10 +771,11 @@ pub fn lp_text(
     model.rename(&raw.names)?;
     let size = model.size();
     let header = lp_header(problem, objective, options, &grid, about, &size);
-    Ok((model.to_lp("swarmplan_hop_milp", &header), size))
+    Ok((model.to_text(format, "swarmplan_hop_milp", &header), size))
 }
 
-/// Writes [`lp_text`] to `path`.
+/// Writes [`model_text`] to `path`: free MPS when its name ends in `.mps`, CPLEX LP otherwise
+/// ([`ModelFormat::of_path`]).
 ///
 /// # Arguments
 /// As [`lp_text`], and `path`, the file to write (replaced if it exists).
@@ -798,11 +815,14 @@ pub fn write_lp(
     about: &str,
     path: &Path,
 ) -> Result<LpSize> {
-    let (text, size) = lp_text(problem, objective, options, about)?;
-    std::fs::write(path, text).map_err(|source| Error::Io {
-        path: path.display().to_string(),
-        source,
-    })?;
+    let (text, size) = model_text(
+        problem,
+        objective,
+        options,
+        about,
+        ModelFormat::of_path(path),
+    )?;
+    write_model_file(path, &text)?;
     Ok(size)
 }
 
