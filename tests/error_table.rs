@@ -3,19 +3,11 @@
 //! table under "| codes | what |" (a code, a range `E0003–E0006` or a family `E39xx`), and every
 //! code the table names alone is one the code returns.
 
+mod common;
+
+use common::rust_files;
 use std::collections::BTreeSet;
 use std::path::Path;
-
-fn rust_files(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
-    for entry in std::fs::read_dir(dir).unwrap() {
-        let path = entry.unwrap().path();
-        if path.is_dir() {
-            rust_files(&path, out);
-        } else if path.extension().is_some_and(|e| e == "rs") {
-            out.push(path);
-        }
-    }
-}
 
 /// Every `E` followed by exactly four digits in `text`.
 fn codes_in(text: &str) -> Vec<u32> {

@@ -1,19 +1,11 @@
 //! The library's top-level modules form layers: no module uses another that uses it back,
 //! directly or through others. Read from the source (`crate::<module>` outside comments).
 
+mod common;
+
+use common::rust_files;
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
-
-fn rust_files(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
-    for entry in std::fs::read_dir(dir).unwrap() {
-        let path = entry.unwrap().path();
-        if path.is_dir() {
-            rust_files(&path, out);
-        } else if path.extension().is_some_and(|e| e == "rs") {
-            out.push(path);
-        }
-    }
-}
 
 /// Top-level module -> the top-level modules its code names as `crate::<name>`.
 fn module_uses() -> BTreeMap<String, BTreeSet<String>> {

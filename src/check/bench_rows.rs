@@ -16,19 +16,13 @@
 //! request set's at its index) and P5704 (a row's combination is not one of the run's).
 
 use super::check_report;
+use super::close;
 use super::decision::shortest_distance_m;
 use crate::bench::{BenchConfig, RequestRow};
 use crate::compose::{Context, HopPaths, PlanSettings, RequestReport};
 use crate::error::{Result, Violation};
 use crate::problem::{Network, Profile, Request, SkywayGraph};
 use crate::solver::SolveStatus;
-
-/// Relative tolerance of a recomputed number (the CSV writes every digit of a float).
-const RELATIVE_TOLERANCE: f64 = 1e-9;
-
-fn close(a: f64, b: f64) -> bool {
-    a == b || (a - b).abs() <= RELATIVE_TOLERANCE * a.abs().max(b.abs()).max(1.0)
-}
 
 fn v(code: &'static str, field: impl Into<String>, cause: impl Into<String>) -> Violation {
     Violation::new(

@@ -6,19 +6,13 @@
 //! (P5045, one violation per number with the stated and recomputed values), and the swarm flies
 //! the decided count unless the plan's options gave one (P5046).
 
+use super::close;
 use crate::compose::RequestReport;
 use crate::error::Violation;
 use crate::problem::profile::{FailureModel, FailureTerms};
 use crate::problem::{Network, Profile, Request};
 use std::cmp::Ordering;
 use std::collections::{BinaryHeap, HashMap};
-
-/// Relative tolerance of a recomputed term or probability (sums and products of a few terms).
-const RELATIVE_TOLERANCE: f64 = 1e-9;
-
-fn close(a: f64, b: f64) -> bool {
-    a == b || (a - b).abs() <= RELATIVE_TOLERANCE * a.abs().max(b.abs()).max(1.0)
-}
 
 fn v(code: &'static str, field: impl Into<String>, cause: impl Into<String>) -> Violation {
     Violation::new(

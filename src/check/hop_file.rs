@@ -18,6 +18,7 @@
 //! `hop_index` and the profile's name record where the hop comes from and are not checked; the
 //! fingerprint `made_on` is compared first, as for plans (E6004, E6005).
 
+use super::close;
 use super::plan::{raw_leg, RawLeg};
 use crate::eaas::hop_file::HopFile;
 use crate::energy;
@@ -25,13 +26,6 @@ use crate::error::Violation;
 use crate::formation;
 use crate::problem::{Drone, FormationKind, Network, Profile, Request, Role, Swarm};
 use std::collections::HashMap;
-
-/// Relative tolerance of a rebuilt number.
-const RELATIVE_TOLERANCE: f64 = 1e-9;
-
-fn close(a: f64, b: f64) -> bool {
-    a == b || (a - b).abs() <= RELATIVE_TOLERANCE * a.abs().max(b.abs()).max(1.0)
-}
 
 fn v(code: &'static str, field: impl Into<String>, cause: impl Into<String>) -> Violation {
     Violation::new(

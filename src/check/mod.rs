@@ -21,3 +21,12 @@ pub use free_hop::check_free_hop;
 pub use hop::{check_hop, fly_as_written};
 pub use plan::check_plan;
 pub use report::check_report;
+
+/// Relative tolerance of a number the checkers recompute and compare with the stated one (a few
+/// sums and products of the same inputs; a JSON or CSV round trip keeps every digit).
+pub const RELATIVE_TOLERANCE: f64 = 1e-9;
+
+/// Whether `a` and `b` agree within [`RELATIVE_TOLERANCE`] (absolute below 1).
+pub(crate) fn close(a: f64, b: f64) -> bool {
+    a == b || (a - b).abs() <= RELATIVE_TOLERANCE * a.abs().max(b.abs()).max(1.0)
+}

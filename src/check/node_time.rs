@@ -7,16 +7,10 @@
 //! (P5506). `solve_ms` is a measurement and `method` a choice: neither is checked.
 
 use super::plan::{optimal_makespan_min, OPTIMALITY_CHECK_DRONES};
+use super::{close, RELATIVE_TOLERANCE};
 use crate::error::Violation;
 use crate::node_time::NodeTimeReport;
 use crate::solver::{ReferenceKind, SolveStatus};
-
-/// Relative tolerance of a recomputed sum of charge times.
-const RELATIVE_TOLERANCE: f64 = 1e-9;
-
-fn close(a: f64, b: f64) -> bool {
-    a == b || (a - b).abs() <= RELATIVE_TOLERANCE * a.abs().max(b.abs()).max(1.0)
-}
 
 fn v(code: &'static str, field: impl Into<String>, cause: impl Into<String>) -> Violation {
     Violation::new(

@@ -15,20 +15,13 @@
 //!   work, so the re-run is the same on any machine); [`why_not_rerun`] says when a plan is not.
 //!   This is the one check that uses the planner: nothing else can say what its search did.
 
+use super::{close, RELATIVE_TOLERANCE};
 use crate::compose::{Context, RequestReport};
 use crate::eaas::exact::ExactStatus;
 use crate::eaas::exact_hop::HopGoal;
 use crate::error::Violation;
 use crate::problem::{Network, Profile, Request, SkywayGraph};
 use serde_json::Value;
-
-/// Relative tolerance of a re-run number (the same computation: equal but for the last bits
-/// of a JSON round trip) and of the consistency identities.
-const RELATIVE_TOLERANCE: f64 = 1e-9;
-
-fn close(a: f64, b: f64) -> bool {
-    a == b || (a - b).abs() <= RELATIVE_TOLERANCE * a.abs().max(b.abs()).max(1.0)
-}
 
 fn consistency(field: impl Into<String>, cause: impl Into<String>) -> Violation {
     Violation::new(
