@@ -12,7 +12,7 @@ use crate::error::Violation;
 use crate::problem::profile::{FailureModel, FailureTerms};
 use crate::problem::{Network, Profile, Request};
 use std::cmp::Ordering;
-use std::collections::{BinaryHeap, HashMap};
+use std::collections::BinaryHeap;
 
 fn v(code: &'static str, field: impl Into<String>, cause: impl Into<String>) -> Violation {
     Violation::new(
@@ -233,12 +233,7 @@ impl PartialOrd for Label {
 /// Shortest distance from `source` to `destination` over the edges (either direction, the
 /// file's `distance_m`, else Euclidean), m; infinite when no path joins them.
 pub(super) fn shortest_distance_m(network: &Network, source: &str, destination: &str) -> f64 {
-    let index: HashMap<&str, usize> = network
-        .nodes
-        .iter()
-        .enumerate()
-        .map(|(i, n)| (n.id.as_str(), i))
-        .collect();
+    let index = super::node_index(network);
     let (Some(&a), Some(&b)) = (index.get(source), index.get(destination)) else {
         return f64::INFINITY;
     };

@@ -25,7 +25,6 @@ use crate::energy;
 use crate::error::Violation;
 use crate::formation;
 use crate::problem::{Drone, FormationKind, Network, Profile, Request, Role, Swarm};
-use std::collections::HashMap;
 
 fn v(code: &'static str, field: impl Into<String>, cause: impl Into<String>) -> Violation {
     Violation::new(
@@ -266,12 +265,7 @@ pub fn check_hop_file(
 
 /// P5602: the legs of `path`, rebuilt from the network.
 fn legs_of_the_path(network: &Network, path: &[String]) -> Result<Vec<RawLeg>, Violation> {
-    let index: HashMap<&str, usize> = network
-        .nodes
-        .iter()
-        .enumerate()
-        .map(|(i, n)| (n.id.as_str(), i))
-        .collect();
+    let index = super::node_index(network);
     let mut nodes = Vec::with_capacity(path.len());
     for (i, id) in path.iter().enumerate() {
         match index.get(id.as_str()) {

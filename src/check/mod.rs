@@ -30,3 +30,15 @@ pub const RELATIVE_TOLERANCE: f64 = 1e-9;
 pub(crate) fn close(a: f64, b: f64) -> bool {
     a == b || (a - b).abs() <= RELATIVE_TOLERANCE * a.abs().max(b.abs()).max(1.0)
 }
+
+/// Node id -> index in `network.nodes`.
+pub(crate) fn node_index(
+    network: &crate::problem::Network,
+) -> std::collections::HashMap<&str, usize> {
+    network
+        .nodes
+        .iter()
+        .enumerate()
+        .map(|(i, n)| (n.id.as_str(), i))
+        .collect()
+}

@@ -113,12 +113,7 @@ pub fn check_plan(
         request,
         swarm,
         sharing,
-        index: network
-            .nodes
-            .iter()
-            .enumerate()
-            .map(|(i, n)| (n.id.as_str(), i))
-            .collect(),
+        index: super::node_index(network),
         speed_m_per_min: profile.drone.speed_kmh * 1000.0 / 60.0,
         full: swarm.drones.iter().map(|d| d.capacity_mah).collect(),
     };
