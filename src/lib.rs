@@ -21,24 +21,30 @@
 // Lints are set in Cargo.toml's `[lints]` table; the library also forbids unsafe code outright.
 #![forbid(unsafe_code)]
 
-/// `Display` for choice enums: the name the clap derive gives each value (kebab-case), which is
-/// also its serde name (`tests/choice_names.rs` checks that the two agree), so the names of
-/// methods, policies and backends have one source and no hand-written table.
+/// `Display` for choice enums: the value's serde name (kebab-case), which is also the name the
+/// command line's clap derive gives it (`tests/choice_names.rs` checks that the two agree), so the
+/// names of methods, policies and backends have one source and no hand-written table.
 macro_rules! display_as_value_name {
     ($($t:ty),+ $(,)?) => {$(
         impl std::fmt::Display for $t {
             fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-                match clap::ValueEnum::to_possible_value(self) {
-                    Some(v) => f.pad(v.get_name()),
-                    None => Ok(()),
-                }
+                f.pad(&crate::choice_name(self))
             }
         }
     )+};
 }
 
+/// The serde name of a unit variant of a choice enum (empty for anything else).
+fn choice_name<T: serde::Serialize>(value: &T) -> String {
+    match serde_json::to_value(value) {
+        Ok(serde_json::Value::String(name)) => name,
+        _ => String::new(),
+    }
+}
+
 pub mod bench;
 pub mod check;
+#[cfg(feature = "cli")]
 pub mod cli;
 pub mod compose;
 pub mod eaas;

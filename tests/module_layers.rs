@@ -194,3 +194,110 @@ fn the_scan_of_a_module_directory_sees_a_cycle_when_there_is_one() {
     let mut path = vec!["mod".to_string()];
     assert!(cycle_from(&uses, "mod", "mod", &mut path).is_some());
 }
+
+/// Every module directory under `src` (relative paths, `/`-separated), found by its `mod.rs`.
+fn module_directories() -> Vec<String> {
+    fn walk(dir: &Path, rel: &str, out: &mut Vec<String>) {
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                let name = path.file_name().unwrap().to_string_lossy().to_string();
+                let rel = if rel.is_empty() {
+                    name
+                } else {
+                    format!("{rel}/{name}")
+                };
+                if path.join("mod.rs").is_file() {
+                    out.push(rel.clone());
+                }
+                walk(&path, &rel, out);
+            }
+        }
+    }
+    let mut out = Vec::new();
+    walk(
+        &Path::new(env!("CARGO_MANIFEST_DIR")).join("src"),
+        "",
+        &mut out,
+    );
+    out.sort();
+    out
+}
+
+/// Inside every module directory, the children (apart from the root, whose items they share and
+/// which re-exports them) form layers: no child uses a sibling that uses it back, directly or
+/// through others.
+#[test]
+fn every_module_directory_layers_its_children() {
+    let dirs = module_directories();
+    assert!(
+        dirs.len() >= 15 && dirs.iter().any(|d| d == "node_time/exact"),
+        "found {dirs:?}"
+    );
+    for dir in dirs {
+        let mut uses = child_uses(&dir);
+        uses.remove("mod");
+        for targets in uses.values_mut() {
+            targets.remove("mod");
+        }
+        for child in uses.keys() {
+            let mut path = vec![child.clone()];
+            if let Some(cycle) = cycle_from(&uses, child, child, &mut path) {
+                panic!("import cycle in src/{dir}: {}", cycle.join(" -> "));
+            }
+        }
+    }
+}
+
+/// The lines of `text` that name a front-end crate (clap, plotters, indicatif) or the command
+/// line module outside an attribute applying with the `cli` feature, 1-based.
+fn ungated_front_end_lines(text: &str) -> Vec<usize> {
+    text.lines()
+        .enumerate()
+        .filter(|(_, line)| {
+            let code = line.split("//").next().unwrap_or("");
+            let names_front_end = ["clap::", "plotters", "indicatif", "crate::cli"]
+                .iter()
+                .any(|name| code.contains(name));
+            names_front_end
+                && !code
+                    .trim_start()
+                    .starts_with("#[cfg_attr(feature = \"cli\"")
+        })
+        .map(|(n, _)| n + 1)
+        .collect()
+}
+
+/// The planning core is free of the front ends: outside `src/cli` (the command line) and
+/// `src/bench/figures.rs` (the bench's SVG figures), clap, plotters and indicatif are named only
+/// in attributes that apply with the `cli` feature, and no module uses `crate::cli`. With
+/// `--no-default-features --features microlp` the library builds without the three crates
+/// (`.ci/run` builds it so).
+#[test]
+fn the_core_names_no_front_end_crate() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    rust_files(&src, &mut files);
+    let mut found = Vec::new();
+    for file in files {
+        let rel = file.strip_prefix(&src).unwrap().to_path_buf();
+        let front_end = rel.starts_with("cli")
+            || rel == Path::new("bench/figures.rs")
+            || rel == Path::new("main.rs");
+        if front_end {
+            continue;
+        }
+        let text = std::fs::read_to_string(&file).unwrap();
+        for n in ungated_front_end_lines(&text) {
+            found.push(format!("src/{}:{n}", rel.display()));
+        }
+    }
+    assert!(found.is_empty(), "front-end crates in the core: {found:?}");
+}
+
+#[test]
+fn the_front_end_scan_sees_an_ungated_name() {
+    let text = "#[derive(Debug, Clone)]\n#[cfg_attr(feature = \"cli\", derive(clap::ValueEnum))]\n\
+                #[derive(Debug, clap::ValueEnum)] // clap::\nuse crate::cli::inputs;\n// plotters\n";
+    assert_eq!(ungated_front_end_lines(text), vec![3, 4]);
+}

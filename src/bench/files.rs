@@ -1,7 +1,9 @@
 //! The output directory of `swarmplan bench`: writing it, reading its rows back, and merging the
 //! directories of shards into the one a single run writes.
 
-use super::{figures, findings, BenchConfig, BenchData, Shard, Summary};
+#[cfg(feature = "cli")]
+use super::figures;
+use super::{findings, BenchConfig, BenchData, Shard, Summary};
 use crate::error::{Error, Result};
 use crate::problem::io;
 use serde::de::DeserializeOwned;
@@ -94,6 +96,9 @@ pub fn write_outputs(
     let (config, data) = read_data(dir)?;
     let mut summary = Summary::of(&config, &data, command);
     summary.findings = findings(&summary.methods, &data);
+    // The figures are drawn by the front ends' plotters (feature `cli`); the planning core alone
+    // writes the tables and the summary.
+    #[cfg(feature = "cli")]
     if config.shard == Shard::WHOLE {
         summary.figures = figures::write_figures(dir, &summary)?;
     }

@@ -15,6 +15,8 @@
 //! - `timings.csv` ([`TimingRow`]): execution times, machine-dependent;
 //! - `summary.json` ([`Summary`]) and the SVG figures of [`figures`].
 
+/// Drawn by the front ends only (feature `cli`, which brings plotters).
+#[cfg(feature = "cli")]
 pub mod figures;
 mod files;
 mod findings;

@@ -115,7 +115,7 @@ pub struct RunArgs {
     /// Hop models: MILP backend.
     #[arg(
         long,
-        value_parser = crate::solver::backend_value_parser(),
+        value_parser = super::inputs::backend_value_parser(),
         default_value_t = crate::solver::MilpBackend::default()
     )]
     pub backend: crate::solver::MilpBackend,

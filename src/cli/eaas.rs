@@ -74,7 +74,7 @@ pub struct EaasArgs {
     /// MILP backend.
     #[arg(
         long,
-        value_parser = crate::solver::backend_value_parser(),
+        value_parser = super::inputs::backend_value_parser(),
         default_value_t = MilpBackend::default()
     )]
     pub backend: MilpBackend,

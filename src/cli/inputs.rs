@@ -32,7 +32,7 @@ pub struct ExactArgs {
     /// Exact policy: MILP backend of every hop solve.
     #[arg(
         long,
-        value_parser = crate::solver::backend_value_parser(),
+        value_parser = backend_value_parser(),
         default_value_t = MilpBackend::default()
     )]
     pub backend: MilpBackend,
@@ -232,4 +232,39 @@ pub fn report_budget(planned: usize, asked: usize, limit: usize) {
             asked - planned
         );
     }
+}
+
+/// The value parser of `--backend`: a backend of this build, E0012 with the way to build it for
+/// a backend this build lacks (`highs` without the feature), and clap's own error (E0007) for any
+/// other name. The help lists every known backend, each one missing marked as such.
+///
+/// # Example
+/// ```
+/// use clap::Parser;
+/// let e = swarmplan::cli::Cli::try_parse_from(["swarmplan", "node-time", "--backend", "glpk",
+///     "--pads", "1", "--times", "1"]).unwrap_err();
+/// assert!(swarmplan::cli::coded_usage_error(&e).unwrap().contains("[E0007]"));
+/// ```
+pub fn backend_value_parser(
+) -> impl clap::builder::TypedValueParser<Value = crate::solver::MilpBackend> {
+    use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
+    use clap::ValueEnum;
+    let mut values: Vec<PossibleValue> = crate::solver::MilpBackend::value_variants()
+        .iter()
+        .filter_map(|b| b.to_possible_value())
+        .collect();
+    for name in crate::solver::known_backend_names() {
+        if !values.iter().any(|v| v.get_name() == name) {
+            values.push(
+                PossibleValue::new(name)
+                    .help(format!("not in this build (cargo build --features {name})")),
+            );
+        }
+    }
+    PossibleValuesParser::new(values).try_map(|name: String| {
+        if let Some(message) = crate::solver::backend_not_built(&name) {
+            return Err(message);
+        }
+        crate::solver::MilpBackend::from_str(&name, false)
+    })
 }

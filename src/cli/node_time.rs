@@ -48,7 +48,7 @@ pub struct NodeTimeArgs {
     /// MILP backend (with --method milp).
     #[arg(
         long,
-        value_parser = crate::solver::backend_value_parser(),
+        value_parser = super::inputs::backend_value_parser(),
         default_value_t = MilpBackend::default()
     )]
     pub backend: MilpBackend,

@@ -36,7 +36,8 @@ use crate::problem::profile::Candidates;
 use serde::{Deserialize, Serialize};
 
 /// How the route is composed.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "kebab-case")]
 pub enum RouteMethod {
     /// Algorithm 1: go straight to the destination if possible (without, then with sharing), else
@@ -61,9 +62,8 @@ display_as_value_name!(RouteMethod);
 
 /// Which paths the hops of `--route optimal` may follow between two stops (models/compose.md,
 /// "Optimal route").
-#[derive(
-    Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize, clap::ValueEnum,
-)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "kebab-case")]
 pub enum HopPaths {
     /// The shortest path by distance between the two stops, as Algorithm 1 and A* fly.
@@ -87,7 +87,8 @@ pub(crate) enum LookAhead {
 }
 
 /// How a fixed baseline route is found on edge cost `tt + nt`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "kebab-case")]
 pub enum FixedRoute {
     /// One-pair shortest path (Dijkstra).

@@ -20,7 +20,8 @@ use crate::solver::{Gap, ReferenceKind};
 use serde::Serialize;
 
 /// A method that can be run on a hop.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum HopMethod {
     /// No sharing.

@@ -99,7 +99,8 @@ pub struct DroneState {
 }
 
 /// Which sharing policy runs on a hop.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "kebab-case")]
 pub enum SharingPolicy {
     /// The paper's baseline: no in-flight sharing and no support drones in the swarm.

@@ -33,7 +33,8 @@ pub const EARTH_RADIUS_M: f64 = 6_371_008.8;
 pub const MAX_IMPORT_NODES: usize = 100_000;
 
 /// How coordinates are given.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Coordinates {
     /// Projected metres (x east, y north).
     Metres,

@@ -86,7 +86,8 @@ pub const DEFAULT_STOP_NODE_LIMIT: u64 = 20_000_000;
 const INTEGRAL_MAX_MIN: f64 = 1_125_899_906_842_624.0;
 
 /// Method that computes a node time.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum NodeTimeMethod {
     /// Combinatorial branch and bound, proven optimal unless a limit stops it.

@@ -14,7 +14,8 @@ pub use support_count::{failure_terms, support_count, SupportDecision};
 use serde::{Deserialize, Serialize};
 
 /// Where support drones start (paper 5.1, "Support Drones Positioning").
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "kebab-case")]
 pub enum Positioning {
     /// Support drones in the worst slots; delivery drones by payload, heaviest in the best slot.

@@ -61,7 +61,8 @@ pub struct Readings {
 }
 
 /// Size `re` of a PB energy request raised at time `st` (models/eaas.md, "PB's request size").
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "kebab-case")]
 pub enum PbRequest {
     /// What the drone needs to end the hop at the threshold `gamma` under the schedule so far, at
@@ -74,7 +75,8 @@ pub enum PbRequest {
 }
 
 /// Candidate next stops of Algorithm 1 (models/compose.md, "Algorithm 1's candidates").
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "kebab-case")]
 pub enum Candidates {
     /// Every node with pads not yet stopped at, reached along the shortest path (default).

@@ -12,7 +12,8 @@ pub mod limited;
 pub mod lp_file;
 
 /// MILP backend.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "kebab-case")]
 pub enum MilpBackend {
     /// good_lp's pure-Rust `microlp` branch and bound (default build).
@@ -24,7 +25,7 @@ pub enum MilpBackend {
     /// No MILP backend in this build (made without the microlp and highs features): a MILP solve
     /// gives E0011, every other method works.
     #[cfg(not(any(feature = "microlp", feature = "highs")))]
-    #[value(name = "none")]
+    #[cfg_attr(feature = "cli", value(name = "none"))]
     #[serde(rename = "none")]
     NoBackend,
 }
@@ -81,6 +82,11 @@ const KNOWN_BACKENDS: [(&str, &str); 2] = [
     ),
 ];
 
+/// The name of every MILP backend swarmplan knows, built into this build or not.
+pub fn known_backend_names() -> impl Iterator<Item = &'static str> {
+    KNOWN_BACKENDS.iter().map(|(name, _)| *name)
+}
+
 /// `E0012`: `name` is a backend swarmplan knows but this build was made without; `None` for a
 /// backend of this build or a name swarmplan does not know.
 pub fn backend_not_built(name: &str) -> Option<String> {
@@ -95,40 +101,6 @@ pub fn backend_not_built(name: &str) -> Option<String> {
                 "[E0012] --backend {name}: this build of swarmplan has no {name} backend; {how}"
             )
         })
-}
-
-/// The value parser of `--backend`: a backend of this build, E0012 with the way to build it for
-/// a backend this build lacks (`highs` without the feature), and clap's own error (E0007) for any
-/// other name. The help lists every known backend, each one missing marked as such.
-///
-/// # Example
-/// ```
-/// use clap::Parser;
-/// let e = swarmplan::cli::Cli::try_parse_from(["swarmplan", "node-time", "--backend", "glpk",
-///     "--pads", "1", "--times", "1"]).unwrap_err();
-/// assert!(swarmplan::cli::coded_usage_error(&e).unwrap().contains("[E0007]"));
-/// ```
-pub fn backend_value_parser() -> impl clap::builder::TypedValueParser<Value = MilpBackend> {
-    use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
-    use clap::ValueEnum;
-    let mut values: Vec<PossibleValue> = MilpBackend::value_variants()
-        .iter()
-        .filter_map(|b| b.to_possible_value())
-        .collect();
-    for (name, _) in KNOWN_BACKENDS {
-        if !values.iter().any(|v| v.get_name() == name) {
-            values.push(
-                PossibleValue::new(name)
-                    .help(format!("not in this build (cargo build --features {name})")),
-            );
-        }
-    }
-    PossibleValuesParser::new(values).try_map(|name: String| {
-        if let Some(message) = backend_not_built(&name) {
-            return Err(message);
-        }
-        MilpBackend::from_str(&name, false)
-    })
 }
 
 /// Relative MIP gap at which a backend may stop and call its incumbent optimal (HiGHS stops at

@@ -23,7 +23,8 @@ pub mod fluid;
 pub mod milp;
 
 /// How drones may change formation slots while sharing.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum Reorder {
     /// The paper's fixed re-ordering: an out-of-range consumer swaps with the delivery drone of an
