@@ -237,12 +237,12 @@ struct ExactKw {
 }
 
 impl ExactKw {
-    fn context<'a>(
+    fn context(
         &self,
         py: Python<'_>,
-        data: &'a InstanceData,
+        data: &InstanceData,
         node_limit: u64,
-    ) -> PyResult<Context<'a>> {
+    ) -> PyResult<Context> {
         let args = ExactArgs {
             backend: backend_of(py, &self.backend)?,
             hop_time_limit_s: self.hop_time_limit_s,

@@ -4,11 +4,12 @@
 
 use super::plan::{Plan, PlanOutcome};
 use super::{HopEnd, LookAhead, Planner};
+use crate::eaas::exact_hop::HopSolveCounts;
 use crate::eaas::SharingPolicy;
 use crate::error::Result;
 use crate::problem::profile::Candidates;
 
-impl Planner<'_> {
+impl Planner {
     /// Algorithm 1 over adjacent nodes. From the current node: fly to the destination along the
     /// shortest path if the swarm can without stopping (without, then with sharing, lines 5-10);
     /// else move to the best neighbour `v` in the skyway network not yet visited, least
@@ -23,6 +24,7 @@ impl Planner<'_> {
         source: usize,
         destination: usize,
         look_ahead: LookAhead,
+        solves: &mut HopSolveCounts,
     ) -> Result<Plan> {
         let graph = self.graph();
         let speed = self.speed_m_per_min();
@@ -59,7 +61,7 @@ impl Planner<'_> {
             }
             let mut direct_failure = None;
             for policy in policies {
-                let flight = self.fly(&path, &full, policy, HopEnd::NoStop)?;
+                let flight = self.fly_counted(&path, &full, policy, HopEnd::NoStop, solves)?;
                 if flight.outcome.feasible {
                     plan.push(self.hop(&path, &full, flight, None));
                     return Ok(plan.finish());
@@ -83,7 +85,7 @@ impl Planner<'_> {
                 } else {
                     HopEnd::NoStop
                 };
-                let flight = self.fly(&path, &full, self.sharing(), end)?;
+                let flight = self.fly_counted(&path, &full, self.sharing(), end, solves)?;
                 if !flight.outcome.feasible {
                     continue;
                 }

@@ -7,6 +7,7 @@
 use super::optimal::{improves, least_unsettled, relax, BestArc, Start};
 use super::plan::{Plan, PlanOutcome, RouteOptimality};
 use super::{HopEnd, HopPaths, Planner};
+use crate::eaas::exact_hop::HopSolveCounts;
 use crate::eaas::{SharingPolicy, ENERGY_TOL_MAH};
 use crate::error::{Error, Result};
 use crate::solver::SolveStatus;
@@ -120,7 +121,7 @@ fn too_many_labels(from: &str) -> Error {
     )
 }
 
-impl Planner<'_> {
+impl Planner {
     /// The least delivery time over every sequence of stops and every path of each hop, without
     /// in-flight sharing: [`Planner::compose_optimal`] with the arcs of the stop graph taken over
     /// all flyable paths instead of the shortest one.
@@ -152,6 +153,7 @@ impl Planner<'_> {
         &self,
         source: usize,
         destination: usize,
+        solves: &mut HopSolveCounts,
     ) -> Result<Plan> {
         if self.sharing().shares() || self.sharing().is_exact() {
             return Err(any_path_with_sharing(self.sharing()));
@@ -164,7 +166,7 @@ impl Planner<'_> {
             ..RouteOptimality::default()
         };
         let (mut plan, direct) =
-            match self.start_search(source, destination, &mut optimality, false)? {
+            match self.start_search(source, destination, &mut optimality, false, solves)? {
                 Start::Done(plan) => return Ok(plan),
                 Start::Search { plan, direct, .. } => (plan, direct),
             };
@@ -178,7 +180,8 @@ impl Planner<'_> {
             let Some(u) = least_unsettled(&cost_min, &settled) else {
                 // The shortest path does not fly (else the search would have reached the
                 // destination): its first failure.
-                let flight = self.fly(&direct, &full, SharingPolicy::None, HopEnd::NoStop)?;
+                let flight =
+                    self.fly_counted(&direct, &full, SharingPolicy::None, HopEnd::NoStop, solves)?;
                 plan.route_optimality = Some(optimality);
                 return Ok(plan.fail(PlanOutcome::NoStopSequence {
                     from: graph.id_of(source).to_string(),
@@ -210,7 +213,13 @@ impl Planner<'_> {
                     .expect("labels follow network edges");
                 let cost = cost_min[u] + path.distance_m / speed;
                 if improves(cost, u, cost_min[destination], &best[destination]) {
-                    let flight = self.fly(&path, &full, SharingPolicy::None, HopEnd::NoStop)?;
+                    let flight = self.fly_counted(
+                        &path,
+                        &full,
+                        SharingPolicy::None,
+                        HopEnd::NoStop,
+                        solves,
+                    )?;
                     optimality.arcs_flown += 1;
                     if flight.outcome.feasible {
                         cost_min[destination] = cost;
@@ -263,7 +272,7 @@ impl Planner<'_> {
                 let path = graph
                     .path_from_nodes(&search.nodes(l))
                     .expect("labels follow network edges");
-                let arc = self.arc_into_stop(u, v, path, &full, &mut optimality)?;
+                let arc = self.arc_into_stop(u, v, path, &full, &mut optimality, solves)?;
                 let tail_cost_min = cost_min[u];
                 relax(&mut cost_min, &mut best, v, tail_cost_min, speed, arc);
             }

@@ -8,6 +8,7 @@
 
 use super::plan::{Plan, PlanOutcome};
 use super::{FixedRoute, HopEnd, Planner};
+use crate::eaas::exact_hop::HopSolveCounts;
 use crate::error::Result;
 use crate::network::floyd_warshall::{floyd_warshall, AllPairs};
 use crate::problem::Swarm;
@@ -93,7 +94,7 @@ impl BaselineCosts {
     }
 }
 
-impl Planner<'_> {
+impl Planner {
     /// Edge cost of the baselines, min, for every directed edge `(u, v)`: `tt(u, v) + nt(v)`, where
     /// `nt(v)` is the exact node time at `v` of a swarm that flew the edge from full batteries
     /// without sharing (0 where `v` has no pads). See models/compose.md for this reading of the
@@ -177,6 +178,7 @@ impl Planner<'_> {
         destination: usize,
         algorithm: FixedRoute,
         costs: Option<&BaselineCosts>,
+        solves: &mut HopSolveCounts,
     ) -> Result<Plan> {
         let graph = self.graph();
         let mut plan = self.empty_plan(source, destination);
@@ -209,7 +211,8 @@ impl Planner<'_> {
                     .path_from_nodes(&route[at..=j])
                     .expect("the route follows network edges");
                 // Reachability only: the hop's schedule is optimised once j is chosen.
-                let flight = self.fly(&path, &battery, self.sharing(), HopEnd::NoStop)?;
+                let flight =
+                    self.fly_counted(&path, &battery, self.sharing(), HopEnd::NoStop, solves)?;
                 if !flight.outcome.feasible {
                     failure = flight.outcome.failure;
                     break;
@@ -232,7 +235,8 @@ impl Planner<'_> {
             }
             let flight = if self.sharing().is_exact() {
                 // The least node time at the chosen stop (the exact schedule) or the fair one.
-                let at_stop = self.fly(&path, &battery, self.sharing(), HopEnd::Stop)?;
+                let at_stop =
+                    self.fly_counted(&path, &battery, self.sharing(), HopEnd::Stop, solves)?;
                 if at_stop.outcome.feasible {
                     at_stop
                 } else {

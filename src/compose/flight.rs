@@ -14,16 +14,41 @@ use crate::problem::profile::Readings;
 use crate::problem::Profile;
 use crate::problem::SkywayGraph;
 use crate::problem::{Role, Swarm};
-use std::cell::{Cell, RefCell};
 use std::collections::HashMap;
-use std::sync::Arc;
-use std::sync::OnceLock;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Mutex, OnceLock};
 
-/// Rate matrices `[drone][slot]` per directed edge ([`Planner::edge_key`]).
-type RateCache = RefCell<Vec<Option<Arc<Vec<Vec<f64>>>>>>;
+/// Rate matrices `[drone][slot]` per directed edge ([`Planner::edge_key`]), each computed once.
+type RateCache = Vec<OnceLock<Arc<Vec<Vec<f64>>>>>;
 
 /// Exact and fair flights from full batteries, by policy, path nodes and hop end.
-type FlightCache = RefCell<HashMap<(SharingPolicy, Vec<usize>, HopEnd), Flight>>;
+type FlightCache = Mutex<HashMap<(SharingPolicy, Vec<usize>, HopEnd), Flight>>;
+
+/// Data a [`Planner`] or a [`super::Context`] holds: given by reference (cloned once) or as an
+/// `Arc` (shared without a copy), so that both own what they read and can be sent to and shared
+/// between threads.
+pub trait IntoShared<T> {
+    /// The data behind an `Arc`.
+    fn into_shared(self) -> Arc<T>;
+}
+
+impl<T: Clone> IntoShared<T> for &T {
+    fn into_shared(self) -> Arc<T> {
+        Arc::new(self.clone())
+    }
+}
+
+impl<T> IntoShared<T> for Arc<T> {
+    fn into_shared(self) -> Arc<T> {
+        self
+    }
+}
+
+impl<T> IntoShared<T> for &Arc<T> {
+    fn into_shared(self) -> Arc<T> {
+        Arc::clone(self)
+    }
+}
 
 /// Where a flown hop ends, which decides what the exact and fair policies optimise.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -45,10 +70,14 @@ pub struct Flight {
 }
 
 /// Everything fixed while one request is planned: network, profile, swarm and sharing policy.
-pub struct Planner<'a> {
-    graph: &'a SkywayGraph,
-    profile: &'a Profile,
-    swarm: &'a Swarm,
+///
+/// A planner owns what it reads (`Arc` where shared) and its caches are filled once per entry, so
+/// it is `Send + Sync`: one planner may compose on several threads at once. What a composition
+/// counts (its hop solves) comes back in its [`Plan`].
+pub struct Planner {
+    graph: Arc<SkywayGraph>,
+    profile: Arc<Profile>,
+    swarm: Arc<Swarm>,
     sharing: SharingPolicy,
     /// Consumption-rate matrices `[drone][slot]` per directed edge, computed once.
     rates: RateCache,
@@ -58,11 +87,9 @@ pub struct Planner<'a> {
     /// Every drone's `base rate x payload factor`, mAh/min.
     payload_rates: OnceLock<Vec<f64>>,
     /// The swarm's least total consumption rate per directed edge, mAh/min, computed once.
-    cheapest_rates: RefCell<Vec<Option<f64>>>,
+    cheapest_rates: Vec<OnceLock<f64>>,
     /// Settings of the exact and fair policies.
     exact: ExactSettings,
-    /// Hop solves of the exact and fair policies made so far.
-    solves: RefCell<HopSolveCounts>,
     /// The exact and fair flights from full batteries solved so far: a hop departing full is
     /// the same model whichever route method or stop sequence flies it.
     flights: FlightCache,
@@ -72,51 +99,53 @@ pub struct Planner<'a> {
     hop_paths: super::HopPaths,
     /// Whether a hop problem of this planner passed [`eaas::validate`] (the rules that do not
     /// depend on the path: drones, slots, sharing parameters).
-    validated: Cell<bool>,
+    validated: AtomicBool,
 }
 
-impl<'a> Planner<'a> {
-    /// A planner for one swarm on one network.
+impl Planner {
+    /// A planner for one swarm on one network; each of the three given by reference (copied
+    /// once) or as an `Arc` (shared).
     pub fn new(
-        graph: &'a SkywayGraph,
-        profile: &'a Profile,
-        swarm: &'a Swarm,
+        graph: impl IntoShared<SkywayGraph>,
+        profile: impl IntoShared<Profile>,
+        swarm: impl IntoShared<Swarm>,
         sharing: SharingPolicy,
-    ) -> Planner<'a> {
+    ) -> Planner {
+        let graph = graph.into_shared();
+        let directed_edges = 2 * graph.edge_count();
         Planner {
             graph,
-            profile,
-            swarm,
+            profile: profile.into_shared(),
+            swarm: swarm.into_shared(),
             sharing,
-            rates: RefCell::new(vec![None; 2 * graph.edge_count()]),
-            cheapest_rates: RefCell::new(vec![None; 2 * graph.edge_count()]),
+            rates: (0..directed_edges).map(|_| OnceLock::new()).collect(),
+            cheapest_rates: (0..directed_edges).map(|_| OnceLock::new()).collect(),
             factors: OnceLock::new(),
             payload_rates: OnceLock::new(),
             exact: ExactSettings::default(),
-            solves: RefCell::new(HopSolveCounts::default()),
-            flights: RefCell::new(HashMap::new()),
+            flights: Mutex::new(HashMap::new()),
             node_limit: Some(node_time::DEFAULT_STOP_NODE_LIMIT),
             hop_paths: super::HopPaths::Rule,
-            validated: Cell::new(false),
+            validated: AtomicBool::new(false),
         }
     }
 
     /// The planner with the given settings of the exact and fair policies.
-    pub fn with_exact(mut self, settings: ExactSettings) -> Planner<'a> {
+    pub fn with_exact(mut self, settings: ExactSettings) -> Planner {
         self.exact = settings;
         self
     }
 
     /// The planner with the node limit of the exact node time at every stop (`None`: no limit;
     /// default [`node_time::DEFAULT_STOP_NODE_LIMIT`]).
-    pub fn with_node_limit(mut self, node_limit: Option<u64>) -> Planner<'a> {
+    pub fn with_node_limit(mut self, node_limit: Option<u64>) -> Planner {
         self.node_limit = node_limit;
         self
     }
 
     /// The planner with the hop-path rule of its optimal route ([`super::RouteMethod::Optimal`]);
     /// default [`super::HopPaths::Rule`].
-    pub fn with_hop_paths(mut self, hop_paths: super::HopPaths) -> Planner<'a> {
+    pub fn with_hop_paths(mut self, hop_paths: super::HopPaths) -> Planner {
         self.hop_paths = hop_paths;
         self
     }
@@ -129,7 +158,7 @@ impl<'a> Planner<'a> {
     /// The planner reading and filling the energy model's leg factors in `cache` (the table of
     /// this swarm's formation slots), so that planners of swarms flying the same slots compute
     /// them once; by default a planner keeps its own.
-    pub fn with_edge_factors(self, cache: &EdgeFactorCache) -> Planner<'a> {
+    pub fn with_edge_factors(self, cache: &EdgeFactorCache) -> Planner {
         let _ = self.factors.set(cache.for_slots(&self.swarm.slots_m));
         self
     }
@@ -145,24 +174,14 @@ impl<'a> Planner<'a> {
             .pad_rate_mah_per_min(node, self.profile.pads.charge_rate_mah_per_min)
     }
 
-    /// Counts of the exact and fair hop solves made so far.
-    pub fn hop_solves(&self) -> HopSolveCounts {
-        *self.solves.borrow()
-    }
-
-    /// Forgets the hop solves counted so far.
-    pub(crate) fn reset_hop_solves(&self) {
-        *self.solves.borrow_mut() = HopSolveCounts::default();
-    }
-
     /// The network.
     pub fn graph(&self) -> &SkywayGraph {
-        self.graph
+        &self.graph
     }
 
     /// The swarm.
     pub fn swarm(&self) -> &Swarm {
-        self.swarm
+        &self.swarm
     }
 
     /// The plan of `source -> destination` before any hop is flown.
@@ -201,7 +220,7 @@ impl<'a> Planner<'a> {
     /// negative (the profile and network passed validation, so this would be a bug).
     fn leg_rates(&self, leg: &crate::network::Leg) -> Result<Arc<Vec<Vec<f64>>>> {
         let key = self.edge_key(leg);
-        if let Some(rate) = &self.rates.borrow()[key] {
+        if let Some(rate) = self.rates[key].get() {
             return Ok(Arc::clone(rate));
         }
         let factors = self.leg_factors(key, leg);
@@ -227,9 +246,8 @@ impl<'a> Planner<'a> {
                 "report it with the network and profile",
             ));
         }
-        let rate = Arc::new(rate);
-        self.rates.borrow_mut()[key] = Some(Arc::clone(&rate));
-        Ok(rate)
+        // Another thread may have set the same numbers first.
+        Ok(Arc::clone(self.rates[key].get_or_init(|| Arc::new(rate))))
     }
 
     /// The least total consumption rate of the swarm on `leg`: every drone in its cheapest slot,
@@ -239,7 +257,7 @@ impl<'a> Planner<'a> {
     /// Those of [`Planner::leg_rates`].
     pub(crate) fn cheapest_swarm_rate_mah_per_min(&self, leg: &crate::network::Leg) -> Result<f64> {
         let key = self.edge_key(leg);
-        if let Some(rate) = self.cheapest_rates.borrow()[key] {
+        if let Some(&rate) = self.cheapest_rates[key].get() {
             return Ok(rate);
         }
         let rate: f64 = self.least_rates(key, leg).sum();
@@ -247,8 +265,7 @@ impl<'a> Planner<'a> {
             // The rate matrix names the culprit.
             self.leg_rates(leg)?;
         }
-        self.cheapest_rates.borrow_mut()[key] = Some(rate);
-        Ok(rate)
+        Ok(*self.cheapest_rates[key].get_or_init(|| rate))
     }
 
     /// Every drone's least rate over the slots on `leg` (directed edge index `key`), mAh/min:
@@ -319,14 +336,14 @@ impl<'a> Planner<'a> {
     /// The energy model's factors of `leg` (directed edge index `key`).
     fn leg_factors(&self, key: usize, leg: &crate::network::Leg) -> &super::factors::LegFactors {
         self.factors
-            .get_or_init(|| EdgeFactorCache::new(self.graph).for_slots(&self.swarm.slots_m))
-            .leg(self.profile, key, leg)
+            .get_or_init(|| EdgeFactorCache::new(&self.graph).for_slots(&self.swarm.slots_m))
+            .leg(&self.profile, key, leg)
     }
 
     /// Every drone's `base rate x payload factor`, mAh/min.
     fn payload_rates(&self) -> &[f64] {
         self.payload_rates
-            .get_or_init(|| energy::payload_rates_mah_per_min(self.profile, self.swarm))
+            .get_or_init(|| energy::payload_rates_mah_per_min(&self.profile, &self.swarm))
     }
 
     /// Index of the directed edge `leg` flies in the per-edge caches: edge `e` flown from its
@@ -411,9 +428,9 @@ impl<'a> Planner<'a> {
             lambda_mah: s.lambda_mah,
             delta_mah: s.delta_mah,
         };
-        if !self.validated.get() {
+        if !self.validated.load(Ordering::Acquire) {
             eaas::validate(&problem)?;
-            self.validated.set(true);
+            self.validated.store(true, Ordering::Release);
         }
         Ok(problem)
     }
@@ -422,8 +439,8 @@ impl<'a> Planner<'a> {
     /// exact and fair policies solve their model, for the least node time at the stop ending the
     /// hop when `end` is [`HopEnd::Stop`] and the node has pads, else for any schedule that flies.
     /// An exact or fair hop departing with full batteries is solved once per planner: a second
-    /// call returns the first flight, and counts its solve again (so a composition's counts do
-    /// not depend on what the planner flew before).
+    /// call returns the first flight, with its solve (so a composition that counts the solves of
+    /// its flights, [`Planner::fly_counted`], counts the same whatever the planner flew before).
     ///
     /// # Errors
     /// Those of [`eaas::simulate_with`] and [`exact_hop::fly_exact`].
@@ -442,10 +459,8 @@ impl<'a> Planner<'a> {
             .all(|(d, &b)| b == d.capacity_mah);
         let key = (policy, path.nodes.clone(), end);
         if policy.is_exact() && full {
-            if let Some(flight) = self.flights.borrow().get(&key) {
-                if let Some(solve) = &flight.solve {
-                    self.solves.borrow_mut().add(solve);
-                }
+            let flights = self.flights.lock().unwrap_or_else(|e| e.into_inner());
+            if let Some(flight) = flights.get(&key) {
                 return Ok(flight.clone());
             }
         }
@@ -470,13 +485,37 @@ impl<'a> Planner<'a> {
         let readings = eaas::PolicyOptions::from(&self.profile.readings);
         let (outcome, solve) =
             exact_hop::fly_exact(&problem, policy, &objective, &self.exact, &readings)?;
-        self.solves.borrow_mut().add(&solve);
         let flight = Flight {
             outcome,
             solve: Some(solve),
         };
         if full {
-            self.flights.borrow_mut().insert(key, flight.clone());
+            // A poisoned lock only means another thread panicked while holding it; every entry
+            // is inserted whole.
+            self.flights
+                .lock()
+                .unwrap_or_else(|e| e.into_inner())
+                .insert(key, flight.clone());
+        }
+        Ok(flight)
+    }
+
+    /// [`Planner::fly`], adding the flight's exact or fair solve (if any) to `solves`: how a
+    /// composition counts its hop solves.
+    ///
+    /// # Errors
+    /// Those of [`Planner::fly`].
+    pub(crate) fn fly_counted(
+        &self,
+        path: &Route,
+        battery_mah: &[f64],
+        policy: SharingPolicy,
+        end: HopEnd,
+        solves: &mut HopSolveCounts,
+    ) -> Result<Flight> {
+        let flight = self.fly(path, battery_mah, policy, end)?;
+        if let Some(solve) = &flight.solve {
+            solves.add(solve);
         }
         Ok(flight)
     }

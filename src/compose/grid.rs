@@ -11,7 +11,7 @@ use std::sync::Mutex;
 /// reports in the order of the combinations.
 pub type KeepRow<'a, T> = dyn Fn(usize, &Request, Vec<RequestReport>) -> Result<T> + Sync + 'a;
 
-impl Context<'_> {
+impl Context {
     /// Plans every request with every combination on a pool of `threads` threads, one job per
     /// request ([`Context::plan_each`], which does the work the combinations share once), and
     /// keeps of each report what `keep(request position, report)` returns. Row `i` of the result

@@ -6,6 +6,7 @@
 use super::optimal::{BestArc, Start};
 use super::plan::{Plan, PlanOutcome, RouteOptimality};
 use super::Planner;
+use crate::eaas::exact_hop::HopSolveCounts;
 use crate::eaas::fluid;
 use crate::eaas::milp::{ExactStatus, Objective};
 use crate::error::Result;
@@ -51,7 +52,7 @@ struct Search<'g> {
     arcs: HashMap<(usize, usize), Known>,
 }
 
-impl Planner<'_> {
+impl Planner {
     /// `tt` plus the fluid LP's bound on the node time at `v` of flying `path` from full
     /// batteries, lowered by a relative [`FLUID_BOUND_MARGIN`]. An interior-point answer is
     /// trusted as a bound only: an infeasible (or nearly infeasible) LP, or a failed one, bounds
@@ -95,12 +96,17 @@ impl Planner<'_> {
     /// Per round one Dijkstra on the stop graph, `O(K^2)` for `K` stops, and one shortest-path
     /// tree of the network per stop expanded (once); at most one hop solve per arc, and in
     /// practice a few per stop of the route.
-    pub(crate) fn compose_joint(&self, source: usize, destination: usize) -> Result<Plan> {
+    pub(crate) fn compose_joint(
+        &self,
+        source: usize,
+        destination: usize,
+        solves: &mut HopSolveCounts,
+    ) -> Result<Plan> {
         let graph = self.graph();
         let speed = self.speed_m_per_min();
         let mut optimality = RouteOptimality::default();
         let (mut plan, direct_failure, bounds) =
-            match self.start_search(source, destination, &mut optimality, true)? {
+            match self.start_search(source, destination, &mut optimality, true, solves)? {
                 Start::Done(plan) => return Ok(plan),
                 Start::Search {
                     plan,
@@ -244,7 +250,7 @@ impl Planner<'_> {
                 let path = graph
                     .shortest_path(u, destination)
                     .expect("a finite distance has a path");
-                let (flight, _) = self.fly_to_destination(&path, &full, &mut optimality)?;
+                let (flight, _) = self.fly_to_destination(&path, &full, &mut optimality, solves)?;
                 flight.map(|flight| {
                     let cost = path.distance_m / speed;
                     let arc = BestArc {
@@ -260,7 +266,7 @@ impl Planner<'_> {
                 let path = search.trees[&u]
                     .reversed_path_from(v)
                     .expect("a finite distance has a path");
-                self.arc_into_stop(u, v, path, &full, &mut optimality)?
+                self.arc_into_stop(u, v, path, &full, &mut optimality, solves)?
                     .map(|arc| {
                         let nt_min = arc.stop.as_ref().map_or(0.0, |s| s.nt_min);
                         (

@@ -25,12 +25,13 @@ mod studied;
 pub use any_path::MAX_HOP_PATH_LABELS;
 pub use baselines::BaselineCosts;
 pub use factors::{EdgeFactorCache, EdgeFactors};
-pub use flight::{Flight, HopEnd, Planner};
+pub use flight::{Flight, HopEnd, IntoShared, Planner};
 pub use gaps::{lpt_gap, lpt_node_time_gaps, LptGapSummary, RouteGapSummary, RoutePair};
 pub use plan::{Hop, LegFlown, Plan, PlanOutcome, RouteOptimality, Stop};
 pub use request::{Context, PlanOptions, PlanSettings, RequestReport, RouteGap, SwarmChoice};
 pub use split::{GapSplit, JointOptimum, JointSplit, SplitLabel, SwarmOptimum};
 
+use crate::eaas::exact_hop::HopSolveCounts;
 use crate::eaas::SharingPolicy;
 use crate::problem::profile::Candidates;
 use serde::{Deserialize, Serialize};
@@ -110,7 +111,7 @@ impl RouteMethod {
     ];
 }
 
-impl Planner<'_> {
+impl Planner {
     /// Composes the route of one request from node index `source` to `destination`.
     ///
     /// # Arguments
@@ -182,36 +183,41 @@ impl Planner<'_> {
         costs: Option<&BaselineCosts>,
     ) -> crate::error::Result<Plan> {
         let adjacent = self.readings().candidates == Candidates::Adjacent;
-        self.reset_hop_solves();
+        let mut solves = HopSolveCounts::default();
+        let solves = &mut solves;
         let mut plan = match method {
             RouteMethod::Sequential if adjacent => {
-                self.compose_adjacent(source, destination, LookAhead::None)
+                self.compose_adjacent(source, destination, LookAhead::None, solves)
             }
             RouteMethod::Astar if adjacent => {
-                self.compose_adjacent(source, destination, LookAhead::RemainingTravelTime)
+                self.compose_adjacent(source, destination, LookAhead::RemainingTravelTime, solves)
             }
             RouteMethod::Sequential => {
-                self.compose_sequential(source, destination, LookAhead::None)
+                self.compose_sequential(source, destination, LookAhead::None, solves)
             }
             RouteMethod::Astar => {
-                self.compose_sequential(source, destination, LookAhead::RemainingTravelTime)
+                self.compose_sequential(source, destination, LookAhead::RemainingTravelTime, solves)
             }
             RouteMethod::Dijkstra => {
-                self.compose_fixed_route(source, destination, FixedRoute::Dijkstra, costs)
+                self.compose_fixed_route(source, destination, FixedRoute::Dijkstra, costs, solves)
             }
-            RouteMethod::FloydWarshall => {
-                self.compose_fixed_route(source, destination, FixedRoute::FloydWarshall, costs)
-            }
+            RouteMethod::FloydWarshall => self.compose_fixed_route(
+                source,
+                destination,
+                FixedRoute::FloydWarshall,
+                costs,
+                solves,
+            ),
             RouteMethod::Optimal if self.hop_paths() == HopPaths::Any => {
-                self.compose_optimal_any_path(source, destination)
+                self.compose_optimal_any_path(source, destination, solves)
             }
             RouteMethod::Optimal if self.sharing() == SharingPolicy::Exact => {
-                self.compose_joint(source, destination)
+                self.compose_joint(source, destination, solves)
             }
-            RouteMethod::Optimal => self.compose_optimal(source, destination),
+            RouteMethod::Optimal => self.compose_optimal(source, destination, solves),
         }?;
         if self.sharing().is_exact() {
-            plan.hop_solves = Some(self.hop_solves());
+            plan.hop_solves = Some(*solves);
         }
         Ok(plan)
     }

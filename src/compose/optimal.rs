@@ -3,6 +3,7 @@
 
 use super::plan::{Plan, PlanOutcome, RouteOptimality};
 use super::{Flight, HopEnd, Planner, Stop};
+use crate::eaas::exact_hop::HopSolveCounts;
 use crate::eaas::milp::ExactStatus;
 use crate::eaas::SharingPolicy;
 use crate::error::{Error, Result};
@@ -60,7 +61,7 @@ pub(crate) fn optimal_with_solved_sharing(sharing: SharingPolicy) -> Error {
     )
 }
 
-impl Planner<'_> {
+impl Planner {
     /// The least delivery time over every sequence of stops from `source` to `destination`,
     /// each hop along the shortest path by distance between its two stops and flown under the
     /// planner's sharing policy from full batteries.
@@ -94,7 +95,12 @@ impl Planner<'_> {
     /// At most one Dijkstra tree of the network and, per node with pads, one hop simulation
     /// and one exact node time for each settled node: O(K^2) hops for K nodes with pads, fewer
     /// when bounds prune; plus O(K^2) to pick the nodes to settle.
-    pub(crate) fn compose_optimal(&self, source: usize, destination: usize) -> Result<Plan> {
+    pub(crate) fn compose_optimal(
+        &self,
+        source: usize,
+        destination: usize,
+        solves: &mut HopSolveCounts,
+    ) -> Result<Plan> {
         if self.sharing() == SharingPolicy::Fair {
             return Err(optimal_with_solved_sharing(self.sharing()));
         }
@@ -103,7 +109,7 @@ impl Planner<'_> {
         let n = graph.node_count();
         let mut optimality = RouteOptimality::default();
         let (mut plan, direct_failure, bounds) =
-            match self.start_search(source, destination, &mut optimality, true)? {
+            match self.start_search(source, destination, &mut optimality, true, solves)? {
                 Start::Done(plan) => return Ok(plan),
                 Start::Search {
                     plan,
@@ -140,7 +146,8 @@ impl Planner<'_> {
                 if let Some(path) = graph.shortest_path(u, destination) {
                     let cost = cost_min[u] + path.distance_m / speed;
                     if improves(cost, u, cost_min[destination], &best[destination]) {
-                        let (flight, _) = self.fly_to_destination(&path, &full, &mut optimality)?;
+                        let (flight, _) =
+                            self.fly_to_destination(&path, &full, &mut optimality, solves)?;
                         optimality.arcs_flown += 1;
                         if let Some(flight) = flight {
                             cost_min[destination] = cost;
@@ -177,7 +184,7 @@ impl Planner<'_> {
                 if beyond(cost_min[u] + self.energy_bound_min(&path, v, 0.0)?, limit) {
                     continue;
                 }
-                let arc = self.arc_into_stop(u, v, path, &full, &mut optimality)?;
+                let arc = self.arc_into_stop(u, v, path, &full, &mut optimality, solves)?;
                 let tail_cost_min = cost_min[u];
                 relax(&mut cost_min, &mut best, v, tail_cost_min, speed, arc);
             }
@@ -199,6 +206,7 @@ impl Planner<'_> {
         destination: usize,
         optimality: &mut RouteOptimality,
         fly_direct: bool,
+        solves: &mut HopSolveCounts,
     ) -> Result<Start> {
         let graph = self.graph();
         let mut plan = self.empty_plan(source, destination);
@@ -227,7 +235,8 @@ impl Planner<'_> {
                 bounds,
             });
         }
-        let (flight, direct_failure) = self.fly_to_destination(&direct, &full, optimality)?;
+        let (flight, direct_failure) =
+            self.fly_to_destination(&direct, &full, optimality, solves)?;
         optimality.arcs_flown += 1;
         if let Some(flight) = flight {
             plan.push(self.hop(&direct, &full, flight, None));
@@ -252,8 +261,9 @@ impl Planner<'_> {
         path: Route,
         full: &[f64],
         optimality: &mut RouteOptimality,
+        solves: &mut HopSolveCounts,
     ) -> Result<Option<BestArc>> {
-        let flight = self.fly(&path, full, self.sharing(), HopEnd::Stop)?;
+        let flight = self.fly_counted(&path, full, self.sharing(), HopEnd::Stop, solves)?;
         optimality.arcs_flown += 1;
         count_unproven(&flight, optimality);
         if !flight.outcome.feasible {
@@ -321,14 +331,15 @@ impl Planner<'_> {
         path: &Route,
         full: &[f64],
         optimality: &mut RouteOptimality,
+        solves: &mut HopSolveCounts,
     ) -> Result<(Option<Flight>, Option<crate::eaas::HopFailure>)> {
-        let flight = self.fly(path, full, SharingPolicy::None, HopEnd::NoStop)?;
+        let flight = self.fly_counted(path, full, SharingPolicy::None, HopEnd::NoStop, solves)?;
         if flight.outcome.feasible {
             return Ok((Some(flight), None));
         }
         let mut failure = flight.outcome.failure;
         if self.sharing().shares() {
-            let flight = self.fly(path, full, self.sharing(), HopEnd::NoStop)?;
+            let flight = self.fly_counted(path, full, self.sharing(), HopEnd::NoStop, solves)?;
             count_unproven(&flight, optimality);
             if flight.outcome.feasible {
                 return Ok((Some(flight), None));

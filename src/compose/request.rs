@@ -1,7 +1,7 @@
 //! Planning one request end to end: pre-composition (formation, support drones, positions) then
 //! route composition.
 
-use super::{BaselineCosts, EdgeFactorCache, HopPaths, Plan, Planner, RouteMethod};
+use super::{BaselineCosts, EdgeFactorCache, HopPaths, IntoShared, Plan, Planner, RouteMethod};
 use crate::eaas::exact_hop::ExactSettings;
 use crate::eaas::SharingPolicy;
 use crate::error::{Error, Result};
@@ -13,6 +13,7 @@ use crate::problem::Swarm;
 use crate::problem::Wind;
 use crate::problem::{Network, Profile, Request, MAX_SUPPORT_DRONES, SCHEMA_VERSION};
 use serde::{Deserialize, Serialize};
+use std::sync::Arc;
 use std::time::Instant;
 
 /// The method combination a request is planned with.
@@ -74,9 +75,9 @@ impl PlanSettings {
 }
 
 /// What is fixed for every request on one network with one profile.
-pub struct Context<'a> {
-    graph: &'a SkywayGraph,
-    profile: &'a Profile,
+pub struct Context {
+    graph: Arc<SkywayGraph>,
+    profile: Arc<Profile>,
     /// The fixed formation, selected from the network's averaged wind.
     pub formation: FormationKind,
     /// The network's averaged wind.
@@ -173,21 +174,26 @@ pub struct SwarmChoice {
     pub swarm: Swarm,
 }
 
-impl<'a> Context<'a> {
+impl Context {
     /// Selects the formation from the network's averaged wind.
-    pub fn new(network: &Network, graph: &'a SkywayGraph, profile: &'a Profile) -> Context<'a> {
-        let (formation, average_wind) = precompose::select_formation(network, profile);
+    pub fn new(
+        network: &Network,
+        graph: impl IntoShared<SkywayGraph>,
+        profile: impl IntoShared<Profile>,
+    ) -> Context {
+        let (graph, profile) = (graph.into_shared(), profile.into_shared());
+        let (formation, average_wind) = precompose::select_formation(network, &profile);
         Context {
-            graph,
-            profile,
             formation,
             average_wind,
             exact: ExactSettings::default(),
             node_limit: Some(crate::node_time::DEFAULT_STOP_NODE_LIMIT),
             hop_paths: HopPaths::Rule,
             deadline: None,
-            factors: EdgeFactorCache::new(graph),
-            fingerprint: Fingerprint::of(network, profile),
+            factors: EdgeFactorCache::new(&graph),
+            fingerprint: Fingerprint::of(network, &profile),
+            graph,
+            profile,
         }
     }
 
@@ -202,7 +208,7 @@ impl<'a> Context<'a> {
     }
 
     /// A context with `settings` (those a plan records, see [`Context::settings`]).
-    pub fn with_settings(mut self, settings: &PlanSettings) -> Context<'a> {
+    pub fn with_settings(mut self, settings: &PlanSettings) -> Context {
         self.exact = ExactSettings {
             milp: settings.hop_model,
             prune_candidates: settings.prune_candidates,
@@ -218,19 +224,19 @@ impl<'a> Context<'a> {
     }
 
     /// The profile.
-    pub fn profile(&self) -> &'a Profile {
-        self.profile
+    pub fn profile(&self) -> &Profile {
+        &self.profile
     }
 
     /// The network's graph.
-    pub fn graph(&self) -> &'a SkywayGraph {
-        self.graph
+    pub fn graph(&self) -> &SkywayGraph {
+        &self.graph
     }
 
     /// A planner of `swarm` under `sharing` with this context's leg factors, exact settings and
     /// node limit: the one [`Context::plan`] composes with, for looking at a plan's hops again.
-    pub fn planner<'s>(&'s self, swarm: &'s Swarm, sharing: SharingPolicy) -> Planner<'s> {
-        Planner::new(self.graph, self.profile, swarm, sharing)
+    pub fn planner(&self, swarm: &Swarm, sharing: SharingPolicy) -> Planner {
+        Planner::new(&self.graph, &self.profile, swarm, sharing)
             .with_exact(self.exact)
             .with_node_limit(self.node_limit)
             .with_hop_paths(self.hop_paths)
@@ -266,7 +272,7 @@ impl<'a> Context<'a> {
             .map(|p| p.distance_m)
             .unwrap_or(f64::INFINITY);
         let support_decision = precompose::support_count(
-            self.profile,
+            &self.profile,
             &request.packages_kg,
             route_distance_m,
             &self.average_wind,
@@ -281,7 +287,7 @@ impl<'a> Context<'a> {
         }
         let support_drones = support.unwrap_or(support_decision.count);
         let swarm = precompose::build_swarm(
-            self.profile,
+            &self.profile,
             self.formation,
             &request.packages_kg,
             support_drones,

@@ -2,6 +2,7 @@
 
 use super::plan::{Plan, PlanOutcome};
 use super::{Flight, HopEnd, LookAhead, Planner, Stop};
+use crate::eaas::exact_hop::HopSolveCounts;
 use crate::eaas::milp::Objective;
 use crate::eaas::{fluid, milp::ExactStatus, SharingPolicy};
 use crate::error::Result;
@@ -21,7 +22,7 @@ const BOUND_MARGIN: f64 = 1e-9;
 /// A candidate stop: node, hop path, A* look-ahead (min), lower bound on its cost (min).
 type Candidate = (usize, Route, f64, f64);
 
-impl Planner<'_> {
+impl Planner {
     /// Exact and fair policies: every candidate with a lower bound on its cost `tt + nt + look-
     /// ahead`, `nt` bounded by the fluid LP of `models/eaas_fluid.md` (valid for every
     /// continuous-time schedule, so for every grid schedule and the fair layout), sorted by bound
@@ -111,6 +112,7 @@ impl Planner<'_> {
         source: usize,
         destination: usize,
         look_ahead: LookAhead,
+        solves: &mut HopSolveCounts,
     ) -> Result<Plan> {
         let graph = self.graph();
         let speed = self.speed_m_per_min();
@@ -132,7 +134,13 @@ impl Planner<'_> {
                 }));
             };
             // Lines 5-7: every drone reaches the destination on its own battery.
-            let flight = self.fly(&direct, &battery, SharingPolicy::None, HopEnd::NoStop)?;
+            let flight = self.fly_counted(
+                &direct,
+                &battery,
+                SharingPolicy::None,
+                HopEnd::NoStop,
+                solves,
+            )?;
             if flight.outcome.feasible {
                 plan.push(self.hop(&direct, &battery, flight, None));
                 return Ok(plan.finish());
@@ -140,7 +148,8 @@ impl Planner<'_> {
             let mut direct_failure = flight.outcome.failure;
             // Lines 8-10: in-flight sharing makes the direct flight possible.
             if self.sharing().shares() {
-                let flight = self.fly(&direct, &battery, self.sharing(), HopEnd::NoStop)?;
+                let flight =
+                    self.fly_counted(&direct, &battery, self.sharing(), HopEnd::NoStop, solves)?;
                 if flight.outcome.feasible {
                     plan.push(self.hop(&direct, &battery, flight, None));
                     return Ok(plan.finish());
@@ -226,7 +235,8 @@ impl Planner<'_> {
                         path
                     }
                 };
-                let flight = self.fly(&path, &battery, self.sharing(), HopEnd::Stop)?;
+                let flight =
+                    self.fly_counted(&path, &battery, self.sharing(), HopEnd::Stop, solves)?;
                 if !flight.outcome.feasible {
                     continue;
                 }

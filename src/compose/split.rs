@@ -6,6 +6,7 @@ use super::optimal::least_unsettled;
 use super::plan::{Plan, PlanOutcome, RouteOptimality};
 use super::request::{elapsed_ms, Context, RequestReport};
 use super::{HopEnd, Planner, RouteMethod};
+use crate::eaas::exact_hop::HopSolveCounts;
 use crate::eaas::milp::Reorder;
 use crate::eaas::SharingPolicy;
 use crate::error::Result;
@@ -126,7 +127,7 @@ pub struct JointSplit {
     pub splits: Vec<Option<GapSplit>>,
 }
 
-impl Context<'_> {
+impl Context {
     /// The joint optimum of `request` and the gap split of every heuristic report among
     /// `reports` (plans of this request in this context).
     ///
@@ -328,7 +329,7 @@ pub(crate) struct Replay {
     pub(crate) proven: bool,
 }
 
-impl Planner<'_> {
+impl Planner {
     /// Flies the stop sequence and hop paths of `plan` (a plan of this planner's swarm) again
     /// under this planner's policy, every hop from full batteries, with the exact node time at
     /// each stop; into the destination without sharing when that flies, as Algorithm 1 does.
@@ -337,6 +338,9 @@ impl Planner<'_> {
     /// E0019 (a backend error) when a hop path of `plan` is not a network path; those of
     /// [`Planner::fly`] and [`Planner::stop_at`].
     pub(crate) fn replay_exact(&self, plan: &Plan) -> Result<Replay> {
+        // The replay's solves are not a composition's: counted here and dropped.
+        let mut solves = HopSolveCounts::default();
+        let solves = &mut solves;
         let graph = self.graph();
         let full = self.full_battery_mah();
         let index = |id: &str| graph.index_of(id);
@@ -365,10 +369,10 @@ impl Planner<'_> {
             replay.rule_paths &= rule.is_some_and(|r| r.nodes == path.nodes);
             let arc = match hop.stop {
                 Some(_) => self
-                    .arc_into_stop(u, v, path.clone(), &full, &mut optimality)?
+                    .arc_into_stop(u, v, path.clone(), &full, &mut optimality, solves)?
                     .map(|a| (a.flight, a.stop, a.epsilon_min)),
                 None => self
-                    .fly_to_destination(&path, &full, &mut optimality)?
+                    .fly_to_destination(&path, &full, &mut optimality, solves)?
                     .0
                     .map(|f| (f, None, 0.0)),
             };
@@ -378,7 +382,10 @@ impl Planner<'_> {
                     Some(_) => HopEnd::Stop,
                     None => HopEnd::NoStop,
                 };
-                let failure = self.fly(&path, &full, self.sharing(), end)?.outcome.failure;
+                let failure = self
+                    .fly_counted(&path, &full, self.sharing(), end, solves)?
+                    .outcome
+                    .failure;
                 replay.proven &= optimality.proven();
                 replay.plan = replay.plan.fail(PlanOutcome::HopInfeasible {
                     from: hop.from.clone(),

@@ -7,7 +7,7 @@ use crate::eaas::milp::Objective;
 use crate::error::{Error, Result};
 use crate::problem::Request;
 
-impl Context<'_> {
+impl Context {
     /// Plans `request` with `options` and returns hop `index` of the plan as a hop file: its
     /// path, its departure batteries as planned, and the pads at its end (none into the
     /// destination), recorded as made with the profile called `profile_name`.
