@@ -11,7 +11,8 @@ mod common;
 use common::{flat_instance, repo_arg, shipped_profile, swarmplan};
 use proptest::prelude::*;
 use swarmplan::check::check_plan;
-use swarmplan::compose::{Context, HopEnd, HopPaths, PlanOptions, Planner, RouteMethod};
+use swarmplan::compose::{Context, HopPaths, PlanOptions, Planner, RouteMethod};
+use swarmplan::eaas::exact_hop::HopGoal;
 use swarmplan::eaas::SharingPolicy;
 use swarmplan::precompose::Positioning;
 use swarmplan::problem::{Network, Profile, Request, SkywayGraph, Swarm};
@@ -79,7 +80,7 @@ fn brute_force_dt(
             }
             let path = graph.path_from_nodes(&nodes).unwrap();
             let flight = planner
-                .fly(&path, &full, SharingPolicy::None, HopEnd::Stop)
+                .fly(&path, &full, SharingPolicy::None, HopGoal::NodeTimeMin)
                 .unwrap();
             if !flight.outcome.feasible {
                 continue;

@@ -237,12 +237,7 @@ struct ExactKw {
 }
 
 impl ExactKw {
-    fn context(
-        &self,
-        py: Python<'_>,
-        data: &InstanceData,
-        node_limit: u64,
-    ) -> PyResult<Context> {
+    fn context(&self, py: Python<'_>, data: &InstanceData, node_limit: u64) -> PyResult<Context> {
         let args = ExactArgs {
             backend: backend_of(py, &self.backend)?,
             hop_time_limit_s: self.hop_time_limit_s,

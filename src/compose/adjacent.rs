@@ -3,7 +3,8 @@
 //! "adjacent"`, see models/compose.md).
 
 use super::plan::{Plan, PlanOutcome};
-use super::{HopEnd, LookAhead, Planner};
+use super::{LookAhead, Planner};
+use crate::eaas::exact_hop::HopGoal;
 use crate::eaas::exact_hop::HopSolveCounts;
 use crate::eaas::SharingPolicy;
 use crate::error::Result;
@@ -61,7 +62,7 @@ impl Planner {
             }
             let mut direct_failure = None;
             for policy in policies {
-                let flight = self.fly_counted(&path, &full, policy, HopEnd::NoStop, solves)?;
+                let flight = self.fly_counted(&path, &full, policy, HopGoal::Feasible, solves)?;
                 if flight.outcome.feasible {
                     plan.push(self.hop(&path, &full, flight, None));
                     return Ok(plan.finish());
@@ -80,12 +81,12 @@ impl Planner {
                 let Some(path) = graph.path_from_nodes(&nodes) else {
                     continue;
                 };
-                let end = if v != destination && graph.pads(v) > 0 {
-                    HopEnd::Stop
+                let goal = if v != destination && graph.pads(v) > 0 {
+                    HopGoal::NodeTimeMin
                 } else {
-                    HopEnd::NoStop
+                    HopGoal::Feasible
                 };
-                let flight = self.fly_counted(&path, &full, self.sharing(), end, solves)?;
+                let flight = self.fly_counted(&path, &full, self.sharing(), goal, solves)?;
                 if !flight.outcome.feasible {
                     continue;
                 }

@@ -6,7 +6,8 @@
 
 use super::optimal::{improves, least_unsettled, relax, BestArc, Start};
 use super::plan::{Plan, PlanOutcome, RouteOptimality};
-use super::{HopEnd, HopPaths, Planner};
+use super::{HopPaths, Planner};
+use crate::eaas::exact_hop::HopGoal;
 use crate::eaas::exact_hop::HopSolveCounts;
 use crate::eaas::{SharingPolicy, ENERGY_TOL_MAH};
 use crate::error::{Error, Result};
@@ -180,8 +181,13 @@ impl Planner {
             let Some(u) = least_unsettled(&cost_min, &settled) else {
                 // The shortest path does not fly (else the search would have reached the
                 // destination): its first failure.
-                let flight =
-                    self.fly_counted(&direct, &full, SharingPolicy::None, HopEnd::NoStop, solves)?;
+                let flight = self.fly_counted(
+                    &direct,
+                    &full,
+                    SharingPolicy::None,
+                    HopGoal::Feasible,
+                    solves,
+                )?;
                 plan.route_optimality = Some(optimality);
                 return Ok(plan.fail(PlanOutcome::NoStopSequence {
                     from: graph.id_of(source).to_string(),
@@ -217,7 +223,7 @@ impl Planner {
                         &path,
                         &full,
                         SharingPolicy::None,
-                        HopEnd::NoStop,
+                        HopGoal::Feasible,
                         solves,
                     )?;
                     optimality.arcs_flown += 1;

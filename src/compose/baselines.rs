@@ -7,7 +7,8 @@
 //! that fly the same swarm compute them once ([`Planner::compose_with_baseline_costs`]).
 
 use super::plan::{Plan, PlanOutcome};
-use super::{FixedRoute, HopEnd, Planner};
+use super::{FixedRoute, Planner};
+use crate::eaas::exact_hop::HopGoal;
 use crate::eaas::exact_hop::HopSolveCounts;
 use crate::error::Result;
 use crate::network::floyd_warshall::{floyd_warshall, AllPairs};
@@ -212,7 +213,7 @@ impl Planner {
                     .expect("the route follows network edges");
                 // Reachability only: the hop's schedule is optimised once j is chosen.
                 let flight =
-                    self.fly_counted(&path, &battery, self.sharing(), HopEnd::NoStop, solves)?;
+                    self.fly_counted(&path, &battery, self.sharing(), HopGoal::Feasible, solves)?;
                 if !flight.outcome.feasible {
                     failure = flight.outcome.failure;
                     break;
@@ -235,8 +236,13 @@ impl Planner {
             }
             let flight = if self.sharing().is_exact() {
                 // The least node time at the chosen stop (the exact schedule) or the fair one.
-                let at_stop =
-                    self.fly_counted(&path, &battery, self.sharing(), HopEnd::Stop, solves)?;
+                let at_stop = self.fly_counted(
+                    &path,
+                    &battery,
+                    self.sharing(),
+                    HopGoal::NodeTimeMin,
+                    solves,
+                )?;
                 if at_stop.outcome.feasible {
                     at_stop
                 } else {

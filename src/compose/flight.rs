@@ -3,6 +3,7 @@
 
 use super::factors::{EdgeFactorCache, EdgeFactors};
 use super::plan::{Hop, LegFlown, Plan, Stop};
+use crate::eaas::exact_hop::HopGoal;
 use crate::eaas::exact_hop::{self, ExactSettings, HopSolve, HopSolveCounts};
 use crate::eaas::milp::Objective;
 use crate::eaas::{self, HopOutcome, HopProblem, SharingPolicy};
@@ -21,8 +22,8 @@ use std::sync::{Arc, Mutex, OnceLock};
 /// Rate matrices `[drone][slot]` per directed edge ([`Planner::edge_key`]), each computed once.
 type RateCache = Vec<OnceLock<Arc<Vec<Vec<f64>>>>>;
 
-/// Exact and fair flights from full batteries, by policy, path nodes and hop end.
-type FlightCache = Mutex<HashMap<(SharingPolicy, Vec<usize>, HopEnd), Flight>>;
+/// Exact and fair flights from full batteries, by policy, path nodes and goal.
+type FlightCache = Mutex<HashMap<(SharingPolicy, Vec<usize>, HopGoal), Flight>>;
 
 /// Data a [`Planner`] or a [`super::Context`] holds: given by reference (cloned once) or as an
 /// `Arc` (shared without a copy), so that both own what they read and can be sent to and shared
@@ -48,15 +49,6 @@ impl<T> IntoShared<T> for &Arc<T> {
     fn into_shared(self) -> Arc<T> {
         Arc::clone(self)
     }
-}
-
-/// Where a flown hop ends, which decides what the exact and fair policies optimise.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum HopEnd {
-    /// At a recharging stop: the least node time there.
-    Stop,
-    /// At the destination, or at a node passed without charging: any schedule that flies.
-    NoStop,
 }
 
 /// A hop flown under a policy: the replayed schedule, and for the exact and fair policies how
@@ -437,7 +429,8 @@ impl Planner {
 
     /// Flies `path` without stopping under `policy`: PB, FB and the baselines are simulated; the
     /// exact and fair policies solve their model, for the least node time at the stop ending the
-    /// hop when `end` is [`HopEnd::Stop`] and the node has pads, else for any schedule that flies.
+    /// hop when `goal` is [`HopGoal::NodeTimeMin`] and the node has pads, else for any schedule
+    /// that flies.
     /// An exact or fair hop departing with full batteries is solved once per planner: a second
     /// call returns the first flight, with its solve (so a composition that counts the solves of
     /// its flights, [`Planner::fly_counted`], counts the same whatever the planner flew before).
@@ -449,7 +442,7 @@ impl Planner {
         path: &Route,
         battery_mah: &[f64],
         policy: SharingPolicy,
-        end: HopEnd,
+        goal: HopGoal,
     ) -> Result<Flight> {
         let full = self
             .swarm
@@ -457,7 +450,7 @@ impl Planner {
             .iter()
             .zip(battery_mah)
             .all(|(d, &b)| b == d.capacity_mah);
-        let key = (policy, path.nodes.clone(), end);
+        let key = (policy, path.nodes.clone(), goal);
         if policy.is_exact() && full {
             let flights = self.flights.lock().unwrap_or_else(|e| e.into_inner());
             if let Some(flight) = flights.get(&key) {
@@ -474,7 +467,7 @@ impl Planner {
         }
         let last = *path.nodes.last().expect("a path has at least one node");
         let pads = self.graph.pads(last);
-        let objective = if end == HopEnd::Stop && pads > 0 {
+        let objective = if goal == HopGoal::NodeTimeMin && pads > 0 {
             Objective::NodeTime {
                 pads: pads as usize,
                 pad_rate_mah_per_min: self.pad_rate_mah_per_min(last),
@@ -510,10 +503,10 @@ impl Planner {
         path: &Route,
         battery_mah: &[f64],
         policy: SharingPolicy,
-        end: HopEnd,
+        goal: HopGoal,
         solves: &mut HopSolveCounts,
     ) -> Result<Flight> {
-        let flight = self.fly(path, battery_mah, policy, end)?;
+        let flight = self.fly(path, battery_mah, policy, goal)?;
         if let Some(solve) = &flight.solve {
             solves.add(solve);
         }

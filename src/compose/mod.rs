@@ -25,7 +25,7 @@ mod studied;
 pub use any_path::MAX_HOP_PATH_LABELS;
 pub use baselines::BaselineCosts;
 pub use factors::{EdgeFactorCache, EdgeFactors};
-pub use flight::{Flight, HopEnd, IntoShared, Planner};
+pub use flight::{Flight, IntoShared, Planner};
 pub use gaps::{lpt_gap, lpt_node_time_gaps, LptGapSummary, RouteGapSummary, RoutePair};
 pub use plan::{Hop, LegFlown, Plan, PlanOutcome, RouteOptimality, Stop};
 pub use request::{Context, PlanOptions, PlanSettings, RequestReport, RouteGap, SwarmChoice};

@@ -2,7 +2,8 @@
 //! arcs evaluated lazily. See models/compose.md, "Optimal route".
 
 use super::plan::{Plan, PlanOutcome, RouteOptimality};
-use super::{Flight, HopEnd, Planner, Stop};
+use super::{Flight, Planner, Stop};
+use crate::eaas::exact_hop::HopGoal;
 use crate::eaas::exact_hop::HopSolveCounts;
 use crate::eaas::milp::ExactStatus;
 use crate::eaas::SharingPolicy;
@@ -263,7 +264,7 @@ impl Planner {
         optimality: &mut RouteOptimality,
         solves: &mut HopSolveCounts,
     ) -> Result<Option<BestArc>> {
-        let flight = self.fly_counted(&path, full, self.sharing(), HopEnd::Stop, solves)?;
+        let flight = self.fly_counted(&path, full, self.sharing(), HopGoal::NodeTimeMin, solves)?;
         optimality.arcs_flown += 1;
         count_unproven(&flight, optimality);
         if !flight.outcome.feasible {
@@ -333,13 +334,14 @@ impl Planner {
         optimality: &mut RouteOptimality,
         solves: &mut HopSolveCounts,
     ) -> Result<(Option<Flight>, Option<crate::eaas::HopFailure>)> {
-        let flight = self.fly_counted(path, full, SharingPolicy::None, HopEnd::NoStop, solves)?;
+        let flight =
+            self.fly_counted(path, full, SharingPolicy::None, HopGoal::Feasible, solves)?;
         if flight.outcome.feasible {
             return Ok((Some(flight), None));
         }
         let mut failure = flight.outcome.failure;
         if self.sharing().shares() {
-            let flight = self.fly_counted(path, full, self.sharing(), HopEnd::NoStop, solves)?;
+            let flight = self.fly_counted(path, full, self.sharing(), HopGoal::Feasible, solves)?;
             count_unproven(&flight, optimality);
             if flight.outcome.feasible {
                 return Ok((Some(flight), None));

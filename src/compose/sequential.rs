@@ -1,7 +1,8 @@
 //! Algorithm 1 of the paper (sequential composition) and its A*-style variant.
 
 use super::plan::{Plan, PlanOutcome};
-use super::{Flight, HopEnd, LookAhead, Planner, Stop};
+use super::{Flight, LookAhead, Planner, Stop};
+use crate::eaas::exact_hop::HopGoal;
 use crate::eaas::exact_hop::HopSolveCounts;
 use crate::eaas::milp::Objective;
 use crate::eaas::{fluid, milp::ExactStatus, SharingPolicy};
@@ -138,7 +139,7 @@ impl Planner {
                 &direct,
                 &battery,
                 SharingPolicy::None,
-                HopEnd::NoStop,
+                HopGoal::Feasible,
                 solves,
             )?;
             if flight.outcome.feasible {
@@ -149,7 +150,7 @@ impl Planner {
             // Lines 8-10: in-flight sharing makes the direct flight possible.
             if self.sharing().shares() {
                 let flight =
-                    self.fly_counted(&direct, &battery, self.sharing(), HopEnd::NoStop, solves)?;
+                    self.fly_counted(&direct, &battery, self.sharing(), HopGoal::Feasible, solves)?;
                 if flight.outcome.feasible {
                     plan.push(self.hop(&direct, &battery, flight, None));
                     return Ok(plan.finish());
@@ -235,8 +236,13 @@ impl Planner {
                         path
                     }
                 };
-                let flight =
-                    self.fly_counted(&path, &battery, self.sharing(), HopEnd::Stop, solves)?;
+                let flight = self.fly_counted(
+                    &path,
+                    &battery,
+                    self.sharing(),
+                    HopGoal::NodeTimeMin,
+                    solves,
+                )?;
                 if !flight.outcome.feasible {
                     continue;
                 }

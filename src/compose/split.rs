@@ -5,7 +5,8 @@
 use super::optimal::least_unsettled;
 use super::plan::{Plan, PlanOutcome, RouteOptimality};
 use super::request::{elapsed_ms, Context, RequestReport};
-use super::{HopEnd, Planner, RouteMethod};
+use super::{Planner, RouteMethod};
+use crate::eaas::exact_hop::HopGoal;
 use crate::eaas::exact_hop::HopSolveCounts;
 use crate::eaas::milp::Reorder;
 use crate::eaas::SharingPolicy;
@@ -378,12 +379,12 @@ impl Planner {
             };
             let Some((flight, stop, epsilon_min)) = arc else {
                 // The flight that failed, from the planner's cache.
-                let end = match hop.stop {
-                    Some(_) => HopEnd::Stop,
-                    None => HopEnd::NoStop,
+                let goal = match hop.stop {
+                    Some(_) => HopGoal::NodeTimeMin,
+                    None => HopGoal::Feasible,
                 };
                 let failure = self
-                    .fly_counted(&path, &full, self.sharing(), end, solves)?
+                    .fly_counted(&path, &full, self.sharing(), goal, solves)?
                     .outcome
                     .failure;
                 replay.proven &= optimality.proven();

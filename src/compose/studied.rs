@@ -2,7 +2,7 @@
 //! the Python package's `Instance.hop` returns.
 
 use super::{Context, PlanOptions, RequestReport};
-use crate::eaas::hop_file::{HopEnd, HopFile, HOP_FILE_SCHEMA_VERSION};
+use crate::eaas::hop_file::{EndPads, HopFile, HOP_FILE_SCHEMA_VERSION};
 use crate::eaas::milp::Objective;
 use crate::error::{Error, Result};
 use crate::problem::Request;
@@ -52,7 +52,7 @@ impl Context {
             Objective::NodeTime {
                 pads,
                 pad_rate_mah_per_min,
-            } => Some(HopEnd {
+            } => Some(EndPads {
                 pads,
                 pad_rate_mah_per_min,
             }),

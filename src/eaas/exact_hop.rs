@@ -47,11 +47,14 @@ impl Default for ExactSettings {
     }
 }
 
-/// What the hop solve optimised.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+/// What a hop's exact or fair solve optimises, decided by where the hop ends: the one name of a
+/// hop's end the planner flies with ([`crate::compose::Planner::fly`]) and a plan records
+/// ([`HopSolve::goal`]); the model's [`Objective`] adds the end's pads.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum HopGoal {
-    /// The node time at the stop ending the hop, minutes.
+    /// The node time at the stop ending the hop, minutes (any schedule that flies when the node
+    /// has no pads).
     NodeTimeMin,
     /// Any schedule that flies (the hop ends at the destination or passes a node).
     Feasible,

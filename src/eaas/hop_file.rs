@@ -28,7 +28,7 @@ pub const HOP_FILE_SCHEMA_VERSION: u32 = 1;
 /// Pads at the node ending a hop.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct HopEnd {
+pub struct EndPads {
     /// Number of pads `k`.
     pub pads: usize,
     /// Charging rate of a pad, mAh/min.
@@ -55,7 +55,7 @@ pub struct HopFile {
     #[serde(default)]
     pub profile: Option<String>,
     /// Pads at `to`, or `None` when it has none (a request's destination).
-    pub end: Option<HopEnd>,
+    pub end: Option<EndPads>,
     /// The network and profile the hop was taken from, when known.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub made_on: Option<crate::problem::fingerprint::Fingerprint>,

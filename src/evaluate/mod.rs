@@ -15,7 +15,7 @@
 use crate::check::fly_as_written;
 use crate::compose::{Context, PlanOptions, RouteMethod, Stop};
 use crate::eaas::compare::{reference, run_method, HopMethod};
-use crate::eaas::hop_file::{HopEnd, HopFile, HOP_FILE_SCHEMA_VERSION};
+use crate::eaas::hop_file::{EndPads, HopFile, HOP_FILE_SCHEMA_VERSION};
 use crate::eaas::milp::{objective_of, ExactStatus, MilpOptions, Objective, Reorder};
 use crate::eaas::{
     travel_time_min, HopOutcome, HopProblem, PolicyOptions, SharingPolicy, Transfer,
@@ -405,7 +405,7 @@ pub fn evaluate_route(
         })?;
         let problem = planner.hop_problem(&path, &full)?;
         let pads = graph.pads(v);
-        let end = (into_stop && pads > 0).then(|| HopEnd {
+        let end = (into_stop && pads > 0).then(|| EndPads {
             pads: pads as usize,
             pad_rate_mah_per_min: planner.pad_rate_mah_per_min(v),
         });

@@ -374,13 +374,18 @@ pub fn enumerate_min_dt(
                     &path,
                     full,
                     swarmplan::eaas::SharingPolicy::None,
-                    swarmplan::compose::HopEnd::NoStop,
+                    swarmplan::eaas::exact_hop::HopGoal::Feasible,
                 )
                 .unwrap();
             let flies = plain.outcome.feasible
                 || sharing.shares()
                     && planner
-                        .fly(&path, full, sharing, swarmplan::compose::HopEnd::NoStop)
+                        .fly(
+                            &path,
+                            full,
+                            sharing,
+                            swarmplan::eaas::exact_hop::HopGoal::Feasible,
+                        )
                         .unwrap()
                         .outcome
                         .feasible;
@@ -399,7 +404,12 @@ pub fn enumerate_min_dt(
                 continue;
             };
             let flight = planner
-                .fly(&path, full, sharing, swarmplan::compose::HopEnd::Stop)
+                .fly(
+                    &path,
+                    full,
+                    sharing,
+                    swarmplan::eaas::exact_hop::HopGoal::NodeTimeMin,
+                )
                 .unwrap();
             if !flight.outcome.feasible {
                 continue;
