@@ -9,9 +9,10 @@
 
 use super::inputs::{ExactArgs, InstanceArgs, FINDINGS_195};
 use crate::bench::{self, BenchConfig, Shard, Summary, Verdict, DATA_FILES};
-use crate::compose::{Context, PlanOptions, RouteMethod};
+use crate::compose::{Context, RouteMethod};
 use crate::eaas::SharingPolicy;
 use crate::error::{Error, Result};
+use crate::experiment::{Baseline, Methods};
 use crate::precompose::Positioning;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -260,7 +261,13 @@ pub fn run_grid_with(
     }
     may_write(&out, args.force)?;
     bench::unmark_complete(&out)?;
-    let combos = combinations(&args);
+    let combos = Methods {
+        sharing: args.sharing.clone(),
+        positioning: args.positioning.clone(),
+        route: args.route.clone(),
+        support: None,
+    }
+    .combinations(Baseline::Once);
     for c in &combos {
         c.validate()?;
     }
@@ -357,32 +364,6 @@ pub fn run_grid_with(
         threads,
         elapsed_s,
     })
-}
-
-/// The combinations asked, in the order route, sharing, positioning; the baseline `none` once
-/// (under location-aware) when both positionings are asked, since it flies no support drone.
-fn combinations(args: &RunArgs) -> Vec<PlanOptions> {
-    let mut combos = Vec::new();
-    for &route in &args.route {
-        for &sharing in &args.sharing {
-            for &positioning in &args.positioning {
-                let both = args.positioning.contains(&Positioning::LocationAware);
-                if !sharing.flies_support() && both && positioning != Positioning::LocationAware {
-                    continue;
-                }
-                let o = PlanOptions {
-                    sharing,
-                    positioning,
-                    route,
-                    support: None,
-                };
-                if !combos.contains(&o) {
-                    combos.push(o);
-                }
-            }
-        }
-    }
-    combos
 }
 
 /// `E7005`: `dir` holds the files of a run and `--force` was not given.
