@@ -7,7 +7,7 @@ use super::inputs::{ExactArgs, InstanceArgs};
 use crate::compose::{Context, RouteMethod};
 use crate::eaas::SharingPolicy;
 use crate::error::{Error, Result};
-use crate::experiment::{summarise_grid, write_summaries, Baseline, Experiment, Methods};
+use crate::experiment::{self, summarise_grid, write_summaries, Baseline, Experiment, Methods};
 use crate::precompose::Positioning;
 use crate::problem::io;
 use std::path::PathBuf;
@@ -93,19 +93,7 @@ pub struct BatchArgs {
 
 /// Runs the subcommand.
 pub fn run(args: BatchArgs) -> Result<i32> {
-    let threads = args.threads.unwrap_or_else(|| {
-        std::thread::available_parallelism()
-            .map(|n| n.get())
-            .unwrap_or(1)
-    });
-    if threads == 0 {
-        return Err(Error::invalid(
-            "E0004",
-            "--threads",
-            "0 worker threads",
-            "give --threads 1 or more",
-        ));
-    }
+    let threads = experiment::threads(args.threads)?;
     let methods = if args.all {
         Methods::paper_grid(args.support)
     } else {
@@ -125,18 +113,7 @@ pub fn run(args: BatchArgs) -> Result<i32> {
         combo.validate()?;
     }
     let (instance, set) = args.instance.load_with_requests(args.requests.as_deref())?;
-    let mut requests = set.requests;
-    if let Some(n) = args.limit {
-        requests.truncate(n);
-    }
-    if requests.is_empty() {
-        return Err(Error::invalid(
-            "E0005",
-            "--request-limit / --requests",
-            "no request to plan",
-            "give a request file with requests and a --request-limit of 1 or more",
-        ));
-    }
+    let requests = experiment::first_requests(set.requests, args.limit)?;
     let instance = instance.with_requests(requests)?;
     let requests = &instance.requests;
     let mut context = Context::new(&instance.network, &instance.graph, &instance.profile);

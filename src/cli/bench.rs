@@ -12,7 +12,7 @@ use crate::bench::{self, BenchConfig, Shard, Summary, Verdict, DATA_FILES};
 use crate::compose::{Context, RouteMethod};
 use crate::eaas::SharingPolicy;
 use crate::error::{Error, Result};
-use crate::experiment::{Baseline, Methods};
+use crate::experiment::{self, Baseline, Methods};
 use crate::precompose::Positioning;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -238,19 +238,7 @@ pub fn run_grid_with(
     done: &(dyn Fn(u64) + Sync),
 ) -> Result<GridRun> {
     let out = args.out.clone().expect("clap requires --out");
-    let threads = args.threads.unwrap_or_else(|| {
-        std::thread::available_parallelism()
-            .map(|n| n.get())
-            .unwrap_or(1)
-    });
-    if threads == 0 {
-        return Err(Error::invalid(
-            "E0004",
-            "--threads",
-            "0 worker threads",
-            "give --threads 1 or more",
-        ));
-    }
+    let threads = experiment::threads(args.threads)?;
     if !(args.distance_bucket_km.is_finite() && args.distance_bucket_km > 0.0) {
         return Err(Error::invalid(
             "E7006",
@@ -280,16 +268,7 @@ pub fn run_grid_with(
         instance_args.load_or(&FINDINGS_195),
         super::inputs::load_requests(args.requests.as_deref()),
     )?;
-    let mut requests = set.requests;
-    requests.truncate(args.limit.unwrap_or(usize::MAX));
-    if requests.is_empty() {
-        return Err(Error::invalid(
-            "E0005",
-            "--request-limit / --requests",
-            "no request to plan",
-            "give a request file with requests and a --request-limit of 1 or more",
-        ));
-    }
+    let requests = experiment::first_requests(set.requests, args.limit)?;
     let instance = instance.with_requests(requests)?;
     let mut context = Context::new(&instance.network, &instance.graph, &instance.profile);
     context.exact = ExactArgs {

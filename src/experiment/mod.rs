@@ -16,8 +16,9 @@ pub use summary::{
 
 use crate::compose::{lpt_gap, Plan, PlanOptions, RouteMethod, RoutePair};
 use crate::eaas::SharingPolicy;
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::precompose::Positioning;
+use crate::problem::Request;
 use serde::{Serialize, Serializer};
 
 /// The method lists a run is asked for: every combination of a sharing policy, a support
@@ -147,6 +148,44 @@ impl Experiment {
             })
             .collect()
     }
+}
+
+/// The worker threads of a grid: `asked`, or the number of available cores.
+///
+/// # Errors
+/// E0004 for 0 threads.
+pub fn threads(asked: Option<usize>) -> Result<usize> {
+    let threads = asked.unwrap_or_else(|| {
+        std::thread::available_parallelism()
+            .map(|n| n.get())
+            .unwrap_or(1)
+    });
+    if threads == 0 {
+        return Err(Error::invalid(
+            "E0004",
+            "--threads",
+            "0 worker threads",
+            "give --threads 1 or more",
+        ));
+    }
+    Ok(threads)
+}
+
+/// The requests a run plans: the first `limit` of the set (all without one).
+///
+/// # Errors
+/// E0005 when none is left.
+pub fn first_requests(mut requests: Vec<Request>, limit: Option<usize>) -> Result<Vec<Request>> {
+    requests.truncate(limit.unwrap_or(usize::MAX));
+    if requests.is_empty() {
+        return Err(Error::invalid(
+            "E0005",
+            "--request-limit / --requests",
+            "no request to plan",
+            "give a request file with requests and a --request-limit of 1 or more",
+        ));
+    }
+    Ok(requests)
 }
 
 /// What a gap needs of one planned request: its delivery time when delivered, and whether every
