@@ -51,6 +51,7 @@ pub mod eaas;
 pub mod energy;
 pub mod error;
 pub mod evaluate;
+pub mod experiment;
 pub mod formation;
 pub mod generate;
 pub mod network;

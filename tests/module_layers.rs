@@ -95,6 +95,28 @@ fn domain_types_depend_on_nothing_but_errors() {
 }
 
 #[test]
+fn the_experiment_core_lies_below_bench_and_the_command_line() {
+    let uses = module_uses();
+    // `batch` (the command line) and `bench` share one experiment core, which knows neither.
+    assert!(uses["bench"].contains("experiment") && uses["cli"].contains("experiment"));
+    for above in ["bench", "check", "cli"] {
+        assert!(
+            !uses["experiment"].contains(above),
+            "experiment uses {above}"
+        );
+    }
+    // Nor the argument parser: the command line gives it plain values.
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src/experiment");
+    let mut files = Vec::new();
+    rust_files(&src, &mut files);
+    assert!(!files.is_empty());
+    for file in files {
+        let text = std::fs::read_to_string(&file).unwrap();
+        assert!(!text.contains("clap"), "{} names clap", file.display());
+    }
+}
+
+#[test]
 fn the_scan_sees_a_cycle_when_there_is_one() {
     let mut uses = module_uses();
     uses.get_mut("problem")

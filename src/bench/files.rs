@@ -31,18 +31,12 @@ fn csv_error(path: &Path, e: impl std::fmt::Display) -> Error {
 }
 
 fn write_csv<T: Serialize>(path: &Path, rows: &[T]) -> Result<()> {
-    let io_error = |e: csv::Error| Error::Io {
-        path: path.display().to_string(),
-        source: std::io::Error::other(e.to_string()),
-    };
-    let mut w = csv::Writer::from_path(path).map_err(io_error)?;
-    for r in rows {
-        w.serialize(r).map_err(io_error)?;
-    }
-    w.flush().map_err(|source| Error::Io {
+    let io_error = |source: std::io::Error| Error::Io {
         path: path.display().to_string(),
         source,
-    })
+    };
+    let file = std::fs::File::create(path).map_err(io_error)?;
+    crate::experiment::write_csv(file, rows).map_err(io_error)
 }
 
 fn read_csv<T: DeserializeOwned>(path: &Path) -> Result<Vec<T>> {

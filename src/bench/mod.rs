@@ -36,6 +36,7 @@ use crate::eaas::compare::{label_gaps, run_method, HopMethod};
 use crate::eaas::milp::{MilpOptions, Objective};
 use crate::eaas::{PolicyOptions, SharingPolicy};
 use crate::error::{Error, Result};
+use crate::experiment::{lpt_gaps, Delivery, Experiment};
 use crate::node_time;
 use crate::problem::Request;
 use crate::solver::ReferenceKind;
@@ -133,25 +134,25 @@ pub struct BenchConfig {
 }
 
 impl BenchConfig {
-    /// The combinations planned: those reported, then the optimal routes the route gaps need
-    /// that are not among them.
-    pub fn planned_combos(&self) -> Vec<PlanOptions> {
-        let mut combos = self.combos.clone();
-        for c in self.combos.iter().filter_map(|c| self.reference_of(c)) {
-            if !combos.contains(&c) {
-                combos.push(c);
-            }
+    /// The run's combinations and the references they are compared with.
+    pub fn experiment(&self) -> Experiment {
+        Experiment {
+            combos: self.combos.clone(),
+            route_gap: self.gap,
+            joint: self.joint,
         }
-        combos
     }
 
-    /// The optimal route a combination's route gap is measured against, when there is one.
+    /// The combinations planned: those reported, then the optimal routes the route gaps need
+    /// that are not among them ([`Experiment::planned`]).
+    pub fn planned_combos(&self) -> Vec<PlanOptions> {
+        self.experiment().planned()
+    }
+
+    /// The optimal route a combination's route gap is measured against, when there is one
+    /// ([`Experiment::route_reference`]).
     pub fn reference_of(&self, combo: &PlanOptions) -> Option<PlanOptions> {
-        (self.gap && combo.route != RouteMethod::Optimal && combo.sharing != SharingPolicy::Fair)
-            .then_some(PlanOptions {
-                route: RouteMethod::Optimal,
-                ..*combo
-            })
+        self.experiment().route_reference(combo)
     }
 }
 
@@ -392,7 +393,8 @@ type Row = (Vec<Kept>, Vec<JointRow>);
 /// What is kept of one request planned with one combination.
 struct Kept {
     row: RequestRow,
-    proven: bool,
+    /// The delivery time and its proof, for the route gaps.
+    delivery: Delivery,
     hops: Vec<HopRow>,
     stops: Vec<StopRow>,
     timings: Vec<TimingRow>,
@@ -415,7 +417,9 @@ pub fn run(
         .filter(|&i| config.shard.holds(i))
         .collect();
     let planned: Vec<Request> = positions.iter().map(|&i| requests[i].clone()).collect();
-    let combos = config.planned_combos();
+    let experiment = config.experiment();
+    let combos = experiment.planned();
+    let reference_of = experiment.route_reference_positions();
     let graph = context.graph();
     let readings = PolicyOptions::from(&context.profile().readings);
     let keep_row = |i: usize, request: &Request, reports: Vec<RequestReport>| -> Result<Row> {
@@ -427,7 +431,7 @@ pub fn run(
             (Some(s), Some(d)) => graph.distances_from_m(s)[d],
             _ => f64::NAN,
         };
-        let joint = if config.joint {
+        let joint = if experiment.joint {
             Some(context.joint_split(request, &reports)?)
         } else {
             None
@@ -495,16 +499,9 @@ pub fn run(
     for (row, joint) in grid {
         data.joint.extend(joint);
         // Route gaps against the optimal route planned with the request.
-        let reference: Vec<Option<(Option<f64>, bool)>> = config
-            .combos
+        let reference: Vec<Option<Delivery>> = reference_of
             .iter()
-            .map(|c| {
-                let j = combos
-                    .iter()
-                    .position(|x| Some(*x) == config.reference_of(c))?;
-                let r = &row[j];
-                Some((r.row.success.then_some(r.row.dt_min), r.proven))
-            })
+            .map(|j| j.map(|j| row[j].delivery))
             .collect();
         for (c, kept) in row.into_iter().enumerate() {
             // The optimal routes planned only as references keep their times alone.
@@ -513,16 +510,11 @@ pub fn run(
                 continue;
             };
             let mut r = kept.row;
-            if let Some((optimal_dt_min, proven)) = reference {
+            if let Some(reference) = reference {
                 r.route_gap_reference = "optimal".into();
-                r.optimal_dt_min = optimal_dt_min;
-                r.optimal_proven = Some(proven);
-                r.route_gap = crate::compose::RoutePair {
-                    heuristic_dt_min: r.success.then_some(r.dt_min),
-                    optimal_dt_min,
-                    optimal_proven: proven,
-                }
-                .gap();
+                r.optimal_dt_min = reference.dt_min;
+                r.optimal_proven = Some(reference.proven);
+                r.route_gap = kept.delivery.against(reference).gap();
             }
             data.requests.push(r);
             data.hops.extend(kept.hops);
@@ -545,14 +537,10 @@ fn keep_report(
     let o = report.options;
     let delivered = plan.delivered();
     let mut lpt = (0, 0, 0.0);
-    if delivered {
-        for stop in plan.hops.iter().filter_map(|h| h.stop.as_ref()) {
-            if let Some(gap) = lpt_gap(stop)? {
-                lpt.0 += 1;
-                lpt.1 += usize::from(gap.abs() <= 1e-9);
-                lpt.2 += gap;
-            }
-        }
+    for gap in lpt_gaps(plan)?.into_iter().flatten() {
+        lpt.0 += 1;
+        lpt.1 += usize::from(gap.abs() <= 1e-9);
+        lpt.2 += gap;
     }
     let mut kept = Kept {
         row: RequestRow {
@@ -591,7 +579,7 @@ fn keep_report(
             split_epsilon_min: None,
             split_proven: None,
         },
-        proven: plan.route_optimality.is_none_or(|r| r.proven()),
+        delivery: Delivery::of(plan),
         hops: Vec::new(),
         stops: Vec::new(),
         timings: vec![TimingRow {

@@ -9,9 +9,10 @@
 
 use super::inputs::{ExactArgs, InstanceArgs, FINDINGS_195};
 use crate::bench::{self, BenchConfig, Shard, Summary, Verdict, DATA_FILES};
-use crate::compose::{Context, PlanOptions, RouteMethod};
+use crate::compose::{Context, RouteMethod};
 use crate::eaas::SharingPolicy;
 use crate::error::{Error, Result};
+use crate::experiment::{self, Baseline, Methods};
 use crate::precompose::Positioning;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -237,19 +238,7 @@ pub fn run_grid_with(
     done: &(dyn Fn(u64) + Sync),
 ) -> Result<GridRun> {
     let out = args.out.clone().expect("clap requires --out");
-    let threads = args.threads.unwrap_or_else(|| {
-        std::thread::available_parallelism()
-            .map(|n| n.get())
-            .unwrap_or(1)
-    });
-    if threads == 0 {
-        return Err(Error::invalid(
-            "E0004",
-            "--threads",
-            "0 worker threads",
-            "give --threads 1 or more",
-        ));
-    }
+    let threads = experiment::threads(args.threads)?;
     if !(args.distance_bucket_km.is_finite() && args.distance_bucket_km > 0.0) {
         return Err(Error::invalid(
             "E7006",
@@ -260,7 +249,13 @@ pub fn run_grid_with(
     }
     may_write(&out, args.force)?;
     bench::unmark_complete(&out)?;
-    let combos = combinations(&args);
+    let combos = Methods {
+        sharing: args.sharing.clone(),
+        positioning: args.positioning.clone(),
+        route: args.route.clone(),
+        support: None,
+    }
+    .combinations(Baseline::Once);
     for c in &combos {
         c.validate()?;
     }
@@ -273,16 +268,7 @@ pub fn run_grid_with(
         instance_args.load_or(&FINDINGS_195),
         super::inputs::load_requests(args.requests.as_deref()),
     )?;
-    let mut requests = set.requests;
-    requests.truncate(args.limit.unwrap_or(usize::MAX));
-    if requests.is_empty() {
-        return Err(Error::invalid(
-            "E0005",
-            "--request-limit / --requests",
-            "no request to plan",
-            "give a request file with requests and a --request-limit of 1 or more",
-        ));
-    }
+    let requests = experiment::first_requests(set.requests, args.limit)?;
     let instance = instance.with_requests(requests)?;
     let mut context = Context::new(&instance.network, &instance.graph, &instance.profile);
     context.exact = ExactArgs {
@@ -357,32 +343,6 @@ pub fn run_grid_with(
         threads,
         elapsed_s,
     })
-}
-
-/// The combinations asked, in the order route, sharing, positioning; the baseline `none` once
-/// (under location-aware) when both positionings are asked, since it flies no support drone.
-fn combinations(args: &RunArgs) -> Vec<PlanOptions> {
-    let mut combos = Vec::new();
-    for &route in &args.route {
-        for &sharing in &args.sharing {
-            for &positioning in &args.positioning {
-                let both = args.positioning.contains(&Positioning::LocationAware);
-                if !sharing.flies_support() && both && positioning != Positioning::LocationAware {
-                    continue;
-                }
-                let o = PlanOptions {
-                    sharing,
-                    positioning,
-                    route,
-                    support: None,
-                };
-                if !combos.contains(&o) {
-                    combos.push(o);
-                }
-            }
-        }
-    }
-    combos
 }
 
 /// `E7005`: `dir` holds the files of a run and `--force` was not given.
