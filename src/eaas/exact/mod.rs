@@ -451,3 +451,43 @@ impl PadRows {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use good_lp::ResolutionError;
+
+    #[test]
+    fn backend_ends_follow_the_status_never_the_words() {
+        let no_solution = |status, report| {
+            backend_end::<()>(Ok(MilpOutcome::NoSolution { status, report }), "microlp")
+        };
+        // The words do not matter: a limit's stop is no solution, whatever the backend said.
+        let stopped = no_solution(BackendStatus::LimitNoSolution, ResolutionError::Other("x"));
+        assert!(matches!(stopped, Ok(BackendEnd::NoSolution)));
+        let infeasible = no_solution(BackendStatus::Infeasible, ResolutionError::Other("x"));
+        assert!(matches!(infeasible, Ok(BackendEnd::Infeasible)));
+        // An unbounded model is an error, in the backend's words.
+        let unbounded = no_solution(BackendStatus::Unbounded, ResolutionError::Unbounded);
+        match unbounded {
+            Err(Error::Backend { backend, message }) => {
+                assert_eq!(backend, "microlp");
+                assert_eq!(message, ResolutionError::Unbounded.to_string());
+            }
+            _ => panic!("an unbounded model is a backend error"),
+        }
+        let solved = backend_end(
+            Ok(MilpOutcome::Solved {
+                status: BackendStatus::Feasible,
+                solution: 7,
+            }),
+            "microlp",
+        );
+        assert!(matches!(
+            solved,
+            Ok(BackendEnd::Solved(BackendStatus::Feasible, 7))
+        ));
+        let failed = backend_end::<()>(Err(ResolutionError::Str("broken".into())), "highs");
+        assert!(matches!(failed, Err(Error::Backend { .. })));
+    }
+}
