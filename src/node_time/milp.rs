@@ -19,10 +19,12 @@ use super::{
 };
 use crate::error::{Error, Result};
 use crate::solver::lp_file::{write_model_file, LpCapture, LpSize, ModelFormat};
-use crate::solver::{run_on, MilpBackend, MilpJob, SolveStatus};
+use crate::solver::{
+    run_on, BackendStatus, MilpBackend, MilpJob, MilpModel, MilpOutcome, SolveStatus,
+};
 use good_lp::{
-    constraint, variable, Expression, ProblemVariables, Solution, SolutionStatus, SolverModel,
-    Variable, WithTimeLimit,
+    constraint, variable, Expression, ProblemVariables, Solution, SolverModel, Variable,
+    WithTimeLimit,
 };
 use std::path::Path;
 use std::time::Instant;
@@ -71,10 +73,12 @@ where
     (model, x)
 }
 
-/// Solves the assignment MILP for times sorted in decreasing order on any good_lp solver.
+/// Solves the assignment MILP for times sorted in decreasing order on any of
+/// [`run_on`]'s backends.
 ///
-/// Returns the pad of each sorted job and whether the backend proved optimality (a stop at the
-/// relative MIP gap asked for, at most [`super::REL_TOL`], counts as proven).
+/// Returns the pad of each sorted job and how the search ended: [`BackendStatus::Optimal`],
+/// [`BackendStatus::OptimalWithinGap`] (a stop at the relative MIP gap asked for, at most
+/// [`super::REL_TOL`], a proof within it) or [`BackendStatus::Feasible`] (stopped by a limit).
 ///
 /// # Errors
 /// [`Error::Backend`] when the backend fails or stops without any feasible assignment.
@@ -84,21 +88,21 @@ pub fn solve_with<S: good_lp::Solver>(
     pads: usize,
     sorted_desc: &[f64],
     time_limit_s: Option<f64>,
-) -> Result<(Vec<usize>, bool)>
+) -> Result<(Vec<usize>, BackendStatus)>
 where
-    S::Model: WithTimeLimit,
+    S::Model: MilpModel,
 {
     let n = sorted_desc.len();
     let (model, x) = build(solver, pads, sorted_desc, time_limit_s);
-    let solution = model.solve().map_err(|e| Error::Backend {
+    let fail = |e: good_lp::ResolutionError| Error::Backend {
         backend: backend_name.to_string(),
         message: format!("{e}; if a time limit was set, raise it"),
-    })?;
-    // A gap stop is a proof within the gap asked for, at most REL_TOL (HiGHS); a time stop is not.
-    let optimal = matches!(
-        solution.status(),
-        SolutionStatus::Optimal | SolutionStatus::GapLimit
-    );
+    };
+    // Every end without an assignment is an error, told in the backend's words.
+    let (status, solution) = match model.solve_outcome().map_err(fail)? {
+        MilpOutcome::Solved { status, solution } => (status, solution),
+        MilpOutcome::NoSolution { report, .. } => return Err(fail(report)),
+    };
     let mut pad_of = vec![0; n];
     for (j, xj) in x.iter().enumerate() {
         let chosen: Vec<usize> = (0..xj.len())
@@ -112,7 +116,7 @@ where
         }
         pad_of[j] = chosen[0];
     }
-    Ok((pad_of, optimal))
+    Ok((pad_of, status))
 }
 
 /// One solve of the assignment MILP, for [`run_on`].
@@ -123,15 +127,15 @@ struct PcmaxJob<'a> {
 }
 
 impl MilpJob for PcmaxJob<'_> {
-    type Output = (Vec<usize>, bool);
+    type Output = (Vec<usize>, BackendStatus);
 
     fn solve_with<S: good_lp::Solver>(
         self,
         solver: S,
         backend_name: &str,
-    ) -> Result<(Vec<usize>, bool)>
+    ) -> Result<(Vec<usize>, BackendStatus)>
     where
-        S::Model: WithTimeLimit + good_lp::SolverModel<Error = good_lp::ResolutionError>,
+        S::Model: MilpModel,
     {
         solve_with(
             solver,
@@ -188,7 +192,9 @@ pub fn milp(
         sorted_desc: &sorted,
         time_limit_s: t,
     };
-    let (pad_sorted, optimal) = run_on(backend, limits.node_limit, job)?;
+    let (pad_sorted, backend_status) = run_on(backend, limits.node_limit, job)?;
+    // An assignment comes with a proof (within the gap) or as a limit's incumbent.
+    let optimal = backend_status.proven();
     let mut pad_of = vec![0; n];
     for (pos, &j) in order.iter().enumerate() {
         pad_of[j] = pad_sorted[pos];

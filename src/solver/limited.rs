@@ -9,10 +9,14 @@
 //! One check of good_lp's is skipped with it: an integer variable whose bounds hold no integer,
 //! or lie outside `i32`, which good_lp reports when solving. The models here use binaries and
 //! continuous variables only.
+//!
+//! The search's end is read from microlp's own types ([`NodeLimited::solve_outcome`]): its
+//! errors `Infeasible` and `Unbounded`, an interrupted search without an incumbent, and its
+//! termination reason.
 
+use super::{variable_index, BackendStatus, MilpModel, MilpOutcome};
 use good_lp::solvers::microlp::MicroLpProblem;
 use good_lp::solvers::{ResolutionError, Solution, SolutionStatus, SolverModel, WithTimeLimit};
-use good_lp::variable::FormatWithVars;
 use good_lp::{Constraint, Variable};
 use std::time::Duration;
 
@@ -50,27 +54,13 @@ pub struct LimitedSolution {
     status: SolutionStatus,
 }
 
-/// The creation index of a good_lp variable: its name in good_lp's debug format, `v{index}`.
-fn index_of(variable: Variable) -> usize {
-    struct Named(Variable);
-    impl std::fmt::Display for Named {
-        fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-            self.0.format_debug(f)
-        }
-    }
-    let name = Named(variable).to_string();
-    name[1..]
-        .parse()
-        .expect("good_lp names variable i `v{i}` in its debug format")
-}
-
 impl Solution for LimitedSolution {
     fn status(&self) -> SolutionStatus {
         self.status
     }
 
     fn value(&self, variable: Variable) -> f64 {
-        self.values[index_of(variable)]
+        self.values[variable_index(variable)]
     }
 }
 
@@ -79,32 +69,10 @@ impl SolverModel for NodeLimited {
     type Error = ResolutionError;
 
     fn solve(self) -> Result<LimitedSolution, ResolutionError> {
-        let mut options = microlp::SolveOptions::default();
-        options.node_limit = self.node_limit;
-        options.time_limit = self.time_limit_s.map(Duration::from_secs_f64);
-        let outcome = self
-            .inner
-            .as_inner()
-            .solve_with(options)
-            .map_err(|e| match e {
-                microlp::Error::Infeasible => ResolutionError::Infeasible,
-                microlp::Error::Unbounded => ResolutionError::Unbounded,
-                other => ResolutionError::Str(other.to_string()),
-            })?;
-        let reason = outcome.termination_reason();
-        // An interrupted search without an incumbent: the message good_lp gives it.
-        let solution = outcome.into_solution().map_err(|_| {
-            ResolutionError::Other("Time limit reached before finding a feasible solution")
-        })?;
-        let status = match reason {
-            microlp::TerminationReason::ProvenOptimal => SolutionStatus::Optimal,
-            microlp::TerminationReason::MipGap => SolutionStatus::GapLimit,
-            _ => SolutionStatus::TimeLimit,
-        };
-        Ok(LimitedSolution {
-            values: solution.iter().map(|(_, v)| v).collect(),
-            status,
-        })
+        match self.solve_outcome()? {
+            MilpOutcome::Solved { solution, .. } => Ok(solution),
+            MilpOutcome::NoSolution { report, .. } => Err(report),
+        }
     }
 
     fn add_constraint(&mut self, c: Constraint) -> good_lp::constraint::ConstraintReference {
@@ -113,6 +81,50 @@ impl SolverModel for NodeLimited {
 
     fn name() -> &'static str {
         "Microlp"
+    }
+}
+
+impl MilpModel for NodeLimited {
+    fn solve_outcome(self) -> Result<MilpOutcome<LimitedSolution>, ResolutionError> {
+        let mut options = microlp::SolveOptions::default();
+        options.node_limit = self.node_limit;
+        options.time_limit = self.time_limit_s.map(Duration::from_secs_f64);
+        let no_solution = |status, report| Ok(MilpOutcome::NoSolution { status, report });
+        let outcome = match self.inner.as_inner().solve_with(options) {
+            Ok(outcome) => outcome,
+            Err(microlp::Error::Infeasible) => {
+                return no_solution(BackendStatus::Infeasible, ResolutionError::Infeasible)
+            }
+            Err(microlp::Error::Unbounded) => {
+                return no_solution(BackendStatus::Unbounded, ResolutionError::Unbounded)
+            }
+            Err(other) => return Err(ResolutionError::Str(other.to_string())),
+        };
+        let reason = outcome.termination_reason();
+        let Ok(solution) = outcome.into_solution() else {
+            // An interrupted search without an incumbent, reported as good_lp reports it.
+            return no_solution(
+                BackendStatus::LimitNoSolution,
+                ResolutionError::Other("Time limit reached before finding a feasible solution"),
+            );
+        };
+        let (status, good_lp_status) = match reason {
+            microlp::TerminationReason::ProvenOptimal => {
+                (BackendStatus::Optimal, SolutionStatus::Optimal)
+            }
+            microlp::TerminationReason::MipGap => {
+                (BackendStatus::OptimalWithinGap, SolutionStatus::GapLimit)
+            }
+            // The time or node limit (and any limit a later microlp adds).
+            _ => (BackendStatus::Feasible, SolutionStatus::TimeLimit),
+        };
+        Ok(MilpOutcome::Solved {
+            status,
+            solution: LimitedSolution {
+                values: solution.iter().map(|(_, v)| v).collect(),
+                status: good_lp_status,
+            },
+        })
     }
 }
 

@@ -98,6 +98,23 @@ impl WithMaxSeconds<LpCapture> for LpCapture {
     }
 }
 
+impl super::MilpModel for good_lp::solvers::lp_solvers::Model<LpCapture> {
+    /// The capture's "solve": every variable 0, reported optimal ([`LpCapture`]); `Err` only when
+    /// the model cannot be captured.
+    fn solve_outcome(
+        self,
+    ) -> std::result::Result<
+        super::MilpOutcome<good_lp::solvers::lp_solvers::LpSolution>,
+        good_lp::ResolutionError,
+    > {
+        use good_lp::SolverModel;
+        Ok(super::MilpOutcome::Solved {
+            status: super::BackendStatus::Optimal,
+            solution: self.solve()?,
+        })
+    }
+}
+
 /// Displays a `lp_solvers` expression as its LP text.
 struct Text<'e, E: ?Sized>(&'e E);
 

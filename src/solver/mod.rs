@@ -1,12 +1,20 @@
-//! Backend choice and solve outcome, shared by every exact method.
+//! Backend choice, options and solve outcome, shared by every exact method: the one place that
+//! builds a backend, applies its options and maps its own status to [`BackendStatus`].
 //!
 //! Backends are chosen by enum, never by string: `microlp` (pure Rust, default) and, with the
-//! `highs` feature, HiGHS. Convex models use clarabel directly. An outcome (optimal, feasible with
-//! an incumbent after a limit, infeasible) is data; `Err` is for bad input and broken backends.
-//! [`lp_file`] writes a good_lp model in CPLEX LP or free MPS format instead of solving it.
+//! `highs` feature, HiGHS, both through good_lp ([`run_on`]); convex models go to clarabel
+//! ([`conic`]). How a solve ended (optimal, feasible with an incumbent after a limit, stopped
+//! without one, infeasible, unbounded) is a [`BackendStatus`], data read from each backend's own
+//! status codes, never from its messages; `Err` is for bad input and broken backends. The
+//! models' statuses (`ExactStatus` of the hop models, [`SolveStatus`] of the node time) are
+//! derived from it by a match. [`lp_file`] writes a good_lp model in CPLEX LP or free MPS format
+//! instead of solving it.
 
 use serde::{Deserialize, Serialize};
 
+pub mod conic;
+#[cfg(feature = "highs")]
+pub mod highs;
 #[cfg(feature = "microlp")]
 pub mod limited;
 pub mod lp_file;
@@ -107,12 +115,114 @@ pub fn backend_not_built(name: &str) -> Option<String> {
 /// `1e-4` by default; microlp proves optimality outright).
 pub const MIP_REL_GAP: f64 = 1e-9;
 
-/// A model that can be built and solved on any good_lp MILP solver: what [`run_on`] runs.
+/// How a backend's solve ended: the one status every backend (microlp, HiGHS, clarabel) maps its
+/// own to, in this module. The models' statuses are derived from it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum BackendStatus {
+    /// Proven optimal.
+    Optimal,
+    /// Optimal within the relative gap asked for ([`MIP_REL_GAP`]), where the backend stopped
+    /// (HiGHS): a proof within that gap.
+    OptimalWithinGap,
+    /// An incumbent; a limit (time, nodes, iterations) stopped the search before the proof.
+    Feasible,
+    /// A limit stopped the search before any incumbent (for clarabel: before convergence).
+    LimitNoSolution,
+    /// Proven infeasible.
+    Infeasible,
+    /// Unbounded (for clarabel: dual infeasible).
+    Unbounded,
+}
+
+impl BackendStatus {
+    /// Optimality is proven: [`BackendStatus::Optimal`], or [`BackendStatus::OptimalWithinGap`]
+    /// (within [`MIP_REL_GAP`]).
+    pub fn proven(self) -> bool {
+        matches!(
+            self,
+            BackendStatus::Optimal | BackendStatus::OptimalWithinGap
+        )
+    }
+
+    /// The solve ended with values: the optimum or an incumbent.
+    pub fn has_solution(self) -> bool {
+        matches!(
+            self,
+            BackendStatus::Optimal | BackendStatus::OptimalWithinGap | BackendStatus::Feasible
+        )
+    }
+}
+
+/// How a MILP solve ended, with the values when there are any.
+#[derive(Debug)]
+pub enum MilpOutcome<S> {
+    /// The optimum or an incumbent: `status` is [`BackendStatus::Optimal`],
+    /// [`BackendStatus::OptimalWithinGap`] or [`BackendStatus::Feasible`].
+    Solved {
+        /// How the search ended.
+        status: BackendStatus,
+        /// The values.
+        solution: S,
+    },
+    /// No values: `status` is [`BackendStatus::Infeasible`], [`BackendStatus::Unbounded`] or
+    /// [`BackendStatus::LimitNoSolution`].
+    NoSolution {
+        /// How the search ended.
+        status: BackendStatus,
+        /// The backend's report of it, in the words good_lp gives the same end: for messages
+        /// only, never read for the status.
+        report: good_lp::ResolutionError,
+    },
+}
+
+impl<S> MilpOutcome<S> {
+    /// How the search ended.
+    pub fn status(&self) -> BackendStatus {
+        match self {
+            MilpOutcome::Solved { status, .. } | MilpOutcome::NoSolution { status, .. } => *status,
+        }
+    }
+}
+
+/// A model of one of [`run_on`]'s backends (or the capture of [`lp_file`]): built like any good_lp
+/// model, solved to a [`MilpOutcome`] read from the backend's status codes.
+pub trait MilpModel:
+    good_lp::SolverModel<Error = good_lp::ResolutionError> + good_lp::WithTimeLimit
+{
+    /// Solves the model.
+    ///
+    /// # Errors
+    /// A backend failure (an invalid model, a numerical or internal error), in good_lp's words;
+    /// every other end is a [`MilpOutcome`].
+    fn solve_outcome(
+        self,
+    ) -> std::result::Result<MilpOutcome<Self::Solution>, good_lp::ResolutionError>;
+}
+
+/// The creation index of a good_lp variable: its name in good_lp's debug format, `v{index}`
+/// (good_lp keeps the index itself private). The backends' columns follow it.
+#[cfg(any(feature = "microlp", feature = "highs"))]
+pub(crate) fn variable_index(variable: good_lp::Variable) -> usize {
+    use good_lp::variable::FormatWithVars;
+    struct Named(good_lp::Variable);
+    impl std::fmt::Display for Named {
+        fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+            self.0.format_debug(f)
+        }
+    }
+    let name = Named(variable).to_string();
+    name[1..]
+        .parse()
+        .expect("good_lp names variable i `v{i}` in its debug format")
+}
+
+/// A model that can be built and solved on any of [`run_on`]'s backends: what [`run_on`] runs.
 pub trait MilpJob {
     /// What a solve gives.
     type Output;
 
-    /// Builds the model and solves it with `solver`, named `backend_name` in errors.
+    /// Builds the model with `solver`, named `backend_name` in errors, and solves it
+    /// ([`MilpModel::solve_outcome`]).
     ///
     /// # Errors
     /// Bad input found while building, and backend failures.
@@ -122,7 +232,7 @@ pub trait MilpJob {
         backend_name: &str,
     ) -> crate::error::Result<Self::Output>
     where
-        S::Model: good_lp::WithTimeLimit + good_lp::SolverModel<Error = good_lp::ResolutionError>;
+        S::Model: MilpModel;
 }
 
 /// Runs `job` on `backend`, with the options every exact method uses: the relative gap
@@ -143,19 +253,7 @@ pub fn run_on<J: MilpJob>(
         #[cfg(feature = "microlp")]
         MilpBackend::Microlp => job.solve_with(limited::microlp_limited(node_limit), "microlp"),
         #[cfg(feature = "highs")]
-        MilpBackend::Highs => job.solve_with(
-            move |p| {
-                let mut model = good_lp::solvers::highs::highs(p)
-                    .set_threads(1)
-                    .set_option("mip_rel_gap", MIP_REL_GAP)
-                    .set_option("mip_abs_gap", 0.0);
-                if let Some(n) = node_limit {
-                    model = model.set_option("mip_max_nodes", n.min(i32::MAX as u64) as i32);
-                }
-                model
-            },
-            "highs",
-        ),
+        MilpBackend::Highs => job.solve_with(highs::highs_limited(node_limit), "highs"),
         #[cfg(not(any(feature = "microlp", feature = "highs")))]
         MilpBackend::NoBackend => {
             let _ = job;
@@ -164,7 +262,8 @@ pub fn run_on<J: MilpJob>(
     }
 }
 
-/// Outcome of a solve.
+/// Outcome of a node-time solve (and of a planner's stop), the model-level vocabulary written in
+/// outputs; a MILP's is derived from its [`BackendStatus`] by a match.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum SolveStatus {
@@ -232,5 +331,220 @@ pub mod seconds_or_none {
     /// Infinity for `null`, else the number.
     pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
         Ok(Option::<f64>::deserialize(d)?.unwrap_or(f64::INFINITY))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use good_lp::{constraint, variable, variables, Solution, SolverModel, WithTimeLimit};
+
+    /// A model over two variables, integers or not, for [`run_on`]: the status and, with values,
+    /// `(x, y)`.
+    struct TwoVariables {
+        integer: bool,
+        maximise_x_plus_2y: bool,
+        rows: fn(good_lp::Variable, good_lp::Variable) -> Vec<good_lp::Constraint>,
+    }
+
+    impl MilpJob for TwoVariables {
+        type Output = (BackendStatus, Option<(f64, f64)>);
+
+        fn solve_with<S: good_lp::Solver>(
+            self,
+            solver: S,
+            _backend_name: &str,
+        ) -> crate::error::Result<Self::Output>
+        where
+            S::Model: MilpModel,
+        {
+            let mut vars = variables!();
+            let def = || {
+                let v = variable().min(0);
+                if self.integer {
+                    v.integer()
+                } else {
+                    v
+                }
+            };
+            let x = vars.add(def());
+            let y = vars.add(def());
+            let goal = if self.maximise_x_plus_2y {
+                vars.maximise(x + 2 * y)
+            } else {
+                vars.minimise(x + y)
+            };
+            let mut model = goal.using(solver).with_time_limit(f64::INFINITY);
+            for row in (self.rows)(x, y) {
+                model.add_constraint(row);
+            }
+            let outcome = model.solve_outcome().unwrap();
+            let status = outcome.status();
+            Ok(match outcome {
+                MilpOutcome::Solved { solution, .. } => {
+                    (status, Some((solution.value(x), solution.value(y))))
+                }
+                MilpOutcome::NoSolution { .. } => (status, None),
+            })
+        }
+    }
+
+    #[test]
+    fn the_status_says_how_each_solve_ended() {
+        for backend in MilpBackend::all() {
+            // max x + 2y over integers with x + y <= 3.5, y <= 1.5: y <= 1, then x <= 2; (2, 1)
+            // gives 4, the only other maximal point (3, 0) gives 3.
+            let (status, values) = run_on(
+                backend,
+                None,
+                TwoVariables {
+                    integer: true,
+                    maximise_x_plus_2y: true,
+                    rows: |x, y| vec![constraint!(x + y <= 3.5), constraint!(y <= 1.5)],
+                },
+            )
+            .unwrap();
+            assert_eq!(status, BackendStatus::Optimal, "{backend}");
+            let (x, y) = values.unwrap();
+            assert!(
+                (x - 2.0).abs() < 1e-9 && (y - 1.0).abs() < 1e-9,
+                "{backend}: {x} {y}"
+            );
+            assert!(status.proven() && status.has_solution());
+
+            // x >= 2 and x <= 1: no point, integer or not.
+            let (status, values) = run_on(
+                backend,
+                None,
+                TwoVariables {
+                    integer: false,
+                    maximise_x_plus_2y: false,
+                    rows: |x, _| vec![constraint!(x >= 2), constraint!(x <= 1)],
+                },
+            )
+            .unwrap();
+            assert_eq!(status, BackendStatus::Infeasible, "{backend}");
+            assert_eq!(values, None);
+            assert!(!status.proven() && !status.has_solution());
+
+            // max x + 2y with y <= 1 and nothing above x: x grows without end.
+            let (status, values) = run_on(
+                backend,
+                None,
+                TwoVariables {
+                    integer: false,
+                    maximise_x_plus_2y: true,
+                    rows: |_, y| vec![constraint!(y <= 1)],
+                },
+            )
+            .unwrap();
+            // HiGHS's presolve may only tell "unbounded or infeasible", which counts as
+            // infeasible; microlp's simplex finds the ray.
+            assert!(
+                matches!(status, BackendStatus::Unbounded | BackendStatus::Infeasible),
+                "{backend}: {status:?}"
+            );
+            #[cfg(feature = "microlp")]
+            if backend == MilpBackend::Microlp {
+                assert_eq!(status, BackendStatus::Unbounded);
+            }
+            assert_eq!(values, None);
+        }
+    }
+
+    /// `2x + 2y = 3` over non-negative integers: the root relaxation is feasible (any point of
+    /// the segment, such as (1.5, 0)) but no integer point is (the left side is even).
+    fn even_equals_odd() -> TwoVariables {
+        TwoVariables {
+            integer: true,
+            maximise_x_plus_2y: false,
+            rows: |x, y| vec![constraint!(2 * x + 2 * y == 3)],
+        }
+    }
+
+    #[cfg(feature = "microlp")]
+    #[test]
+    fn microlp_stopped_before_an_incumbent_ends_without_a_solution() {
+        // No node beyond the root, whose relaxation is fractional: the search stops with no
+        // incumbent, there being no integer point at all.
+        let (status, values) = run_on(MilpBackend::Microlp, Some(0), even_equals_odd()).unwrap();
+        assert_eq!(status, BackendStatus::LimitNoSolution);
+        assert_eq!(values, None);
+        assert!(!status.proven() && !status.has_solution());
+        // Without the limit the branch and bound proves there is none.
+        let (status, _) = run_on(MilpBackend::Microlp, None, even_equals_odd()).unwrap();
+        assert_eq!(status, BackendStatus::Infeasible);
+    }
+
+    #[cfg(feature = "microlp")]
+    #[test]
+    fn microlps_ends_keep_good_lps_words_for_messages() {
+        use good_lp::ResolutionError;
+        let solve = |node_limit, job: TwoVariables| {
+            let mut vars = variables!();
+            let x = vars.add(variable().integer().min(0));
+            let y = vars.add(variable().integer().min(0));
+            let mut model = vars
+                .minimise(x + y)
+                .using(limited::microlp_limited(node_limit));
+            for row in (job.rows)(x, y) {
+                model.add_constraint(row);
+            }
+            model.solve_outcome().unwrap()
+        };
+        match solve(Some(0), even_equals_odd()) {
+            MilpOutcome::NoSolution {
+                status: BackendStatus::LimitNoSolution,
+                report: ResolutionError::Other(words),
+            } => assert_eq!(
+                words,
+                "Time limit reached before finding a feasible solution"
+            ),
+            other => panic!("{:?}", other.status()),
+        }
+        match solve(None, even_equals_odd()) {
+            MilpOutcome::NoSolution {
+                status: BackendStatus::Infeasible,
+                report: ResolutionError::Infeasible,
+            } => {}
+            other => panic!("{:?}", other.status()),
+        }
+    }
+
+    #[cfg(feature = "highs")]
+    #[test]
+    fn highs_model_statuses_map_to_one_status_each() {
+        use super::highs::status_of;
+        use ::highs::HighsModelStatus as M;
+        let ok = |m, primal, gap| status_of(m, primal, gap).unwrap();
+        assert_eq!(ok(M::Optimal, true, 0.0), BackendStatus::Optimal);
+        // A MILP stopped at the relative gap asked for.
+        assert_eq!(ok(M::Optimal, true, 1e-10), BackendStatus::OptimalWithinGap);
+        // An LP: HiGHS's MIP gap is infinite.
+        assert_eq!(ok(M::Optimal, true, f64::INFINITY), BackendStatus::Optimal);
+        assert_eq!(ok(M::ReachedTimeLimit, true, 0.5), BackendStatus::Feasible);
+        assert_eq!(
+            ok(M::ReachedSolutionLimit, true, 0.5),
+            BackendStatus::Feasible
+        );
+        assert_eq!(
+            ok(M::ReachedTimeLimit, false, f64::INFINITY),
+            BackendStatus::LimitNoSolution
+        );
+        assert_eq!(ok(M::Infeasible, false, 0.0), BackendStatus::Infeasible);
+        assert_eq!(
+            ok(M::UnboundedOrInfeasible, false, 0.0),
+            BackendStatus::Infeasible
+        );
+        assert_eq!(ok(M::Unbounded, false, 0.0), BackendStatus::Unbounded);
+        for failure in [
+            M::NotSet,
+            M::LoadError,
+            M::ModelError,
+            M::SolveError,
+            M::ModelEmpty,
+        ] {
+            assert!(status_of(failure, false, 0.0).is_err(), "{failure:?}");
+        }
     }
 }

@@ -37,10 +37,10 @@ use crate::eaas::{
     PolicyOptions, Role, SharingPolicy, SlotInterval, Transfer, ENERGY_TOL_MAH, TIME_TOL_MIN,
 };
 use crate::error::{Error, Result};
-use crate::solver::{run_on, MilpBackend, MilpJob, MIP_REL_GAP};
+use crate::solver::{run_on, BackendStatus, MilpBackend, MilpJob, MilpModel, MIP_REL_GAP};
 use good_lp::{
-    constraint, variable, Expression, ProblemVariables, ResolutionError, Solution, SolutionStatus,
-    SolverModel, Variable, WithTimeLimit,
+    constraint, variable, Expression, ProblemVariables, Solution, SolverModel, Variable,
+    WithTimeLimit,
 };
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
@@ -405,7 +405,7 @@ impl Model<'_> {
         time_limit_s: f64,
     ) -> Result<Solved>
     where
-        S::Model: WithTimeLimit + SolverModel<Error = ResolutionError>,
+        S::Model: MilpModel,
     {
         let Attempt {
             margin_mah,
@@ -571,8 +571,8 @@ impl Model<'_> {
             }
             _ => {}
         }
-        let solution = match backend_end(model.solve(), backend_name)? {
-            BackendEnd::Solved(s) => s,
+        let (status, solution) = match backend_end(model.solve_outcome(), backend_name)? {
+            BackendEnd::Solved(status, s) => (status, s),
             BackendEnd::Infeasible => return Ok(Solved::Infeasible),
             BackendEnd::NoSolution => return Ok(Solved::NoSolution),
         };
@@ -580,13 +580,16 @@ impl Model<'_> {
             Objective::MaxMinArrival => solution.value(g) / scale,
             _ => solution.value(g),
         });
-        let bound = match solution.status() {
-            SolutionStatus::Optimal => Some(value),
+        let bound = match status {
+            BackendStatus::Optimal => Some(value),
             // HiGHS's relative gap is (incumbent - bound) / max(|incumbent|, a tiny guard), so
             // the bound is at least the incumbent less the gap times max(|incumbent|, 1); only
             // the node time (a minimisation) has integer variables.
-            SolutionStatus::GapLimit => Some(value - MIP_REL_GAP * value.abs().max(1.0)),
-            _ => None,
+            BackendStatus::OptimalWithinGap => Some(value - MIP_REL_GAP * value.abs().max(1.0)),
+            BackendStatus::Feasible
+            | BackendStatus::LimitNoSolution
+            | BackendStatus::Infeasible
+            | BackendStatus::Unbounded => None,
         };
         Ok(Solved::Values(Values {
             theta: theta
@@ -680,7 +683,7 @@ impl MilpJob for ModelJob<'_> {
 
     fn solve_with<S: good_lp::Solver>(self, solver: S, backend_name: &str) -> Result<Solved>
     where
-        S::Model: WithTimeLimit + SolverModel<Error = ResolutionError>,
+        S::Model: MilpModel,
     {
         self.model.solve_with(
             solver,

@@ -27,11 +27,10 @@ use crate::eaas::reorder::{busy_drones, choose_consumer_slot, slot_distance_m};
 use crate::eaas::simulate::evaluate;
 use crate::eaas::{sharing_budget_mah, HopProblem, Role, Transfer, TIME_TOL_MIN};
 use crate::error::{Error, Result};
-use clarabel::algebra::CscMatrix;
-use clarabel::solver::{
-    DefaultSettings, DefaultSolver, IPSolver, NonnegativeConeT, SolverStatus, SupportedConeT,
-    ZeroConeT,
+use crate::solver::conic::{
+    self, ConicSettings, ConicValues, CscMatrix, NonnegativeConeT, SupportedConeT, ZeroConeT,
 };
+use crate::solver::BackendStatus;
 use std::time::Instant;
 
 /// A linear row `sum coef x <= rhs` (or `= rhs`).
@@ -203,13 +202,14 @@ impl Fluid {
         self.battery(problem, d, self.legs.len())
     }
 
-    /// Solves `min 1/2 x'Px + q'x` over the rows; `p_diag` gives P's diagonal entries.
+    /// Solves `min 1/2 x'Px + q'x` over the rows; `p_diag` gives P's diagonal entries. The
+    /// status, and the answer when optimal.
     fn solve(
         &self,
         q: &[f64],
         p_diag: &[(usize, f64)],
         time_limit_s: f64,
-    ) -> Result<(SolverStatus, Vec<f64>, f64, f64)> {
+    ) -> Result<(ExactStatus, Option<ConicValues>)> {
         let (mut ri, mut ci, mut vals, mut rhs) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
         for (r, row) in self.eq.iter().chain(&self.le).enumerate() {
             for &(c, v) in &row.terms {
@@ -226,37 +226,28 @@ impl Fluid {
         let p = CscMatrix::new_from_triplets(self.n_vars, self.n_vars, pi, pj, pv);
         let cones: Vec<SupportedConeT<f64>> =
             vec![ZeroConeT(self.eq.len()), NonnegativeConeT(self.le.len())];
-        let settings = DefaultSettings {
-            verbose: false,
-            time_limit: time_limit_s,
-            tol_gap_abs: 1e-10,
-            tol_gap_rel: 1e-10,
-            tol_feas: 1e-10,
-            ..DefaultSettings::default()
+        let settings = ConicSettings {
+            tolerance: 1e-10,
+            time_limit_s: Some(time_limit_s),
         };
-        let mut solver =
-            DefaultSolver::new(&p, q, &a, &rhs, &cones, settings).map_err(|e| Error::Backend {
-                backend: "clarabel".into(),
-                message: format!("{e:?}"),
-            })?;
-        solver.solve();
-        let s = &solver.solution;
-        Ok((s.status, s.x.clone(), s.obj_val, s.obj_val_dual))
+        let out = conic::solve(&p, q, &a, &rhs, &cones, settings)?;
+        Ok((status_of(out.status)?, out.values))
     }
 }
 
-/// Maps clarabel's status to an outcome; errors for numerical failures.
-fn status_of(status: SolverStatus) -> Result<ExactStatus> {
+/// The outcome of the relaxation from clarabel's; errors for an unbounded relaxation (every
+/// variable of the relaxation is bounded, so never).
+fn status_of(status: BackendStatus) -> Result<ExactStatus> {
     match status {
-        SolverStatus::Solved | SolverStatus::AlmostSolved => Ok(ExactStatus::Optimal),
-        SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => {
-            Ok(ExactStatus::Infeasible)
+        BackendStatus::Optimal => Ok(ExactStatus::Optimal),
+        BackendStatus::Infeasible => Ok(ExactStatus::Infeasible),
+        BackendStatus::LimitNoSolution => Ok(ExactStatus::TimeLimitNoSolution),
+        BackendStatus::Unbounded | BackendStatus::OptimalWithinGap | BackendStatus::Feasible => {
+            Err(Error::Backend {
+                backend: "clarabel".into(),
+                message: format!("stopped with status {status:?}; report it with the instance"),
+            })
         }
-        SolverStatus::MaxTime | SolverStatus::MaxIterations => Ok(ExactStatus::TimeLimitNoSolution),
-        s => Err(Error::Backend {
-            backend: "clarabel".into(),
-            message: format!("stopped with status {s:?}; report it with the instance"),
-        }),
     }
 }
 
@@ -341,13 +332,13 @@ pub fn bound(
         }
         Objective::Feasible => {}
     }
-    let (status, _x, primal, dual) = m.solve(&q, &[], time_limit_s)?;
+    let (status, values) = m.solve(&q, &[], time_limit_s)?;
     let mut out = ExactOutcome::infeasible(0.0, m.legs.len());
-    out.status = status_of(status)?;
-    if out.status == ExactStatus::Optimal {
+    out.status = status;
+    if let Some(v) = values {
         // Minimisation of sign * goal: the smaller of primal and dual is the safer lower bound.
-        out.model_objective = Some(sign * primal);
-        out.bound = Some(sign * primal.min(dual));
+        out.model_objective = Some(sign * v.primal);
+        out.bound = Some(sign * v.primal.min(v.dual));
     }
     out.solve_ms = start.elapsed().as_secs_f64() * 1e3;
     Ok(out)
@@ -402,13 +393,13 @@ pub fn fair(
             None => linear_const += (cap - c0).powi(2),
         }
     }
-    let (status, x, primal, _dual) = m.solve(&q, &p_diag, time_limit_s)?;
+    let (status, values) = m.solve(&q, &p_diag, time_limit_s)?;
     let mut out = ExactOutcome::infeasible(0.0, m.legs.len());
-    out.status = status_of(status)?;
-    if out.status != ExactStatus::Optimal {
+    out.status = status;
+    let Some(ConicValues { x, primal, .. }) = values else {
         out.solve_ms = start.elapsed().as_secs_f64() * 1e3;
         return Ok(out);
-    }
+    };
     let value = primal + constant + linear_const;
     out.model_objective = Some(value);
     out.bound = Some(value);

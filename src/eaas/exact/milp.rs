@@ -35,10 +35,10 @@ use crate::error::{Error, Result};
 pub use crate::solver::lp_file::LpSize;
 pub use crate::solver::lp_file::ModelFormat;
 use crate::solver::lp_file::{write_model_file, LpCapture};
-use crate::solver::{run_on, MilpBackend, MilpJob};
+use crate::solver::{run_on, MilpBackend, MilpJob, MilpModel};
 use good_lp::{
-    constraint, variable, Expression, ProblemVariables, ResolutionError, Solution, SolutionStatus,
-    SolverModel, Variable, WithTimeLimit,
+    constraint, variable, Expression, ProblemVariables, Solution, SolverModel, Variable,
+    WithTimeLimit,
 };
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -200,7 +200,7 @@ fn solve_with<S: good_lp::Solver>(
     time_limit_s: f64,
 ) -> Result<Solved>
 where
-    S::Model: WithTimeLimit + SolverModel<Error = ResolutionError>,
+    S::Model: MilpModel,
 {
     let n = problem.drones.len();
     let np = grid.periods();
@@ -399,15 +399,13 @@ where
             names,
         }));
     }
-    let solution = match backend_end(model.solve(), backend_name)? {
-        BackendEnd::Solved(s) => s,
+    let (status, solution) = match backend_end(model.solve_outcome(), backend_name)? {
+        BackendEnd::Solved(status, s) => (status, s),
         BackendEnd::Infeasible => return Ok(Solved::Infeasible),
         BackendEnd::NoSolution => return Ok(Solved::NoSolution),
     };
-    let proven = matches!(
-        solution.status(),
-        SolutionStatus::Optimal | SolutionStatus::GapLimit
-    );
+    // A stop at the relative gap asked for is a proof within it; a limit's stop is not.
+    let proven = status.proven();
     let value = match goal {
         Some(g) => solution.value(g),
         None => 0.0,
@@ -457,7 +455,7 @@ impl MilpJob for GridJob<'_> {
 
     fn solve_with<S: good_lp::Solver>(self, solver: S, backend_name: &str) -> Result<Solved>
     where
-        S::Model: WithTimeLimit + SolverModel<Error = ResolutionError>,
+        S::Model: MilpModel,
     {
         solve_with(
             solver,

@@ -15,7 +15,7 @@
 use super::{reorder, validate, HopOutcome, HopProblem, Role, Transfer};
 use crate::error::{Error, Result, Violation};
 use crate::node_time;
-use crate::solver::SolveStatus;
+use crate::solver::{BackendStatus, MilpOutcome, SolveStatus};
 use serde::{Deserialize, Serialize};
 
 pub mod continuous;
@@ -333,40 +333,38 @@ pub fn moves(problem: &HopProblem, mode: Reorder) -> Vec<Move> {
     out
 }
 
-/// How a good_lp backend call ended.
+/// How a MILP backend's solve ended, in the hop models' terms.
 pub(crate) enum BackendEnd<S> {
-    /// Values, with the solver's solution.
-    Solved(S),
+    /// Values, with how the search ended: [`BackendStatus::Optimal`],
+    /// [`BackendStatus::OptimalWithinGap`] or [`BackendStatus::Feasible`].
+    Solved(BackendStatus, S),
     /// Proven infeasible.
     Infeasible,
     /// Stopped by its limit before any incumbent.
     NoSolution,
 }
 
-/// Reads a good_lp backend's answer: infeasibility and a limit without an incumbent are outcomes,
-/// anything else an [`Error::Backend`].
+/// Reads a MILP backend's outcome ([`crate::solver::MilpModel::solve_outcome`]): infeasibility
+/// and a limit without an incumbent are outcomes; an unbounded model and a backend failure are
+/// an [`Error::Backend`].
 pub(crate) fn backend_end<S>(
-    answer: std::result::Result<S, good_lp::ResolutionError>,
+    answer: std::result::Result<MilpOutcome<S>, good_lp::ResolutionError>,
     backend_name: &str,
 ) -> Result<BackendEnd<S>> {
-    use good_lp::ResolutionError;
-    match answer {
-        Ok(s) => Ok(BackendEnd::Solved(s)),
-        Err(ResolutionError::Infeasible) => Ok(BackendEnd::Infeasible),
-        // microlp says "Time limit"; HiGHS stopped by its limit before any incumbent reports
-        // the model status NoSolutionFound.
-        Err(ResolutionError::Other(msg))
-            if msg.contains("Time limit") || msg.contains("NoSolutionFound") =>
-        {
-            Ok(BackendEnd::NoSolution)
-        }
-        Err(ResolutionError::Str(msg)) if msg.contains("NoSolutionFound") => {
-            Ok(BackendEnd::NoSolution)
-        }
-        Err(e) => Err(Error::Backend {
-            backend: backend_name.to_string(),
-            message: e.to_string(),
-        }),
+    let fail = |e: good_lp::ResolutionError| Error::Backend {
+        backend: backend_name.to_string(),
+        message: e.to_string(),
+    };
+    match answer.map_err(fail)? {
+        MilpOutcome::Solved { status, solution } => Ok(BackendEnd::Solved(status, solution)),
+        MilpOutcome::NoSolution { status, report } => match status {
+            BackendStatus::Infeasible => Ok(BackendEnd::Infeasible),
+            BackendStatus::LimitNoSolution => Ok(BackendEnd::NoSolution),
+            BackendStatus::Unbounded
+            | BackendStatus::Optimal
+            | BackendStatus::OptimalWithinGap
+            | BackendStatus::Feasible => Err(fail(report)),
+        },
     }
 }
 
@@ -452,5 +450,45 @@ impl PadRows {
                 .sum();
             model.add_constraint(constraint!(load <= makespan));
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use good_lp::ResolutionError;
+
+    #[test]
+    fn backend_ends_follow_the_status_never_the_words() {
+        let no_solution = |status, report| {
+            backend_end::<()>(Ok(MilpOutcome::NoSolution { status, report }), "microlp")
+        };
+        // The words do not matter: a limit's stop is no solution, whatever the backend said.
+        let stopped = no_solution(BackendStatus::LimitNoSolution, ResolutionError::Other("x"));
+        assert!(matches!(stopped, Ok(BackendEnd::NoSolution)));
+        let infeasible = no_solution(BackendStatus::Infeasible, ResolutionError::Other("x"));
+        assert!(matches!(infeasible, Ok(BackendEnd::Infeasible)));
+        // An unbounded model is an error, in the backend's words.
+        let unbounded = no_solution(BackendStatus::Unbounded, ResolutionError::Unbounded);
+        match unbounded {
+            Err(Error::Backend { backend, message }) => {
+                assert_eq!(backend, "microlp");
+                assert_eq!(message, ResolutionError::Unbounded.to_string());
+            }
+            _ => panic!("an unbounded model is a backend error"),
+        }
+        let solved = backend_end(
+            Ok(MilpOutcome::Solved {
+                status: BackendStatus::Feasible,
+                solution: 7,
+            }),
+            "microlp",
+        );
+        assert!(matches!(
+            solved,
+            Ok(BackendEnd::Solved(BackendStatus::Feasible, 7))
+        ));
+        let failed = backend_end::<()>(Err(ResolutionError::Str("broken".into())), "highs");
+        assert!(matches!(failed, Err(Error::Backend { .. })));
     }
 }

@@ -19,10 +19,8 @@
 
 use crate::node_time::search::{Budget, CAP_SLACK};
 use crate::node_time::REL_TOL;
-use clarabel::algebra::CscMatrix;
-use clarabel::solver::{
-    DefaultSettings, DefaultSolver, IPSolver, NonnegativeConeT, SolverStatus, SupportedConeT,
-};
+use crate::solver::conic::{self, ConicSettings, CscMatrix, NonnegativeConeT, SupportedConeT};
+use crate::solver::BackendStatus;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 use std::collections::{HashMap, HashSet};
@@ -269,21 +267,16 @@ fn restricted_dual(d: &[u64], patterns: &[Vec<u64>]) -> Option<(Vec<f64>, f64, V
     let q: Vec<f64> = d.iter().map(|&x| -(x as f64)).collect();
     let p = CscMatrix::new_from_triplets(nt, nt, Vec::new(), Vec::new(), Vec::new());
     let cones: Vec<SupportedConeT<f64>> = vec![NonnegativeConeT(rows + nt)];
-    let settings = DefaultSettings {
-        verbose: false,
-        tol_gap_abs: 1e-9,
-        tol_gap_rel: 1e-9,
-        tol_feas: 1e-9,
-        ..DefaultSettings::default()
+    let settings = ConicSettings {
+        tolerance: 1e-9,
+        time_limit_s: None,
     };
-    let mut solver = DefaultSolver::new(&p, &q, &a, &b, &cones, settings).ok()?;
-    solver.solve();
-    let s = &solver.solution;
-    match s.status {
-        SolverStatus::Solved | SolverStatus::AlmostSolved => {
-            let y: Vec<f64> = s.x.iter().map(|&x| x.max(0.0)).collect();
-            let x: Vec<f64> = s.z[..rows].iter().map(|&z| z.max(0.0)).collect();
-            Some((y, -s.obj_val, x))
+    let out = conic::solve(&p, &q, &a, &b, &cones, settings).ok()?;
+    match (out.status, out.values) {
+        (BackendStatus::Optimal, Some(v)) => {
+            let y: Vec<f64> = v.x.iter().map(|&x| x.max(0.0)).collect();
+            let x: Vec<f64> = v.z[..rows].iter().map(|&z| z.max(0.0)).collect();
+            Some((y, -v.primal, x))
         }
         _ => None,
     }
