@@ -333,3 +333,60 @@ proptest! {
         }
     }
 }
+
+/// The one dispatch of the exact formulations: the continuous model gives each hand-computed
+/// optimum of the known-optima table as a schedule, the fluid LP a bound at or below it
+/// (minimising) or at or above it (maximising) and no schedule, the grid MILP a schedule at or
+/// above it (every grid schedule is a continuous one), and the fair QP its layout with no bound
+/// on the hop's objective.
+#[test]
+fn the_dispatch_runs_every_formulation_with_its_outcome_type() {
+    use swarmplan::eaas::exact::dispatch::{solve, Solved};
+    use swarmplan::eaas::exact::Formulation;
+    use swarmplan::eaas::PolicyOptions;
+    let t = known_optima();
+    for k in &t.instances {
+        let milp = MilpOptions {
+            reorder: k.reorder,
+            time_limit_s: 60.0,
+            ..MilpOptions::default()
+        };
+        let maximise = matches!(k.objective, Objective::MaxMinArrival);
+        let at_or_beyond = |v: f64| {
+            let tol = 1e-6 * (1.0 + v.abs());
+            if maximise {
+                v <= k.continuous_optimum + tol
+            } else {
+                v >= k.continuous_optimum - tol
+            }
+        };
+        for f in Formulation::ALL {
+            let solved =
+                solve(f, &k.problem, &k.objective, &milp, &PolicyOptions::default()).unwrap();
+            match (f, solved) {
+                (Formulation::Continuous, Solved::Schedule(o)) => {
+                    assert!(o.objective.is_some_and(|v| close(v, k.continuous_optimum)));
+                }
+                (Formulation::Fluid, Solved::Bound(b)) => {
+                    let bound = b.bound.unwrap();
+                    // The bound is on the other side of the optimum from every schedule.
+                    assert!(
+                        close(bound, k.continuous_optimum) || !at_or_beyond(bound),
+                        "{}: bound {bound} beyond {}",
+                        k.name,
+                        k.continuous_optimum
+                    );
+                }
+                (Formulation::Milp, Solved::Schedule(o)) => {
+                    if let Some(v) = o.objective {
+                        assert!(at_or_beyond(v), "{}: grid {v}", k.name);
+                    }
+                }
+                (Formulation::Fair, Solved::Schedule(o)) => {
+                    assert!(o.bound.is_none() && o.model_objective.is_some(), "{}", k.name);
+                }
+                (f, other) => panic!("{}: {f:?} answered {other:?}", k.name),
+            }
+        }
+    }
+}

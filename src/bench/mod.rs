@@ -619,10 +619,12 @@ fn keep_report(
             });
         }
     }
-    // Hops under a sharing heuristic: solved again by the continuous model and the fluid bound.
-    let Some(heuristic) = HopMethod::of_policy(o.sharing).filter(|m| *m != HopMethod::None) else {
+    // Hops under a sharing heuristic (PB, FB): solved again by the continuous model and the
+    // fluid bound.
+    let heuristic = HopMethod::of_policy(o.sharing);
+    if heuristic.heuristic().is_none() || heuristic == HopMethod::None {
         return Ok(kept);
-    };
+    }
     let planner = context.planner(&report.swarm, o.sharing);
     for (h, hop) in plan.hops.iter().enumerate() {
         let (problem, objective) = planner.studied_hop(hop)?;

@@ -8,13 +8,10 @@
 //! a gap. `swarmplan eaas` prints it for one hop; `swarmplan bench` for every hop of its exact
 //! subset.
 
-use super::exact::continuous::{solve_continuous, ContinuousOptions};
-use super::milp::{
-    objective_of, solve_milp, ExactOutcome, ExactStatus, MilpOptions, Objective, Reorder,
-};
-use super::{
-    fluid, simulate_with, FreeSchedule, HopProblem, PolicyOptions, SharingPolicy, Transfer,
-};
+use super::exact::dispatch::{self, Solved};
+use super::exact::{BoundOutcome, Formulation};
+use super::milp::{objective_of, ExactOutcome, ExactStatus, MilpOptions, Objective, Reorder};
+use super::{simulate_with, FreeSchedule, HopProblem, PolicyOptions, SharingPolicy, Transfer};
 use crate::error::Result;
 use crate::solver::{Gap, ReferenceKind};
 use serde::Serialize;
@@ -43,22 +40,42 @@ pub enum HopMethod {
 display_as_value_name!(HopMethod);
 
 impl HopMethod {
-    /// The heuristic of a simulated sharing policy (`none`, `pb`, `fb`); `None` for the others.
-    pub fn of_policy(policy: SharingPolicy) -> Option<HopMethod> {
+    /// The method of a sharing policy on a hop: its simulated heuristic (`idle-support` flies
+    /// `none`), or its exact formulation (`exact`: the continuous model; `fair`: the fair QP).
+    pub fn of_policy(policy: SharingPolicy) -> HopMethod {
         match policy {
-            SharingPolicy::None => Some(HopMethod::None),
-            SharingPolicy::Pb => Some(HopMethod::Pb),
-            SharingPolicy::Fb => Some(HopMethod::Fb),
+            SharingPolicy::None | SharingPolicy::IdleSupport => HopMethod::None,
+            SharingPolicy::Pb => HopMethod::Pb,
+            SharingPolicy::Fb => HopMethod::Fb,
+            SharingPolicy::Exact => HopMethod::Continuous,
+            SharingPolicy::Fair => HopMethod::Fair,
+        }
+    }
+
+    /// The exact formulation the method solves; `None` for the simulated heuristics.
+    pub fn formulation(self) -> Option<Formulation> {
+        match self {
+            HopMethod::None | HopMethod::Pb | HopMethod::Fb => None,
+            HopMethod::Continuous => Some(Formulation::Continuous),
+            HopMethod::Milp => Some(Formulation::Milp),
+            HopMethod::Fluid => Some(Formulation::Fluid),
+            HopMethod::Fair => Some(Formulation::Fair),
+        }
+    }
+
+    /// The simulated policy of a heuristic (`none`, `pb`, `fb`); `None` for the models.
+    pub fn heuristic(self) -> Option<SharingPolicy> {
+        match self {
+            HopMethod::None => Some(SharingPolicy::None),
+            HopMethod::Pb => Some(SharingPolicy::Pb),
+            HopMethod::Fb => Some(SharingPolicy::Fb),
             _ => None,
         }
     }
 
     /// Whether the method solves a model (and may run up to its time limit).
     pub fn is_model(self) -> bool {
-        matches!(
-            self,
-            HopMethod::Continuous | HopMethod::Milp | HopMethod::Fluid | HopMethod::Fair
-        )
+        self.formulation().is_some()
     }
 }
 
@@ -107,39 +124,50 @@ pub struct MethodRow {
     pub free_schedule: Option<FreeSchedule>,
 }
 
-fn exact_row(method: HopMethod, kind: &'static str, o: ExactOutcome) -> MethodRow {
+/// The row of a formulation's schedule.
+fn schedule_row(method: HopMethod, formulation: Formulation, o: ExactOutcome) -> MethodRow {
+    let fair = formulation == Formulation::Fair;
     MethodRow {
         method,
-        kind,
+        kind: formulation.kind(),
         status: Some(o.status),
         feasible: o
             .outcome
             .as_ref()
             .map(|x| x.feasible)
             .or(o.intervals.as_ref().map(|_| true)),
-        objective: if method == HopMethod::Fluid {
-            o.bound
-        } else {
-            o.objective
-        },
-        objective_proven: method == HopMethod::Fluid || o.objective_proven,
-        bound: if method == HopMethod::Fair {
-            None
-        } else {
-            o.bound
-        },
-        qp_squared_deficits_mah2: if method == HopMethod::Fair {
-            o.model_objective
-        } else {
-            None
-        },
+        objective: o.objective,
+        objective_proven: o.objective_proven,
+        bound: o.bound,
+        qp_squared_deficits_mah2: if fair { o.model_objective } else { None },
         gap: None,
         gap_label: None,
         epsilon: o.epsilon,
-        grid_step_min: (method == HopMethod::Milp).then_some(o.grid_step_min),
+        grid_step_min: formulation.on_grid().then_some(o.grid_step_min),
         solve_ms: o.solve_ms,
         transfers: o.transfers,
         free_schedule: o.intervals,
+    }
+}
+
+/// The row of a bound: its value stands in the objective column, proven, with no schedule.
+fn bound_row(method: HopMethod, formulation: Formulation, o: BoundOutcome) -> MethodRow {
+    MethodRow {
+        method,
+        kind: formulation.kind(),
+        status: Some(o.status),
+        feasible: None,
+        objective: o.bound,
+        objective_proven: true,
+        bound: o.bound,
+        qp_squared_deficits_mah2: None,
+        gap: None,
+        gap_label: None,
+        epsilon: None,
+        grid_step_min: None,
+        solve_ms: o.solve_ms,
+        transfers: Vec::new(),
+        free_schedule: None,
     }
 }
 
@@ -156,57 +184,37 @@ pub fn run_method(
     readings: &PolicyOptions,
 ) -> Result<MethodRow> {
     let start = std::time::Instant::now();
-    Ok(match method {
-        HopMethod::None | HopMethod::Pb | HopMethod::Fb => {
-            let policy = match method {
-                HopMethod::Pb => SharingPolicy::Pb,
-                HopMethod::Fb => SharingPolicy::Fb,
-                _ => SharingPolicy::None,
-            };
-            let o = simulate_with(problem, policy, readings)?;
-            let value = if o.feasible {
-                Some(objective_of(problem, objective, &o.final_battery_mah)?)
-            } else {
-                None
-            };
-            MethodRow {
-                method,
-                kind: "heuristic",
-                status: None,
-                feasible: Some(o.feasible),
-                objective: value.map(|v| v.value),
-                objective_proven: value.is_none_or(|v| v.proven),
-                bound: None,
-                qp_squared_deficits_mah2: None,
-                gap: None,
-                gap_label: None,
-                epsilon: None,
-                grid_step_min: None,
-                solve_ms: start.elapsed().as_secs_f64() * 1e3,
-                transfers: o.transfers,
-                free_schedule: None,
-            }
-        }
-        HopMethod::Continuous => exact_row(
-            method,
-            "exact_continuous",
-            solve_continuous(
-                problem,
-                objective,
-                &ContinuousOptions::like(milp, *readings),
-            )?,
-        ),
-        HopMethod::Milp => exact_row(method, "exact_grid", solve_milp(problem, objective, milp)?),
-        HopMethod::Fluid => exact_row(
-            method,
-            "bound",
-            fluid::bound(problem, objective, milp.reorder, milp.time_limit_s)?,
-        ),
-        HopMethod::Fair => exact_row(
-            method,
-            "fair_layout",
-            fluid::fair(problem, objective, milp.reorder, milp.time_limit_s)?,
-        ),
+    if let Some(formulation) = method.formulation() {
+        return Ok(
+            match dispatch::solve(formulation, problem, objective, milp, readings)? {
+                Solved::Schedule(o) => schedule_row(method, formulation, o),
+                Solved::Bound(o) => bound_row(method, formulation, o),
+            },
+        );
+    }
+    let policy = method.heuristic().unwrap_or(SharingPolicy::None);
+    let o = simulate_with(problem, policy, readings)?;
+    let value = if o.feasible {
+        Some(objective_of(problem, objective, &o.final_battery_mah)?)
+    } else {
+        None
+    };
+    Ok(MethodRow {
+        method,
+        kind: "heuristic",
+        status: None,
+        feasible: Some(o.feasible),
+        objective: value.map(|v| v.value),
+        objective_proven: value.is_none_or(|v| v.proven),
+        bound: None,
+        qp_squared_deficits_mah2: None,
+        gap: None,
+        gap_label: None,
+        epsilon: None,
+        grid_step_min: None,
+        solve_ms: start.elapsed().as_secs_f64() * 1e3,
+        transfers: o.transfers,
+        free_schedule: None,
     })
 }
 

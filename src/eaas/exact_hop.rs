@@ -10,9 +10,10 @@
 //! one is the continuous model's first incumbent, and when the fair layout does not fly the empty
 //! schedule is flown and the fallback is recorded ([`HopSolve::fallback`]).
 
-use super::exact::continuous::{solve_continuous, ContinuousOptions};
+use super::compare::HopMethod;
+use super::exact::dispatch::{self, Solved};
 use super::milp::{ExactStatus, MilpOptions, Objective, Reorder};
-use super::{fluid, simulate_with, HopOutcome, HopProblem, PolicyOptions, SharingPolicy};
+use super::{simulate_with, HopOutcome, HopProblem, PolicyOptions, SharingPolicy};
 use crate::error::{Error, Result};
 use serde::{Deserialize, Serialize};
 
@@ -243,7 +244,7 @@ impl HopSolveCounts {
 ///
 /// # Errors
 /// `E4114` for a policy other than `exact` and `fair`, `E4113` for `free` re-ordering; those of
-/// [`solve_continuous`] and [`fluid::fair`] for bad input. A backend failure is not an error here: it
+/// [`dispatch::solve`] for bad input. A backend failure is not an error here: it
 /// is recorded in [`HopSolve::backend_error`] and the hop flies without sharing if it can.
 ///
 /// # Complexity
@@ -271,31 +272,23 @@ pub fn fly_exact(
         Objective::NodeTime { .. } => HopGoal::NodeTimeMin,
         _ => HopGoal::Feasible,
     };
-    let solved = match policy {
-        SharingPolicy::Exact => match solve_continuous(
-            problem,
-            objective,
-            &ContinuousOptions::like(milp, *readings),
-        ) {
-            Ok(o) => Ok(o),
-            Err(Error::Backend { backend, message }) => Err(format!("{backend}: {message}")),
-            Err(e) => return Err(e),
-        },
-        SharingPolicy::Fair => {
-            match fluid::fair(problem, objective, milp.reorder, milp.time_limit_s) {
-                Ok(o) => Ok(o),
-                Err(Error::Backend { backend, message }) => Err(format!("{backend}: {message}")),
-                Err(e) => return Err(e),
-            }
-        }
-        other => {
-            return Err(Error::invalid(
-                "E4114",
-                "policy",
-                format!("{other:?} is not an exact policy"),
-                "use eaas::simulate_with for none, idle-support, pb and fb",
-            ))
-        }
+    let not_exact = || {
+        Error::invalid(
+            "E4114",
+            "policy",
+            format!("{policy:?} is not an exact policy"),
+            "use eaas::simulate_with for none, idle-support, pb and fb",
+        )
+    };
+    // `exact` flies the continuous model's schedule, `fair` the fair QP's layout.
+    let formulation = HopMethod::of_policy(policy)
+        .formulation()
+        .ok_or_else(not_exact)?;
+    let solved = match dispatch::solve(formulation, problem, objective, milp, readings) {
+        Ok(Solved::Schedule(o)) => Ok(o),
+        Ok(Solved::Bound(_)) => return Err(not_exact()),
+        Err(Error::Backend { backend, message }) => Err(format!("{backend}: {message}")),
+        Err(e) => return Err(e),
     };
     let (status, bound, epsilon, grid_step_min, schedule, backend_error) = match solved {
         Ok(o) => (

@@ -22,7 +22,9 @@
 //! ([`fair`]) it minimises `sum_d (C_d - b_d(tt))^2` over every drone, and its amounts are laid out
 //! as a concrete schedule and replayed.
 
-use super::{objective_of, validate_inputs, ExactOutcome, ExactStatus, Objective, Reorder};
+use super::{
+    objective_of, validate_inputs, BoundOutcome, ExactOutcome, ExactStatus, Objective, Reorder,
+};
 use crate::eaas::reorder::{busy_drones, choose_consumer_slot, slot_distance_m};
 use crate::eaas::simulate::evaluate;
 use crate::eaas::{sharing_budget_mah, HopProblem, Role, Transfer, TIME_TOL_MIN};
@@ -264,7 +266,7 @@ fn status_of(status: BackendStatus) -> Result<ExactStatus> {
 /// # Returns
 /// Status `optimal` with `bound` (the safer of the primal and dual objective values) and
 /// `model_objective`, or `infeasible`: then no continuous-time schedule of the mode flies, and
-/// neither does any MILP schedule. No schedule (`transfers` empty).
+/// neither does any MILP schedule. No schedule.
 ///
 /// # Errors
 /// [`Error::Invalid`] for a malformed problem, objective or time limit; [`Error::Backend`] when
@@ -277,7 +279,7 @@ pub fn bound(
     objective: &Objective,
     mode: Reorder,
     time_limit_s: f64,
-) -> Result<ExactOutcome> {
+) -> Result<BoundOutcome> {
     validate_inputs(problem, objective, time_limit_s)?;
     let start = Instant::now();
     let mut m = Fluid::build(problem, mode);
@@ -333,15 +335,14 @@ pub fn bound(
         Objective::Feasible => {}
     }
     let (status, values) = m.solve(&q, &[], time_limit_s)?;
-    let mut out = ExactOutcome::infeasible(0.0, m.legs.len());
-    out.status = status;
-    if let Some(v) = values {
+    Ok(BoundOutcome {
+        status,
         // Minimisation of sign * goal: the smaller of primal and dual is the safer lower bound.
-        out.model_objective = Some(sign * v.primal);
-        out.bound = Some(sign * v.primal.min(v.dual));
-    }
-    out.solve_ms = start.elapsed().as_secs_f64() * 1e3;
-    Ok(out)
+        bound: values.as_ref().map(|v| sign * v.primal.min(v.dual)),
+        model_objective: values.as_ref().map(|v| sign * v.primal),
+        legs: m.legs.len(),
+        solve_ms: start.elapsed().as_secs_f64() * 1e3,
+    })
 }
 
 /// The "fair" optimum of a hop: the fluid QP minimising `sum_d (C_d - b_d(tt))^2` over every
@@ -356,7 +357,7 @@ pub fn bound(
 ///
 /// # Returns
 /// `model_objective` = the QP's optimum (mAh^2, a lower bound on the squared-deficit sum of every
-/// continuous-time schedule), `bound` the same; `transfers` = per leg and support drone, its
+/// continuous-time schedule; `bound` is `None`, the hop's objective has none here); `transfers` = per leg and support drone, its
 /// consumers' amounts `a / rho` back to back from the leg start (delayed past transfers that
 /// would move the same drone, clipped at the leg end), replayed by the hop evaluation in
 /// `outcome` (which may be infeasible: the layout is a heuristic); `objective` = the replay's
@@ -400,9 +401,8 @@ pub fn fair(
         out.solve_ms = start.elapsed().as_secs_f64() * 1e3;
         return Ok(out);
     };
-    let value = primal + constant + linear_const;
-    out.model_objective = Some(value);
-    out.bound = Some(value);
+    // The QP's optimum bounds the squared deficits, not the hop's objective: no `bound`.
+    out.model_objective = Some(primal + constant + linear_const);
     let transfers = layout(problem, &m, &x);
     let replay = evaluate(problem, &transfers).into_outcome();
     let value = objective_of(problem, objective, &replay.final_battery_mah)?;

@@ -2,12 +2,17 @@
 //! `models/eaas_config.md` and `models/eaas_fluid.md`.
 //!
 //! Every model takes a [`HopProblem`], an [`Objective`] (what it optimises at the hop's end) and a
-//! re-ordering mode ([`Reorder`]), and answers an [`ExactOutcome`]:
+//! re-ordering mode ([`Reorder`]); a model with a schedule answers an [`ExactOutcome`], the bound
+//! a [`BoundOutcome`]. The [`Formulation`]s:
 //! - [`continuous`]: the configuration LP, the optimum over every continuous-time schedule (the
 //!   hop reference of the tool);
 //! - [`milp`]: the time-indexed MILP, the optimum over full-period schedules on a time grid (a
 //!   cross-check);
 //! - [`fluid`]: the fluid LP bound and the fair QP.
+//!
+//! [`dispatch::solve`] is the one place that runs a formulation by name: adding one is its file
+//! here, a [`Formulation`] variant and its arm there (and its [`crate::eaas::compare::HopMethod`]
+//! for `swarmplan eaas`).
 //!
 //! The root holds what they share: the objective, the re-ordering modes, the status and outcome
 //! types, input validation, the objective of a replayed schedule and the moves of a mode.
@@ -19,8 +24,70 @@ use crate::solver::{BackendStatus, MilpOutcome, SolveStatus};
 use serde::{Deserialize, Serialize};
 
 pub mod continuous;
+pub mod dispatch;
 pub mod fluid;
 pub mod milp;
+
+/// An exact hop formulation: what [`dispatch::solve`] runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Formulation {
+    /// The configuration LP ([`continuous`]): the optimum over every continuous-time schedule.
+    Continuous,
+    /// The time-indexed MILP ([`milp`]): the optimum over full-period schedules on a grid.
+    Milp,
+    /// The fluid LP ([`fluid::bound`]): a bound valid for every continuous-time schedule, no
+    /// schedule.
+    Fluid,
+    /// The fair QP ([`fluid::fair`]) laid out as a schedule: FB's exact counterpart, a layout,
+    /// not an optimum of the hop's objective.
+    Fair,
+}
+
+impl Formulation {
+    /// Every formulation, in the order `swarmplan eaas` lists them.
+    pub const ALL: [Formulation; 4] = [
+        Formulation::Continuous,
+        Formulation::Milp,
+        Formulation::Fluid,
+        Formulation::Fair,
+    ];
+
+    /// What its result is, as the `kind` of a comparison row: `exact_continuous`, `exact_grid`,
+    /// `bound` or `fair_layout`.
+    pub fn kind(self) -> &'static str {
+        match self {
+            Formulation::Continuous => "exact_continuous",
+            Formulation::Milp => "exact_grid",
+            Formulation::Fluid => "bound",
+            Formulation::Fair => "fair_layout",
+        }
+    }
+
+    /// Whether its schedules are the full periods of a time grid (the MILP) rather than
+    /// continuous in time.
+    pub fn on_grid(self) -> bool {
+        self == Formulation::Milp
+    }
+}
+
+/// What a bound formulation ([`Formulation::Fluid`]) answers: a proven bound on the hop's
+/// optimum over every continuous-time schedule of the mode, and no schedule.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct BoundOutcome {
+    /// `optimal` (the bound is the relaxation's optimum) or `infeasible` (no continuous-time
+    /// schedule of the mode flies).
+    pub status: ExactStatus,
+    /// The bound (lower when minimising the node time, upper when maximising the lowest arrival
+    /// battery): the safer of the relaxation's primal and dual values. `None` when infeasible.
+    pub bound: Option<f64>,
+    /// The relaxation's primal value.
+    pub model_objective: Option<f64>,
+    /// Legs of the relaxation (the legs of positive duration).
+    pub legs: usize,
+    /// Wall-clock time of the solve, milliseconds.
+    pub solve_ms: f64,
+}
 
 /// How drones may change formation slots while sharing.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
@@ -80,8 +147,9 @@ pub enum ExactStatus {
     NoScheduleFound,
 }
 
-/// Result of an exact hop model: [`milp::solve_milp`], [`continuous::solve_continuous`], and the
-/// fluid models (with their own meaning of each field).
+/// What a formulation with a schedule answers ([`continuous::solve_continuous`],
+/// [`milp::solve_milp`], [`fluid::fair`]): the schedule, its objective and how the solve ended.
+/// The bound formulation answers a [`BoundOutcome`].
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ExactOutcome {
     /// Optimal, feasible (time limit), infeasible or no solution in time.
@@ -97,7 +165,8 @@ pub struct ExactOutcome {
     pub model_objective: Option<f64>,
     /// A proven bound on the model's optimum (lower for minimisation, upper for maximisation):
     /// the optimum itself when optimal; after a time limit the better of the LP relaxation's
-    /// value and the fluid LP bound.
+    /// value and the fluid LP bound. `None` for the fair QP, whose optimum is not one of the
+    /// hop's objective (its value is `model_objective`).
     pub bound: Option<f64>,
     /// The certified distance of the returned schedule's objective to the model's optimum
     /// (`objective - bound` when minimising, `bound - objective` when maximising): set by the
