@@ -10,7 +10,8 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::time::Instant;
 use swarmplan::check::check_hop;
-use swarmplan::eaas::{simulate, DroneState, HopProblem, LegRates, SharingPolicy};
+use swarmplan::eaas::Heuristic;
+use swarmplan::eaas::{simulate, DroneState, HopProblem, LegRates};
 use swarmplan::problem::Role;
 
 fn problem(rng: &mut ChaCha8Rng) -> HopProblem {
@@ -56,7 +57,7 @@ fn main() {
     let count = 10_000;
     let mut rng = ChaCha8Rng::seed_from_u64(2024);
     let problems: Vec<HopProblem> = (0..count).map(|_| problem(&mut rng)).collect();
-    for policy in [SharingPolicy::None, SharingPolicy::Pb, SharingPolicy::Fb] {
+    for policy in [Heuristic::None, Heuristic::Pb, Heuristic::Fb] {
         let start = Instant::now();
         let outcomes: Vec<_> = problems
             .iter()

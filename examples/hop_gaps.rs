@@ -312,7 +312,8 @@ fn request_rows(
             steps.push(nodes[0]);
             let end = *nodes.last().expect("a hop has nodes");
             let problem = planner.hop_problem(&path, &hop.departure_battery_mah)?;
-            let replay = simulate_with(&problem, policy, &readings)?;
+            let heuristic = policy.heuristic().expect("PB and FB are simulated");
+            let replay = simulate_with(&problem, heuristic, &readings)?;
             let replay_matches = replay.feasible
                 && replay
                     .final_battery_mah

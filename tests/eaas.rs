@@ -9,6 +9,7 @@ use proptest::prelude::*;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use swarmplan::check::check_hop;
+use swarmplan::eaas::Heuristic;
 use swarmplan::eaas::{
     battery_trace, simulate, simulate_with, HopOutcome, HopProblem, LegRates, PbRequest,
     PolicyOptions, Readings, SharingPolicy,
@@ -44,7 +45,7 @@ fn two_drones() -> HopProblem {
 fn one_leg_two_drones_by_hand() {
     let p = two_drones();
     // None: d0 = 80 - 10 * 10 = -20, empty at t = 80 / 10 = 8 min.
-    let none = simulate(&p, SharingPolicy::None).unwrap();
+    let none = simulate(&p, Heuristic::None).unwrap();
     assert!(!none.feasible);
     let f = none.failure.unwrap();
     assert_eq!(f.drone, 0);
@@ -55,7 +56,7 @@ fn one_leg_two_drones_by_hand() {
 
     // PB: 80 - 10 t = 50 at st = 3; re = 200 - 50 = 150 -> 37.5 min at rho = 4, clipped at
     // tt = 10: transfer [3, 10], 4 * 7 = 28 mAh. d0 = 80 - 100 + 28 = 8; d1 = 500 - 50 - 28 = 422.
-    let pb = simulate(&p, SharingPolicy::Pb).unwrap();
+    let pb = simulate(&p, Heuristic::Pb).unwrap();
     assert!(pb.feasible);
     assert_eq!(pb.transfers.len(), 1);
     let x = pb.transfers[0];
@@ -71,7 +72,7 @@ fn one_leg_two_drones_by_hand() {
 
     // FB: lambda / rho = 5 min rounds to d0: [0, 5] and [5, 10], 40 mAh.
     // d0 = 80 - 100 + 40 = 20; d1 = 500 - 50 - 40 = 410.
-    let fb = simulate(&p, SharingPolicy::Fb).unwrap();
+    let fb = simulate(&p, Heuristic::Fb).unwrap();
     assert!(fb.feasible);
     assert_eq!(fb.transfers.len(), 2);
     assert_close(fb.transfers[0].end_min, 5.0, "fb round 1 end");
@@ -106,14 +107,14 @@ fn needy_and_healthy() -> HopProblem {
 fn fails_without_sharing_and_succeeds_with_pb() {
     let p = needy_and_healthy();
     // None: d0 = 60 - 120 = -60, empty at 60 / 12 = 5 min.
-    let none = simulate(&p, SharingPolicy::None).unwrap();
+    let none = simulate(&p, Heuristic::None).unwrap();
     assert!(!none.feasible);
     assert_eq!(none.failure.unwrap().drone, 0);
     assert_close(none.failure.unwrap().time_min, 5.0, "none failure");
     // PB: d0 is below gamma at once: st = 0, re = 400 - 60 = 340 (34 min, clipped at 10):
     // 100 mAh, d0 = 60 - 120 + 100 = 40. d1 crosses gamma at (300 - 150) / 12 = 12.5 > tt: no
     // request, d1 = 300 - 120 = 180.
-    let pb = simulate(&p, SharingPolicy::Pb).unwrap();
+    let pb = simulate(&p, Heuristic::Pb).unwrap();
     assert!(pb.feasible);
     assert_eq!(pb.transfers.len(), 1);
     assert_eq!(pb.transfers[0].consumer, 0);
@@ -129,7 +130,7 @@ fn pb_serves_the_neediest_first_while_fb_spreads_and_the_needy_drone_fails() {
     // FB: rounds of 50 / 10 = 5 min, by id: d0 [0, 5], d1 [5, 10].
     // d0: 60 - (12 - 10) * 5 = 50 at t = 5, then -12/min: empty at 5 + 50 / 12 = 9.1667 min,
     // -10 at tt. d1: 300 - 120 + 50 = 230.
-    let fb = simulate(&p, SharingPolicy::Fb).unwrap();
+    let fb = simulate(&p, Heuristic::Fb).unwrap();
     assert!(!fb.feasible);
     let f = fb.failure.unwrap();
     assert_eq!(f.drone, 0);
@@ -140,7 +141,7 @@ fn pb_serves_the_neediest_first_while_fb_spreads_and_the_needy_drone_fails() {
     assert_close(fb.final_battery_mah[1], 230.0, "fb d1");
     passes(&p, &fb);
     // PB (previous test): feasible with d0 = 40.
-    assert!(simulate(&p, SharingPolicy::Pb).unwrap().feasible);
+    assert!(simulate(&p, Heuristic::Pb).unwrap().feasible);
 }
 
 #[test]
@@ -175,7 +176,7 @@ fn out_of_range_consumer_swaps_next_to_the_support_drone_and_pays_that_slots_rat
     // PB: d0 below gamma at once: st = 0, re = 280 (28 min, clipped): transfer [0, 10], 100 mAh,
     // d0 in slot 1. d0 = 120 - 20 * 10 + 100 = 20 (10 mAh/min in slot 0 would have given 20 + 100
     // = 120 more: 220); d1 in slot 0: 300 - 6 * 10 = 240; d2 = 500 - 50 - 100 = 350.
-    let pb = simulate(&p, SharingPolicy::Pb).unwrap();
+    let pb = simulate(&p, Heuristic::Pb).unwrap();
     assert!(pb.feasible);
     assert_eq!(pb.transfers.len(), 1);
     assert_eq!(pb.transfers[0].consumer_slot, 1);
@@ -189,7 +190,7 @@ fn out_of_range_consumer_swaps_next_to_the_support_drone_and_pays_that_slots_rat
     let codes: Vec<_> = check_hop(&p, &unswapped).iter().map(|v| v.code).collect();
     assert!(codes.contains(&"C3006"), "{codes:?}");
     // Without sharing nobody moves: d0 = 120 - 100 = 20, d1 = 300 - 80 = 220.
-    let none = simulate(&p, SharingPolicy::None).unwrap();
+    let none = simulate(&p, Heuristic::None).unwrap();
     assert_close(none.final_battery_mah[0], 20.0, "none d0");
     assert_close(none.final_battery_mah[1], 220.0, "none d1");
 }
@@ -217,7 +218,7 @@ fn transfer_stops_when_the_consumer_is_full() {
         lambda_mah: 50.0,
         delta_mah: 100.0,
     };
-    let fb = simulate(&p, SharingPolicy::Fb).unwrap();
+    let fb = simulate(&p, Heuristic::Fb).unwrap();
     assert_eq!(fb.transfers.len(), 2);
     assert_close(fb.transfers[0].end_min, 1.25, "first end");
     assert_close(fb.transfers[0].energy_mah, 12.5, "first energy");
@@ -249,7 +250,7 @@ fn support_reserve_delta_is_respected() {
     };
     // FB: [0, 3] 30 mAh, then [3, 5] stops at the budget (20 mAh). d0 = 60 - 100 + 50 = 10;
     // support = 200 - 50 - 50 = 100 = delta.
-    let fb = simulate(&p, SharingPolicy::Fb).unwrap();
+    let fb = simulate(&p, Heuristic::Fb).unwrap();
     assert!(fb.feasible);
     assert_eq!(fb.transfers.len(), 2);
     assert_close(fb.transfers[1].end_min, 5.0, "budget stop");
@@ -259,7 +260,7 @@ fn support_reserve_delta_is_respected() {
     passes(&p, &fb);
     // PB: st = 0, re = 400 - 60 = 340 > 50 available: not served (Algorithm 2's er.re <= SD.ae).
     // d0 empties at 60 / 10 = 6 min.
-    let pb = simulate(&p, SharingPolicy::Pb).unwrap();
+    let pb = simulate(&p, Heuristic::Pb).unwrap();
     assert!(pb.transfers.is_empty());
     assert!(!pb.feasible);
     assert_close(pb.failure.unwrap().time_min, 6.0, "pb failure");
@@ -289,9 +290,9 @@ fn piecewise_legs_change_the_rates() {
         lambda_mah: 50.0,
         delta_mah: 100.0,
     };
-    let none = simulate(&p, SharingPolicy::None).unwrap();
+    let none = simulate(&p, Heuristic::None).unwrap();
     assert_close(none.final_battery_mah[0], 50.0, "none d0");
-    let pb = simulate(&p, SharingPolicy::Pb).unwrap();
+    let pb = simulate(&p, Heuristic::Pb).unwrap();
     assert_eq!(pb.transfers.len(), 1);
     assert_close(pb.transfers[0].start_min, 6.5, "pb start");
     assert_close(pb.transfers[0].energy_mah, 35.0, "pb energy");
@@ -335,7 +336,7 @@ fn pb_literal_reading_skips_a_request_that_starts_while_the_support_is_busy() {
         lambda_mah: 50.0,
         delta_mah: 100.0,
     };
-    let wait = simulate(&p, SharingPolicy::Pb).unwrap();
+    let wait = simulate(&p, Heuristic::Pb).unwrap();
     assert_eq!(wait.transfers.len(), 2);
     assert_eq!(wait.transfers[1].consumer, 1);
     assert_close(wait.final_battery_mah[0], 50.0, "wait d0");
@@ -345,7 +346,7 @@ fn pb_literal_reading_skips_a_request_that_starts_while_the_support_is_busy() {
         pb_wait_for_support: false,
         ..PolicyOptions::default()
     };
-    let lit = simulate_with(&p, SharingPolicy::Pb, &literal).unwrap();
+    let lit = simulate_with(&p, Heuristic::Pb, &literal).unwrap();
     assert_eq!(lit.transfers.len(), 2);
     assert_eq!(lit.transfers[1].consumer, 0);
     assert_close(lit.final_battery_mah[0], 100.0, "literal d0");
@@ -359,7 +360,7 @@ fn malformed_problems_are_invalid_input() {
     p.initial_slot = vec![0, 0];
     p.rho_mah_per_min = f64::NAN;
     std::sync::Arc::make_mut(&mut p.legs[0].rate_mah_per_min)[0].pop();
-    let err = simulate(&p, SharingPolicy::Pb).unwrap_err();
+    let err = simulate(&p, Heuristic::Pb).unwrap_err();
     assert_eq!(err.exit_code(), 2);
     let swarmplan::Error::Invalid(v) = err else {
         panic!("expected Invalid")
@@ -371,7 +372,7 @@ fn malformed_problems_are_invalid_input() {
 #[test]
 fn checker_rejects_corrupted_schedules() {
     let p = needy_and_healthy();
-    let fb = simulate(&p, SharingPolicy::Fb).unwrap();
+    let fb = simulate(&p, Heuristic::Fb).unwrap();
     passes(&p, &fb);
     let codes =
         |o: &HopOutcome| -> Vec<&'static str> { check_hop(&p, o).iter().map(|v| v.code).collect() };
@@ -509,7 +510,7 @@ fn a_transfer_that_would_take_its_swap_partner_below_zero_is_not_made() {
     // sized to end the hop at gamma (re = 100 - 50 = 50), from t = 5 to the hop end: 4 x 5 = 20
     // mAh (d1 ends at 70).
     let p = swap_partner_hop();
-    assert!(simulate(&p, SharingPolicy::None).unwrap().feasible);
+    assert!(simulate(&p, Heuristic::None).unwrap().feasible);
     for (policy, energy, start, d1_final) in [
         (SharingPolicy::Fb, 40.0, 0.0, 90.0),
         (SharingPolicy::Pb, 20.0, 5.0, 70.0),
@@ -518,7 +519,7 @@ fn a_transfer_that_would_take_its_swap_partner_below_zero_is_not_made() {
             PolicyOptions::default(),
             PolicyOptions::from(&Readings::literal()),
         ] {
-            let out = simulate_with(&p, policy, &o).unwrap();
+            let out = simulate_with(&p, policy.heuristic().unwrap(), &o).unwrap();
             // Literal PB fills (re = 200 - 100 = 100 for both): d0 first by id, refused; d1's
             // request also starts at 5 with the support drone free, clipped at 10: the same.
             let what = format!("{policy:?} {o:?}");
@@ -567,7 +568,7 @@ fn pb_requests_sized_to_the_hop_end_serve_the_needier_of_two_simultaneous_reques
             pb_request: size,
             ..PolicyOptions::default()
         };
-        let out = simulate_with(&p, SharingPolicy::Pb, &o).unwrap();
+        let out = simulate_with(&p, Heuristic::Pb, &o).unwrap();
         let what = format!("{size:?}");
         assert_eq!(out.transfers.len(), 1, "{what}: {out:?}");
         assert_eq!(out.transfers[0].consumer, consumer, "{what}");
@@ -586,7 +587,7 @@ proptest! {
     #[test]
     fn sharing_never_turns_a_hop_flyable_without_it_into_an_unflyable_one(seed in any::<u64>()) {
         let p = random_problem(seed);
-        prop_assume!(simulate(&p, SharingPolicy::None).unwrap().feasible);
+        prop_assume!(simulate(&p, Heuristic::None).unwrap().feasible);
         let readings = [
             PolicyOptions::default(),
             PolicyOptions::from(&Readings::literal()),
@@ -594,7 +595,7 @@ proptest! {
         ];
         for policy in [SharingPolicy::IdleSupport, SharingPolicy::Pb, SharingPolicy::Fb] {
             for o in &readings {
-                let out = simulate_with(&p, policy, o).unwrap();
+                let out = simulate_with(&p, policy.heuristic().unwrap(), o).unwrap();
                 prop_assert!(out.feasible, "{policy:?} {o:?}: {:?}\n{p:?}", out.failure);
             }
         }
@@ -610,7 +611,7 @@ proptest! {
         ];
         for policy in [SharingPolicy::None, SharingPolicy::Pb, SharingPolicy::Fb] {
             for o in &readings {
-                let out = simulate_with(&p, policy, o).unwrap();
+                let out = simulate_with(&p, policy.heuristic().unwrap(), o).unwrap();
                 let v = check_hop(&p, &out);
                 prop_assert!(v.is_empty(), "{policy:?} {o:?}: {v:#?}\n{p:?}\n{out:?}");
             }
@@ -620,7 +621,7 @@ proptest! {
     #[test]
     fn without_sharing_each_battery_ends_at_its_start_minus_its_consumption(seed in any::<u64>()) {
         let p = random_problem(seed);
-        let o = simulate(&p, SharingPolicy::None).unwrap();
+        let o = simulate(&p, Heuristic::None).unwrap();
         for d in 0..p.drones.len() {
             let q = p.initial_slot[d];
             let used: f64 = p.legs.iter().map(|l| l.rate_mah_per_min[d][q] * l.duration_min).sum();
@@ -639,7 +640,7 @@ proptest! {
     #[test]
     fn pb_serves_a_drone_only_once_its_battery_is_at_or_below_gamma(seed in any::<u64>()) {
         let p = random_problem(seed);
-        let o = simulate(&p, SharingPolicy::Pb).unwrap();
+        let o = simulate(&p, Heuristic::Pb).unwrap();
         let trace = battery_trace(&p, &o.transfers).unwrap();
         for x in &o.transfers {
             let b = trace.iter().rev().find(|(t, _)| *t <= x.start_min + 1e-9).unwrap().1[x.consumer];
@@ -650,7 +651,7 @@ proptest! {
     #[test]
     fn fb_never_gives_more_than_lambda_in_one_round(seed in any::<u64>()) {
         let p = random_problem(seed);
-        let o = simulate(&p, SharingPolicy::Fb).unwrap();
+        let o = simulate(&p, Heuristic::Fb).unwrap();
         for x in &o.transfers {
             prop_assert!(x.energy_mah <= p.lambda_mah * (1.0 + 1e-9));
         }
@@ -676,9 +677,9 @@ proptest! {
                 .collect::<Vec<_>>()
                 .into();
         }
-        let none = simulate(&p, SharingPolicy::None).unwrap();
+        let none = simulate(&p, Heuristic::None).unwrap();
         for policy in [SharingPolicy::Pb, SharingPolicy::Fb] {
-            let o = simulate(&p, policy).unwrap();
+            let o = simulate(&p, policy.heuristic().unwrap()).unwrap();
             prop_assert!(o.final_battery_mah[0] >= none.final_battery_mah[0] - 1e-9);
             prop_assert!(o.min_battery_mah[0] >= none.min_battery_mah[0] - 1e-9);
         }
@@ -742,13 +743,13 @@ fn pb_compares_the_energy_it_can_deliver_in_the_hop_with_the_budget() {
     // d0's request re = 150 exceeds it, but only 4 * (10 - 3) = 28 mAh fit before tt: served.
     let mut p = two_drones();
     p.drones[1].battery_mah = 250.0;
-    let pb = simulate(&p, SharingPolicy::Pb).unwrap();
+    let pb = simulate(&p, Heuristic::Pb).unwrap();
     assert_eq!(pb.transfers.len(), 1);
     assert_close(pb.shared_mah, 28.0, "shared");
     assert_close(pb.final_battery_mah[1], 250.0 - 50.0 - 28.0, "support");
     // With a 20 mAh budget (support at 170) even the 28 mAh do not fit: no transfer, d0 fails.
     p.drones[1].battery_mah = 170.0;
-    let pb = simulate(&p, SharingPolicy::Pb).unwrap();
+    let pb = simulate(&p, Heuristic::Pb).unwrap();
     assert!(pb.transfers.is_empty());
     assert!(!pb.feasible);
 }
@@ -781,7 +782,7 @@ fn two_support_drones_serve_their_nearest_delivery_drones_at_the_same_time() {
         swarmplan::eaas::responsible_support(&p),
         vec![Some(2), Some(3), None, None]
     );
-    let pb = simulate(&p, SharingPolicy::Pb).unwrap();
+    let pb = simulate(&p, Heuristic::Pb).unwrap();
     assert!(pb.feasible);
     let pairs: Vec<(usize, usize)> = pb
         .transfers
@@ -796,7 +797,7 @@ fn two_support_drones_serve_their_nearest_delivery_drones_at_the_same_time() {
     assert_close(pb.final_battery_mah[0], 10.0, "d0");
     assert_close(pb.final_battery_mah[1], 10.0, "d1");
     passes(&p, &pb);
-    assert!(!simulate(&p, SharingPolicy::None).unwrap().feasible);
+    assert!(!simulate(&p, Heuristic::None).unwrap().feasible);
 }
 
 #[test]
@@ -804,16 +805,16 @@ fn fb_refuses_a_hop_over_its_work_bound_with_e4015_and_plans_one_within_it() {
     // tt = 10 min at rho = 4 mAh/min: 40 / lambda rounds for the one support drone.
     let mut p = two_drones();
     p.lambda_mah = 0.01; // 4,000 rounds: over MAX_FB_ROUNDS = 500
-    let e = simulate(&p, SharingPolicy::Fb).unwrap_err().to_string();
+    let e = simulate(&p, Heuristic::Fb).unwrap_err().to_string();
     assert!(e.contains("[E4015] lambda_mah"), "{e}");
     assert!(
         e.contains("4000 rounds") && e.contains("at least 1 mAh"),
         "{e}"
     );
     // PB does not depend on lambda.
-    assert!(simulate(&p, SharingPolicy::Pb).is_ok());
+    assert!(simulate(&p, Heuristic::Pb).is_ok());
     p.lambda_mah = 0.1; // 400 rounds, within MAX_FB_ROUNDS
     const { assert!(400.0 <= swarmplan::eaas::MAX_FB_ROUNDS) };
-    let o = simulate(&p, SharingPolicy::Fb).unwrap();
+    let o = simulate(&p, Heuristic::Fb).unwrap();
     passes(&p, &o);
 }

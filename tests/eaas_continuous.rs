@@ -12,7 +12,8 @@ use swarmplan::check::{check_free_hop, check_hop};
 use swarmplan::eaas::exact::continuous::{solve_continuous, ContinuousOptions};
 use swarmplan::eaas::exact::milp::{solve_milp, MilpOptions};
 use swarmplan::eaas::exact::{ExactOutcome, ExactStatus, Objective, Reorder};
-use swarmplan::eaas::{fluid, simulate, HopProblem, LegRates, SharingPolicy, SlotInterval};
+use swarmplan::eaas::Heuristic;
+use swarmplan::eaas::{fluid, simulate, HopProblem, LegRates, SlotInterval};
 use swarmplan::problem::Role;
 use swarmplan::solver::MilpBackend;
 
@@ -143,7 +144,7 @@ fn fluid_lp_feasible_but_no_schedule_flies() {
     let p = two_consumers(vec![(1.0, 101.0), (1.0, 1.0)]);
     let fl = fluid::bound(&p, &Objective::Feasible, Reorder::None, 10.0).unwrap();
     assert_eq!(fl.status, ExactStatus::Optimal, "the fluid LP is feasible");
-    for policy in [SharingPolicy::None, SharingPolicy::Pb, SharingPolicy::Fb] {
+    for policy in [Heuristic::None, Heuristic::Pb, Heuristic::Fb] {
         assert!(!simulate(&p, policy).unwrap().feasible, "{policy:?} flies");
     }
     for backend in MilpBackend::all() {
@@ -303,7 +304,7 @@ proptest! {
                     }
                 }
                 if reorder == Reorder::Paper {
-                    for policy in [SharingPolicy::None, SharingPolicy::Pb, SharingPolicy::Fb] {
+                    for policy in [Heuristic::None, Heuristic::Pb, Heuristic::Fb] {
                         let h = simulate(&p, policy).unwrap();
                         if h.feasible {
                             let times: Vec<f64> = p.drones.iter().zip(&h.final_battery_mah)
@@ -361,8 +362,14 @@ fn the_dispatch_runs_every_formulation_with_its_outcome_type() {
             }
         };
         for f in Formulation::ALL {
-            let solved =
-                solve(f, &k.problem, &k.objective, &milp, &PolicyOptions::default()).unwrap();
+            let solved = solve(
+                f,
+                &k.problem,
+                &k.objective,
+                &milp,
+                &PolicyOptions::default(),
+            )
+            .unwrap();
             match (f, solved) {
                 (Formulation::Continuous, Solved::Schedule(o)) => {
                     assert!(o.objective.is_some_and(|v| close(v, k.continuous_optimum)));
@@ -383,7 +390,11 @@ fn the_dispatch_runs_every_formulation_with_its_outcome_type() {
                     }
                 }
                 (Formulation::Fair, Solved::Schedule(o)) => {
-                    assert!(o.bound.is_none() && o.model_objective.is_some(), "{}", k.name);
+                    assert!(
+                        o.bound.is_none() && o.model_objective.is_some(),
+                        "{}",
+                        k.name
+                    );
                 }
                 (f, other) => panic!("{}: {f:?} answered {other:?}", k.name),
             }

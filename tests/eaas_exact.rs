@@ -11,9 +11,8 @@ use swarmplan::check::check_hop;
 use swarmplan::eaas::milp::{
     solve_milp, ExactOutcome, ExactStatus, MilpOptions, Objective, Reorder,
 };
-use swarmplan::eaas::{
-    sharing_budget_mah, simulate, DroneState, HopProblem, LegRates, SharingPolicy, Transfer,
-};
+use swarmplan::eaas::Heuristic;
+use swarmplan::eaas::{sharing_budget_mah, simulate, DroneState, HopProblem, LegRates, Transfer};
 use swarmplan::node_time;
 use swarmplan::problem::Role;
 use swarmplan::solver::MilpBackend;
@@ -95,7 +94,7 @@ fn known_optima_table_is_reproduced_by_the_milp_on_every_backend() {
 fn node_time_optimum_shares_less_than_pb() {
     let k = known("pb_overshares_3_pads");
     // PB by hand: 10 mAh to each delivery drone, final 90, 90, 60: nt = 40 min on 3 pads.
-    let pb = simulate(&k.problem, SharingPolicy::Pb).unwrap();
+    let pb = simulate(&k.problem, Heuristic::Pb).unwrap();
     assert!(close(pb.shared_mah, 20.0), "PB shares {}", pb.shared_mah);
     assert!(close(
         brute_node_time(&k.problem, 3, 1.0, &pb.final_battery_mah),
@@ -119,11 +118,7 @@ fn needy_pair_flies_only_with_an_optimal_schedule() {
     let k = known("needy_pair_max_min");
     // By hand: drone 1 has 25 mAh at 10 mAh/min and no sharing before t = 3 under PB and FB;
     // without sharing both drones empty at 2.5 min and the lower id is reported.
-    for (policy, drone) in [
-        (SharingPolicy::None, 0),
-        (SharingPolicy::Pb, 1),
-        (SharingPolicy::Fb, 1),
-    ] {
+    for (policy, drone) in [(Heuristic::None, 0), (Heuristic::Pb, 1), (Heuristic::Fb, 1)] {
         let o = simulate(&k.problem, policy).unwrap();
         assert!(!o.feasible, "{policy:?} flies");
         let f = o.failure.unwrap();
@@ -367,7 +362,7 @@ proptest! {
         for backend in MilpBackend::all() {
             let o = solve_milp(&p, &NT2, &options(backend, Reorder::Paper, 1.0)).unwrap();
             assert_checked(&p, &o);
-            for policy in [SharingPolicy::None, SharingPolicy::Pb, SharingPolicy::Fb] {
+            for policy in [Heuristic::None, Heuristic::Pb, Heuristic::Fb] {
                 let h = simulate(&p, policy).unwrap();
                 prop_assert!(on_whole_minutes(&h.transfers), "{:?}: {:?}", policy, h.transfers);
                 if h.feasible {
@@ -468,7 +463,7 @@ proptest! {
     #[test]
     fn fluid_bound_never_exceeds_any_schedule(seed in any::<u64>()) {
         let p = integral_hop(seed);
-        let policies: Vec<_> = [SharingPolicy::None, SharingPolicy::Pb, SharingPolicy::Fb]
+        let policies: Vec<_> = [Heuristic::None, Heuristic::Pb, Heuristic::Fb]
             .iter()
             .map(|&x| simulate(&p, x).unwrap())
             .filter(|o| o.feasible)
@@ -563,7 +558,7 @@ fn a_solve_stopped_by_the_time_limit_says_so_and_labels_its_bound() {
             }
             ExactStatus::TimeLimitNoSolution => {
                 // The empty schedule is the first incumbent: only a hop it cannot fly ends so.
-                assert!(!simulate(&p, SharingPolicy::None).unwrap().feasible);
+                assert!(!simulate(&p, Heuristic::None).unwrap().feasible);
                 assert!(o.objective.is_none() && o.transfers.is_empty());
                 assert!(o.bound.unwrap() >= lp.bound.unwrap() - 1e-6);
             }

@@ -17,6 +17,7 @@ use swarmplan::compose::{Context, PlanOptions, RouteMethod};
 use swarmplan::eaas::compare::{run_method, HopMethod};
 use swarmplan::eaas::hop_file::HopFile;
 use swarmplan::eaas::milp::{ExactStatus, MilpOptions, Objective, Reorder};
+use swarmplan::eaas::Heuristic;
 use swarmplan::eaas::{
     simulate, simulate_with, FailureReason, HopProblem, PolicyOptions, SharingPolicy, Transfer,
 };
@@ -657,7 +658,7 @@ fn policies_fed_back(problem: &HopProblem, objective: &Objective, what: &str) ->
     let reference = default_reference();
     let minimise = matches!(objective, Objective::NodeTime { .. });
     // PB: its own simulation gives the batteries and feasibility; its row the value.
-    let pb = simulate_with(problem, SharingPolicy::Pb, &PolicyOptions::default()).unwrap();
+    let pb = simulate_with(problem, Heuristic::Pb, &PolicyOptions::default()).unwrap();
     let written: Vec<WrittenTransfer> = pb.transfers.iter().map(WrittenTransfer::from).collect();
     let e = evaluate_hop(problem, objective, &written, Some(&reference)).unwrap();
     assert_eq!(e.outcome.feasible, pb.feasible, "{what}: PB feasibility");
@@ -890,7 +891,7 @@ fn pb_schedules_on_flat_stop_give_the_hand_computed_overshared_stop() {
     // for the busy support drone. Charge times 6.655, 6.655, 6.1122, 11.1678: on 2 pads the best
     // split is {6.655, 6.655} | {6.1122, 11.1678} = 17.28, so dt = 5 + 17.28 + 5 = 27.28.
     let mut pb = |file: &HopFile| {
-        let o = simulate(&file.hop, SharingPolicy::Pb)?;
+        let o = simulate(&file.hop, Heuristic::Pb)?;
         Ok(o.transfers.iter().map(WrittenTransfer::from).collect())
     };
     let r = flat_stop_route(&["A", "M", "B"], &mut pb, true).unwrap();

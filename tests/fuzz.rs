@@ -16,6 +16,7 @@ use std::sync::OnceLock;
 use swarmplan::check::check_report;
 use swarmplan::check::plan_file::parse_plan_file;
 use swarmplan::eaas::hop_file::parse_hop_file;
+use swarmplan::eaas::Heuristic;
 use swarmplan::eaas::{simulate, SharingPolicy};
 use swarmplan::error::{Error, Result};
 use swarmplan::problem::io::{parse_json, parse_toml};
@@ -236,7 +237,7 @@ fn hop(text: &str) -> std::result::Result<(), TestCaseError> {
     let parsed = parse_hop_file(text, "hop");
     coded("hop file", &parsed)?;
     if let Ok(file) = parsed {
-        for policy in [SharingPolicy::None, SharingPolicy::Pb, SharingPolicy::Fb] {
+        for policy in [Heuristic::None, Heuristic::Pb, Heuristic::Fb] {
             coded("hop policy", &simulate(&file.hop, policy))?;
         }
     }

@@ -458,13 +458,17 @@ impl Planner {
             }
         }
         let problem = self.hop_problem(path, battery_mah)?;
-        if !policy.is_exact() {
-            let options = eaas::PolicyOptions::from(&self.profile.readings);
-            return Ok(Flight {
-                outcome: eaas::simulate_valid(&problem, policy, &options)?,
-                solve: None,
-            });
-        }
+        let exact_policy = match (policy.heuristic(), policy.exact_policy()) {
+            (Some(heuristic), _) => {
+                let options = eaas::PolicyOptions::from(&self.profile.readings);
+                return Ok(Flight {
+                    outcome: eaas::simulate_valid(&problem, heuristic, &options)?,
+                    solve: None,
+                });
+            }
+            (None, Some(exact_policy)) => exact_policy,
+            (None, None) => unreachable!("every sharing policy is simulated or exact"),
+        };
         let last = *path.nodes.last().expect("a path has at least one node");
         let pads = self.graph.pads(last);
         let objective = if goal == HopGoal::NodeTimeMin && pads > 0 {
@@ -477,7 +481,7 @@ impl Planner {
         };
         let readings = eaas::PolicyOptions::from(&self.profile.readings);
         let (outcome, solve) =
-            exact_hop::fly_exact(&problem, policy, &objective, &self.exact, &readings)?;
+            exact_hop::fly_exact(&problem, exact_policy, &objective, &self.exact, &readings)?;
         let flight = Flight {
             outcome,
             solve: Some(solve),

@@ -11,7 +11,9 @@
 use super::exact::dispatch::{self, Solved};
 use super::exact::{BoundOutcome, Formulation};
 use super::milp::{objective_of, ExactOutcome, ExactStatus, MilpOptions, Objective, Reorder};
-use super::{simulate_with, FreeSchedule, HopProblem, PolicyOptions, SharingPolicy, Transfer};
+use super::{
+    simulate_with, FreeSchedule, Heuristic, HopProblem, PolicyOptions, SharingPolicy, Transfer,
+};
 use crate::error::Result;
 use crate::solver::{Gap, ReferenceKind};
 use serde::Serialize;
@@ -43,12 +45,22 @@ impl HopMethod {
     /// The method of a sharing policy on a hop: its simulated heuristic (`idle-support` flies
     /// `none`), or its exact formulation (`exact`: the continuous model; `fair`: the fair QP).
     pub fn of_policy(policy: SharingPolicy) -> HopMethod {
-        match policy {
-            SharingPolicy::None | SharingPolicy::IdleSupport => HopMethod::None,
-            SharingPolicy::Pb => HopMethod::Pb,
-            SharingPolicy::Fb => HopMethod::Fb,
-            SharingPolicy::Exact => HopMethod::Continuous,
-            SharingPolicy::Fair => HopMethod::Fair,
+        match (policy.heuristic(), policy.exact_policy()) {
+            (Some(Heuristic::None), _) => HopMethod::None,
+            (Some(Heuristic::Pb), _) => HopMethod::Pb,
+            (Some(Heuristic::Fb), _) => HopMethod::Fb,
+            (None, Some(p)) => HopMethod::of_formulation(p.formulation()),
+            (None, None) => HopMethod::None,
+        }
+    }
+
+    /// The method that solves `formulation`.
+    pub fn of_formulation(formulation: Formulation) -> HopMethod {
+        match formulation {
+            Formulation::Continuous => HopMethod::Continuous,
+            Formulation::Milp => HopMethod::Milp,
+            Formulation::Fluid => HopMethod::Fluid,
+            Formulation::Fair => HopMethod::Fair,
         }
     }
 
@@ -63,12 +75,12 @@ impl HopMethod {
         }
     }
 
-    /// The simulated policy of a heuristic (`none`, `pb`, `fb`); `None` for the models.
-    pub fn heuristic(self) -> Option<SharingPolicy> {
+    /// The simulated heuristic (`none`, `pb`, `fb`); `None` for the models.
+    pub fn heuristic(self) -> Option<Heuristic> {
         match self {
-            HopMethod::None => Some(SharingPolicy::None),
-            HopMethod::Pb => Some(SharingPolicy::Pb),
-            HopMethod::Fb => Some(SharingPolicy::Fb),
+            HopMethod::None => Some(Heuristic::None),
+            HopMethod::Pb => Some(Heuristic::Pb),
+            HopMethod::Fb => Some(Heuristic::Fb),
             _ => None,
         }
     }
@@ -187,13 +199,13 @@ pub fn run_method(
     if let Some(formulation) = method.formulation() {
         return Ok(
             match dispatch::solve(formulation, problem, objective, milp, readings)? {
-                Solved::Schedule(o) => schedule_row(method, formulation, o),
+                Solved::Schedule(o) => schedule_row(method, formulation, *o),
                 Solved::Bound(o) => bound_row(method, formulation, o),
             },
         );
     }
-    let policy = method.heuristic().unwrap_or(SharingPolicy::None);
-    let o = simulate_with(problem, policy, readings)?;
+    let heuristic = method.heuristic().unwrap_or(Heuristic::None);
+    let o = simulate_with(problem, heuristic, readings)?;
     let value = if o.feasible {
         Some(objective_of(problem, objective, &o.final_battery_mah)?)
     } else {

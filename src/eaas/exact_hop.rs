@@ -10,10 +10,11 @@
 //! one is the continuous model's first incumbent, and when the fair layout does not fly the empty
 //! schedule is flown and the fallback is recorded ([`HopSolve::fallback`]).
 
-use super::compare::HopMethod;
 use super::exact::dispatch::{self, Solved};
 use super::milp::{ExactStatus, MilpOptions, Objective, Reorder};
-use super::{simulate_with, HopOutcome, HopProblem, PolicyOptions, SharingPolicy};
+use super::{
+    simulate_with, ExactPolicy, Heuristic, HopOutcome, HopProblem, PolicyOptions, SharingPolicy,
+};
 use crate::error::{Error, Result};
 use serde::{Deserialize, Serialize};
 
@@ -243,7 +244,7 @@ impl HopSolveCounts {
 /// how the solve ended.
 ///
 /// # Errors
-/// `E4114` for a policy other than `exact` and `fair`, `E4113` for `free` re-ordering; those of
+/// `E4113` for `free` re-ordering; those of
 /// [`dispatch::solve`] for bad input. A backend failure is not an error here: it
 /// is recorded in [`HopSolve::backend_error`] and the hop flies without sharing if it can.
 ///
@@ -251,7 +252,7 @@ impl HopSolveCounts {
 /// One MILP (exponential worst case, bounded by the time limit) or one QP (interior point).
 pub fn fly_exact(
     problem: &HopProblem,
-    policy: SharingPolicy,
+    policy: ExactPolicy,
     objective: &Objective,
     settings: &ExactSettings,
     readings: &PolicyOptions,
@@ -272,21 +273,11 @@ pub fn fly_exact(
         Objective::NodeTime { .. } => HopGoal::NodeTimeMin,
         _ => HopGoal::Feasible,
     };
-    let not_exact = || {
-        Error::invalid(
-            "E4114",
-            "policy",
-            format!("{policy:?} is not an exact policy"),
-            "use eaas::simulate_with for none, idle-support, pb and fb",
-        )
-    };
-    // `exact` flies the continuous model's schedule, `fair` the fair QP's layout.
-    let formulation = HopMethod::of_policy(policy)
-        .formulation()
-        .ok_or_else(not_exact)?;
+    let formulation = policy.formulation();
     let solved = match dispatch::solve(formulation, problem, objective, milp, readings) {
-        Ok(Solved::Schedule(o)) => Ok(o),
-        Ok(Solved::Bound(_)) => return Err(not_exact()),
+        Ok(Solved::Schedule(o)) => Ok(*o),
+        // Both formulations of an exact policy give schedules; a bound alone is no flight.
+        Ok(Solved::Bound(_)) => Err(format!("{formulation:?} gives no schedule")),
         Err(Error::Backend { backend, message }) => Err(format!("{backend}: {message}")),
         Err(e) => return Err(e),
     };
@@ -301,9 +292,9 @@ pub fn fly_exact(
         ),
         Err(message) => (None, None, None, 0.0, None, Some(message)),
     };
-    let exact_node_time = goal == HopGoal::NodeTimeMin && policy == SharingPolicy::Exact;
+    let exact_node_time = goal == HopGoal::NodeTimeMin && policy == ExactPolicy::Exact;
     let mut solve = HopSolve {
-        policy,
+        policy: policy.into(),
         goal,
         status,
         backend_error,
@@ -318,11 +309,11 @@ pub fn fly_exact(
     let outcome = match schedule.filter(|o| o.feasible) {
         Some(o) => o,
         None => {
-            let empty = simulate_with(problem, SharingPolicy::None, &PolicyOptions::default())?;
+            let empty = simulate_with(problem, Heuristic::None, &PolicyOptions::default())?;
             if empty.feasible {
                 solve.fallback = Some(match (policy, status) {
                     (_, None) => Fallback::BackendError,
-                    (SharingPolicy::Fair, Some(ExactStatus::Optimal)) => {
+                    (ExactPolicy::Fair, Some(ExactStatus::Optimal)) => {
                         Fallback::FairLayoutDoesNotFly
                     }
                     (_, Some(ExactStatus::TimeLimitNoSolution)) => Fallback::NoSolutionInTime,

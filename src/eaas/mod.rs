@@ -140,6 +140,82 @@ impl SharingPolicy {
     pub fn flies_support(self) -> bool {
         self != SharingPolicy::None
     }
+
+    /// The heuristic a hop is simulated with under this policy (`idle-support` flies `none`);
+    /// `None` for the exact and fair policies.
+    pub fn heuristic(self) -> Option<Heuristic> {
+        match self {
+            SharingPolicy::None | SharingPolicy::IdleSupport => Some(Heuristic::None),
+            SharingPolicy::Pb => Some(Heuristic::Pb),
+            SharingPolicy::Fb => Some(Heuristic::Fb),
+            SharingPolicy::Exact | SharingPolicy::Fair => None,
+        }
+    }
+
+    /// The exact or fair policy; `None` for the simulated ones.
+    pub fn exact_policy(self) -> Option<ExactPolicy> {
+        match self {
+            SharingPolicy::Exact => Some(ExactPolicy::Exact),
+            SharingPolicy::Fair => Some(ExactPolicy::Fair),
+            _ => None,
+        }
+    }
+}
+
+/// A sharing heuristic simulated on a hop ([`simulate`]): the paper's Algorithms 2 and 3 and the
+/// flight without sharing.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Heuristic {
+    /// No sharing.
+    None,
+    /// Priority-based sharing (Algorithm 2).
+    Pb,
+    /// Fairness-based sharing (Algorithm 3).
+    Fb,
+}
+
+display_as_value_name!(Heuristic);
+
+impl From<Heuristic> for SharingPolicy {
+    fn from(h: Heuristic) -> SharingPolicy {
+        match h {
+            Heuristic::None => SharingPolicy::None,
+            Heuristic::Pb => SharingPolicy::Pb,
+            Heuristic::Fb => SharingPolicy::Fb,
+        }
+    }
+}
+
+/// A sharing policy whose schedule a model gives ([`exact_hop::fly_exact`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ExactPolicy {
+    /// The continuous model's optimal schedule.
+    Exact,
+    /// The fair QP's layout.
+    Fair,
+}
+
+display_as_value_name!(ExactPolicy);
+
+impl ExactPolicy {
+    /// The formulation that gives the schedule: the continuous model, or the fair QP.
+    pub fn formulation(self) -> exact::Formulation {
+        match self {
+            ExactPolicy::Exact => exact::Formulation::Continuous,
+            ExactPolicy::Fair => exact::Formulation::Fair,
+        }
+    }
+}
+
+impl From<ExactPolicy> for SharingPolicy {
+    fn from(p: ExactPolicy) -> SharingPolicy {
+        match p {
+            ExactPolicy::Exact => SharingPolicy::Exact,
+            ExactPolicy::Fair => SharingPolicy::Fair,
+        }
+    }
 }
 
 /// Readings of the paper where it can be taken two ways; [`Default`] gives ours, the same as the
@@ -265,7 +341,8 @@ pub struct HopOutcome {
 /// # Arguments
 /// * `problem` - the hop: legs with rates, drones, formation, `rho`, `range_m`, `gamma`,
 ///   `lambda`, `delta`.
-/// * `policy` - none, PB or FB.
+/// * `heuristic` - none, PB or FB (the exact and fair policies fly with
+///   [`exact_hop::fly_exact`]).
 ///
 /// # Returns
 /// The schedule and every drone's final and lowest battery; infeasibility is data
@@ -295,19 +372,19 @@ pub struct HopOutcome {
 ///     initial_slot: vec![0, 1],
 ///     rho_mah_per_min: 4.0, range_m: 1.2, gamma_mah: 50.0, lambda_mah: 20.0, delta_mah: 100.0,
 /// };
-/// let none = simulate(&p, SharingPolicy::None).unwrap();
+/// let none = simulate(&p, Heuristic::None).unwrap();
 /// assert!(!none.feasible); // 80 - 10 * 10 = -20
-/// let pb = simulate(&p, SharingPolicy::Pb).unwrap();
+/// let pb = simulate(&p, Heuristic::Pb).unwrap();
 /// assert!(pb.feasible);
 /// ```
-pub fn simulate(problem: &HopProblem, policy: SharingPolicy) -> Result<HopOutcome> {
-    simulate_with(problem, policy, &PolicyOptions::default())
+pub fn simulate(problem: &HopProblem, heuristic: Heuristic) -> Result<HopOutcome> {
+    simulate_with(problem, heuristic, &PolicyOptions::default())
 }
 
 /// [`simulate`] with explicit [`PolicyOptions`] (the paper's literal readings).
 ///
 /// # Arguments
-/// * `problem`, `policy` - as [`simulate`].
+/// * `problem`, `heuristic` - as [`simulate`].
 /// * `options` - which reading of Algorithms 2 and 3 to follow where the paper is ambiguous.
 ///
 /// # Returns
@@ -320,11 +397,11 @@ pub fn simulate(problem: &HopProblem, policy: SharingPolicy) -> Result<HopOutcom
 /// As [`simulate`].
 pub fn simulate_with(
     problem: &HopProblem,
-    policy: SharingPolicy,
+    heuristic: Heuristic,
     options: &PolicyOptions,
 ) -> Result<HopOutcome> {
     validate(problem)?;
-    simulate_valid(problem, policy, options)
+    simulate_valid(problem, heuristic, options)
 }
 
 /// [`simulate_with`] for a problem that passed [`validate`] (the route planner validates its
@@ -334,27 +411,19 @@ pub fn simulate_with(
 /// Those of [`simulate_with`] other than the validation's.
 pub(crate) fn simulate_valid(
     problem: &HopProblem,
-    policy: SharingPolicy,
+    heuristic: Heuristic,
     options: &PolicyOptions,
 ) -> Result<HopOutcome> {
-    let plan = match policy {
-        SharingPolicy::None | SharingPolicy::IdleSupport => none::plan(problem),
-        SharingPolicy::Pb => match pb::plan(problem, options) {
+    let plan = match heuristic {
+        Heuristic::None => none::plan(problem),
+        Heuristic::Pb => match pb::plan(problem, options) {
             // Realising no transfer again would repeat the same arithmetic.
             (_, Some(run)) => return Ok(run.into_outcome()),
             (plan, None) => plan,
         },
-        SharingPolicy::Fb => {
+        Heuristic::Fb => {
             fb_work_bound(problem)?;
             fb::plan(problem, options)
-        }
-        SharingPolicy::Exact | SharingPolicy::Fair => {
-            return Err(Error::invalid(
-                "E4014",
-                "policy",
-                format!("{policy:?} needs an objective and solver settings"),
-                "use eaas::exact_hop::fly_exact for the exact and fair policies",
-            ))
         }
     };
     let run = simulate::evaluate(problem, &plan);

@@ -33,8 +33,8 @@ use super::{
 use crate::eaas::simulate::evaluate;
 use crate::eaas::simulate::leg_at;
 use crate::eaas::{
-    reorder, sharing_budget_mah, simulate_with, FreeSchedule, HopOutcome, HopProblem,
-    PolicyOptions, Role, SharingPolicy, SlotInterval, Transfer, ENERGY_TOL_MAH, TIME_TOL_MIN,
+    reorder, sharing_budget_mah, simulate_with, FreeSchedule, Heuristic, HopOutcome, HopProblem,
+    PolicyOptions, Role, SlotInterval, Transfer, ENERGY_TOL_MAH, TIME_TOL_MIN,
 };
 use crate::error::{Error, Result};
 use crate::solver::{run_on, BackendStatus, MilpBackend, MilpJob, MilpModel, MIP_REL_GAP};
@@ -1129,9 +1129,9 @@ pub fn solve_continuous(
         out.solve_ms = start.elapsed().as_secs_f64() * 1e3;
         return Ok(out);
     }
-    for policy in [SharingPolicy::Pb, SharingPolicy::Fb] {
+    for heuristic in [Heuristic::Pb, Heuristic::Fb] {
         // A heuristic refusing the hop (FB's round bound) gives no incumbent.
-        if let Ok(o) = simulate_with(problem, policy, &options.readings) {
+        if let Ok(o) = simulate_with(problem, heuristic, &options.readings) {
             if o.feasible && in_mode(problem, options.reorder, &o.transfers) {
                 keep(
                     objective,

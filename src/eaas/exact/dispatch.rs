@@ -12,7 +12,7 @@ use crate::error::Result;
 #[derive(Debug, Clone, PartialEq)]
 pub enum Solved {
     /// The continuous model, the grid MILP, the fair QP's layout.
-    Schedule(ExactOutcome),
+    Schedule(Box<ExactOutcome>),
     /// The fluid LP.
     Bound(BoundOutcome),
 }
@@ -32,23 +32,23 @@ pub fn solve(
     readings: &PolicyOptions,
 ) -> Result<Solved> {
     Ok(match formulation {
-        Formulation::Continuous => Solved::Schedule(solve_continuous(
+        Formulation::Continuous => Solved::Schedule(Box::new(solve_continuous(
             problem,
             objective,
             &ContinuousOptions::like(options, *readings),
-        )?),
-        Formulation::Milp => Solved::Schedule(solve_milp(problem, objective, options)?),
+        )?)),
+        Formulation::Milp => Solved::Schedule(Box::new(solve_milp(problem, objective, options)?)),
         Formulation::Fluid => Solved::Bound(fluid::bound(
             problem,
             objective,
             options.reorder,
             options.time_limit_s,
         )?),
-        Formulation::Fair => Solved::Schedule(fluid::fair(
+        Formulation::Fair => Solved::Schedule(Box::new(fluid::fair(
             problem,
             objective,
             options.reorder,
             options.time_limit_s,
-        )?),
+        )?)),
     })
 }
