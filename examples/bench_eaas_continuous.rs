@@ -23,6 +23,7 @@ use swarmplan::cli::inputs::{load_requests, InstanceArgs};
 use swarmplan::compose::{Context, PlanOptions, Planner, RouteMethod};
 use swarmplan::eaas::exact::continuous::{solve_continuous, ContinuousOptions};
 use swarmplan::eaas::exact::milp::{solve_milp, MilpOptions};
+use swarmplan::eaas::exact::EndPads;
 use swarmplan::eaas::exact::{ExactOutcome, ExactStatus, Objective, Reorder};
 use swarmplan::eaas::{HopProblem, SharingPolicy};
 use swarmplan::precompose::Positioning;
@@ -105,10 +106,10 @@ fn main() {
     let backend = args.backend.unwrap_or_default();
     println!("backend {backend}");
     println!("1. benchmark hops, 10 + 3 drones, 30 periods, node time on 2 pads");
-    let objective = Objective::NodeTime {
+    let objective = Objective::NodeTime(EndPads {
         pads: 2,
         pad_rate_mah_per_min: 10.0,
-    };
+    });
     for reorder in [Reorder::Paper, Reorder::None] {
         // The seed bench_eaas_exact uses for this size.
         let mut rng = ChaCha8Rng::seed_from_u64(1000 + 10 * 10 + 3);

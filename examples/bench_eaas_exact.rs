@@ -16,6 +16,7 @@ mod bench_hop;
 use bench_hop::hop;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
+use swarmplan::eaas::exact::EndPads;
 use swarmplan::eaas::fluid;
 use swarmplan::eaas::milp::{solve_milp, ExactStatus, MilpOptions, Objective, Reorder};
 use swarmplan::solver::MilpBackend;
@@ -50,10 +51,10 @@ fn main() {
             }
         }
     }
-    let objective = Objective::NodeTime {
+    let objective = Objective::NodeTime(EndPads {
         pads: 2,
         pad_rate_mah_per_min: 10.0,
-    };
+    });
     println!(
         "backend {}, time limit {time_limit_s} s per solve, 3 hops per row",
         backend

@@ -37,6 +37,7 @@ use std::process::ExitCode;
 use std::time::Instant;
 use swarmplan::cli::inputs::{load_requests, InstanceArgs};
 use swarmplan::compose::{Context, PlanOptions, PlanOutcome, Planner, RouteMethod};
+use swarmplan::eaas::exact::EndPads;
 use swarmplan::eaas::milp::{solve_milp, ExactStatus, MilpOptions, Objective, Reorder};
 use swarmplan::eaas::{fluid, simulate_with, HopProblem, PolicyOptions, SharingPolicy};
 use swarmplan::error::Result;
@@ -321,10 +322,10 @@ fn request_rows(
                     .zip(&hop.arrival_battery_mah)
                     .all(|(a, b)| (a - b).abs() <= 1e-6 * (1.0 + b.abs()));
             let pads = graph.pads(end) as usize;
-            let objective = Objective::NodeTime {
+            let objective = Objective::NodeTime(EndPads {
                 pads,
                 pad_rate_mah_per_min: graph.pad_rate_mah_per_min(end, pad_rate_default),
-            };
+            });
             let (Ok(exact), Ok(lp)) = (
                 solve_milp(&problem, &objective, milp),
                 fluid::bound(&problem, &objective, Reorder::Paper, time_limit_s),

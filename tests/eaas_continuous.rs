@@ -11,6 +11,7 @@ use proptest::prelude::*;
 use swarmplan::check::{check_free_hop, check_hop};
 use swarmplan::eaas::exact::continuous::{solve_continuous, ContinuousOptions};
 use swarmplan::eaas::exact::milp::{solve_milp, MilpOptions};
+use swarmplan::eaas::exact::EndPads;
 use swarmplan::eaas::exact::{ExactOutcome, ExactStatus, Objective, Reorder};
 use swarmplan::eaas::Heuristic;
 use swarmplan::eaas::{fluid, simulate, HopProblem, LegRates, SlotInterval};
@@ -251,10 +252,10 @@ fn too_many_configurations_is_a_coded_error() {
     assert!(e.to_string().contains("E4117"), "{e}");
 }
 
-const NT2: Objective = Objective::NodeTime {
+const NT2: Objective = Objective::NodeTime(EndPads {
     pads: 2,
     pad_rate_mah_per_min: 1.0,
-};
+});
 
 /// `value` under a minimisation is at most `limit` up to rounding.
 fn at_most(value: f64, limit: f64) -> bool {

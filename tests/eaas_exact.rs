@@ -8,6 +8,7 @@ use common::{close, drone, integral_hop, known_optima, uniform_leg, Known};
 use nalgebra::Vector2;
 use proptest::prelude::*;
 use swarmplan::check::check_hop;
+use swarmplan::eaas::exact::EndPads;
 use swarmplan::eaas::milp::{
     solve_milp, ExactOutcome, ExactStatus, MilpOptions, Objective, Reorder,
 };
@@ -183,10 +184,10 @@ fn bad_grid_objective_and_time_limit_are_coded_errors() {
         codes(solve_milp(&p, &Objective::Feasible, &tiny)),
         ["E4102"]
     );
-    let nt = Objective::NodeTime {
+    let nt = Objective::NodeTime(EndPads {
         pads: 0,
         pad_rate_mah_per_min: f64::NAN,
-    };
+    });
     assert_eq!(codes(solve_milp(&p, &nt, &base)), ["E4103", "E4104"]);
     let no_time = MilpOptions {
         time_limit_s: -1.0,
@@ -305,7 +306,7 @@ proptest! {
         let finals = brute_finals(&p, periods);
         for backend in MilpBackend::all() {
             let opt = options(backend, Reorder::Paper, 1.0);
-            let nt = Objective::NodeTime { pads, pad_rate_mah_per_min: 2.0 };
+            let nt = Objective::NodeTime(EndPads { pads, pad_rate_mah_per_min: 2.0 });
             let o = solve_milp(&p, &nt, &opt).unwrap();
             assert_checked(&p, &o);
             let mm = solve_milp(&p, &Objective::MaxMinArrival, &opt).unwrap();
@@ -348,10 +349,10 @@ fn nt_of(o: &ExactOutcome) -> f64 {
     }
 }
 
-const NT2: Objective = Objective::NodeTime {
+const NT2: Objective = Objective::NodeTime(EndPads {
     pads: 2,
     pad_rate_mah_per_min: 1.0,
-};
+});
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(24))]
@@ -531,10 +532,10 @@ fn large_hop() -> HopProblem {
 #[test]
 fn a_solve_stopped_by_the_time_limit_says_so_and_labels_its_bound() {
     let p = large_hop();
-    let nt = Objective::NodeTime {
+    let nt = Objective::NodeTime(EndPads {
         pads: 2,
         pad_rate_mah_per_min: 10.0,
-    };
+    });
     let lp = fluid::bound(&p, &nt, Reorder::Paper, 10.0).unwrap();
     assert_eq!(lp.status, ExactStatus::Optimal);
     for backend in MilpBackend::all() {
@@ -573,10 +574,10 @@ fn a_hop_of_zero_duration_keeps_the_departure_batteries() {
     // lowest delivery battery 25 (by hand).
     let mut p = known("needy_pair_max_min").problem;
     p.legs[0].duration_min = 0.0;
-    let nt3 = Objective::NodeTime {
+    let nt3 = Objective::NodeTime(EndPads {
         pads: 3,
         pad_rate_mah_per_min: 1.0,
-    };
+    });
     for backend in MilpBackend::all() {
         for (objective, expect) in [
             (nt3, 75.0),

@@ -15,6 +15,7 @@ use common::{assert_close, drone, flat_instance, flat_stop_request, known_optima
 use common::{integral_hop, paper_195, uniform_leg, Known};
 use swarmplan::compose::{Context, PlanOptions, RouteMethod};
 use swarmplan::eaas::compare::{run_method, HopMethod};
+use swarmplan::eaas::exact::EndPads;
 use swarmplan::eaas::hop_file::HopFile;
 use swarmplan::eaas::milp::{ExactStatus, MilpOptions, Objective, Reorder};
 use swarmplan::eaas::Heuristic;
@@ -284,10 +285,10 @@ fn a_written_transfer_gives_the_hand_computed_batteries_value_and_gap() {
     // 19.6, ct1 = (500 - 426) / 10 = 7.4, one drone per pad: 19.6. Sharing x mAh (x <= 40)
     // gives ct0 = (220 - x) / 10 >= 18 and ct1 = (50 + x) / 10 <= 9: the optimum is 18 at
     // x = 40, and the gap (19.6 - 18) / 18.
-    let two_pads = Objective::NodeTime {
+    let two_pads = Objective::NodeTime(EndPads {
         pads: 2,
         pad_rate_mah_per_min: 10.0,
-    };
+    });
     let e = evaluate_hop(
         &p,
         &two_pads,
@@ -301,10 +302,10 @@ fn a_written_transfer_gives_the_hand_computed_batteries_value_and_gap() {
 
     // On 1 pad the node time is the total deficit (700 - (80 + 500 - 150)) / 10 = 27 whatever
     // is shared: gap 0.
-    let one_pad = Objective::NodeTime {
+    let one_pad = Objective::NodeTime(EndPads {
         pads: 1,
         pad_rate_mah_per_min: 10.0,
-    };
+    });
     let e = evaluate_hop(
         &p,
         &one_pad,
@@ -656,7 +657,7 @@ fn a_swapping_schedule_is_scored_against_paper_and_left_out_of_none() {
 /// fed back through `evaluate_hop`; returns whether the continuous schedule was optimal.
 fn policies_fed_back(problem: &HopProblem, objective: &Objective, what: &str) -> bool {
     let reference = default_reference();
-    let minimise = matches!(objective, Objective::NodeTime { .. });
+    let minimise = matches!(objective, Objective::NodeTime(EndPads { .. }));
     // PB: its own simulation gives the batteries and feasibility; its row the value.
     let pb = simulate_with(problem, Heuristic::Pb, &PolicyOptions::default()).unwrap();
     let written: Vec<WrittenTransfer> = pb.transfers.iter().map(WrittenTransfer::from).collect();
@@ -756,10 +757,10 @@ fn pb_and_continuous_schedules_fed_back_keep_their_batteries_and_gap_signs() {
         let p = integral_hop(seed);
         for objective in [
             Objective::MaxMinArrival,
-            Objective::NodeTime {
+            Objective::NodeTime(EndPads {
                 pads: 2,
                 pad_rate_mah_per_min: 1.0,
-            },
+            }),
         ] {
             cases += 1;
             optimal += usize::from(policies_fed_back(
@@ -851,10 +852,10 @@ fn a_route_without_sharing_on_flat_stop_has_the_hand_computed_delivery_time_and_
     // Into M the objective is the node time on its 2 pads.
     assert_eq!(
         h0.hop.objective(),
-        Objective::NodeTime {
+        Objective::NodeTime(EndPads {
             pads: 2,
             pad_rate_mah_per_min: 100.0
-        }
+        })
     );
     assert_close(
         h0.evaluation.value.unwrap(),
@@ -1248,10 +1249,10 @@ fn written_transfers_round_trip_through_json() {
 fn an_invalid_pad_rate_is_an_error_with_or_without_a_reference() {
     let p = two_drones();
     for rate in [f64::NAN, -1.0] {
-        let objective = Objective::NodeTime {
+        let objective = Objective::NodeTime(EndPads {
             pads: 2,
             pad_rate_mah_per_min: rate,
-        };
+        });
         for reference in [None, Some(default_reference())] {
             let v = violations(evaluate_hop(
                 &p,

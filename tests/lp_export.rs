@@ -9,6 +9,7 @@ mod common;
 use common::model_files::{read_lp, Lp};
 use common::{close, known_optima, tmp, Known, TOL};
 use std::collections::HashMap;
+use swarmplan::eaas::exact::EndPads;
 use swarmplan::eaas::milp::{
     lp_text, solve_milp, write_lp, ExactStatus, MilpOptions, Objective, Reorder,
 };
@@ -109,7 +110,7 @@ fn lp_file_states_the_hop_and_has_the_size_of_the_model() {
         let periods = (tt / k.period_min).ceil() as usize; // one leg per instance
         let mv = expected_moves(p, k.reorder);
         let pad_binaries = match k.objective {
-            Objective::NodeTime { pads, .. } => {
+            Objective::NodeTime(EndPads { pads, .. }) => {
                 let m = pads.min(n);
                 (0..n).map(|d| d.min(m - 1) + 1).sum()
             }
@@ -155,10 +156,10 @@ fn lp_file_states_the_hop_and_has_the_size_of_the_model() {
         );
         let objective_line = header(&lp, "objective");
         let named = match k.objective {
-            Objective::NodeTime {
+            Objective::NodeTime(EndPads {
                 pads,
                 pad_rate_mah_per_min,
-            } => objective_line.starts_with(&format!(
+            }) => objective_line.starts_with(&format!(
                 "node_time, pads = {pads}, pad_rate_mah_per_min = {pad_rate_mah_per_min}:"
             )),
             Objective::MaxMinArrival => objective_line.starts_with("max_min_arrival"),
@@ -189,7 +190,7 @@ fn lp_file_states_the_hop_and_has_the_size_of_the_model() {
                 .all(|g| lp.bounds.get(g) == Some(&(0.0, 1.0))),
             "an integer variable not in [0, 1]".into(),
         );
-        if !matches!(k.objective, Objective::NodeTime { .. }) {
+        if !matches!(k.objective, Objective::NodeTime(EndPads { .. })) {
             check(
                 lp.rows.len() == rows,
                 format!("{} rows, {rows} by the formula", lp.rows.len()),
@@ -200,7 +201,7 @@ fn lp_file_states_the_hop_and_has_the_size_of_the_model() {
             check(lp.bounds.contains_key(name), format!("no variable {name}"));
         }
         let goal = match k.objective {
-            Objective::NodeTime { .. } => Some(("M", false)),
+            Objective::NodeTime(EndPads { .. }) => Some(("M", false)),
             Objective::MaxMinArrival => Some(("g", true)),
             Objective::Feasible => None,
         };
@@ -280,7 +281,7 @@ fn the_milp_optimum_is_a_point_of_the_lp_file_with_the_same_objective() {
     // Max-min and feasibility hops: their variables are all fixed by the schedule.
     let mut checked = 0;
     for k in known_optima().instances {
-        if matches!(k.objective, Objective::NodeTime { .. }) {
+        if matches!(k.objective, Objective::NodeTime(EndPads { .. })) {
             continue;
         }
         let opt = options(k.reorder, k.period_min);

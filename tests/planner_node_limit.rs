@@ -11,6 +11,7 @@ mod common;
 
 use swarmplan::check::check_plan;
 use swarmplan::compose::{Context, PlanOptions, Planner, RouteMethod, Stop};
+use swarmplan::eaas::exact::EndPads;
 use swarmplan::eaas::SharingPolicy;
 use swarmplan::node_time::{self, brute, lpt, Limits, DEFAULT_STOP_NODE_LIMIT};
 use swarmplan::precompose::Positioning;
@@ -340,10 +341,10 @@ fn a_hop_objective_the_node_time_cannot_prove_is_marked_unproven() {
         .map(|(c, t)| c - t * rate)
         .collect();
     let problem = drones_at_rest(&capacities);
-    let objective = Objective::NodeTime {
+    let objective = Objective::NodeTime(EndPads {
         pads: 4,
         pad_rate_mah_per_min: rate,
-    };
+    });
     let value = objective_of(&problem, &objective, &end).unwrap();
     assert!(!value.proven, "60 real drones on 4 pads were proven");
     let by_lpt = lpt(4, &ct).unwrap().makespan_min;
@@ -355,10 +356,10 @@ fn a_hop_objective_the_node_time_cannot_prove_is_marked_unproven() {
     let ct = [7.0, 6.0, 5.0, 4.0, 3.0];
     let capacities = [1000.0; 5];
     let end: Vec<f64> = ct.iter().map(|t| 1000.0 - t * rate).collect();
-    let objective = Objective::NodeTime {
+    let objective = Objective::NodeTime(EndPads {
         pads: 2,
         pad_rate_mah_per_min: rate,
-    };
+    });
     let value = objective_of(&drones_at_rest(&capacities), &objective, &end).unwrap();
     assert!(value.proven);
     let optimum = brute(2, &ct, &Limits::default()).unwrap().makespan_min;

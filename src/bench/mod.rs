@@ -33,6 +33,7 @@ pub use summary::{
 
 use crate::compose::{lpt_gap, Context, PlanOptions, RequestReport, RouteMethod};
 use crate::eaas::compare::{label_gaps, run_method, HopMethod};
+use crate::eaas::exact::EndPads;
 use crate::eaas::milp::{MilpOptions, Objective};
 use crate::eaas::{PolicyOptions, SharingPolicy};
 use crate::error::{Error, Result};
@@ -659,7 +660,7 @@ fn keep_report(
             to: hop.to.clone(),
             legs: hop.legs.len(),
             objective: match objective {
-                Objective::NodeTime { .. } => "node-time",
+                Objective::NodeTime(EndPads { .. }) => "node-time",
                 Objective::MaxMinArrival => "max-min-arrival",
                 Objective::Feasible => "feasible",
             }

@@ -24,6 +24,7 @@ use super::inputs::{self, InstanceArgs};
 use crate::compose::{Context, PlanOptions, RouteMethod};
 use crate::eaas::compare::{label_gaps, run_method};
 pub use crate::eaas::compare::{HopMethod, MethodRow};
+use crate::eaas::exact::EndPads;
 use crate::eaas::hop_file::{read_hop_file, write_hop_file, HopFile};
 use crate::eaas::milp::{write_lp, MilpOptions, ModelFormat, Objective, Reorder};
 use crate::eaas::{HopProblem, PolicyOptions, SharingPolicy};
@@ -245,10 +246,10 @@ fn rows(
 
 fn print_human(r: &EaasReport) -> Result<()> {
     let objective = match r.objective {
-        Objective::NodeTime {
+        Objective::NodeTime(EndPads {
             pads,
             pad_rate_mah_per_min,
-        } => format!(
+        }) => format!(
             "node time on {pads} pad(s) at {} mAh/min",
             super::human::round(pad_rate_mah_per_min, 2)
         ),

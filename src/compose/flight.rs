@@ -3,6 +3,7 @@
 
 use super::factors::{EdgeFactorCache, EdgeFactors};
 use super::plan::{Hop, LegFlown, Plan, Stop};
+use crate::eaas::exact::EndPads;
 use crate::eaas::exact_hop::HopGoal;
 use crate::eaas::exact_hop::{self, ExactSettings, HopSolve, HopSolveCounts};
 use crate::eaas::milp::Objective;
@@ -368,10 +369,10 @@ impl Planner {
         let problem = self.hop_problem(&path, &hop.departure_battery_mah)?;
         let end = nodes.last().copied().unwrap_or(0);
         let objective = match (&hop.stop, self.graph.pads(end)) {
-            (Some(_), pads) if pads > 0 => Objective::NodeTime {
+            (Some(_), pads) if pads > 0 => Objective::NodeTime(EndPads {
                 pads: pads as usize,
                 pad_rate_mah_per_min: self.pad_rate_mah_per_min(end),
-            },
+            }),
             _ => Objective::MaxMinArrival,
         };
         Ok((problem, objective))
@@ -472,10 +473,10 @@ impl Planner {
         let last = *path.nodes.last().expect("a path has at least one node");
         let pads = self.graph.pads(last);
         let objective = if goal == HopGoal::NodeTimeMin && pads > 0 {
-            Objective::NodeTime {
+            Objective::NodeTime(EndPads {
                 pads: pads as usize,
                 pad_rate_mah_per_min: self.pad_rate_mah_per_min(last),
-            }
+            })
         } else {
             Objective::Feasible
         };

@@ -6,6 +6,7 @@
 use super::optimal::{BestArc, Start};
 use super::plan::{Plan, PlanOutcome, RouteOptimality};
 use super::Planner;
+use crate::eaas::exact::EndPads;
 use crate::eaas::exact_hop::HopSolveCounts;
 use crate::eaas::fluid;
 use crate::eaas::milp::{ExactStatus, Objective};
@@ -60,10 +61,10 @@ impl Planner {
     fn fluid_bound_min(&self, path: &crate::network::Route, v: usize) -> Result<f64> {
         let tt_min = path.distance_m / self.speed_m_per_min();
         let problem = self.hop_problem(path, &self.full_battery_mah())?;
-        let objective = Objective::NodeTime {
+        let objective = Objective::NodeTime(EndPads {
             pads: self.graph().pads(v) as usize,
             pad_rate_mah_per_min: self.pad_rate_mah_per_min(v),
-        };
+        });
         let settings = self.exact_settings();
         let nt_min = match fluid::bound(
             &problem,

@@ -2,6 +2,7 @@
 
 use super::plan::{Plan, PlanOutcome};
 use super::{Flight, LookAhead, Planner, Stop};
+use crate::eaas::exact::EndPads;
 use crate::eaas::exact_hop::HopGoal;
 use crate::eaas::exact_hop::HopSolveCounts;
 use crate::eaas::milp::Objective;
@@ -38,10 +39,10 @@ impl Planner {
         let mut out = Vec::with_capacity(candidates.len());
         for (v, path, look_ahead_min, _) in candidates {
             let problem = self.hop_problem(&path, battery)?;
-            let objective = Objective::NodeTime {
+            let objective = Objective::NodeTime(EndPads {
                 pads: self.graph().pads(v) as usize,
                 pad_rate_mah_per_min: self.pad_rate_mah_per_min(v),
-            };
+            });
             let nt_bound = match fluid::bound(
                 &problem,
                 &objective,

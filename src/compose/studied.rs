@@ -49,10 +49,10 @@ impl Context {
         let planner = self.planner(&report.swarm, report.options.sharing);
         let (problem, objective) = planner.studied_hop(hop)?;
         let end = match objective {
-            Objective::NodeTime {
+            Objective::NodeTime(EndPads {
                 pads,
                 pad_rate_mah_per_min,
-            } => Some(EndPads {
+            }) => Some(EndPads {
                 pads,
                 pad_rate_mah_per_min,
             }),

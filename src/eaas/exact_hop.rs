@@ -11,6 +11,7 @@
 //! schedule is flown and the fallback is recorded ([`HopSolve::fallback`]).
 
 use super::exact::dispatch::{self, Solved};
+use super::exact::EndPads;
 use super::milp::{ExactStatus, MilpOptions, Objective, Reorder};
 use super::{
     simulate_with, ExactPolicy, Heuristic, HopOutcome, HopProblem, PolicyOptions, SharingPolicy,
@@ -270,7 +271,7 @@ pub fn fly_exact(
     // The grid step is the grid MILP's; a bad one is still bad input.
     super::milp::validate_period_min(milp.period_min)?;
     let goal = match objective {
-        Objective::NodeTime { .. } => HopGoal::NodeTimeMin,
+        Objective::NodeTime(EndPads { .. }) => HopGoal::NodeTimeMin,
         _ => HopGoal::Feasible,
     };
     let formulation = policy.formulation();

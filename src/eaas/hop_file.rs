@@ -25,15 +25,7 @@ use std::path::Path;
 /// The only schema version of hop files.
 pub const HOP_FILE_SCHEMA_VERSION: u32 = 1;
 
-/// Pads at the node ending a hop.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct EndPads {
-    /// Number of pads `k`.
-    pub pads: usize,
-    /// Charging rate of a pad, mAh/min.
-    pub pad_rate_mah_per_min: f64,
-}
+pub use super::exact::EndPads;
 
 /// One hop of a request's plan, with where it comes from.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -68,10 +60,10 @@ impl HopFile {
     /// lowest delivery arrival battery when the hop ends without pads.
     pub fn objective(&self) -> Objective {
         match self.end {
-            Some(e) => Objective::NodeTime {
+            Some(e) => Objective::NodeTime(EndPads {
                 pads: e.pads,
                 pad_rate_mah_per_min: e.pad_rate_mah_per_min,
-            },
+            }),
             None => Objective::MaxMinArrival,
         }
     }

@@ -26,6 +26,7 @@
 //! always has a schedule. In `free` re-ordering a configuration is a slot assignment of the
 //! delivery drones with a matching, and a schedule is a list of [`SlotInterval`]s.
 
+use super::EndPads;
 use super::{
     backend_end, moves, objective_of, validate_inputs, BackendEnd, ExactOutcome, ExactStatus,
     Objective, PadRows, Reorder,
@@ -420,10 +421,10 @@ impl Model<'_> {
         // branch and bound needs), hundredths of the largest capacity otherwise.
         let scale = rescale
             * match *objective {
-                Objective::NodeTime {
+                Objective::NodeTime(EndPads {
                     pad_rate_mah_per_min,
                     ..
-                } => 1.0 / pad_rate_mah_per_min,
+                }) => 1.0 / pad_rate_mah_per_min,
                 _ => {
                     100.0
                         / problem
@@ -459,7 +460,7 @@ impl Model<'_> {
             })
             .collect();
         let (goal, pads) = match *objective {
-            Objective::NodeTime { pads, .. } => (
+            Objective::NodeTime(EndPads { pads, .. }) => (
                 Some(vars.add(variable().min(0.0).name("M"))),
                 match pad_mode {
                     Pads::Fixed(_) => None,
@@ -520,10 +521,10 @@ impl Model<'_> {
             .collect();
         match (*objective, goal, &pads) {
             (
-                Objective::NodeTime {
+                Objective::NodeTime(EndPads {
                     pad_rate_mah_per_min,
                     ..
-                },
+                }),
                 Some(g),
                 Some(rows),
             ) => {
@@ -541,10 +542,10 @@ impl Model<'_> {
                 )
             }
             (
-                Objective::NodeTime {
+                Objective::NodeTime(EndPads {
                     pad_rate_mah_per_min,
                     ..
-                },
+                }),
                 Some(g),
                 None,
             ) => {
@@ -641,10 +642,10 @@ impl Model<'_> {
         objective: &Objective,
         theta: &[Vec<f64>],
     ) -> Result<Option<Vec<usize>>> {
-        let Objective::NodeTime {
+        let Objective::NodeTime(EndPads {
             pads,
             pad_rate_mah_per_min,
-        } = *objective
+        }) = *objective
         else {
             return Ok(None);
         };
@@ -1142,7 +1143,7 @@ pub fn solve_continuous(
         }
     }
     // The relaxation of the pad binaries first: a lower bound, and often a schedule at it.
-    let has_binaries = matches!(objective, Objective::NodeTime { .. });
+    let has_binaries = matches!(objective, Objective::NodeTime(EndPads { .. }));
     let relaxed = match model.solve(objective, options, Attempt::exact(Pads::Relaxed))? {
         Solved::Infeasible => {
             out.solve_ms = start.elapsed().as_secs_f64() * 1e3;

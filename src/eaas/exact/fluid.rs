@@ -22,6 +22,7 @@
 //! ([`fair`]) it minimises `sum_d (C_d - b_d(tt))^2` over every drone, and its amounts are laid out
 //! as a concrete schedule and replayed.
 
+use super::EndPads;
 use super::{
     objective_of, validate_inputs, BoundOutcome, ExactOutcome, ExactStatus, Objective, Reorder,
 };
@@ -289,10 +290,10 @@ pub fn bound(
     let mut q = vec![0.0; m.n_vars];
     let mut sign = 1.0;
     match *objective {
-        Objective::NodeTime {
+        Objective::NodeTime(EndPads {
             pads,
             pad_rate_mah_per_min: pr,
-        } => {
+        }) => {
             q[g] = 1.0;
             // ct_d = (C_d - b_d) / pr <= g, i.e. -b_d / pr - g <= -C_d / pr (+ constant part).
             let mut sum_terms = vec![(g, -1.0)];

@@ -25,6 +25,7 @@
 //! feasibility alone. The optimum is optimal over full-period grid schedules of step `h`, which
 //! the outcome carries ([`ExactOutcome::grid_step_min`]).
 
+use super::EndPads;
 use super::{backend_end, moves, validate_inputs, BackendEnd, Move, PadRows};
 pub use super::{
     objective_of, validate_objective, ExactOutcome, ExactStatus, Objective, ObjectiveValue, Reorder,
@@ -265,7 +266,7 @@ where
     };
     // Objective variables.
     let (goal, pad_vars) = match *objective {
-        Objective::NodeTime { pads, .. } => {
+        Objective::NodeTime(EndPads { pads, .. }) => {
             let rows = PadRows::add(&mut vars, n, pads, relax, None);
             (Some(vars.add(variable().min(0.0).name("M"))), Some(rows))
         }
@@ -366,10 +367,10 @@ where
     }
     match (*objective, goal, &pad_vars) {
         (
-            Objective::NodeTime {
+            Objective::NodeTime(EndPads {
                 pad_rate_mah_per_min,
                 ..
-            },
+            }),
             Some(g),
             Some(rows),
         ) => {
@@ -839,10 +840,10 @@ fn lp_header(
         .count();
     let tt: f64 = problem.legs.iter().map(|l| l.duration_min).sum();
     let goal = match *objective {
-        Objective::NodeTime {
+        Objective::NodeTime(EndPads {
             pads,
             pad_rate_mah_per_min,
-        } => format!(
+        }) => format!(
             "node_time, pads = {pads}, pad_rate_mah_per_min = {pad_rate_mah_per_min}: \
              minimise M, the node time at the hop's end, min"
         ),
@@ -887,7 +888,7 @@ fn lp_header(
         );
     }
     match objective {
-        Objective::NodeTime { .. } => out.push(
+        Objective::NodeTime(EndPads { .. }) => out.push(
             "variables: x_d{d}_p{i} drone d charges on pad i; w_d{d}_p{i} its charge time on \
              pad i, min; M node time, min"
                 .into(),

@@ -106,6 +106,17 @@ pub enum Reorder {
 
 display_as_value_name!(Reorder);
 
+/// The pads at the node ending a hop, where the node time is charged: the end of
+/// [`Objective::NodeTime`] and of a hop file.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EndPads {
+    /// Number of pads `k`.
+    pub pads: usize,
+    /// Charging rate of a pad, mAh/min.
+    pub pad_rate_mah_per_min: f64,
+}
+
 /// What an exact hop model optimises.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -113,12 +124,7 @@ pub enum Objective {
     /// Minimise the node time at the hop's end, minutes: the makespan of charging every drone
     /// (delivery and support) to full on `pads` identical pads, drone `d` taking
     /// `ct_d = (C_d - b_d(tt)) / pad_rate_mah_per_min` minutes.
-    NodeTime {
-        /// Pads `k` at the stop ending the hop.
-        pads: usize,
-        /// Charging rate of a pad, mAh/min.
-        pad_rate_mah_per_min: f64,
-    },
+    NodeTime(EndPads),
     /// Maximise the lowest arrival battery `min_{d in D_d} b_d(tt)` over the delivery drones, mAh.
     MaxMinArrival,
     /// Any schedule with no drone below zero; objective value 0.
@@ -222,10 +228,10 @@ impl ExactOutcome {
 /// # Errors
 /// `E4103` for zero pads, `E4104` for a pad rate that is not finite and positive.
 pub fn validate_objective(objective: &Objective) -> Result<()> {
-    if let Objective::NodeTime {
+    if let Objective::NodeTime(EndPads {
         pads,
         pad_rate_mah_per_min,
-    } = *objective
+    }) = *objective
     {
         let mut v = Vec::new();
         if pads == 0 {
@@ -309,10 +315,10 @@ pub fn objective_of(
     final_battery_mah: &[f64],
 ) -> Result<ObjectiveValue> {
     match *objective {
-        Objective::NodeTime {
+        Objective::NodeTime(EndPads {
             pads,
             pad_rate_mah_per_min,
-        } => {
+        }) => {
             let times: Vec<f64> = problem
                 .drones
                 .iter()
