@@ -205,3 +205,96 @@ pub fn run_grid(
         budget,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bench::CONFIG_FILE;
+    use std::sync::atomic::{AtomicU64, Ordering};
+
+    fn settings(out: PathBuf) -> BenchSettings {
+        BenchSettings {
+            instance: InstanceFiles::default(),
+            requests: None,
+            limit: Some(3),
+            sharing: vec![SharingPolicy::None, SharingPolicy::Pb],
+            positioning: vec![Positioning::LocationAware],
+            route: vec![RouteMethod::Astar],
+            gap: false,
+            joint: false,
+            exact_limit: 0,
+            exact: ExactChoices::default(),
+            node_limit: crate::node_time::DEFAULT_STOP_NODE_LIMIT,
+            distance_bucket_km: 1.0,
+            shard: Shard::WHOLE,
+            threads: Some(1),
+            time_budget_s: None,
+            out,
+            force: false,
+            command: vec!["run_grid".into()],
+        }
+    }
+
+    fn scratch(name: &str) -> PathBuf {
+        let dir =
+            std::env::temp_dir().join(format!("swarmplan-runner-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        dir
+    }
+
+    fn code(e: Error) -> &'static str {
+        match e {
+            Error::Invalid(v) => v[0].code,
+            other => panic!("not a coded violation: {other}"),
+        }
+    }
+
+    #[test]
+    fn a_run_reports_its_progress_and_writes_its_files() {
+        let out = scratch("run");
+        let s = settings(out.clone());
+        let started = AtomicU64::new(0);
+        let done = AtomicU64::new(0);
+        let run = run_grid(
+            &s,
+            &|size| started.store(size.plans(), Ordering::Relaxed),
+            &|n| {
+                done.fetch_add(n, Ordering::Relaxed);
+            },
+        )
+        .unwrap();
+        assert_eq!(
+            run.size,
+            GridSize {
+                requests: 3,
+                combinations: 2
+            }
+        );
+        assert_eq!(started.load(Ordering::Relaxed), 6);
+        assert_eq!(done.load(Ordering::Relaxed), 6);
+        assert_eq!((run.config.limit, run.threads), (3, 1));
+        assert!(run.budget.is_none());
+        assert_eq!(run.data.requests.len(), 6);
+        assert_eq!(run.summary.command, s.command);
+        assert!(out.join(CONFIG_FILE).exists() && out.join("summary.json").exists());
+        // The files of a run are not overwritten unasked.
+        assert_eq!(code(run_grid(&s, &|_| {}, &|_| {}).unwrap_err()), "E7005");
+        std::fs::remove_dir_all(&out).unwrap();
+    }
+
+    #[test]
+    fn bad_settings_are_coded_errors_and_write_nothing() {
+        let out = scratch("bad");
+        let bad = |change: &dyn Fn(&mut BenchSettings)| {
+            let mut s = settings(out.clone());
+            change(&mut s);
+            code(run_grid(&s, &|_| panic!("started"), &|_| {}).unwrap_err())
+        };
+        assert_eq!(bad(&|s| s.threads = Some(0)), "E0004");
+        assert_eq!(bad(&|s| s.distance_bucket_km = 0.0), "E7006");
+        assert_eq!(bad(&|s| s.limit = Some(0)), "E0005");
+        assert_eq!(bad(&|s| s.exact.period_min = f64::NAN), "E4101");
+        assert_eq!(bad(&|s| s.time_budget_s = Some(-1.0)), "E0028");
+        assert!(!out.exists());
+    }
+}

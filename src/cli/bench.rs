@@ -437,3 +437,31 @@ fn print_table(s: &Summary) -> Result<()> {
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::eaas::exact_hop::ExactSettings;
+    use clap::Parser;
+
+    #[test]
+    fn the_default_arguments_are_the_cores_defaults() {
+        let cli = crate::cli::Cli::try_parse_from(["swarmplan", "bench", "--out", "x"]).unwrap();
+        let crate::cli::Command::Bench(args) = cli.command else {
+            panic!("parsed as bench")
+        };
+        let s = args.run.settings(vec!["swarmplan".into()]);
+        assert_eq!(s.exact, ExactChoices::default());
+        assert_eq!(
+            ExactChoices::default().settings().unwrap(),
+            ExactSettings::default()
+        );
+        assert_eq!(s.instance, InstanceFiles::default());
+        assert_eq!(
+            (s.shard, s.gap, s.joint, s.force),
+            (Shard::WHOLE, true, false, false)
+        );
+        assert_eq!(s.out, PathBuf::from("x"));
+        assert_eq!(s.command, vec!["swarmplan".to_string()]);
+    }
+}
