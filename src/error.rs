@@ -114,6 +114,22 @@ impl Error {
 /// Result alias of the library.
 pub type Result<T> = std::result::Result<T, Error>;
 
+/// Both results, or every violation of both ([`Error::Invalid`] lists joined, first `a`'s);
+/// another error of either is returned alone, `a`'s first.
+///
+/// # Errors
+/// The errors of `a` and `b`, as above.
+pub fn both<A, B>(a: Result<A>, b: Result<B>) -> Result<(A, B)> {
+    match (a, b) {
+        (Ok(a), Ok(b)) => Ok((a, b)),
+        (Err(Error::Invalid(mut first)), Err(Error::Invalid(second))) => {
+            first.extend(second);
+            Err(Error::Invalid(first))
+        }
+        (Err(e), _) | (_, Err(e)) => Err(e),
+    }
+}
+
 /// A number as a message shows it: plain between `1e-4` and `1e9` in magnitude (and 0), in
 /// scientific notation beyond, so that `1e308` does not print as 309 digits.
 pub fn show(x: f64) -> String {

@@ -12,10 +12,10 @@ use serde::Serialize;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
 use std::time::Duration;
-use swarmplan::cli::bench::{run_grid_with, GridRun};
-use swarmplan::cli::inputs::ExactArgs;
+use swarmplan::bench::{run_grid, GridRun};
 use swarmplan::compose::{Context, HopPaths, PlanOptions, RequestReport};
 use swarmplan::eaas::compare::{label_gaps, run_method, HopMethod};
+use swarmplan::eaas::exact_hop::ExactChoices;
 use swarmplan::eaas::hop_file::{parse_hop_file, HopFile};
 use swarmplan::eaas::milp::{MilpOptions, Reorder};
 use swarmplan::eaas::PolicyOptions;
@@ -238,7 +238,7 @@ struct ExactKw {
 
 impl ExactKw {
     fn context(&self, py: Python<'_>, data: &InstanceData, node_limit: u64) -> PyResult<Context> {
-        let args = ExactArgs {
+        let choices = ExactChoices {
             backend: backend_of(py, &self.backend)?,
             hop_time_limit_s: self.hop_time_limit_s,
             hop_node_limit: self.hop_node_limit,
@@ -247,7 +247,7 @@ impl ExactKw {
         };
         let i = &data.instance;
         let mut context = Context::new(&i.network, &i.graph, &i.profile);
-        context.exact = args.settings().map_err(|e| to_py_err(py, e))?;
+        context.exact = choices.settings().map_err(|e| to_py_err(py, e))?;
         context.node_limit = Some(node_limit);
         Ok(context)
     }
@@ -1266,6 +1266,7 @@ fn run_bench(
             ),
         ));
     }
+    let settings = bench.run.settings(argv);
     let total = Arc::new(AtomicU64::new(0));
     let done = Arc::new(AtomicU64::new(0));
     let (t, d) = (total.clone(), done.clone());
@@ -1273,10 +1274,9 @@ fn run_bench(
     let run: GridRun = run_detached(
         py,
         move || {
-            run_grid_with(
-                bench.run,
-                argv,
-                &|n, _| t.store(n, Ordering::Relaxed),
+            run_grid(
+                &settings,
+                &|size| t.store(size.plans(), Ordering::Relaxed),
                 &|n| {
                     d.fetch_add(n, Ordering::Relaxed);
                 },
@@ -1294,6 +1294,9 @@ fn run_bench(
             }
         },
     )?;
+    if let Some(stop) = run.budget {
+        eprintln!("{stop}");
+    }
     let out = PyDict::new(py);
     out.set_item("summary", pythonize(py, &json(&run.summary))?)?;
     out.set_item("config", pythonize(py, &json(&run.config))?)?;

@@ -21,6 +21,25 @@ pub const DATA_FILES: [&str; 5] = [
     "joint.csv",
 ];
 
+/// `E7005`: `dir` holds the files of a run and `force` (`--force`) was not given.
+///
+/// # Errors
+/// [`Error::Invalid`] E7005.
+pub fn may_write(dir: &Path, force: bool) -> Result<()> {
+    let taken = std::iter::once(&CONFIG_FILE)
+        .chain(&DATA_FILES)
+        .any(|f| dir.join(f).exists());
+    if force || !taken {
+        return Ok(());
+    }
+    Err(Error::invalid(
+        "E7005",
+        dir.display().to_string(),
+        "the directory holds the files of an earlier run; bench does not overwrite them unasked",
+        "pass --force to overwrite them, or give another --out",
+    ))
+}
+
 fn csv_error(path: &Path, e: impl std::fmt::Display) -> Error {
     Error::invalid(
         "E7004",

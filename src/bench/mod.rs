@@ -20,12 +20,15 @@
 pub mod figures;
 mod files;
 mod findings;
+mod runner;
 mod summary;
 
 pub use files::{
-    merge, read_data, unmark_complete, write_outputs, COMPLETE_FILE, CONFIG_FILE, DATA_FILES,
+    may_write, merge, read_data, unmark_complete, write_outputs, COMPLETE_FILE, CONFIG_FILE,
+    DATA_FILES,
 };
 pub use findings::{findings, Finding, Verdict};
+pub use runner::{run_grid, BenchSettings, GridRun, GridSize};
 pub use summary::{
     DistanceBucket, GapHistogram, GapSplitSummary, HopGapSummary, JointSummary, MethodSummary,
     StopGapSummary, Summary, SUMMARY_SCHEMA_VERSION,

@@ -120,7 +120,7 @@ pub fn run(args: BatchArgs) -> Result<i32> {
     context.exact = args.exact.settings()?;
     context.node_limit = Some(args.node_limit);
     context.hop_paths = args.hop_paths;
-    context.deadline = super::inputs::deadline(args.time_budget)?;
+    context.deadline = experiment::deadline(args.time_budget)?;
     let planned_combos = experiment.planned().len();
     let bar = super::progress::bar((planned_combos * requests.len()) as u64, "requests");
     bar.set_message(format!("x {}", super::count(planned_combos, "combination")));

@@ -7,15 +7,14 @@
 //! swarmplan bench merge shard-0 shard-1 shard-2 shard-3 --out bench-out
 //! ```
 
-use super::inputs::{ExactArgs, InstanceArgs, FINDINGS_195};
-use crate::bench::{self, BenchConfig, Shard, Summary, Verdict, DATA_FILES};
-use crate::compose::{Context, RouteMethod};
+use crate::bench::{self, BenchSettings, GridSize, Shard, Summary, Verdict, DATA_FILES};
+use crate::compose::RouteMethod;
+use crate::eaas::exact_hop::ExactChoices;
 use crate::eaas::SharingPolicy;
-use crate::error::{Error, Result};
-use crate::experiment::{self, Baseline, Methods};
+use crate::error::Result;
 use crate::precompose::Positioning;
+use crate::problem::inputs::InstanceFiles;
 use std::path::{Path, PathBuf};
-use std::time::Instant;
 
 /// Run the paper's experiments and the gap report, or merge shards.
 #[derive(Debug, clap::Args)]
@@ -169,12 +168,48 @@ fn parse_shard(text: &str) -> std::result::Result<Shard, String> {
     Shard::parse(text).map_err(|e| e.to_string().replace("invalid input, 1 problem(s):\n", ""))
 }
 
+impl RunArgs {
+    /// The run's settings, with `command` (the process arguments) to record in `summary.json`.
+    pub fn settings(self, command: Vec<String>) -> BenchSettings {
+        BenchSettings {
+            instance: InstanceFiles {
+                network: self.network,
+                profile: self.profile,
+                literal: self.literal,
+            },
+            requests: self.requests,
+            limit: self.limit,
+            sharing: self.sharing,
+            positioning: self.positioning,
+            route: self.route,
+            gap: !self.no_gap,
+            joint: self.joint,
+            exact_limit: self.exact_limit,
+            exact: ExactChoices {
+                backend: self.backend,
+                hop_time_limit_s: self.hop_time_limit_s,
+                hop_node_limit: self.hop_node_limit,
+                period_min: self.period_min,
+                reorder: self.reorder,
+            },
+            node_limit: self.node_limit,
+            distance_bucket_km: self.distance_bucket_km,
+            shard: self.shard.unwrap_or(Shard::WHOLE),
+            threads: self.threads,
+            time_budget_s: self.time_budget,
+            out: self.out.expect("clap requires --out"),
+            force: self.force,
+            command,
+        }
+    }
+}
+
 /// Runs the subcommand.
 pub fn run(args: BenchArgs) -> Result<i32> {
     let command: Vec<String> = std::env::args().collect();
     match args.command {
         Some(BenchCommand::Merge(m)) => {
-            may_write(&m.out, m.force)?;
+            bench::may_write(&m.out, m.force)?;
             bench::unmark_complete(&m.out)?;
             let dirs: Vec<&Path> = m.dirs.iter().map(PathBuf::as_path).collect();
             let (config, data) = bench::merge(&dirs)?;
@@ -185,180 +220,38 @@ pub fn run(args: BenchArgs) -> Result<i32> {
     }
 }
 
+/// `N requests x M combinations`.
+fn what(size: GridSize) -> String {
+    format!(
+        "{} x {}",
+        super::count(size.requests, "request"),
+        super::count(size.combinations, "combination")
+    )
+}
+
 fn run_grid(args: RunArgs, command: Vec<String>) -> Result<i32> {
-    let out = args.out.clone().expect("clap requires --out");
     let json = args.json;
+    let settings = args.settings(command);
     let bar = super::progress::bar(0, "plans");
-    let run = run_grid_with(
-        args,
-        command,
-        &|total, what| {
-            bar.set_length(total);
-            bar.set_message(what);
+    let run = bench::run_grid(
+        &settings,
+        &|size| {
+            bar.set_length(size.plans());
+            bar.set_message(what(size));
         },
         &|n| bar.inc(n),
     )?;
     bar.finish_and_clear();
+    if let Some(stop) = run.budget {
+        eprintln!("{stop}");
+    }
     eprintln!(
         "{} on {} in {:.1} s",
-        run.what,
+        what(run.size),
         super::count(run.threads, "thread"),
         run.elapsed_s
     );
-    report(&run.summary, &out, json)
-}
-
-/// A bench run's results, as [`run_grid_with`] returns them.
-#[derive(Debug)]
-pub struct GridRun {
-    /// The summary, as written to `summary.json`.
-    pub summary: Summary,
-    /// The run's configuration, as written to `config.json`.
-    pub config: BenchConfig,
-    /// The tables, as written and read back.
-    pub data: bench::BenchData,
-    /// `N requests x M combinations`.
-    pub what: String,
-    /// Worker threads.
-    pub threads: usize,
-    /// Wall-clock time of the planning, s.
-    pub elapsed_s: f64,
-}
-
-/// Runs `swarmplan bench` (not `merge`) as the command line does, without printing: the files
-/// are written to `--out`. `start(total, what)` is called once with the number of request x
-/// combination plans; `done(n)` as `n` more are made (from worker threads).
-///
-/// # Errors
-/// Those of `swarmplan bench`.
-pub fn run_grid_with(
-    args: RunArgs,
-    command: Vec<String>,
-    start: &dyn Fn(u64, String),
-    done: &(dyn Fn(u64) + Sync),
-) -> Result<GridRun> {
-    let out = args.out.clone().expect("clap requires --out");
-    let threads = experiment::threads(args.threads)?;
-    if !(args.distance_bucket_km.is_finite() && args.distance_bucket_km > 0.0) {
-        return Err(Error::invalid(
-            "E7006",
-            "--distance-bucket-km",
-            format!("{} is not a width > 0", args.distance_bucket_km),
-            "give the width of the distance buckets in km, such as 1",
-        ));
-    }
-    may_write(&out, args.force)?;
-    bench::unmark_complete(&out)?;
-    let combos = Methods {
-        sharing: args.sharing.clone(),
-        positioning: args.positioning.clone(),
-        route: args.route.clone(),
-        support: None,
-    }
-    .combinations(Baseline::Once);
-    for c in &combos {
-        c.validate()?;
-    }
-    let instance_args = InstanceArgs {
-        network: args.network.clone(),
-        profile: args.profile.clone(),
-        literal: args.literal,
-    };
-    let (instance, set) = super::inputs::both(
-        instance_args.load_or(&FINDINGS_195),
-        super::inputs::load_requests(args.requests.as_deref()),
-    )?;
-    let requests = experiment::first_requests(set.requests, args.limit)?;
-    let instance = instance.with_requests(requests)?;
-    let mut context = Context::new(&instance.network, &instance.graph, &instance.profile);
-    context.exact = ExactArgs {
-        backend: args.backend,
-        hop_time_limit_s: args.hop_time_limit_s,
-        hop_node_limit: args.hop_node_limit,
-        period_min: args.period_min,
-        reorder: args.reorder,
-    }
-    .settings()?;
-    context.node_limit = Some(args.node_limit);
-    context.deadline = super::inputs::deadline(args.time_budget)?;
-    let name = |p: &Option<PathBuf>, shipped: &str| {
-        p.as_ref()
-            .map_or(shipped.to_string(), |p| p.display().to_string())
-    };
-    let mut config = BenchConfig {
-        schema_version: bench::SUMMARY_SCHEMA_VERSION,
-        version: env!("CARGO_PKG_VERSION").to_string(),
-        inputs_sha256: bench::inputs_sha256(
-            &instance.network,
-            &instance.profile,
-            &instance.requests,
-        )?,
-        network: name(&args.network, FINDINGS_195.network_name),
-        profile: name(&args.profile, FINDINGS_195.profile_name)
-            + if args.literal { " (--literal)" } else { "" },
-        requests: name(&args.requests, "embedded paper-195 requests"),
-        combos,
-        gap: !args.no_gap,
-        joint: args.joint,
-        limit: instance.requests.len(),
-        exact_limit: args.exact_limit,
-        milp: context.exact.milp,
-        node_limit: context.node_limit,
-        distance_bucket_m: args.distance_bucket_km * 1000.0,
-        shard: args.shard.unwrap_or(Shard::WHOLE),
-    };
-    let planned = (0..config.limit).filter(|&i| config.shard.holds(i)).count();
-    let what = format!(
-        "{} x {}",
-        super::count(planned, "request"),
-        super::count(config.planned_combos().len(), "combination")
-    );
-    start(
-        (planned * config.planned_combos().len()) as u64,
-        what.clone(),
-    );
-    let clock = Instant::now();
-    let data = bench::run(&context, &instance.requests, &config, threads, done)?;
-    let elapsed_s = clock.elapsed().as_secs_f64();
-    // A run the time budget stopped is the run of the requests before the first left out.
-    let positions: std::collections::BTreeSet<usize> =
-        data.requests.iter().map(|r| r.request_index).collect();
-    if positions.len() < planned {
-        let limit = positions.last().map_or(0, |p| p + 1);
-        super::inputs::report_budget(positions.len(), planned, limit);
-        config.limit = limit;
-        config.inputs_sha256 = bench::inputs_sha256(
-            &instance.network,
-            &instance.profile,
-            &instance.requests[..limit],
-        )?;
-    }
-    let summary = bench::write_outputs(&out, &config, &data, command)?;
-    let (config, data) = bench::read_data(&out)?;
-    Ok(GridRun {
-        summary,
-        config,
-        data,
-        what,
-        threads,
-        elapsed_s,
-    })
-}
-
-/// `E7005`: `dir` holds the files of a run and `--force` was not given.
-fn may_write(dir: &Path, force: bool) -> Result<()> {
-    let taken = std::iter::once(&bench::CONFIG_FILE)
-        .chain(&DATA_FILES)
-        .any(|f| dir.join(f).exists());
-    if force || !taken {
-        return Ok(());
-    }
-    Err(Error::invalid(
-        "E7005",
-        dir.display().to_string(),
-        "the directory holds the files of an earlier run; bench does not overwrite them unasked",
-        "pass --force to overwrite them, or give another --out",
-    ))
+    report(&run.summary, &settings.out, json)
 }
 
 /// Prints the summary: a table on stdout (or the JSON), the files written on stderr.
@@ -543,4 +436,32 @@ fn print_table(s: &Summary) -> Result<()> {
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::eaas::exact_hop::ExactSettings;
+    use clap::Parser;
+
+    #[test]
+    fn the_default_arguments_are_the_cores_defaults() {
+        let cli = crate::cli::Cli::try_parse_from(["swarmplan", "bench", "--out", "x"]).unwrap();
+        let crate::cli::Command::Bench(args) = cli.command else {
+            panic!("parsed as bench")
+        };
+        let s = args.run.settings(vec!["swarmplan".into()]);
+        assert_eq!(s.exact, ExactChoices::default());
+        assert_eq!(
+            ExactChoices::default().settings().unwrap(),
+            ExactSettings::default()
+        );
+        assert_eq!(s.instance, InstanceFiles::default());
+        assert_eq!(
+            (s.shard, s.gap, s.joint, s.force),
+            (Shard::WHOLE, true, false, false)
+        );
+        assert_eq!(s.out, PathBuf::from("x"));
+        assert_eq!(s.command, vec!["swarmplan".to_string()]);
+    }
 }

@@ -16,7 +16,8 @@ use super::milp::{ExactStatus, MilpOptions, Objective, Reorder};
 use super::{
     simulate_with, ExactPolicy, Heuristic, HopOutcome, HopProblem, PolicyOptions, SharingPolicy,
 };
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, Violation};
+use crate::solver::MilpBackend;
 use serde::{Deserialize, Serialize};
 
 /// Default branch-and-bound node limit of each hop solve's MILP call on a route
@@ -47,6 +48,85 @@ impl Default for ExactSettings {
             },
             prune_candidates: true,
         }
+    }
+}
+
+/// The exact and fair policies' settings as a front end gives them (the command line's
+/// `--backend`, `--hop-time-limit`, `--hop-node-limit`, `--period-min` and `--reorder`), before
+/// they are checked into [`ExactSettings`]. The default is the command line's.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ExactChoices {
+    /// MILP backend of every hop solve.
+    pub backend: MilpBackend,
+    /// Wall-clock limit of each hop solve, seconds (`None`: none).
+    pub hop_time_limit_s: Option<f64>,
+    /// Branch-and-bound nodes of each hop solve's MILP call.
+    pub hop_node_limit: u64,
+    /// Longest period of the hop MILP's grid, minutes.
+    pub period_min: f64,
+    /// Re-ordering allowed.
+    pub reorder: Reorder,
+}
+
+impl Default for ExactChoices {
+    fn default() -> Self {
+        ExactChoices {
+            backend: MilpBackend::default(),
+            hop_time_limit_s: None,
+            hop_node_limit: DEFAULT_HOP_NODE_LIMIT,
+            period_min: 1.0,
+            reorder: Reorder::Paper,
+        }
+    }
+}
+
+impl ExactChoices {
+    /// The settings, checked: a grid step that is finite and positive (E4101), a time limit, when
+    /// given, in `(0, 1e6]` seconds (E4105), re-ordering other than `free` (E4113).
+    ///
+    /// # Errors
+    /// [`Error::Invalid`] with every violation.
+    pub fn settings(&self) -> Result<ExactSettings> {
+        let mut v = Vec::new();
+        if !(self.period_min.is_finite() && self.period_min > 0.0) {
+            v.push(Violation::new(
+                "E4101",
+                "--period-min",
+                format!("{} is not a finite duration > 0", self.period_min),
+                "give the grid step in minutes, such as 1.0",
+            ));
+        }
+        if let Some(t) = self.hop_time_limit_s.filter(|t| !(*t > 0.0 && *t <= 1e6)) {
+            v.push(Violation::new(
+                "E4105",
+                "--hop-time-limit",
+                format!("{t} is not a time in (0, 1e6] seconds"),
+                "give the time limit of each hop solve in seconds, such as 10, or leave it out \
+                 for none",
+            ));
+        }
+        if self.reorder == Reorder::Free {
+            v.push(Violation::new(
+                "E4113",
+                "--reorder",
+                "free re-ordering on a route".to_string(),
+                "use --reorder paper or none: a free schedule is not always a set of transfers \
+                 a plan can carry (`swarmplan eaas --reorder free` studies one hop)",
+            ));
+        }
+        if !v.is_empty() {
+            return Err(Error::Invalid(v));
+        }
+        Ok(ExactSettings {
+            milp: MilpOptions {
+                period_min: self.period_min,
+                reorder: self.reorder,
+                backend: self.backend,
+                time_limit_s: self.hop_time_limit_s.unwrap_or(f64::INFINITY),
+                node_limit: Some(self.hop_node_limit),
+            },
+            prune_candidates: true,
+        })
     }
 }
 

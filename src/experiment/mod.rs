@@ -188,6 +188,65 @@ pub fn first_requests(mut requests: Vec<Request>, limit: Option<usize>) -> Resul
     Ok(requests)
 }
 
+/// The deadline of a run's wall-clock budget of `budget_s` seconds from now (`None`: none).
+///
+/// # Errors
+/// E0028 when `budget_s` is not a time in (0, 1e7] seconds.
+pub fn deadline(budget_s: Option<f64>) -> Result<Option<std::time::Instant>> {
+    let Some(s) = budget_s else {
+        return Ok(None);
+    };
+    if !(s > 0.0 && s <= 1e7) {
+        return Err(Error::invalid(
+            "E0028",
+            "--time-budget",
+            format!("{s} is not a time in (0, 1e7] seconds"),
+            "give the run's budget in seconds, such as 600, or leave it out for none",
+        ));
+    }
+    Ok(Some(
+        std::time::Instant::now() + std::time::Duration::from_secs_f64(s),
+    ))
+}
+
+/// A run its time budget stopped: `planned` of the `asked` requests were planned, and the output
+/// is the one `--request-limit limit` gives. Its `Display` is the message the front ends print.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct BudgetStop {
+    /// Requests planned.
+    pub planned: usize,
+    /// Requests asked.
+    pub asked: usize,
+    /// The request limit whose output the run's is.
+    pub limit: usize,
+}
+
+impl BudgetStop {
+    /// The stop, when fewer requests than asked were planned.
+    pub fn new(planned: usize, asked: usize, limit: usize) -> Option<BudgetStop> {
+        (planned < asked).then_some(BudgetStop {
+            planned,
+            asked,
+            limit,
+        })
+    }
+}
+
+impl std::fmt::Display for BudgetStop {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "time budget reached: {} of {} requests planned (the output is the one \
+             --request-limit {} gives); {} requests remain: run again without --time-budget, or \
+             with a larger one, to plan them",
+            self.planned,
+            self.asked,
+            self.limit,
+            self.asked - self.planned
+        )
+    }
+}
+
 /// What a gap needs of one planned request: its delivery time when delivered, and whether every
 /// node time behind it was proven (true but for an `optimal` route whose search a node limit
 /// stopped at some stop).

@@ -4,6 +4,7 @@
 
 pub mod fingerprint;
 pub mod graph;
+pub mod inputs;
 pub mod instance;
 pub mod io;
 pub mod network;
