@@ -7,7 +7,7 @@ use crate::eaas::exact::EndPads;
 use crate::eaas::exact_hop::HopGoal;
 use crate::eaas::exact_hop::{self, ExactSettings, HopSolve, HopSolveCounts};
 use crate::eaas::milp::Objective;
-use crate::eaas::{self, HopOutcome, HopProblem, SharingPolicy};
+use crate::eaas::{self, HopOutcome, HopPolicy, HopProblem, SharingPolicy};
 use crate::energy;
 use crate::error::{Error, Result};
 use crate::network::Route;
@@ -459,16 +459,15 @@ impl Planner {
             }
         }
         let problem = self.hop_problem(path, battery_mah)?;
-        let exact_policy = match (policy.heuristic(), policy.exact_policy()) {
-            (Some(heuristic), _) => {
+        let exact_policy = match policy.on_hop() {
+            HopPolicy::Simulated(heuristic) => {
                 let options = eaas::PolicyOptions::from(&self.profile.readings);
                 return Ok(Flight {
                     outcome: eaas::simulate_valid(&problem, heuristic, &options)?,
                     solve: None,
                 });
             }
-            (None, Some(exact_policy)) => exact_policy,
-            (None, None) => unreachable!("every sharing policy is simulated or exact"),
+            HopPolicy::Solved(exact_policy) => exact_policy,
         };
         let last = *path.nodes.last().expect("a path has at least one node");
         let pads = self.graph.pads(last);

@@ -12,7 +12,8 @@ use super::exact::dispatch::{self, Solved};
 use super::exact::{BoundOutcome, Formulation};
 use super::milp::{objective_of, ExactOutcome, ExactStatus, MilpOptions, Objective, Reorder};
 use super::{
-    simulate_with, FreeSchedule, Heuristic, HopProblem, PolicyOptions, SharingPolicy, Transfer,
+    simulate_with, FreeSchedule, Heuristic, HopPolicy, HopProblem, PolicyOptions, SharingPolicy,
+    Transfer,
 };
 use crate::error::Result;
 use crate::solver::{Gap, ReferenceKind};
@@ -45,12 +46,11 @@ impl HopMethod {
     /// The method of a sharing policy on a hop: its simulated heuristic (`idle-support` flies
     /// `none`), or its exact formulation (`exact`: the continuous model; `fair`: the fair QP).
     pub fn of_policy(policy: SharingPolicy) -> HopMethod {
-        match (policy.heuristic(), policy.exact_policy()) {
-            (Some(Heuristic::None), _) => HopMethod::None,
-            (Some(Heuristic::Pb), _) => HopMethod::Pb,
-            (Some(Heuristic::Fb), _) => HopMethod::Fb,
-            (None, Some(p)) => HopMethod::of_formulation(p.formulation()),
-            (None, None) => HopMethod::None,
+        match policy.on_hop() {
+            HopPolicy::Simulated(Heuristic::None) => HopMethod::None,
+            HopPolicy::Simulated(Heuristic::Pb) => HopMethod::Pb,
+            HopPolicy::Simulated(Heuristic::Fb) => HopMethod::Fb,
+            HopPolicy::Solved(p) => HopMethod::of_formulation(p.formulation()),
         }
     }
 

@@ -141,25 +141,36 @@ impl SharingPolicy {
         self != SharingPolicy::None
     }
 
-    /// The heuristic a hop is simulated with under this policy (`idle-support` flies `none`);
-    /// `None` for the exact and fair policies.
-    pub fn heuristic(self) -> Option<Heuristic> {
+    /// How a hop flies under this policy: simulated with a heuristic (`idle-support` flies
+    /// `none`), or with a model's schedule (`exact`, `fair`).
+    pub fn on_hop(self) -> HopPolicy {
         match self {
-            SharingPolicy::None | SharingPolicy::IdleSupport => Some(Heuristic::None),
-            SharingPolicy::Pb => Some(Heuristic::Pb),
-            SharingPolicy::Fb => Some(Heuristic::Fb),
-            SharingPolicy::Exact | SharingPolicy::Fair => None,
+            SharingPolicy::None | SharingPolicy::IdleSupport => {
+                HopPolicy::Simulated(Heuristic::None)
+            }
+            SharingPolicy::Pb => HopPolicy::Simulated(Heuristic::Pb),
+            SharingPolicy::Fb => HopPolicy::Simulated(Heuristic::Fb),
+            SharingPolicy::Exact => HopPolicy::Solved(ExactPolicy::Exact),
+            SharingPolicy::Fair => HopPolicy::Solved(ExactPolicy::Fair),
         }
     }
 
-    /// The exact or fair policy; `None` for the simulated ones.
-    pub fn exact_policy(self) -> Option<ExactPolicy> {
-        match self {
-            SharingPolicy::Exact => Some(ExactPolicy::Exact),
-            SharingPolicy::Fair => Some(ExactPolicy::Fair),
-            _ => None,
+    /// The heuristic a hop is simulated with under this policy; `None` for `exact` and `fair`.
+    pub fn heuristic(self) -> Option<Heuristic> {
+        match self.on_hop() {
+            HopPolicy::Simulated(h) => Some(h),
+            HopPolicy::Solved(_) => None,
         }
     }
+}
+
+/// How a hop flies under a [`SharingPolicy`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum HopPolicy {
+    /// Simulated with a heuristic ([`simulate`]).
+    Simulated(Heuristic),
+    /// A model's schedule ([`exact_hop::fly_exact`]).
+    Solved(ExactPolicy),
 }
 
 /// A sharing heuristic simulated on a hop ([`simulate`]): the paper's Algorithms 2 and 3 and the
