@@ -156,10 +156,7 @@ impl SolverModel for HighsLimited {
     type Error = ResolutionError;
 
     fn solve(self) -> Result<HighsValues, ResolutionError> {
-        match self.solve_outcome()? {
-            MilpOutcome::Solved { solution, .. } => Ok(solution),
-            MilpOutcome::NoSolution { report, .. } => Err(report),
-        }
+        self.solve_outcome()?.into_solution()
     }
 
     fn add_constraint(&mut self, c: Constraint) -> good_lp::constraint::ConstraintReference {

@@ -69,10 +69,7 @@ impl SolverModel for NodeLimited {
     type Error = ResolutionError;
 
     fn solve(self) -> Result<LimitedSolution, ResolutionError> {
-        match self.solve_outcome()? {
-            MilpOutcome::Solved { solution, .. } => Ok(solution),
-            MilpOutcome::NoSolution { report, .. } => Err(report),
-        }
+        self.solve_outcome()?.into_solution()
     }
 
     fn add_constraint(&mut self, c: Constraint) -> good_lp::constraint::ConstraintReference {

@@ -182,6 +182,18 @@ impl<S> MilpOutcome<S> {
             MilpOutcome::Solved { status, .. } | MilpOutcome::NoSolution { status, .. } => *status,
         }
     }
+
+    /// The values, or the backend's report when there are none: what good_lp's `solve` answers
+    /// for the models of [`run_on`].
+    ///
+    /// # Errors
+    /// The report of a solve without values.
+    pub fn into_solution(self) -> std::result::Result<S, good_lp::ResolutionError> {
+        match self {
+            MilpOutcome::Solved { solution, .. } => Ok(solution),
+            MilpOutcome::NoSolution { report, .. } => Err(report),
+        }
+    }
 }
 
 /// A model of one of [`run_on`]'s backends (or the capture of [`lp_file`]): built like any good_lp
