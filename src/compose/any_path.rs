@@ -99,11 +99,12 @@ pub(crate) fn any_path_with_sharing(sharing: SharingPolicy) -> Error {
         "--hop-paths any",
         format!(
             "--hop-paths any searches hop paths without in-flight sharing (policies none and \
-             idle-support), not {sharing}"
+             idle-support) or with the exact schedules (exact), not under {sharing}'s \
+             simulated sharing"
         ),
         format!(
-            "use --hop-paths any with --sharing none or idle-support, or --hop-paths rule with \
-             --sharing {sharing}"
+            "use --hop-paths any with --sharing none, idle-support or exact, or --hop-paths \
+             rule with --sharing {sharing}"
         ),
     )
 }
@@ -141,7 +142,8 @@ impl Planner {
     /// As [`Planner::compose_optimal`], with `route_optimality.hop_paths` = `any`.
     ///
     /// # Errors
-    /// E0016 for a policy that shares in flight (or the exact and fair ones); E0017 when a
+    /// E0016 for a policy that shares in flight (the exact one goes to the joint optimum,
+    /// [`Planner::compose_joint`]); E0017 when a
     /// search creates more than [`MAX_HOP_PATH_LABELS`] labels; else those of
     /// [`Planner::fly`] and [`Planner::stop_at`].
     ///

@@ -211,7 +211,7 @@ impl Planner {
     /// # Errors
     /// [`Error::Invalid`] with E4007 when the energy model gives a rate that is not finite or is
     /// negative (the profile and network passed validation, so this would be a bug).
-    fn leg_rates(&self, leg: &crate::network::Leg) -> Result<Arc<Vec<Vec<f64>>>> {
+    pub(super) fn leg_rates(&self, leg: &crate::network::Leg) -> Result<Arc<Vec<Vec<f64>>>> {
         let key = self.edge_key(leg);
         if let Some(rate) = self.rates[key].get() {
             return Ok(Arc::clone(rate));
@@ -614,6 +614,17 @@ impl Planner {
         bound
     }
 
+    /// The most a delivery drone can receive per minute under the planner's policy, mAh/min:
+    /// the sharing rate `rho` when the policy shares and the swarm has a support drone, else 0.
+    pub(super) fn inflow_rate_mah_per_min(&self) -> f64 {
+        let has_support = self.swarm.drones.iter().any(|d| d.role == Role::Support);
+        if has_support && self.sharing.shares() {
+            self.profile.sharing.rate_mah_per_min
+        } else {
+            0.0
+        }
+    }
+
     /// A lower bound on the cost `tt + nt` of flying `path` from full batteries under any
     /// continuous-time sharing schedule and stopping at `stop` (`None`: into the destination,
     /// cost `tt`), min; `None` when no schedule can fly it.
@@ -646,12 +657,7 @@ impl Planner {
                 *w += tau_min * r;
             }
         }
-        let has_support = self.swarm.drones.iter().any(|d| d.role == Role::Support);
-        let inflow_mah = if has_support && self.sharing.shares() {
-            self.profile.sharing.rate_mah_per_min * tt_min
-        } else {
-            0.0
-        };
+        let inflow_mah = self.inflow_rate_mah_per_min() * tt_min;
         let beyond = |deficit: f64, capacity: f64| deficit > capacity * (1.0 + MARGIN) + 1e-6;
         let mut deficits = Vec::with_capacity(n);
         for (d, &w) in self.swarm.drones.iter().zip(&consumed_mah) {

@@ -5,13 +5,14 @@
 
 use super::optimal::{BestArc, Start};
 use super::plan::{Plan, PlanOutcome, RouteOptimality};
-use super::Planner;
+use super::walks::{HeadPotentials, WalkBounds, WalkSearch};
+use super::{HopPaths, Planner};
 use crate::eaas::exact::EndPads;
 use crate::eaas::exact_hop::HopSolveCounts;
 use crate::eaas::fluid;
 use crate::eaas::milp::{ExactStatus, Objective};
 use crate::error::Result;
-use crate::network::ShortestPathsTo;
+use crate::network::{Route, ShortestPathsTo};
 use std::collections::HashMap;
 
 /// Relative margin by which the fluid LP's bound is lowered: clarabel's answers are accurate to
@@ -19,38 +20,103 @@ use std::collections::HashMap;
 /// this, and far below the gap between the bound and the arc's cost.
 const FLUID_BOUND_MARGIN: f64 = 1e-5;
 
-/// How far an arc's cost is known: each level is a lower bound on the next, the last is the
-/// cost itself.
-enum Known {
-    /// The bound of [`Planner::hop_bound_min`] from the path's legs; the arc has not been
-    /// flown.
-    PathBound(f64),
-    /// The larger of that bound and `tt` plus the fluid LP's node-time bound
-    /// (`models/eaas_fluid.md`); not flown.
-    FluidBound(f64),
-    /// A bound proves that no schedule flies the arc.
-    NoSchedule,
-    /// Flown: `tt + nt` at the infimum of the hop's node time, or no schedule flies (`None`).
-    Flown(Option<(f64, Box<BestArc>)>),
+/// A walk of an arc, built and bounded, not yet flown.
+struct Candidate {
+    /// `l1` (the path's legs) or, once `fluid`, `l2` (the fluid LP too).
+    bound_min: f64,
+    fluid: bool,
+    path: Route,
 }
 
-impl Known {
+/// The walks of an arc not yet built (before an arc is first built its value is `l0`, from the
+/// distance alone, and it has no [`ArcValue`]).
+enum Unbuilt {
+    /// `--hop-paths any`: the best-first search of the walks.
+    Walks(Box<WalkSearch>),
+    /// Every walk is built.
+    Done,
+}
+
+/// How far an arc's cost is known: lower bounds on the walks not yet built and on those built
+/// and not flown, and the best walk flown. Its value is the least of the three, a lower bound on
+/// its cost, the cost itself when the best flown walk holds it.
+struct ArcValue {
+    unbuilt: Unbuilt,
+    candidates: Vec<Candidate>,
+    /// `tt + nt` at the infimum of the hop's node time, and the arc, of the best walk flown that
+    /// flies.
+    flown: Option<(f64, Box<BestArc>)>,
+}
+
+/// What raises an arc's value next.
+enum Step {
+    /// The best flown walk holds the least value (or no walk flies): the value is the cost.
+    Exact,
+    /// Build the next walk (`l0` to `l1`).
+    Build,
+    /// Bound candidate `i` with the fluid LP (`l1` to `l2`).
+    Fluid(usize),
+    /// Fly candidate `i`.
+    Fly(usize),
+}
+
+impl ArcValue {
+    fn unbuilt_min(&self) -> f64 {
+        match &self.unbuilt {
+            Unbuilt::Walks(search) => search.key_min(),
+            Unbuilt::Done => f64::INFINITY,
+        }
+    }
+
+    /// The candidate of least bound, the first built among equals.
+    fn least_candidate(&self) -> Option<usize> {
+        let mut least: Option<usize> = None;
+        for (i, c) in self.candidates.iter().enumerate() {
+            if least.is_none_or(|l| c.bound_min < self.candidates[l].bound_min) {
+                least = Some(i);
+            }
+        }
+        least
+    }
+
     fn cost_min(&self) -> f64 {
-        match self {
-            Known::PathBound(c) | Known::FluidBound(c) => *c,
-            Known::Flown(Some((c, _))) => *c,
-            Known::Flown(None) | Known::NoSchedule => f64::INFINITY,
+        let candidate = self
+            .least_candidate()
+            .map_or(f64::INFINITY, |i| self.candidates[i].bound_min);
+        let flown = self.flown.as_ref().map_or(f64::INFINITY, |(c, _)| *c);
+        self.unbuilt_min().min(candidate).min(flown)
+    }
+
+    /// The step on the least value; `into_stop`: the head has pads (the fluid LP bounds it).
+    fn step(&self, into_stop: bool) -> Step {
+        let unbuilt = self.unbuilt_min();
+        let least = self.least_candidate();
+        let candidate = least.map_or(f64::INFINITY, |i| self.candidates[i].bound_min);
+        let flown = self.flown.as_ref().map_or(f64::INFINITY, |(c, _)| *c);
+        if flown <= unbuilt && flown <= candidate {
+            return Step::Exact;
+        }
+        match least {
+            Some(i) if candidate < unbuilt => {
+                if into_stop && !self.candidates[i].fluid {
+                    Step::Fluid(i)
+                } else {
+                    Step::Fly(i)
+                }
+            }
+            _ => Step::Build,
         }
     }
 }
 
 /// The search's state: the stop graph's nodes, the shortest-path trees of the nodes expanded so
-/// far, and the arcs bounded or flown.
+/// far, the heads' potentials (`any`), and the arcs bounded or flown.
 struct Search<'g> {
     /// The stop graph's nodes: the source, every node with pads, the destination.
     stops: Vec<usize>,
     trees: HashMap<usize, ShortestPathsTo<'g>>,
-    arcs: HashMap<(usize, usize), Known>,
+    heads: HashMap<usize, HeadPotentials>,
+    arcs: HashMap<(usize, usize), ArcValue>,
 }
 
 impl Planner {
@@ -79,33 +145,43 @@ impl Planner {
     }
 
     /// [`Planner::compose_optimal`] under the exact policy: the least `dt` over stop sequences,
-    /// hop schedules in continuous time and pad assignments, each hop along the hop-path rule.
+    /// hop schedules in continuous time and pad assignments, each hop along the hop-path rule
+    /// (`hop_paths` = `rule`) or along any walk (`any`).
     ///
     /// Lazy shortest path (models/compose.md, "Joint optimum"): every arc of the stop graph
     /// starts at a lower bound on its cost, `tt` plus the energy bound from the distance alone;
-    /// Dijkstra on the current values gives a stop sequence; its arcs still at the distance
-    /// bound get the bound from their path's legs, and when none is left the first arc not yet
-    /// flown is flown (a configuration LP, the exact node time at its stop). The search ends
-    /// when the sequence found has every arc flown: its cost is then no more than every other
-    /// sequence's lower bound. An arc flown with its infimum only approached costs its infimum,
-    /// and the route's `dt` lies within the summed distances (`epsilon_min`) of it.
+    /// Dijkstra on the current values gives a stop sequence; its arcs whose least value is a
+    /// walk not yet built get that walk built and bounded from its legs, then those whose least
+    /// value is a walk bounded from its legs get the fluid LP's bound, and when none is left the
+    /// first arc whose least value is a walk not yet flown flies it (a configuration LP, the exact
+    /// node time at its stop). The search ends when the sequence found has every arc exact (its
+    /// best flown walk no dearer than any bound of its other walks): its cost is then no more
+    /// than every other sequence's lower bound. Under `rule` an arc has one walk; under `any`
+    /// its walks come from a best-first search on admissible keys ([`WalkSearch`]). An arc flown
+    /// with its infimum only approached costs its infimum, and the route's `dt` lies within the
+    /// summed distances (`epsilon_min`) of it.
     ///
     /// # Errors
-    /// Those of [`Planner::fly`] and [`Planner::stop_at`].
+    /// E0017 when a search of walks creates more than [`super::MAX_HOP_PATH_LABELS`] partial
+    /// walks; those of [`Planner::fly`] and [`Planner::stop_at`].
     ///
     /// # Complexity
     /// Per round one Dijkstra on the stop graph, `O(K^2)` for `K` stops, and one shortest-path
-    /// tree of the network per stop expanded (once); at most one hop solve per arc, and in
-    /// practice a few per stop of the route.
+    /// tree of the network per stop expanded (once); at most one hop solve per walk built, and
+    /// in practice a few per stop of the route.
     pub(crate) fn compose_joint(
         &self,
         source: usize,
         destination: usize,
+        hop_paths: HopPaths,
         solves: &mut HopSolveCounts,
     ) -> Result<Plan> {
         let graph = self.graph();
         let speed = self.speed_m_per_min();
-        let mut optimality = RouteOptimality::default();
+        let mut optimality = RouteOptimality {
+            hop_paths,
+            ..RouteOptimality::default()
+        };
         let (mut plan, direct_failure, bounds) =
             match self.start_search(source, destination, &mut optimality, true, solves)? {
                 Start::Done(plan) => return Ok(plan),
@@ -119,6 +195,13 @@ impl Planner {
         let full = self.full_battery_mah();
         let (min_swarm_rate, endurance_min) =
             (bounds.min_swarm_rate_mah_per_min, bounds.endurance_min);
+        let walk_bounds = match hop_paths {
+            HopPaths::Rule => None,
+            HopPaths::Any => Some(WalkBounds {
+                min_rate_mah_per_min: self.min_rates_mah_per_min()?,
+                endurance_min,
+            }),
+        };
         let mut stops = vec![source];
         stops.extend(
             (0..graph.node_count())
@@ -128,12 +211,21 @@ impl Planner {
         let mut search = Search {
             stops,
             trees: HashMap::new(),
+            heads: HashMap::new(),
             arcs: HashMap::new(),
         };
-        // The direct arc is flown and does not fly.
-        search
-            .arcs
-            .insert((source, destination), Known::Flown(None));
+        if hop_paths == HopPaths::Rule {
+            // The direct arc's one walk is flown and does not fly. Under `any` its other walks
+            // are searched (the direct one again, from the planner's cache).
+            search.arcs.insert(
+                (source, destination),
+                ArcValue {
+                    unbuilt: Unbuilt::Done,
+                    candidates: Vec::new(),
+                    flown: None,
+                },
+            );
+        }
         let sequence = loop {
             optimality.rounds += 1;
             // Dijkstra on the current values, arcs from the lowest tail among equal labels.
@@ -196,61 +288,59 @@ impl Planner {
                 at = u;
             }
             sequence.reverse();
-            // Arcs at the distance bound get their path's bound; else the first arc not flown
-            // is flown.
-            let unbounded: Vec<(usize, usize)> = sequence
+            let steps: Vec<((usize, usize), Step)> = sequence
                 .iter()
-                .copied()
-                .filter(|arc| !search.arcs.contains_key(arc))
+                .map(|&(u, v)| {
+                    let step = search
+                        .arcs
+                        .get(&(u, v))
+                        .map_or(Step::Build, |a| a.step(v != destination));
+                    ((u, v), step)
+                })
                 .collect();
-            if !unbounded.is_empty() {
-                for (u, v) in unbounded {
-                    let path = if v == destination {
-                        graph.shortest_path(u, destination)
-                    } else {
-                        search.trees[&u].reversed_path_from(v)
-                    }
-                    .expect("a finite distance has a path");
-                    let stop = (v != destination).then_some(v);
-                    let known = match self.hop_bound_min(&path, stop)? {
-                        Some(bound) => Known::PathBound(bound),
-                        None => Known::NoSchedule,
-                    };
-                    search.arcs.insert((u, v), known);
-                    optimality.arcs_bounded += 1;
+            // Walks not yet built hold some arcs' least values: build them.
+            let mut raised = false;
+            for &((u, v), ref step) in &steps {
+                if matches!(step, Step::Build) {
+                    self.build_walks(
+                        &mut search,
+                        (u, v),
+                        destination,
+                        walk_bounds.as_ref(),
+                        &mut optimality,
+                    )?;
+                    raised = true;
                 }
+            }
+            if raised {
                 continue;
             }
-            // Arcs into a stop at the path's bound get the fluid bound.
-            let path_bounded: Vec<(usize, usize)> = sequence
-                .iter()
-                .copied()
-                .filter(|arc| matches!(search.arcs.get(arc), Some(Known::PathBound(_))))
-                .filter(|&(_, v)| v != destination)
-                .collect();
-            if !path_bounded.is_empty() {
-                for (u, v) in path_bounded {
-                    let path = search.trees[&u]
-                        .reversed_path_from(v)
-                        .expect("a finite distance has a path");
-                    let before = search.arcs[&(u, v)].cost_min();
-                    let known = Known::FluidBound(self.fluid_bound_min(&path, v)?.max(before));
-                    search.arcs.insert((u, v), known);
+            // Walks into a stop bounded from their legs: the fluid bound.
+            for &((u, v), ref step) in &steps {
+                if let Step::Fluid(i) = *step {
+                    let arc = search.arcs.get_mut(&(u, v)).expect("a stepped arc is known");
+                    let candidate = &mut arc.candidates[i];
+                    candidate.bound_min = self
+                        .fluid_bound_min(&candidate.path, v)?
+                        .max(candidate.bound_min);
+                    candidate.fluid = true;
                     optimality.arcs_fluid_bounded += 1;
+                    raised = true;
                 }
+            }
+            if raised {
                 continue;
             }
-            let next = sequence
-                .iter()
-                .copied()
-                .find(|arc| !matches!(search.arcs.get(arc), Some(Known::Flown(_))));
-            let Some((u, v)) = next else {
+            let next = steps.iter().find_map(|&(arc, ref step)| match *step {
+                Step::Fly(i) => Some((arc, i)),
+                _ => None,
+            });
+            let Some(((u, v), i)) = next else {
                 break sequence;
             };
+            let value = search.arcs.get_mut(&(u, v)).expect("a stepped arc is known");
+            let path = value.candidates.remove(i).path;
             let arc = if v == destination {
-                let path = graph
-                    .shortest_path(u, destination)
-                    .expect("a finite distance has a path");
                 let (flight, _) = self.fly_to_destination(&path, &full, &mut optimality, solves)?;
                 flight.map(|flight| {
                     let cost = path.distance_m / speed;
@@ -264,9 +354,6 @@ impl Planner {
                     (cost, Box::new(arc))
                 })
             } else {
-                let path = search.trees[&u]
-                    .reversed_path_from(v)
-                    .expect("a finite distance has a path");
                 self.arc_into_stop(u, v, path, &full, &mut optimality, solves)?
                     .map(|arc| {
                         let nt_min = arc.stop.as_ref().map_or(0.0, |s| s.nt_min);
@@ -277,21 +364,112 @@ impl Planner {
                     })
             };
             optimality.arcs_flown += usize::from(v == destination);
-            search.arcs.insert((u, v), Known::Flown(arc));
+            if let Some((cost, arc)) = arc {
+                if value.flown.as_ref().is_none_or(|(best, _)| cost < *best) {
+                    value.flown = Some((cost, arc));
+                }
+            }
         };
         optimality.stops_settled = search.trees.len() - 1;
         // Arcs from the source to every other stop, and from each stop with pads to every
         // stop but the source and itself.
         let m = search.stops.len();
         optimality.arcs_total = (m - 1) + (m - 2) * (m - 2);
-        // Every arc of the sequence is flown and flies.
+        // Every arc of the sequence is exact and flies.
         let mut best: Vec<Option<BestArc>> = (0..graph.node_count()).map(|_| None).collect();
         for (u, v) in sequence {
-            let Some(Known::Flown(Some((_, arc)))) = search.arcs.remove(&(u, v)) else {
-                unreachable!("the sequence's arcs are flown and fly");
+            let Some(ArcValue {
+                flown: Some((_, arc)),
+                ..
+            }) = search.arcs.remove(&(u, v))
+            else {
+                unreachable!("the sequence's arcs are exact and fly");
             };
             best[v] = Some(*arc);
         }
         Ok(self.route_of(plan, best, source, destination, optimality))
+    }
+
+    /// Builds the walks of arc `(u, v)` that hold its least value: under `rule` (`walk_bounds`
+    /// `None`) its one path, under `any` walks from its search until a built walk, a flown one
+    /// or no walk holds the least value. Each walk built is bounded from its legs
+    /// ([`Planner::hop_bound_min`]) and kept unless that proves no schedule flies it.
+    ///
+    /// # Errors
+    /// E0017 (`any`, above [`super::MAX_HOP_PATH_LABELS`] partial walks); those of
+    /// [`Planner::hop_bound_min`] and [`Planner::head_potentials`].
+    fn build_walks(
+        &self,
+        search: &mut Search<'_>,
+        (u, v): (usize, usize),
+        destination: usize,
+        walk_bounds: Option<&WalkBounds>,
+        optimality: &mut RouteOptimality,
+    ) -> Result<()> {
+        let graph = self.graph();
+        let into_stop = v != destination;
+        let stop = into_stop.then_some(v);
+        let Some(walk_bounds) = walk_bounds else {
+            let path = if into_stop {
+                search.trees[&u].reversed_path_from(v)
+            } else {
+                graph.shortest_path(u, destination)
+            }
+            .expect("a finite distance has a path");
+            let candidates = match self.hop_bound_min(&path, stop)? {
+                Some(bound_min) => vec![Candidate {
+                    bound_min,
+                    fluid: false,
+                    path,
+                }],
+                None => Vec::new(),
+            };
+            search.arcs.insert(
+                (u, v),
+                ArcValue {
+                    unbuilt: Unbuilt::Done,
+                    candidates,
+                    flown: None,
+                },
+            );
+            optimality.arcs_bounded += 1;
+            return Ok(());
+        };
+        if !search.heads.contains_key(&v) {
+            let head = self.head_potentials(v, into_stop)?;
+            search.heads.insert(v, head);
+        }
+        let head = &search.heads[&v];
+        let value = search.arcs.entry((u, v)).or_insert_with(|| ArcValue {
+            unbuilt: Unbuilt::Walks(Box::new(
+                self.walk_search(u, v, into_stop, walk_bounds, head),
+            )),
+            candidates: Vec::new(),
+            flown: None,
+        });
+        let before = match &value.unbuilt {
+            Unbuilt::Walks(walks) => walks.len(),
+            _ => 0,
+        };
+        while matches!(value.step(into_stop), Step::Build) {
+            let Unbuilt::Walks(walks) = &mut value.unbuilt else {
+                unreachable!("only a search of walks builds under any");
+            };
+            let Some(path) = self.extend_walk(walks, walk_bounds, head)? else {
+                continue;
+            };
+            if let Some(bound_min) = self.hop_bound_min(&path, stop)? {
+                value.candidates.push(Candidate {
+                    bound_min,
+                    fluid: false,
+                    path,
+                });
+            }
+            optimality.arcs_bounded += 1;
+        }
+        if let Unbuilt::Walks(walks) = &value.unbuilt {
+            optimality.hop_path_labels += walks.len() - before;
+        }
+        Ok(())
     }
 }

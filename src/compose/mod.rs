@@ -21,6 +21,7 @@ mod request;
 mod sequential;
 mod split;
 mod studied;
+mod walks;
 
 pub use any_path::MAX_HOP_PATH_LABELS;
 pub use baselines::BaselineCosts;
@@ -70,8 +71,9 @@ pub enum HopPaths {
     /// The shortest path by distance between the two stops, as Algorithm 1 and A* fly.
     #[default]
     Rule,
-    /// Every path the swarm can fly from full batteries: a resource-constrained shortest path
-    /// per stop, without in-flight sharing (policies `none` and `idle-support`).
+    /// Every walk the swarm can fly from full batteries: a resource-constrained shortest path
+    /// per stop without in-flight sharing (policies `none` and `idle-support`), a best-first
+    /// search of walks per arc of the joint optimum (`exact`).
     Any,
 }
 
@@ -208,11 +210,11 @@ impl Planner {
                 costs,
                 solves,
             ),
+            RouteMethod::Optimal if self.sharing() == SharingPolicy::Exact => {
+                self.compose_joint(source, destination, self.hop_paths(), solves)
+            }
             RouteMethod::Optimal if self.hop_paths() == HopPaths::Any => {
                 self.compose_optimal_any_path(source, destination, solves)
-            }
-            RouteMethod::Optimal if self.sharing() == SharingPolicy::Exact => {
-                self.compose_joint(source, destination, solves)
             }
             RouteMethod::Optimal => self.compose_optimal(source, destination, solves),
         }?;

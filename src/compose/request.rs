@@ -304,12 +304,12 @@ impl Context {
     }
 
     /// Checks that `options` can be planned in this context: [`PlanOptions::validate`], and
-    /// `--hop-paths any` only with a policy that does not share in flight when the route is
-    /// optimal.
+    /// `--hop-paths any` with an optimal route only for a policy that does not share in flight
+    /// or the exact one (the joint optimum).
     ///
     /// # Errors
     /// E0015 ([`PlanOptions::validate`]); E0016 for [`RouteMethod::Optimal`] with
-    /// [`HopPaths::Any`] and a policy that shares (pb, fb, exact, fair).
+    /// [`HopPaths::Any`] and a simulated policy that shares (pb, fb).
     ///
     /// # Complexity
     /// O(1).
@@ -317,7 +317,8 @@ impl Context {
         options.validate()?;
         if options.route == RouteMethod::Optimal
             && self.hop_paths == HopPaths::Any
-            && (options.sharing.shares() || options.sharing.is_exact())
+            && options.sharing.shares()
+            && options.sharing != SharingPolicy::Exact
         {
             return Err(super::any_path::any_path_with_sharing(options.sharing));
         }
