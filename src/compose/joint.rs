@@ -318,7 +318,10 @@ impl Planner {
             // Walks into a stop bounded from their legs: the fluid bound.
             for &((u, v), ref step) in &steps {
                 if let Step::Fluid(i) = *step {
-                    let arc = search.arcs.get_mut(&(u, v)).expect("a stepped arc is known");
+                    let arc = search
+                        .arcs
+                        .get_mut(&(u, v))
+                        .expect("a stepped arc is known");
                     let candidate = &mut arc.candidates[i];
                     candidate.bound_min = self
                         .fluid_bound_min(&candidate.path, v)?
@@ -338,7 +341,10 @@ impl Planner {
             let Some(((u, v), i)) = next else {
                 break sequence;
             };
-            let value = search.arcs.get_mut(&(u, v)).expect("a stepped arc is known");
+            let value = search
+                .arcs
+                .get_mut(&(u, v))
+                .expect("a stepped arc is known");
             let path = value.candidates.remove(i).path;
             let arc = if v == destination {
                 let (flight, _) = self.fly_to_destination(&path, &full, &mut optimality, solves)?;
@@ -441,9 +447,13 @@ impl Planner {
         }
         let head = &search.heads[&v];
         let value = search.arcs.entry((u, v)).or_insert_with(|| ArcValue {
-            unbuilt: Unbuilt::Walks(Box::new(
-                self.walk_search(u, v, into_stop, walk_bounds, head),
-            )),
+            unbuilt: Unbuilt::Walks(Box::new(self.walk_search(
+                u,
+                v,
+                into_stop,
+                walk_bounds,
+                head,
+            ))),
             candidates: Vec::new(),
             flown: None,
         });

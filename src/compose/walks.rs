@@ -122,7 +122,8 @@ impl Planner {
                     continue;
                 };
                 let tau_min = leg.distance_m / speed;
-                let cost = tau_min + tau_min * self.cheapest_swarm_rate_mah_per_min(&leg)? / pads_rate;
+                let cost =
+                    tau_min + tau_min * self.cheapest_swarm_rate_mah_per_min(&leg)? / pads_rate;
                 reversed.add_edge(NodeIndex::new(y), NodeIndex::new(x), cost);
             }
         }
@@ -275,7 +276,10 @@ impl Planner {
                 continue;
             };
             if search.walks.len() >= super::MAX_HOP_PATH_LABELS {
-                return Err(too_many_walks(graph.id_of(search.from), graph.id_of(search.to)));
+                return Err(too_many_walks(
+                    graph.id_of(search.from),
+                    graph.id_of(search.to),
+                ));
             }
             search.walks.push(PartialWalk {
                 node: y,
