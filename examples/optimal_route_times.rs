@@ -8,8 +8,9 @@
 //!     [--profile F] [--requests F] [--sharing none,pb] [--hop-paths rule,any]
 //! ```
 //!
-//! `--hop-paths any` with a sharing policy that shares is skipped (E0016). `max_labels`: the
-//! most labels the searches of hop paths of one request created, all its searches together.
+//! `--hop-paths any` with `pb` or `fb` is skipped (E0016). `max_labels`: the
+//! most labels the searches of hop paths of one request created, all its searches together
+//! (under `exact`, the partial walks of its arcs' searches).
 //! `--sharing exact` gives the joint optimum: `proven` counts the requests whose route is
 //! proven (`within`: of those, with an infimum approached, the largest `epsilon_min` in
 //! `max_epsilon_min`), `arcs_flown` / `arcs_total` the arcs flown (a hop solve each) against

@@ -441,9 +441,8 @@ impl Planner {
             optimality.arcs_bounded += 1;
             return Ok(());
         };
-        if !search.heads.contains_key(&v) {
-            let head = self.head_potentials(v, into_stop)?;
-            search.heads.insert(v, head);
+        if let std::collections::hash_map::Entry::Vacant(e) = search.heads.entry(v) {
+            e.insert(self.head_potentials(v, into_stop)?);
         }
         let head = &search.heads[&v];
         let value = search.arcs.entry((u, v)).or_insert_with(|| ArcValue {
