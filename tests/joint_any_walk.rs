@@ -362,3 +362,25 @@ fn any_walk_joint_optimum_equals_the_enumeration_of_walks_and_beats_the_rule_som
     );
     assert!(flights > 100, "{flights} walks flown by the enumeration");
 }
+
+#[test]
+fn a_capped_search_of_walks_leaves_the_route_unproven_and_the_plan_valid() {
+    // paper-195 r00181 (models/compose.md, "Any walk", "Cost and cap"): the walks from n143 into
+    // the destination n082 fill the search's 200,000 partial walks.
+    let (network, graph, profile, requests) = common::paper_195();
+    let request = requests.iter().find(|r| r.id == "r00181").unwrap();
+    let mut context = Context::new(&network, &graph, &profile);
+    context.hop_paths = HopPaths::Any;
+    let r = context
+        .plan(request, &options(SharingPolicy::Exact))
+        .unwrap();
+    checked(&network, &profile, request, &r);
+    assert!(r.plan.delivered(), "{}", r.plan.outcome);
+    let proof = r.plan.route_optimality.unwrap();
+    assert!(proof.arcs_capped >= 1, "{proof:?}");
+    assert!(!proof.proven(), "a capped search proves nothing: {proof:?}");
+    assert!(
+        proof.hop_path_labels >= swarmplan::compose::MAX_HOP_PATH_LABELS,
+        "{proof:?}"
+    );
+}

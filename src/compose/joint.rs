@@ -162,8 +162,7 @@ impl Planner {
     /// summed distances (`epsilon_min`) of it.
     ///
     /// # Errors
-    /// E0017 when a search of walks creates more than [`super::MAX_HOP_PATH_LABELS`] partial
-    /// walks; those of [`Planner::fly`] and [`Planner::stop_at`].
+    /// Those of [`Planner::fly`] and [`Planner::stop_at`].
     ///
     /// # Complexity
     /// Per round one Dijkstra on the stop graph, `O(K^2)` for `K` stops, and one shortest-path
@@ -401,9 +400,11 @@ impl Planner {
     /// or no walk holds the least value. Each walk built is bounded from its legs
     /// ([`Planner::hop_bound_min`]) and kept unless that proves no schedule flies it.
     ///
+    /// Under `any`, a search that reaches [`super::MAX_HOP_PATH_LABELS`] partial walks stops:
+    /// the arc keeps the walks built, and `optimality.arcs_capped` counts it.
+    ///
     /// # Errors
-    /// E0017 (`any`, above [`super::MAX_HOP_PATH_LABELS`] partial walks); those of
-    /// [`Planner::hop_bound_min`] and [`Planner::head_potentials`].
+    /// Those of [`Planner::hop_bound_min`] and [`Planner::head_potentials`].
     fn build_walks(
         &self,
         search: &mut Search<'_>,
@@ -464,6 +465,14 @@ impl Planner {
             let Unbuilt::Walks(walks) = &mut value.unbuilt else {
                 unreachable!("only a search of walks builds under any");
             };
+            if walks.capped() {
+                // The walks left are no longer all enumerated: the arc keeps the walks built,
+                // and the route is proven only over them.
+                optimality.hop_path_labels += walks.len() - before;
+                optimality.arcs_capped += 1;
+                value.unbuilt = Unbuilt::Done;
+                return Ok(());
+            }
             let Some(path) = self.extend_walk(walks, walk_bounds, head)? else {
                 continue;
             };

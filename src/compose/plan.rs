@@ -77,6 +77,11 @@ pub struct RouteOptimality {
     /// failure, a fallback to the empty schedule, or a node time the node limit stopped).
     #[serde(default, skip_serializing_if = "is_zero")]
     pub hop_solves_unproven: usize,
+    /// `--sharing exact --hop-paths any`: arcs whose search of walks reached
+    /// [`super::MAX_HOP_PATH_LABELS`] partial walks and stopped: when not 0 the route is
+    /// optimal only over the walks those searches built.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub arcs_capped: usize,
     /// `--sharing exact`: the certified distance of the route's `dt` to the infimum over
     /// continuous-time schedules, min: the sum over its hops of the distance of each hop's node
     /// time to its infimum (0 when every optimum is attained, written only when not 0).
@@ -93,10 +98,10 @@ fn is_zero(n: &usize) -> bool {
 }
 
 impl RouteOptimality {
-    /// Whether every node time of the search was proven optimal, so the route is the proven
-    /// optimum over stop sequences.
+    /// Whether every node time and hop solve of the search was proven optimal and no search of
+    /// walks was capped, so the route is the proven optimum over stop sequences.
     pub fn proven(&self) -> bool {
-        self.stops_unproven == 0 && self.hop_solves_unproven == 0
+        self.stops_unproven == 0 && self.hop_solves_unproven == 0 && self.arcs_capped == 0
     }
 }
 

@@ -3,7 +3,7 @@
 //! walks from the arc's tail. See models/compose.md, "Joint optimum", "Any hop path".
 
 use super::Planner;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::network::Route;
 use crate::problem::Role;
 use petgraph::algo::dijkstra;
@@ -68,27 +68,14 @@ impl PartialOrd for Queued {
 /// The best-first search of the walks from `from` to `to`: every partial walk not pruned, and
 /// those not yet extended in order of their key.
 pub(super) struct WalkSearch {
-    from: usize,
     to: usize,
     /// `Some(to)` when the head is a stop (its node time counts), `None` into the destination.
     stop: Option<usize>,
     walks: Vec<PartialWalk>,
     queue: BinaryHeap<Queued>,
-}
-
-/// The coded error of a search of walks above [`super::MAX_HOP_PATH_LABELS`] partial walks.
-fn too_many_walks(from: &str, to: &str) -> Error {
-    Error::invalid(
-        "E0017",
-        "--hop-paths any",
-        format!(
-            "the search of the walks from {from} to {to} needs more than {} partial walks \
-             (walks whose lower bound is below the best cost found)",
-            super::MAX_HOP_PATH_LABELS
-        ),
-        "use --hop-paths rule on this network, or a network with fewer nodes or a swarm with \
-         fewer drones",
-    )
+    /// An extension was not created: the search reached [`super::MAX_HOP_PATH_LABELS`]
+    /// partial walks, and its walks are no longer all enumerated.
+    capped: bool,
 }
 
 impl Planner {
@@ -205,8 +192,8 @@ impl Planner {
     }
 
     /// The search of the walks from `from` to `to` (`stop`: `to` has pads and its node time
-    /// counts), started with the empty walk at `from`; `None` when no walk from `from` can reach
-    /// `to` within the bounds.
+    /// counts), started with the empty walk at `from` (an empty queue when no walk from `from`
+    /// can reach `to` within the bounds).
     pub(super) fn walk_search(
         &self,
         from: usize,
@@ -218,11 +205,11 @@ impl Planner {
         let stop = stop.then_some(to);
         let consumed_mah = vec![0.0; self.swarm().drones.len()];
         let mut search = WalkSearch {
-            from,
             to,
             stop,
             walks: Vec::new(),
             queue: BinaryHeap::new(),
+            capped: false,
         };
         if let Some(key_min) = self.walk_key_min(from, 0.0, &consumed_mah, stop, bounds, head) {
             search.walks.push(PartialWalk {
@@ -239,9 +226,11 @@ impl Planner {
     /// Extends the search's least-key partial walk by every edge out of its end, and returns
     /// the walk it completes when it ends at the head (with at least one edge).
     ///
+    /// At [`super::MAX_HOP_PATH_LABELS`] partial walks it creates no more and marks the
+    /// search capped ([`WalkSearch::capped`]).
+    ///
     /// # Errors
-    /// E0017 above [`super::MAX_HOP_PATH_LABELS`] partial walks; those of
-    /// [`Planner::cheapest_swarm_rate_mah_per_min`] through the legs' rates.
+    /// Those of [`Planner::leg_rates`] for a rate that is not finite.
     pub(super) fn extend_walk(
         &self,
         search: &mut WalkSearch,
@@ -276,10 +265,8 @@ impl Planner {
                 continue;
             };
             if search.walks.len() >= super::MAX_HOP_PATH_LABELS {
-                return Err(too_many_walks(
-                    graph.id_of(search.from),
-                    graph.id_of(search.to),
-                ));
+                search.capped = true;
+                continue;
             }
             search.walks.push(PartialWalk {
                 node: y,
@@ -315,6 +302,12 @@ impl WalkSearch {
     /// walk not yet returned (infinite when none is left).
     pub(super) fn key_min(&self) -> f64 {
         self.queue.peek().map_or(f64::INFINITY, |q| q.key_min)
+    }
+
+    /// Whether the search reached [`super::MAX_HOP_PATH_LABELS`] partial walks and dropped an
+    /// extension: its least key no longer bounds every walk.
+    pub(super) fn capped(&self) -> bool {
+        self.capped
     }
 
     /// Partial walks created so far.
