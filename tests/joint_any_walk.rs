@@ -10,7 +10,6 @@
 mod common;
 
 use common::{flat_instance, repo_arg, shipped_profile, swarmplan};
-use swarmplan::check::check_plan;
 use swarmplan::compose::{
     Context, HopPaths, PlanOptions, PlanOutcome, Planner, RequestReport, RouteMethod,
 };
@@ -38,15 +37,7 @@ fn options(sharing: SharingPolicy) -> PlanOptions {
 }
 
 fn checked(network: &Network, profile: &Profile, request: &Request, r: &RequestReport) {
-    let v = check_plan(
-        network,
-        profile,
-        request,
-        &r.swarm,
-        r.options.sharing,
-        &r.plan,
-    );
-    assert!(v.is_empty(), "{}: checker says {v:?}", request.id);
+    common::assert_checked(network, profile, request, r);
 }
 
 fn walk_request() -> Request {

@@ -9,7 +9,6 @@
 mod common;
 
 use common::{paper_195, swarmplan};
-use swarmplan::check::check_plan;
 use swarmplan::compose::{Context, PlanOptions, PlanOutcome, RequestReport, RouteMethod};
 use swarmplan::eaas::SharingPolicy;
 use swarmplan::precompose::Positioning;
@@ -45,20 +44,7 @@ fn random_case(seed: u64) -> (Network, SkywayGraph, Request) {
 }
 
 fn checked(network: &Network, profile: &Profile, request: &Request, r: &RequestReport) {
-    let v = check_plan(
-        network,
-        profile,
-        request,
-        &r.swarm,
-        r.options.sharing,
-        &r.plan,
-    );
-    assert!(
-        v.is_empty(),
-        "{} {:?}: checker says {v:?}",
-        request.id,
-        r.options
-    );
+    common::assert_checked(network, profile, request, r);
 }
 
 #[test]

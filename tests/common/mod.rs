@@ -447,3 +447,26 @@ pub fn rust_files(dir: &std::path::Path, out: &mut Vec<PathBuf>) {
         }
     }
 }
+
+/// Asserts that the independent checker finds no violation in the plan of report `r`.
+pub fn assert_checked(
+    network: &Network,
+    profile: &Profile,
+    request: &Request,
+    r: &swarmplan::compose::RequestReport,
+) {
+    let v = swarmplan::check::check_plan(
+        network,
+        profile,
+        request,
+        &r.swarm,
+        r.options.sharing,
+        &r.plan,
+    );
+    assert!(
+        v.is_empty(),
+        "{} {:?}: checker says {v:?}",
+        request.id,
+        r.options
+    );
+}
