@@ -293,7 +293,7 @@ fn hop_rows_agree_with_eaas_on_the_same_hop() {
             "--methods",
             "pb,continuous,fluid",
             "--time-limit",
-            "0.5",
+            "60",
             "--json",
         ]);
         assert!(run.status.success(), "{run:?}");

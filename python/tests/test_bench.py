@@ -83,25 +83,55 @@ def test_bench_refuses_bad_options(tmp_path):
 
 
 def test_a_long_run_releases_the_gil_and_stops_on_ctrl_c():
+    # Event-driven, so a busy machine cannot reorder it: the interrupt is sent only once the
+    # bench has reported progress (it is running on its worker) and another Python thread has
+    # ticked 20 times since then (the GIL is free while it plans). On a quiet machine the
+    # KeyboardInterrupt follows the interrupt within one 50 ms poll; the test allows 10 s.
     ticks = []
+    started = threading.Event()
     stop = threading.Event()
+    sent = []
+
+    def progress(done, total):
+        if done > 0:
+            started.set()
 
     def count():
         while not stop.is_set():
-            ticks.append(1)
+            if started.is_set():
+                ticks.append(1)
             time.sleep(0.01)
 
+    def interrupt():
+        # 10,000 requests take about 50 s on one quiet core: the first plan comes well before.
+        if not started.wait(timeout=600):
+            return
+        while len(ticks) < 20 and not stop.is_set():
+            time.sleep(0.01)
+        if not stop.is_set():
+            sent.append(time.monotonic())
+            _thread.interrupt_main()
+
     counter = threading.Thread(target=count)
+    interrupter = threading.Thread(target=interrupt)
     counter.start()
-    timer = threading.Timer(1.0, _thread.interrupt_main)
-    timer.start()
-    start = time.monotonic()
+    interrupter.start()
     try:
         with pytest.raises(KeyboardInterrupt):
-            swarmplan.bench(limit=10_000, sharing=["pb"], route=["sequential"], exact_limit=0, threads=1)
+            swarmplan.bench(
+                limit=10_000,
+                sharing=["pb"],
+                route=["sequential"],
+                exact_limit=0,
+                threads=1,
+                progress=progress,
+            )
+        raised = time.monotonic()
     finally:
         stop.set()
+        started.set()
         counter.join()
-        timer.cancel()
-    assert time.monotonic() - start < 5.0
-    assert len(ticks) > 20  # the other thread ran while the bench planned
+        interrupter.join()
+    assert sent, "the interrupt was never sent: the bench reported no progress"
+    assert len(ticks) >= 20  # the other thread ran while the bench planned
+    assert raised - sent[0] < 10.0
