@@ -215,7 +215,7 @@ fn a_stopped_solve_reports_its_gap_against_a_non_trivial_bound() {
     let (_, human, _) = swarmplan(&["node-time", "--file", file, "--node-limit", "1"]);
     assert!(
         human.contains(&format!(
-            "gap: {:.4}% against the lower bound",
+            "gap: {:+.4}% against the lower bound",
             100.0 * relative
         )),
         "{human}"

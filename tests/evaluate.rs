@@ -265,8 +265,8 @@ fn a_written_transfer_gives_the_hand_computed_batteries_value_and_gap() {
     assert_eq!(r.kind, Some(ReferenceKind::Optimal));
     assert_eq!(r.reorder, Reorder::Paper);
     assert_close(r.value.unwrap(), 20.0, "reference");
-    // Maximised: (4 - 20) / 20 = -0.8.
-    assert_close(relative_gap(&e), -0.8, "gap");
+    // Maximised, a loss reads positive: (20 - 4) / 20 = 0.8.
+    assert_close(relative_gap(&e), 0.8, "gap");
     assert_eq!(e.gap.unwrap().reference, ReferenceKind::Optimal);
     assert_eq!(e.gap_label, None);
 
@@ -409,7 +409,8 @@ fn a_schedule_is_measured_against_an_infimum_the_model_only_approaches() {
     let eps = r.epsilon.unwrap();
     assert!(eps > 0.0 && eps < 0.1, "epsilon {eps}");
     assert_eq!(e.gap.unwrap().reference, ReferenceKind::Infimum);
-    assert_close(relative_gap(&e), (290.0 / 3.0 - 100.0) / 100.0, "gap");
+    // Maximised: the loss (100 - 290/3) / 100 reads positive.
+    assert_close(relative_gap(&e), (100.0 - 290.0 / 3.0) / 100.0, "gap");
     // Serving d0 from the start would pass its capacity: C3011.
     assert_eq!(codes_of(&p, &[wt(2, 0, 0.0, 1.0)]), ["C3011"]);
 }
@@ -628,7 +629,7 @@ fn a_swapping_schedule_is_scored_against_paper_and_left_out_of_none() {
     assert_close(e.reference.unwrap().value.unwrap(), 50.0, "none reference");
 
     // Serving d1 in place all along: d0 = 50, d1 = 100 - 50 + 20 = 70; min 50. In `none` it is
-    // optimal (gap 0); against `paper` it is (50 - 58) / 58.
+    // optimal (gap 0); against `paper` it loses (58 - 50) / 58 (maximised: a loss is positive).
     let in_place = [wt(2, 1, 0.0, 5.0)];
     let e = evaluate_hop(
         &k.problem,
@@ -647,7 +648,7 @@ fn a_swapping_schedule_is_scored_against_paper_and_left_out_of_none() {
         Some(&reference_in(Reorder::Paper)),
     )
     .unwrap();
-    assert_close(relative_gap(&e), (50.0 - 58.0) / 58.0, "in place vs paper");
+    assert_close(relative_gap(&e), (58.0 - 50.0) / 58.0, "in place vs paper");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -698,14 +699,13 @@ fn policies_fed_back(problem: &HopProblem, objective: &Objective, what: &str) ->
     // PB swaps only out-of-range consumers into in-range delivery slots: within `paper`.
     assert_ne!(e.mode, Reorder::Free, "{what}: PB mode");
     if let Some(g) = e.gap.and_then(|g| g.relative) {
-        if minimise {
-            assert!(
-                g >= -1e-6,
-                "{what}: PB node time below the optimum, gap {g}"
-            );
+        // A gap is a loss under either sense: never below the optimum.
+        let beyond = if minimise {
+            "node time below"
         } else {
-            assert!(g <= 1e-6, "{what}: PB arrival above the optimum, gap {g}");
-        }
+            "arrival above"
+        };
+        assert!(g >= -1e-6, "{what}: PB {beyond} the optimum, gap {g}");
     } else if pb.feasible {
         assert!(
             e.gap_label == Some("no_reference") || e.gap.is_some(),
@@ -1263,4 +1263,53 @@ fn an_invalid_pad_rate_is_an_error_with_or_without_a_reference() {
             assert!(v.iter().any(|x| x.code == "E4104"), "rate {rate}: {v:?}");
         }
     }
+}
+
+/// Drone 0 of the needy pair served on [0, 1.75), drone 1 on [1.75, 4): 17.5 and 22.5 mAh
+/// shared, arrivals (by hand) 25 - 40 + 17.5 = 2.5 and 25 - 17.5 = 7.5 mAh (drone 1 falls until
+/// served, then holds level), the support drone's deficit 40 mAh.
+fn lopsided() -> [WrittenTransfer; 2] {
+    [wt(2, 0, 0.0, 1.75), wt(2, 1, 1.75, 4.0)]
+}
+
+#[test]
+fn a_loss_reads_as_a_positive_gap_whether_the_objective_is_maximised_or_minimised() {
+    let max_min = known_optima()
+        .instances
+        .into_iter()
+        .find(|k| k.name == "needy_pair_max_min")
+        .expect("shipped");
+    let p = max_min.problem;
+    // Maximised (the lowest arrival, optimum 5 mAh by hand): (5 - 2.5) / 5 = +50 %.
+    let e = evaluate_hop(
+        &p,
+        &Objective::MaxMinArrival,
+        &lopsided(),
+        Some(&default_reference()),
+    )
+    .unwrap();
+    assert_all_close(&e.outcome.final_battery_mah, &[2.5, 7.5, 60.0], "final");
+    assert_close(e.value.unwrap(), 2.5, "value");
+    assert_close(e.reference.unwrap().value.unwrap(), 5.0, "optimum");
+    assert_close(relative_gap(&e), 0.5, "maximised gap");
+    // Minimised (node time on 3 pads at 1 mAh/min, optimum 95 min by hand): deficits 97.5,
+    // 92.5 and 40, one drone per pad: 97.5 min, (97.5 - 95) / 95 = +2.63 %.
+    let three_pads = Objective::NodeTime(EndPads {
+        pads: 3,
+        pad_rate_mah_per_min: 1.0,
+    });
+    let e = evaluate_hop(&p, &three_pads, &lopsided(), Some(&default_reference())).unwrap();
+    assert_close(e.value.unwrap(), 97.5, "value");
+    assert_close(e.reference.unwrap().value.unwrap(), 95.0, "optimum");
+    assert_close(relative_gap(&e), 2.5 / 95.0, "minimised gap");
+    // The optimum's own schedule: 0, printed without a sign.
+    let best = [wt(2, 0, 0.0, 2.0), wt(2, 1, 2.0, 4.0)];
+    let e = evaluate_hop(
+        &p,
+        &Objective::MaxMinArrival,
+        &best,
+        Some(&default_reference()),
+    )
+    .unwrap();
+    assert_eq!(swarmplan::cli::human::gap_percent(relative_gap(&e), 4), "0%");
 }

@@ -59,8 +59,8 @@ def main():
         result = swarmplan.evaluate(hop, late_top_up(hop))
         gap = result["gap"]
         if gap is not None and gap["relative"] is not None:
-            # A gap in the direction of worse: node time above, arrival battery below.
-            worse = gap["relative"] if hop.end is not None else -gap["relative"]
+            # A gap is a loss: positive is worse under either objective.
+            worse = gap["relative"]
             gaps.append(100.0 * worse)
             shown = f"{100.0 * worse:8.3f}% against the {gap['reference']}"
         else:

@@ -1150,7 +1150,7 @@ impl Hop {
                     rows.push(run_method(&file.hop, &objective, m, &milp, &readings)?);
                 }
                 if label {
-                    label_gaps(&mut rows, &file.hop, milp.reorder);
+                    label_gaps(&mut rows, &file.hop, &objective, milp.reorder);
                 }
                 Ok(rows)
             },

@@ -43,7 +43,8 @@ def evaluate(hop: Hop, schedule: Schedule, **options: Any) -> Dict[str, Any]:
     model raises :class:`SwarmplanError` with the checker's code (``C3001``-``C3013``); one
     that runs a drone out of battery returns ``feasible: False``; otherwise its ``value`` (node
     time in minutes at a stop, or lowest delivery arrival battery in mAh into a destination)
-    comes with its ``gap`` against the continuous-time optimum of the ``reorder`` mode.
+    comes with its ``gap`` against the continuous-time optimum of the ``reorder`` mode: the
+    relative loss, positive when worse under either objective (README.md, "What a gap is").
     """
     return hop.evaluate(schedule, **options)
 

@@ -5,7 +5,7 @@
 //! data are absent is not written. Text is laid out by plotters itself (no system font is read)
 //! and the SVG holds no date, so the same summary gives the same bytes.
 
-use super::summary::ZERO_GAP_TOL;
+use crate::solver::ZERO_GAP_TOL;
 use super::{DistanceBucket, GapHistogram, MethodSummary, Summary};
 use crate::compose::{PlanOptions, RouteMethod};
 use crate::eaas::SharingPolicy;

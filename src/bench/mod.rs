@@ -316,8 +316,9 @@ pub struct HopRow {
     pub reference: String,
     /// The reference's value.
     pub reference_value: Option<f64>,
-    /// `(heuristic - reference) / reference`: positive is worse for a node time, negative is
-    /// worse for an arrival battery.
+    /// The heuristic's relative loss against the reference (README.md, "What a gap is"):
+    /// positive is worse under both objectives, the node time (minimised) and the arrival
+    /// battery (maximised).
     pub gap: Option<f64>,
     /// `different_policy` when the heuristic's schedule lies outside the re-ordering mode of the
     /// reference (a swapping schedule against `--reorder none`): no gap is taken.
@@ -636,7 +637,7 @@ fn keep_report(
             .into_iter()
             .map(|m| run_method(&problem, &objective, m, &config.milp, readings))
             .collect::<Result<Vec<_>>>()?;
-        label_gaps(&mut rows, &problem, config.milp.reorder);
+        label_gaps(&mut rows, &problem, &objective, config.milp.reorder);
         let [heur, exact, fluid] = &rows[..] else {
             unreachable!("three methods were run")
         };

@@ -4,18 +4,20 @@
 use super::{BenchConfig, BenchData, Finding, RequestRow};
 use crate::compose::{PlanOptions, RouteGapSummary, RoutePair};
 use crate::eaas::SharingPolicy;
+use crate::solver::ZERO_GAP_TOL;
 use serde::Serialize;
 use std::collections::BTreeMap;
 
 /// Version of the schema of `summary.json`, `config.json` and the CSV files.
-pub const SUMMARY_SCHEMA_VERSION: u32 = 3;
+///
+/// 4: `hops.csv`'s `gap` is a loss under both objectives (into a destination it was
+/// `(heuristic - reference) / reference`, negative for a loss).
+pub const SUMMARY_SCHEMA_VERSION: u32 = 4;
 
 /// Upper edges of the gap histograms' bins after the bins `< 0` and `0`: `(0, 1%]`, `(1%, 5%]`,
 /// ..., `(200%, 500%]`, then `> 500%`.
 pub const GAP_BIN_EDGES: [f64; 8] = [0.01, 0.05, 0.1, 0.25, 0.5, 1.0, 2.0, 5.0];
 
-/// Gaps within this of 0 (relative) count as 0.
-pub const ZERO_GAP_TOL: f64 = 1e-9;
 
 /// Counts of gaps in the bins of [`GAP_BIN_EDGES`].
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -498,10 +500,8 @@ fn joint_summary(data: &BenchData) -> JointSummary {
 
 fn hop_gap_summary(data: &BenchData, sharing: SharingPolicy) -> HopGapSummary {
     let hops: Vec<&super::HopRow> = data.hops.iter().filter(|h| h.sharing == sharing).collect();
-    let loss = |h: &super::HopRow| {
-        h.gap
-            .map(|g| if h.objective == "node-time" { g } else { -g })
-    };
+    // A gap is a loss under either sense of the objective (solver::Gap).
+    let loss = |h: &super::HopRow| h.gap;
     let optimal: Vec<f64> = hops
         .iter()
         .filter(|h| h.reference == "optimal" || h.reference == "infimum")

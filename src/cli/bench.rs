@@ -327,8 +327,15 @@ fn print_joint(s: &Summary, j: &bench::JointSummary) -> Result<()> {
     Ok(())
 }
 
+/// A fraction as a percentage with one decimal, without a `+` (the table's means and maxima);
+/// `0%` within [`crate::solver::ZERO_GAP_TOL`] of zero or when it rounds to zero, never `-0.0%`.
 fn percent(x: f64) -> String {
-    format!("{:.1}%", 100.0 * x)
+    let text = format!("{:.1}%", 100.0 * x);
+    if x.abs() <= crate::solver::ZERO_GAP_TOL || text == "-0.0%" || text == "0.0%" {
+        "0%".to_string()
+    } else {
+        text
+    }
 }
 
 fn print_table(s: &Summary) -> Result<()> {

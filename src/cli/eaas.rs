@@ -240,7 +240,7 @@ fn rows(
         bar.inc(1);
     }
     bar.finish_and_clear();
-    label_gaps(&mut rows, problem, args.reorder);
+    label_gaps(&mut rows, problem, objective, args.reorder);
     Ok(rows)
 }
 
@@ -270,7 +270,11 @@ fn print_human(r: &EaasReport) -> Result<()> {
         let gap = match (row.gap, row.gap_label) {
             (_, Some(label)) => label.to_string(),
             (Some(g), None) => match g.relative {
-                Some(x) => format!("{:+.4}% vs {}", 100.0 * x, json_name(&g.reference)),
+                Some(x) => format!(
+                    "{} vs {}",
+                    super::human::gap_percent(x, 4),
+                    json_name(&g.reference)
+                ),
                 None => format!("n/a vs {}", json_name(&g.reference)),
             },
             (None, None) => "-".to_string(),

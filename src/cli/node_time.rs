@@ -201,10 +201,9 @@ fn print_human(s: &NodeTimeSolution, times: &[f64], backend: MilpBackend) -> Res
         outln!(
             "gap: {} against the lower bound ({why}; the bound is the best of the method's and \
              the bin-packing LP's)",
-            g.relative.map_or("n/a (bound 0)".to_string(), |r| format!(
-                "{:.4}%",
-                100.0 * r
-            ))
+            g.relative.map_or("n/a (bound 0)".to_string(), |r| {
+                super::human::gap_percent(r, 4)
+            })
         );
     }
     for (i, pad) in s.assignment.iter().enumerate() {

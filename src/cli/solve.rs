@@ -293,8 +293,8 @@ fn print_human(report: &RequestReport) -> Result<()> {
         };
         match (g.gap, g.optimal_dt_min) {
             (Some(gap), Some(best)) => outln!(
-                "route gap: {:+.2}% against the optimal route over stop sequences (dt {:.2} min, {proven})",
-                100.0 * gap,
+                "route gap: {} against the optimal route over stop sequences (dt {:.2} min, {proven})",
+                super::human::gap_percent(gap, 2),
                 best
             ),
             (None, Some(best)) => outln!(

@@ -3,7 +3,7 @@
 use super::Stop;
 use crate::error::Result;
 use crate::node_time;
-use crate::solver::{Gap, ReferenceKind, SolveStatus};
+use crate::solver::{Gap, ReferenceKind, Sense, SolveStatus};
 use serde::Serialize;
 
 /// How far the LPT rule is from the exact node time over a set of stops. Gaps are
@@ -45,7 +45,12 @@ pub fn lpt_gap(stop: &Stop) -> Result<Option<f64>> {
     }
     let lpt = node_time::lpt(stop.pads as usize, &stop.charge_times_min)?;
     Ok(Some(
-        Gap::new(lpt.makespan_min, stop.nt_min, ReferenceKind::Optimal)
+        Gap::new(
+            lpt.makespan_min,
+            stop.nt_min,
+            ReferenceKind::Optimal,
+            Sense::Minimise,
+        )
             .relative
             .unwrap_or(0.0),
     ))

@@ -279,7 +279,12 @@ fn reference_of(rows: &[MethodRow]) -> Option<(f64, ReferenceKind, HopMethod)> {
 /// [`reference()`]; the grid MILP's row too when the reference is the continuous model (every grid
 /// schedule is a continuous one). In `none` re-ordering (`reorder`) a heuristic row whose
 /// schedule swaps slots is outside the model: it gets `different_policy` and no gap.
-pub fn label_gaps(rows: &mut [MethodRow], problem: &HopProblem, reorder: Reorder) {
+pub fn label_gaps(
+    rows: &mut [MethodRow],
+    problem: &HopProblem,
+    objective: &Objective,
+    reorder: Reorder,
+) {
     let Some((v, kind, from)) = reference_of(rows) else {
         return;
     };
@@ -295,6 +300,8 @@ pub fn label_gaps(rows: &mut [MethodRow], problem: &HopProblem, reorder: Reorder
             r.gap_label = Some("different_policy");
             continue;
         }
-        r.gap = r.objective.map(|h| Gap::new(h, v, kind));
+        r.gap = r
+            .objective
+            .map(|h| Gap::new(h, v, kind, objective.sense()));
     }
 }

@@ -226,7 +226,7 @@ pub fn evaluate_hop(
         (None, Some(_)) => (None, Some("infeasible")),
         (Some(_), Some(r)) if !contains(r.reorder, mode) => (None, Some("outside_reference")),
         (Some(v), Some(r)) => match (r.value, r.kind) {
-            (Some(x), Some(kind)) => (Some(Gap::new(v.value, x, kind)), None),
+            (Some(x), Some(kind)) => (Some(Gap::new(v.value, x, kind, objective.sense())), None),
             _ => (None, Some("no_reference")),
         },
     };

@@ -153,17 +153,19 @@ impl NodeTimeSolution {
     /// The node time's gap: 0 against the optimum when proven, else against the method's own
     /// lower bound; `None` without an assignment.
     pub fn gap(&self) -> Option<crate::solver::Gap> {
-        use crate::solver::{Gap, ReferenceKind};
+        use crate::solver::{Gap, ReferenceKind, Sense};
         match self.status {
             SolveStatus::Optimal => Some(Gap::new(
                 self.makespan_min,
                 self.makespan_min,
                 ReferenceKind::Optimal,
+                Sense::Minimise,
             )),
             SolveStatus::Feasible => Some(Gap::new(
                 self.makespan_min,
                 self.lower_bound_min,
                 ReferenceKind::Bound,
+                Sense::Minimise,
             )),
             SolveStatus::Infeasible => None,
         }

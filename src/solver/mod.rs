@@ -302,20 +302,53 @@ pub enum ReferenceKind {
     Infimum,
 }
 
-/// Relative gap `(heuristic - reference) / reference` with the kind of its reference.
+/// Gaps within this of 0 (relative) count as 0: in the bench's `gap = 0` counts and histograms,
+/// and printed as `0%` in human output.
+pub const ZERO_GAP_TOL: f64 = 1e-9;
+
+/// Whether an objective is minimised (node time, delivery time) or maximised (the lowest
+/// delivery arrival battery); a [`Gap`] reads a loss as positive under either.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Sense {
+    /// Smaller is better.
+    Minimise,
+    /// Larger is better.
+    Maximise,
+}
+
+/// A relative gap with the kind of its reference: the relative **loss** of a value against the
+/// reference, `(value - reference) / |reference|` for a minimised objective and
+/// `(reference - value) / |reference|` for a maximised one, so a loss is positive under either
+/// sense. Against a proven optimum whose feasible set contains the value's schedule a negative
+/// gap is impossible (a bug); against a bound it is never negative. README.md, "What a gap is".
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize)]
 pub struct Gap {
-    /// The relative gap; `None` when the reference is zero.
+    /// The relative loss; `None` when the reference is zero.
     pub relative: Option<f64>,
     /// What the reference is.
     pub reference: ReferenceKind,
 }
 
 impl Gap {
-    /// Gap of `heuristic` against `reference` of the given kind.
-    pub fn new(heuristic: f64, reference: f64, kind: ReferenceKind) -> Gap {
+    /// Gap of `value` against `reference` of the given kind, for an objective of `sense`.
+    ///
+    /// # Example
+    /// ```
+    /// use swarmplan::solver::{Gap, ReferenceKind, Sense};
+    /// // A node time of 11 min against an optimum of 10: 10 % lost.
+    /// let g = Gap::new(11.0, 10.0, ReferenceKind::Optimal, Sense::Minimise);
+    /// assert!((g.relative.unwrap() - 0.1).abs() < 1e-12);
+    /// // An arrival battery of 90 mAh against an optimum of 100: 10 % lost too.
+    /// let g = Gap::new(90.0, 100.0, ReferenceKind::Optimal, Sense::Maximise);
+    /// assert!((g.relative.unwrap() - 0.1).abs() < 1e-12);
+    /// ```
+    pub fn new(value: f64, reference: f64, kind: ReferenceKind, sense: Sense) -> Gap {
         let relative = if reference.abs() > 0.0 {
-            Some((heuristic - reference) / reference)
+            Some(match sense {
+                Sense::Minimise => (value - reference) / reference.abs(),
+                Sense::Maximise => (reference - value) / reference.abs(),
+            })
         } else {
             None
         };

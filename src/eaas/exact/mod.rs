@@ -131,6 +131,17 @@ pub enum Objective {
     Feasible,
 }
 
+impl Objective {
+    /// Whether the objective is minimised (the node time; `Feasible`, whose value is always 0)
+    /// or maximised (the lowest delivery arrival battery).
+    pub fn sense(&self) -> crate::solver::Sense {
+        match self {
+            Objective::NodeTime(_) | Objective::Feasible => crate::solver::Sense::Minimise,
+            Objective::MaxMinArrival => crate::solver::Sense::Maximise,
+        }
+    }
+}
+
 /// Outcome of an exact hop solve.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
