@@ -21,7 +21,7 @@ use rand_chacha::ChaCha8Rng;
 use std::path::PathBuf;
 use swarmplan::cli::inputs::{load_requests, InstanceArgs};
 use swarmplan::compose::{Context, PlanOptions, Planner, RouteMethod};
-use swarmplan::eaas::exact::continuous::{solve_continuous, ContinuousOptions};
+use swarmplan::eaas::exact::continuous::{solve_continuous, ContinuousOptions, PadMethod};
 use swarmplan::eaas::exact::milp::{solve_milp, MilpOptions};
 use swarmplan::eaas::exact::EndPads;
 use swarmplan::eaas::exact::{ExactOutcome, ExactStatus, Objective, Reorder};
@@ -48,6 +48,9 @@ struct Args {
     /// Also `free` mode on the hops (refusals, E4117 above the configuration count, are counted).
     #[arg(long)]
     free: bool,
+    /// Solve the pad assignment with the pad MILP (the reference) instead of the pad search.
+    #[arg(long)]
+    pad_milp: bool,
 }
 
 fn median(v: &[f64]) -> f64 {
@@ -115,7 +118,7 @@ fn main() {
         let mut rng = ChaCha8Rng::seed_from_u64(1000 + 10 * 10 + 3);
         for i in 0..3 {
             let p = hop(&mut rng, 10, 3, 30);
-            let o = solve(&p, &objective, reorder, backend);
+            let o = solve(&p, &objective, reorder, backend, pad_method(&args));
             println!(
                 "  {reorder} hop {i}: {} {:?} (bound {:?}, epsilon {:?}), {:.2} ms",
                 status_name(o.status),
@@ -170,6 +173,7 @@ fn main() {
                         reorder,
                         backend,
                         time_limit_s: 60.0,
+                        pad_method: pad_method(&args),
                         ..ContinuousOptions::default()
                     };
                     let o = match solve_continuous(p, objective, &options) {
@@ -249,15 +253,25 @@ fn dump(args: &Args, name: &str, p: &HopProblem, objective: &Objective) {
     }
 }
 
+fn pad_method(args: &Args) -> PadMethod {
+    if args.pad_milp {
+        PadMethod::Milp
+    } else {
+        PadMethod::Search
+    }
+}
+
 fn solve(
     p: &HopProblem,
     objective: &Objective,
     reorder: Reorder,
     backend: MilpBackend,
+    pad_method: PadMethod,
 ) -> ExactOutcome {
     let options = ContinuousOptions {
         reorder,
         backend,
+        pad_method,
         ..ContinuousOptions::default()
     };
     solve_continuous(p, objective, &options).expect("valid hop")

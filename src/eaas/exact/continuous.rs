@@ -46,6 +46,8 @@ use good_lp::{
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
+mod pad_search;
+
 /// Default largest number of configurations a hop may have (E4117 above it).
 pub const DEFAULT_MAX_CONFIGURATIONS: usize = 20_000;
 /// The margin search stops at the first schedule within this relative distance of the optimum.
@@ -86,6 +88,25 @@ pub struct ContinuousOptions {
     pub max_configurations: usize,
     /// Readings of PB and FB, whose schedules are incumbents.
     pub readings: PolicyOptions,
+    /// How the node time's pad assignment is solved when the relaxation does not settle it
+    /// (default [`PadMethod::Search`]).
+    #[serde(default)]
+    pub pad_method: PadMethod,
+}
+
+/// How the continuous model's pad assignment (node-time objective) is solved once its relaxation
+/// and the relaxation's assignment leave a gap.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum PadMethod {
+    /// The branch and bound over the assignment on microlp's warm re-solves
+    /// (`models/eaas_config.md`, "The pad search"); on the `highs` backend, or when microlp
+    /// fails on a node, the pad MILP.
+    #[default]
+    Search,
+    /// The pad MILP with the backend's own branch and bound: the reference the search is tested
+    /// against.
+    Milp,
 }
 
 impl ContinuousOptions {
@@ -99,6 +120,7 @@ impl ContinuousOptions {
             node_limit: milp.node_limit,
             max_configurations: DEFAULT_MAX_CONFIGURATIONS,
             readings,
+            pad_method: PadMethod::default(),
         }
     }
 }
@@ -112,6 +134,7 @@ impl Default for ContinuousOptions {
             node_limit: None,
             max_configurations: DEFAULT_MAX_CONFIGURATIONS,
             readings: PolicyOptions::default(),
+            pad_method: PadMethod::default(),
         }
     }
 }
@@ -319,6 +342,9 @@ enum Pads<'a> {
     /// A fixed assignment, the pad of every drone: an LP whose value bounds the optimum from
     /// above.
     Fixed(&'a [usize]),
+    /// No assignment yet: every `ct_d <= M` and `sum_d ct_d <= min(k, n) M`, the root of the
+    /// pad search ([`pad_search`]), which adds each pad's load rows as it assigns drones.
+    Aggregate,
 }
 
 /// One solve of the model: leg-end bounds `[margin, C_d - margin]`, at least `start_min` of the
@@ -408,6 +434,55 @@ impl Model<'_> {
     where
         S::Model: MilpModel,
     {
+        let Built {
+            model,
+            theta,
+            goal,
+            scale,
+            ..
+        } = self.build(solver, objective, attempt, time_limit_s);
+        let (status, solution) = match backend_end(model.solve_outcome(), backend_name)? {
+            BackendEnd::Solved(status, s) => (status, s),
+            BackendEnd::Infeasible => return Ok(Solved::Infeasible),
+            BackendEnd::NoSolution => return Ok(Solved::NoSolution),
+        };
+        let value = goal.map_or(0.0, |g| match objective {
+            Objective::MaxMinArrival => solution.value(g) / scale,
+            _ => solution.value(g),
+        });
+        let bound = match status {
+            BackendStatus::Optimal => Some(value),
+            // HiGHS's relative gap is (incumbent - bound) / max(|incumbent|, a tiny guard), so
+            // the bound is at least the incumbent less the gap times max(|incumbent|, 1); only
+            // the node time (a minimisation) has integer variables.
+            BackendStatus::OptimalWithinGap => Some(value - MIP_REL_GAP * value.abs().max(1.0)),
+            BackendStatus::Feasible
+            | BackendStatus::LimitNoSolution
+            | BackendStatus::Infeasible
+            | BackendStatus::Unbounded => None,
+        };
+        Ok(Solved::Values(Values {
+            theta: theta
+                .iter()
+                .map(|row| row.iter().map(|&t| solution.value(t).max(0.0)).collect())
+                .collect(),
+            value,
+            bound,
+        }))
+    }
+
+    /// Builds the model of `attempt` with `solver` (rows 1-4 of `models/eaas_config.md`, the
+    /// margin and empty start of row 5, the objective's rows as `attempt.pads` says).
+    fn build<S: good_lp::Solver>(
+        &self,
+        solver: S,
+        objective: &Objective,
+        attempt: Attempt,
+        time_limit_s: f64,
+    ) -> Built<S::Model>
+    where
+        S::Model: SolverModel + WithTimeLimit,
+    {
         let Attempt {
             margin_mah,
             start_min,
@@ -463,7 +538,7 @@ impl Model<'_> {
             Objective::NodeTime(EndPads { pads, .. }) => (
                 Some(vars.add(variable().min(0.0).name("M"))),
                 match pad_mode {
-                    Pads::Fixed(_) => None,
+                    Pads::Fixed(_) | Pads::Aggregate => None,
                     Pads::Relaxed => Some(PadRows::add(&mut vars, n, pads, true, None)),
                     Pads::Integral(rank) => {
                         Some(PadRows::add(&mut vars, n, pads, false, Some(rank)))
@@ -572,35 +647,169 @@ impl Model<'_> {
             }
             _ => {}
         }
-        let (status, solution) = match backend_end(model.solve_outcome(), backend_name)? {
-            BackendEnd::Solved(status, s) => (status, s),
-            BackendEnd::Infeasible => return Ok(Solved::Infeasible),
-            BackendEnd::NoSolution => return Ok(Solved::NoSolution),
-        };
-        let value = goal.map_or(0.0, |g| match objective {
-            Objective::MaxMinArrival => solution.value(g) / scale,
-            _ => solution.value(g),
-        });
-        let bound = match status {
-            BackendStatus::Optimal => Some(value),
-            // HiGHS's relative gap is (incumbent - bound) / max(|incumbent|, a tiny guard), so
-            // the bound is at least the incumbent less the gap times max(|incumbent|, 1); only
-            // the node time (a minimisation) has integer variables.
-            BackendStatus::OptimalWithinGap => Some(value - MIP_REL_GAP * value.abs().max(1.0)),
-            BackendStatus::Feasible
-            | BackendStatus::LimitNoSolution
-            | BackendStatus::Infeasible
-            | BackendStatus::Unbounded => None,
-        };
-        Ok(Solved::Values(Values {
-            theta: theta
-                .iter()
-                .map(|row| row.iter().map(|&t| solution.value(t).max(0.0)).collect())
-                .collect(),
-            value,
-            bound,
-        }))
+        // The pad search's root (node time): every ct_d <= M and sum_d ct_d <= min(k, n) M.
+        let mut charge_times = Vec::new();
+        if let (
+            Objective::NodeTime(EndPads {
+                pads,
+                pad_rate_mah_per_min,
+            }),
+            Some(g),
+            Pads::Aggregate,
+        ) = (*objective, goal, pad_mode)
+        {
+            let per_min = 1.0 / (scale * pad_rate_mah_per_min);
+            for (d, drone) in problem.drones.iter().enumerate() {
+                let ct = (scale * drone.capacity_mah - final_battery[d].clone()) * per_min;
+                model.add_constraint(constraint!(ct <= g));
+                charge_times.push(match b[d].last() {
+                    Some(&var) => ChargeTime {
+                        battery: Some(var),
+                        per_min,
+                        constant: scale * drone.capacity_mah * per_min,
+                    },
+                    None => ChargeTime {
+                        battery: None,
+                        per_min,
+                        constant: (scale * (drone.capacity_mah - drone.battery_mah)) * per_min,
+                    },
+                });
+            }
+            let total: Expression = (0..n)
+                .map(|d| (scale * problem.drones[d].capacity_mah - final_battery[d].clone()) * per_min)
+                .sum();
+            let m = pads.min(n).max(1) as f64;
+            model.add_constraint(constraint!(total <= m * g));
+        }
+        Built {
+            model,
+            theta,
+            goal,
+            scale,
+            charge_times,
+        }
     }
+}
+
+/// What the pad search found, in the model's terms.
+struct Searched {
+    /// The best leaf below the incumbent: the pad of every drone and its time shares.
+    leaf: Option<(Vec<usize>, Vec<Vec<f64>>)>,
+    value: f64,
+    bound: f64,
+    complete: bool,
+}
+
+impl Model<'_> {
+    /// The pad search ([`pad_search`]) below the upper bound `incumbent`, drones in the order of
+    /// `rank`; `None` when it does not apply (another backend, [`PadMethod::Milp`]) or microlp
+    /// fails on one of its LPs: the caller then solves the pad MILP.
+    ///
+    /// # Errors
+    /// None today; kept for the backends' failures a later search may report.
+    fn pad_search(
+        &self,
+        objective: &Objective,
+        options: &ContinuousOptions,
+        rank: &[usize],
+        incumbent: f64,
+    ) -> Result<Option<Searched>> {
+        #[cfg(feature = "microlp")]
+        {
+            let Objective::NodeTime(EndPads { pads, .. }) = *objective else {
+                return Ok(None);
+            };
+            if options.pad_method != PadMethod::Search || options.backend != MilpBackend::Microlp {
+                return Ok(None);
+            }
+            let built = self.build(
+                good_lp::solvers::microlp::microlp,
+                objective,
+                Attempt::exact(Pads::Aggregate),
+                options.time_limit_s,
+            );
+            let Some(goal) = built.goal else {
+                return Ok(None);
+            };
+            let Ok(root) = built.model.as_inner().solve() else {
+                return Ok(None);
+            };
+            let Ok(root) = root.into_solution() else {
+                return Ok(None);
+            };
+            let columns: Vec<microlp::Variable> = root.iter().map(|(v, _)| v).collect();
+            let charges: Vec<pad_search::Charge> = built
+                .charge_times
+                .iter()
+                .map(|c| pad_search::Charge::of(c, &columns))
+                .collect();
+            let mut order: Vec<usize> = (0..rank.len()).collect();
+            order.sort_by_key(|&d| rank[d]);
+            let deadline = (options.time_limit_s.is_finite() && options.time_limit_s > 0.0)
+                .then(|| Instant::now() + std::time::Duration::from_secs_f64(options.time_limit_s));
+            let Ok(end) = pad_search::search(
+                root,
+                &charges,
+                columns[crate::solver::variable_index(goal)],
+                &order,
+                pads,
+                incumbent,
+                options.node_limit,
+                deadline,
+            ) else {
+                return Ok(None);
+            };
+            let leaf = end.leaf.map(|(pad_of, solution)| {
+                let theta = built
+                    .theta
+                    .iter()
+                    .map(|row| {
+                        row.iter()
+                            .map(|&t| {
+                                solution
+                                    .var_value(columns[crate::solver::variable_index(t)])
+                                    .max(0.0)
+                            })
+                            .collect()
+                    })
+                    .collect();
+                (pad_of, theta)
+            });
+            Ok(Some(Searched {
+                leaf,
+                value: end.value,
+                bound: end.bound,
+                complete: end.complete,
+            }))
+        }
+        #[cfg(not(feature = "microlp"))]
+        {
+            let _ = (objective, options, rank, incumbent);
+            Ok(None)
+        }
+    }
+}
+
+/// A built model and its handles.
+struct Built<M> {
+    model: M,
+    /// `θ[i][σ]`.
+    theta: Vec<Vec<Variable>>,
+    /// `M` (node time) or `g` (max-min); `None` for feasibility.
+    goal: Option<Variable>,
+    /// The model's energy unit is `1 / scale` mAh.
+    scale: f64,
+    /// [`Pads::Aggregate`]: every drone's charge time as a function of its final battery.
+    charge_times: Vec<ChargeTime>,
+}
+
+/// A drone's charge time in the model, minutes: `constant - per_min * b_d(tt)` with `b_d(tt)`
+/// the model's variable `battery`, or `constant` alone when the hop has no leg to fly.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct ChargeTime {
+    battery: Option<Variable>,
+    per_min: f64,
+    constant: f64,
 }
 
 impl Model<'_> {
@@ -1181,11 +1390,14 @@ pub fn solve_continuous(
     let mut assignment = model.pad_assignment(objective, &relaxed.theta)?;
     // The pad MILP's symmetry breaking: the relaxation's longest charge times first.
     let rank = model.rank_by_charge_time(&relaxed.theta);
+    // The least model value of an assignment solved so far (an upper bound on the model's).
+    let mut fixed_value = f64::INFINITY;
     if let Some(a) = assignment.as_deref().filter(|_| !reached(&best, bound)) {
         // The relaxation's assignment fixed: an LP whose schedule often reaches the bound.
         if let Solved::Values(v) =
             model.solve(objective, options, Attempt::exact(Pads::Fixed(a)))?
         {
+            fixed_value = v.value;
             keep(
                 objective,
                 &mut best,
@@ -1193,6 +1405,39 @@ pub fn solve_continuous(
             );
         }
     }
+    let searched = if has_binaries && !reached(&best, bound) {
+        let incumbent = best.as_ref().map_or(f64::INFINITY, |c| c.value);
+        model.pad_search(objective, options, &rank, fixed_value.min(incumbent))?
+    } else {
+        None
+    };
+    if let Some(s) = &searched {
+        if s.complete {
+            bound = Some(s.bound);
+            model_value = s.value;
+        } else {
+            bound = bound.map(|b| b.max(s.bound));
+        }
+        if let Some((pad_of, theta)) = &s.leaf {
+            assignment = Some(pad_of.clone());
+            keep(objective, &mut best, model.realised(objective, theta, 0.0)?);
+            // The leaf's LP solved again from scratch: a warm re-solve's point can sit at a
+            // bound by a hair more than a cold one's, which the realisation may not play.
+            if !reached(&best, bound) {
+                if let Solved::Values(v) =
+                    model.solve(objective, options, Attempt::exact(Pads::Fixed(pad_of)))?
+                {
+                    keep(
+                        objective,
+                        &mut best,
+                        model.realised(objective, &v.theta, 0.0)?,
+                    );
+                }
+            }
+        }
+    }
+    // The pad MILP: where the search does not apply, and where the search's optimum does not
+    // realise (another optimal point of the MILP's may: its schedule is tried before margins).
     if has_binaries && !reached(&best, bound) {
         // The pad MILP: a microlp failure leaves the relaxation's bound, said so by epsilon.
         // Its symmetry broken along the charge times first; when microlp fails numerically on

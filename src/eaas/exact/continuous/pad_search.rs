@@ -1,0 +1,218 @@
+//! The pad assignment of the node-time objective by a branch and bound of its own, on microlp's
+//! warm re-solves (`models/eaas_config.md`, "The pad search").
+//!
+//! The model's optimum is `V = min_A LP(A)` over the assignments `A` of drones to the `k`
+//! identical pads, `LP(A)` the configuration LP with each pad's load row `sum_{d on p} ct_d <= M`.
+//! The root is the LP with every `ct_d <= M` and `sum_d ct_d <= min(k, n) M` (valid for every
+//! assignment). A node assigns the next drone, longest charge time first, to a pad already used
+//! or to the first empty one (the pads are identical: any other empty pad gives the same
+//! subtree); its LP is the parent's with the pad's new load row added, re-solved by microlp's dual
+//! simplex from the parent's basis. A leaf is `LP(A)` itself. Children are tried least-loaded pad
+//! first (at the parent's point), so the first dive is LPT's assignment; a node whose LP value
+//! reaches the least upper bound known (within [`PRUNE_REL`]) is pruned. When the search ends,
+//! `V >= min(ub, p)` with `ub` the least of the leaves and the incumbent and `p` the least LP
+//! value of a node pruned (within the tolerance band below `ub`, else `p >= ub`); stopped by the
+//! node limit, `V >=` also the least value of a node left with children unexplored.
+
+use super::ChargeTime;
+use microlp::{ComparisonOp, LinearExpr, Solution};
+use std::time::Instant;
+
+/// A node whose LP value is within this relative distance of the least upper bound (`max(1, ub)`
+/// times it) is pruned; the search's bound is the least value of a node pruned, when below `ub`.
+pub(super) const PRUNE_REL: f64 = 1e-9;
+
+/// How a search ended.
+pub(super) struct PadSearchEnd {
+    /// The best leaf below the incumbent: the pad of every drone and the LP's solution.
+    pub leaf: Option<(Vec<usize>, Solution)>,
+    /// The least upper bound on `V`: the best leaf's value, or the incumbent's.
+    pub value: f64,
+    /// A proven lower bound on `V`.
+    pub bound: f64,
+    /// LPs solved (the root's not counted).
+    pub nodes: u64,
+    /// Whether the search ran to its end (else a node or time limit stopped it).
+    pub complete: bool,
+}
+
+/// A drone's charge time in microlp's variables: `constant - per_min * battery`.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Charge {
+    pub battery: Option<microlp::Variable>,
+    pub per_min: f64,
+    pub constant: f64,
+}
+
+impl Charge {
+    /// In microlp's columns, `columns[i]` the column of good_lp's variable `i`.
+    pub fn of(c: &ChargeTime, columns: &[microlp::Variable]) -> Charge {
+        Charge {
+            battery: c
+                .battery
+                .map(|v| columns[crate::solver::variable_index(v)]),
+            per_min: c.per_min,
+            constant: c.constant,
+        }
+    }
+
+    fn at(&self, solution: &Solution) -> f64 {
+        self.constant - self.battery.map_or(0.0, |b| self.per_min * solution.var_value(b))
+    }
+}
+
+/// The search's settings and state.
+struct Search<'a> {
+    charges: &'a [Charge],
+    makespan: microlp::Variable,
+    order: &'a [usize],
+    pads: usize,
+    node_limit: Option<u64>,
+    deadline: Option<Instant>,
+    nodes: u64,
+    /// The least upper bound on `V`.
+    ub: f64,
+    leaf: Option<(Vec<usize>, Solution)>,
+    /// The least LP value of a node left with children unexplored by a limit, or pruned.
+    open: f64,
+    stopped: bool,
+}
+
+/// Runs the search from `root` (the LP of [`super::Pads::Aggregate`]) over the drones in
+/// `order` (every drone once, longest charge time first), on `pads` pads, below the upper bound
+/// `incumbent` (`f64::INFINITY`: none), with the node-time variable `makespan`.
+///
+/// # Errors
+/// microlp's, but infeasibility (a node whose LP is infeasible is pruned).
+///
+/// # Complexity
+/// At most `sum_{j < n} k^j` LPs, each a warm re-solve; in practice a few per drone.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn search(
+    root: Solution,
+    charges: &[Charge],
+    makespan: microlp::Variable,
+    order: &[usize],
+    pads: usize,
+    incumbent: f64,
+    node_limit: Option<u64>,
+    deadline: Option<Instant>,
+) -> Result<PadSearchEnd, microlp::Error> {
+    let mut s = Search {
+        charges,
+        makespan,
+        order,
+        pads: pads.max(1),
+        node_limit,
+        deadline,
+        nodes: 0,
+        ub: incumbent,
+        leaf: None,
+        open: f64::INFINITY,
+        stopped: false,
+    };
+    let mut on_pad: Vec<Vec<usize>> = vec![Vec::new(); s.pads];
+    s.dive(root, 0, &mut on_pad)?;
+    Ok(PadSearchEnd {
+        value: s.ub,
+        bound: s.ub.min(s.open),
+        nodes: s.nodes,
+        complete: !s.stopped,
+        leaf: s.leaf,
+    })
+}
+
+impl Search<'_> {
+    /// Whether a node of LP value `value` is pruned; the bound then remembers its value.
+    fn prunes(&mut self, value: f64) -> bool {
+        let pruned = value >= self.ub - PRUNE_REL * self.ub.abs().max(1.0);
+        if pruned {
+            self.open = self.open.min(value);
+        }
+        pruned
+    }
+
+    fn limit_reached(&self) -> bool {
+        self.node_limit.is_some_and(|n| self.nodes >= n)
+            || self.deadline.is_some_and(|d| Instant::now() >= d)
+    }
+
+    /// The load row of `drones` on one pad: `sum ct_d - M <= 0`.
+    fn load_row(&self, drones: &[usize]) -> (LinearExpr, f64) {
+        let mut expr = LinearExpr::empty();
+        let mut rhs = 0.0;
+        for &d in drones {
+            let c = &self.charges[d];
+            rhs -= c.constant;
+            if let Some(b) = c.battery {
+                expr.add(b, -c.per_min);
+            }
+        }
+        expr.add(self.makespan, -1.0);
+        (expr, rhs)
+    }
+
+    fn dive(
+        &mut self,
+        node: Solution,
+        depth: usize,
+        on_pad: &mut Vec<Vec<usize>>,
+    ) -> Result<(), microlp::Error> {
+        let lp = node.objective();
+        if depth == self.order.len() {
+            if lp < self.ub {
+                self.ub = lp;
+                let mut pad_of = vec![0; self.charges.len()];
+                for (p, drones) in on_pad.iter().enumerate() {
+                    for &d in drones {
+                        pad_of[d] = p;
+                    }
+                }
+                self.leaf = Some((pad_of, node));
+            }
+            return Ok(());
+        }
+        let d = self.order[depth];
+        // The pads used so far and the first empty one, least loaded first at this node's point.
+        let used = on_pad.iter().filter(|p| !p.is_empty()).count();
+        let mut children: Vec<(f64, usize)> = (0..(used + 1).min(self.pads))
+            .map(|p| {
+                let load: f64 = on_pad[p].iter().map(|&e| self.charges[e].at(&node)).sum();
+                (load, p)
+            })
+            .collect();
+        children.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        for (_, p) in children {
+            if self.prunes(lp) {
+                return Ok(());
+            }
+            if self.limit_reached() {
+                self.stopped = true;
+                self.open = self.open.min(lp);
+                return Ok(());
+            }
+            self.nodes += 1;
+            on_pad[p].push(d);
+            let (expr, rhs) = self.load_row(&on_pad[p]);
+            let child = match node.clone().add_constraint(expr, ComparisonOp::Le, rhs) {
+                Ok(outcome) => match outcome.into_solution() {
+                    Ok(child) => Some(child),
+                    Err(_) => return Err(microlp::Error::InternalError("interrupted".into())),
+                },
+                Err(microlp::Error::Infeasible) => None,
+                Err(e) => return Err(e),
+            };
+            if let Some(child) = child {
+                if !self.prunes(child.objective()) {
+                    self.dive(child, depth + 1, on_pad)?;
+                }
+            }
+            on_pad[p].pop();
+            if self.stopped {
+                self.open = self.open.min(lp);
+                return Ok(());
+            }
+        }
+        Ok(())
+    }
+}
