@@ -812,6 +812,29 @@ pub(super) struct ChargeTime {
     constant: f64,
 }
 
+impl<'a> Model<'a> {
+    /// The model of `problem` over `configs` (its configurations in mode `reorder`).
+    fn of(problem: &'a HopProblem, configs: &'a [Configuration], reorder: Reorder) -> Model<'a> {
+        let legs: Vec<usize> = (0..problem.legs.len())
+            .filter(|&l| problem.legs[l].duration_min > TIME_TOL_MIN)
+            .collect();
+        let v = legs
+            .iter()
+            .map(|&l| {
+                let rates = &problem.legs[l].rate_mah_per_min;
+                configs.iter().map(|c| c.rates(problem, rates)).collect()
+            })
+            .collect();
+        Model {
+            problem,
+            configs,
+            legs,
+            v,
+            free: reorder == Reorder::Free,
+        }
+    }
+}
+
 impl Model<'_> {
     /// Every drone's battery at the hop's end under the time shares `theta`, mAh.
     fn final_battery(&self, theta: &[Vec<f64>]) -> Vec<f64> {
@@ -1304,23 +1327,7 @@ pub fn solve_continuous(
     validate_inputs(problem, objective, options.time_limit_s)?;
     let start = Instant::now();
     let configs = configurations(problem, options.reorder, options.max_configurations)?;
-    let legs: Vec<usize> = (0..problem.legs.len())
-        .filter(|&l| problem.legs[l].duration_min > TIME_TOL_MIN)
-        .collect();
-    let v = legs
-        .iter()
-        .map(|&l| {
-            let rates = &problem.legs[l].rate_mah_per_min;
-            configs.iter().map(|c| c.rates(problem, rates)).collect()
-        })
-        .collect();
-    let model = Model {
-        problem,
-        configs: &configs,
-        legs,
-        v,
-        free: options.reorder == Reorder::Free,
-    };
+    let model = Model::of(problem, &configs, options.reorder);
     let mut out = ExactOutcome::infeasible(0.0, model.legs.len());
     // Incumbents: the empty schedule and the heuristics' schedules of the mode.
     let mut best: Option<Candidate> = None;

@@ -216,3 +216,121 @@ impl Search<'_> {
         Ok(())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::{configurations, Attempt, ContinuousOptions, Model, Pads, Solved};
+    use crate::eaas::exact::{EndPads, Objective, Reorder};
+    use crate::eaas::{DroneState, HopProblem, LegRates, Role};
+    use nalgebra::Vector2;
+    use rand::{Rng, SeedableRng};
+
+    /// A random hop into a stop: 2-4 delivery and 1-2 support drones, every drone full at the
+    /// start (as every hop of a plan leaves a stop), 1-3 legs of real rates, slots on a line
+    /// 1 m apart (range 1.2 m).
+    fn stop_hop(seed: u64) -> HopProblem {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+        let nd = rng.random_range(2..=4usize);
+        let ns = rng.random_range(1..=2usize);
+        let n = nd + ns;
+        let legs = (0..rng.random_range(1..=3usize))
+            .map(|_| LegRates {
+                duration_min: rng.random_range(1.0..4.0),
+                rate_mah_per_min: (0..n)
+                    .map(|_| (0..n).map(|_| rng.random_range(4.0..12.0)).collect())
+                    .collect::<Vec<_>>()
+                    .into(),
+            })
+            .collect();
+        let drones = (0..n)
+            .map(|d| {
+                let cap = if d < nd { 100.0 } else { 200.0 };
+                DroneState {
+                    role: if d < nd { Role::Delivery } else { Role::Support },
+                    capacity_mah: cap,
+                    battery_mah: cap,
+                }
+            })
+            .collect();
+        let mut initial_slot: Vec<usize> = (0..n).collect();
+        for i in (1..n).rev() {
+            initial_slot.swap(i, rng.random_range(0..=i));
+        }
+        HopProblem {
+            legs,
+            drones,
+            slots_m: (0..n).map(|q| Vector2::new(q as f64, 0.0)).collect(),
+            initial_slot,
+            rho_mah_per_min: rng.random_range(2.0..10.0),
+            range_m: 1.2,
+            gamma_mah: 90.0,
+            lambda_mah: 20.0,
+            delta_mah: 0.0,
+        }
+    }
+
+    /// Every assignment of `n` drones to `k` pads, as the pad of each drone.
+    fn assignments(n: usize, k: usize) -> Vec<Vec<usize>> {
+        let mut all = vec![Vec::new()];
+        for _ in 0..n {
+            all = all
+                .into_iter()
+                .flat_map(|a| {
+                    (0..k).map(move |p| {
+                        let mut b = a.clone();
+                        b.push(p);
+                        b
+                    })
+                })
+                .collect();
+        }
+        all
+    }
+
+    #[test]
+    fn the_pad_search_finds_the_least_lp_over_every_assignment() {
+        let mut searched = 0;
+        for seed in 0..60u64 {
+            let p = stop_hop(seed);
+            let pads = 2 + (seed % 2) as usize;
+            let objective = Objective::NodeTime(EndPads {
+                pads,
+                pad_rate_mah_per_min: 7.0,
+            });
+            let configs = configurations(&p, Reorder::Paper, 20_000).unwrap();
+            let model = Model::of(&p, &configs, Reorder::Paper);
+            let options = ContinuousOptions::default();
+            // Brute force: the fixed-assignment LP of every assignment, the least value.
+            let brute = assignments(p.drones.len(), pads)
+                .iter()
+                .filter_map(|a| {
+                    match model.solve(&objective, &options, Attempt::exact(Pads::Fixed(a))) {
+                        Ok(Solved::Values(v)) => Some(v.value),
+                        _ => None,
+                    }
+                })
+                .fold(f64::INFINITY, f64::min);
+            let rank: Vec<usize> = (0..p.drones.len()).collect();
+            let s = model
+                .pad_search(&objective, &options, &rank, f64::INFINITY)
+                .unwrap()
+                .expect("the search runs on microlp");
+            assert!(s.complete, "seed {seed}");
+            if !brute.is_finite() {
+                assert!(s.leaf.is_none(), "seed {seed}: a leaf where no assignment flies");
+                continue;
+            }
+            searched += 1;
+            let tol = 1e-7 * (1.0 + brute.abs());
+            assert!((s.value - brute).abs() <= tol, "seed {seed}: search {} brute {brute}", s.value);
+            assert!(s.bound <= brute + tol && s.bound >= brute - tol, "seed {seed}: bound {}", s.bound);
+            let (pad_of, _) = s.leaf.expect("a leaf without an incumbent");
+            let again = match model.solve(&objective, &options, Attempt::exact(Pads::Fixed(&pad_of))) {
+                Ok(Solved::Values(v)) => v.value,
+                _ => panic!("seed {seed}: the leaf's assignment does not solve"),
+            };
+            assert!((again - brute).abs() <= tol, "seed {seed}: leaf {again} brute {brute}");
+        }
+        assert!(searched >= 40, "only {searched} hops fly");
+    }
+}
