@@ -6,8 +6,10 @@
 //! The root is the LP with every `ct_d <= M` and `sum_d ct_d <= min(k, n) M` (valid for every
 //! assignment). A node assigns the next drone, longest charge time first, to a pad already used
 //! or to the first empty one (the pads are identical: any other empty pad gives the same
-//! subtree); its LP is the parent's with the pad's new load row added, re-solved by microlp's dual
-//! simplex from the parent's basis. A leaf is `LP(A)` itself. Children are tried least-loaded pad
+//! subtree); its LP is the parent's with the pad's new load row, added only when the parent's
+//! point violates it (otherwise that point is the child's optimum too) and then re-solved by
+//! microlp's dual simplex from the parent's basis, until the point keeps every pad's row. A leaf
+//! is `LP(A)` itself. Children are tried least-loaded pad
 //! first (at the parent's point), so the first dive is LPT's assignment; a node whose LP value
 //! reaches the least upper bound known (within [`PRUNE_REL`]) is pruned. When the search ends,
 //! `V >= min(ub, p)` with `ub` the least of the leaves and the incumbent and `p` the least LP
@@ -16,11 +18,16 @@
 
 use super::ChargeTime;
 use microlp::{ComparisonOp, LinearExpr, Solution};
+use std::borrow::Cow;
 use std::time::Instant;
 
 /// A node whose LP value is within this relative distance of the least upper bound (`max(1, ub)`
 /// times it) is pruned; the search's bound is the least value of a node pruned, when below `ub`.
 pub(super) const PRUNE_REL: f64 = 1e-9;
+
+/// A pad's load row counts as kept at a point when it exceeds `M` by at most this, relative to
+/// `max(1, M)` (microlp's own feasibility tolerance is of this order).
+pub(super) const SETTLE_REL: f64 = 1e-9;
 
 /// How a search ended.
 pub(super) struct PadSearchEnd {
@@ -112,7 +119,7 @@ pub(super) fn search(
         stopped: false,
     };
     let mut on_pad: Vec<Vec<usize>> = vec![Vec::new(); s.pads];
-    s.dive(root, 0, &mut on_pad)?;
+    s.dive(&root, 0, &mut on_pad)?;
     Ok(PadSearchEnd {
         value: s.ub,
         bound: s.ub.min(s.open),
@@ -152,9 +159,47 @@ impl Search<'_> {
         (expr, rhs)
     }
 
+    /// The pad's load at `solution`'s point less `M`: positive when its row is violated.
+    fn excess(&self, drones: &[usize], solution: &Solution) -> f64 {
+        let load: f64 = drones.iter().map(|&d| self.charges[d].at(solution)).sum();
+        load - solution.var_value(self.makespan)
+    }
+
+    /// The node LP of the assignment `on_pad`, from its parent's optimum `parent`: the pads' load
+    /// rows are added lazily, each only while the point violates it (the parent's rows hold), so
+    /// a child whose new row the parent's point already keeps is the parent's optimum itself, no
+    /// re-solve. `None`: the node's LP is infeasible.
+    fn settle<'n>(
+        &self,
+        parent: &'n Solution,
+        on_pad: &[Vec<usize>],
+    ) -> Result<Option<Cow<'n, Solution>>, microlp::Error> {
+        let mut node = Cow::Borrowed(parent);
+        loop {
+            let tolerance = SETTLE_REL * node.objective().abs().max(1.0);
+            let worst = on_pad
+                .iter()
+                .map(|drones| (self.excess(drones, &node), drones))
+                .filter(|(e, drones)| !drones.is_empty() && *e > tolerance)
+                .max_by(|a, b| a.0.total_cmp(&b.0));
+            let Some((_, drones)) = worst else {
+                return Ok(Some(node));
+            };
+            let (expr, rhs) = self.load_row(drones);
+            node = match node.into_owned().add_constraint(expr, ComparisonOp::Le, rhs) {
+                Ok(outcome) => match outcome.into_solution() {
+                    Ok(child) => Cow::Owned(child),
+                    Err(_) => return Err(microlp::Error::InternalError("interrupted".into())),
+                },
+                Err(microlp::Error::Infeasible) => return Ok(None),
+                Err(e) => return Err(e),
+            };
+        }
+    }
+
     fn dive(
         &mut self,
-        node: Solution,
+        node: &Solution,
         depth: usize,
         on_pad: &mut Vec<Vec<usize>>,
     ) -> Result<(), microlp::Error> {
@@ -168,7 +213,7 @@ impl Search<'_> {
                         pad_of[d] = p;
                     }
                 }
-                self.leaf = Some((pad_of, node));
+                self.leaf = Some((pad_of, node.clone()));
             }
             return Ok(());
         }
@@ -177,7 +222,7 @@ impl Search<'_> {
         let used = on_pad.iter().filter(|p| !p.is_empty()).count();
         let mut children: Vec<(f64, usize)> = (0..(used + 1).min(self.pads))
             .map(|p| {
-                let load: f64 = on_pad[p].iter().map(|&e| self.charges[e].at(&node)).sum();
+                let load: f64 = on_pad[p].iter().map(|&e| self.charges[e].at(node)).sum();
                 (load, p)
             })
             .collect();
@@ -193,18 +238,9 @@ impl Search<'_> {
             }
             self.nodes += 1;
             on_pad[p].push(d);
-            let (expr, rhs) = self.load_row(&on_pad[p]);
-            let child = match node.clone().add_constraint(expr, ComparisonOp::Le, rhs) {
-                Ok(outcome) => match outcome.into_solution() {
-                    Ok(child) => Some(child),
-                    Err(_) => return Err(microlp::Error::InternalError("interrupted".into())),
-                },
-                Err(microlp::Error::Infeasible) => None,
-                Err(e) => return Err(e),
-            };
-            if let Some(child) = child {
+            if let Some(child) = self.settle(node, on_pad)? {
                 if !self.prunes(child.objective()) {
-                    self.dive(child, depth + 1, on_pad)?;
+                    self.dive(&child, depth + 1, on_pad)?;
                 }
             }
             on_pad[p].pop();
