@@ -759,9 +759,6 @@ impl Model<'_> {
             ) else {
                 return Ok(None);
             };
-            if std::env::var_os("SWARMPLAN_DEBUG_PADS").is_some() {
-                eprintln!("PADSEARCH n={} k={} nodes={} complete={} value={} bound={} inc={}", order.len(), pads, end.nodes, end.complete, end.value, end.bound, incumbent);
-            }
             let leaf = end.leaf.map(|(pad_of, solution)| {
                 let theta = built
                     .theta
