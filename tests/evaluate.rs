@@ -1311,5 +1311,8 @@ fn a_loss_reads_as_a_positive_gap_whether_the_objective_is_maximised_or_minimise
         Some(&default_reference()),
     )
     .unwrap();
-    assert_eq!(swarmplan::cli::human::gap_percent(relative_gap(&e), 4), "0%");
+    assert_eq!(
+        swarmplan::cli::human::gap_percent(relative_gap(&e), 4),
+        "0%"
+    );
 }

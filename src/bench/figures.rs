@@ -5,12 +5,12 @@
 //! data are absent is not written. Text is laid out by plotters itself (no system font is read)
 //! and the SVG holds no date, so the same summary gives the same bytes.
 
-use crate::solver::ZERO_GAP_TOL;
 use super::{DistanceBucket, GapHistogram, MethodSummary, Summary};
 use crate::compose::{PlanOptions, RouteMethod};
 use crate::eaas::SharingPolicy;
 use crate::error::{Error, Result};
 use crate::precompose::Positioning;
+use crate::solver::ZERO_GAP_TOL;
 use plotters::coord::combinators::WithKeyPoints;
 use plotters::coord::types::RangedCoordi32;
 use plotters::coord::Shift;

@@ -18,7 +18,6 @@ pub const SUMMARY_SCHEMA_VERSION: u32 = 4;
 /// ..., `(200%, 500%]`, then `> 500%`.
 pub const GAP_BIN_EDGES: [f64; 8] = [0.01, 0.05, 0.1, 0.25, 0.5, 1.0, 2.0, 5.0];
 
-
 /// Counts of gaps in the bins of [`GAP_BIN_EDGES`].
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct GapHistogram {

@@ -51,8 +51,8 @@ pub fn lpt_gap(stop: &Stop) -> Result<Option<f64>> {
             ReferenceKind::Optimal,
             Sense::Minimise,
         )
-            .relative
-            .unwrap_or(0.0),
+        .relative
+        .unwrap_or(0.0),
     ))
 }
 

@@ -300,8 +300,6 @@ pub fn label_gaps(
             r.gap_label = Some("different_policy");
             continue;
         }
-        r.gap = r
-            .objective
-            .map(|h| Gap::new(h, v, kind, objective.sense()));
+        r.gap = r.objective.map(|h| Gap::new(h, v, kind, objective.sense()));
     }
 }

@@ -676,7 +676,9 @@ impl Model<'_> {
                 });
             }
             let total: Expression = (0..n)
-                .map(|d| (scale * problem.drones[d].capacity_mah - final_battery[d].clone()) * per_min)
+                .map(|d| {
+                    (scale * problem.drones[d].capacity_mah - final_battery[d].clone()) * per_min
+                })
                 .sum();
             let m = pads.min(n).max(1) as f64;
             model.add_constraint(constraint!(total <= m * g));

@@ -55,16 +55,17 @@ impl Charge {
     /// In microlp's columns, `columns[i]` the column of good_lp's variable `i`.
     pub fn of(c: &ChargeTime, columns: &[microlp::Variable]) -> Charge {
         Charge {
-            battery: c
-                .battery
-                .map(|v| columns[crate::solver::variable_index(v)]),
+            battery: c.battery.map(|v| columns[crate::solver::variable_index(v)]),
             per_min: c.per_min,
             constant: c.constant,
         }
     }
 
     fn at(&self, solution: &Solution) -> f64 {
-        self.constant - self.battery.map_or(0.0, |b| self.per_min * solution.var_value(b))
+        self.constant
+            - self
+                .battery
+                .map_or(0.0, |b| self.per_min * solution.var_value(b))
     }
 }
 
@@ -186,7 +187,10 @@ impl Search<'_> {
                 return Ok(Some(node));
             };
             let (expr, rhs) = self.load_row(drones);
-            node = match node.into_owned().add_constraint(expr, ComparisonOp::Le, rhs) {
+            node = match node
+                .into_owned()
+                .add_constraint(expr, ComparisonOp::Le, rhs)
+            {
                 Ok(outcome) => match outcome.into_solution() {
                     Ok(child) => Cow::Owned(child),
                     Err(_) => return Err(microlp::Error::InternalError("interrupted".into())),
@@ -282,7 +286,11 @@ mod tests {
             .map(|d| {
                 let cap = if d < nd { 100.0 } else { 200.0 };
                 DroneState {
-                    role: if d < nd { Role::Delivery } else { Role::Support },
+                    role: if d < nd {
+                        Role::Delivery
+                    } else {
+                        Role::Support
+                    },
                     capacity_mah: cap,
                     battery_mah: cap,
                 }
@@ -353,19 +361,34 @@ mod tests {
                 .expect("the search runs on microlp");
             assert!(s.complete, "seed {seed}");
             if !brute.is_finite() {
-                assert!(s.leaf.is_none(), "seed {seed}: a leaf where no assignment flies");
+                assert!(
+                    s.leaf.is_none(),
+                    "seed {seed}: a leaf where no assignment flies"
+                );
                 continue;
             }
             searched += 1;
             let tol = 1e-7 * (1.0 + brute.abs());
-            assert!((s.value - brute).abs() <= tol, "seed {seed}: search {} brute {brute}", s.value);
-            assert!(s.bound <= brute + tol && s.bound >= brute - tol, "seed {seed}: bound {}", s.bound);
+            assert!(
+                (s.value - brute).abs() <= tol,
+                "seed {seed}: search {} brute {brute}",
+                s.value
+            );
+            assert!(
+                s.bound <= brute + tol && s.bound >= brute - tol,
+                "seed {seed}: bound {}",
+                s.bound
+            );
             let (pad_of, _) = s.leaf.expect("a leaf without an incumbent");
-            let again = match model.solve(&objective, &options, Attempt::exact(Pads::Fixed(&pad_of))) {
-                Ok(Solved::Values(v)) => v.value,
-                _ => panic!("seed {seed}: the leaf's assignment does not solve"),
-            };
-            assert!((again - brute).abs() <= tol, "seed {seed}: leaf {again} brute {brute}");
+            let again =
+                match model.solve(&objective, &options, Attempt::exact(Pads::Fixed(&pad_of))) {
+                    Ok(Solved::Values(v)) => v.value,
+                    _ => panic!("seed {seed}: the leaf's assignment does not solve"),
+                };
+            assert!(
+                (again - brute).abs() <= tol,
+                "seed {seed}: leaf {again} brute {brute}"
+            );
         }
         assert!(searched >= 40, "only {searched} hops fly");
     }
