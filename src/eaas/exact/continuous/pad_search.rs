@@ -37,8 +37,6 @@ pub(super) struct PadSearchEnd {
     pub value: f64,
     /// A proven lower bound on `V`.
     pub bound: f64,
-    /// LPs solved (the root's not counted).
-    pub nodes: u64,
     /// Whether the search ran to its end (else a node or time limit stopped it).
     pub complete: bool,
 }
@@ -124,7 +122,6 @@ pub(super) fn search(
     Ok(PadSearchEnd {
         value: s.ub,
         bound: s.ub.min(s.open),
-        nodes: s.nodes,
         complete: !s.stopped,
         leaf: s.leaf,
     })
@@ -391,5 +388,60 @@ mod tests {
             );
         }
         assert!(searched >= 40, "only {searched} hops fly");
+    }
+
+    #[test]
+    fn a_search_stopped_by_its_node_limit_says_so_and_bounds_the_optimum() {
+        let mut stopped = 0;
+        for seed in 0..30u64 {
+            let p = stop_hop(seed);
+            let objective = Objective::NodeTime(EndPads {
+                pads: 2,
+                pad_rate_mah_per_min: 7.0,
+            });
+            let configs = configurations(&p, Reorder::Paper, 20_000).unwrap();
+            let model = Model::of(&p, &configs, Reorder::Paper);
+            let rank: Vec<usize> = (0..p.drones.len()).collect();
+            let full = model
+                .pad_search(
+                    &objective,
+                    &ContinuousOptions::default(),
+                    &rank,
+                    f64::INFINITY,
+                )
+                .unwrap()
+                .expect("the search runs on microlp");
+            let limited = ContinuousOptions {
+                node_limit: Some(2),
+                ..ContinuousOptions::default()
+            };
+            let s = model
+                .pad_search(&objective, &limited, &rank, f64::INFINITY)
+                .unwrap()
+                .expect("the search runs on microlp");
+            if !full.value.is_finite() {
+                continue;
+            }
+            // The stopped search's bound is a bound on the optimum the full search proves.
+            assert!(
+                s.bound <= full.value + 1e-7 * (1.0 + full.value),
+                "seed {seed}"
+            );
+            assert!(
+                s.value >= full.value - 1e-7 * (1.0 + full.value),
+                "seed {seed}"
+            );
+            if !s.complete {
+                stopped += 1;
+                assert!(
+                    s.bound < s.value,
+                    "seed {seed}: a stopped search proved its value"
+                );
+            }
+        }
+        assert!(
+            stopped >= 10,
+            "only {stopped} searches needed more than 2 nodes"
+        );
     }
 }
