@@ -566,4 +566,24 @@ fn every_changed_number_of_a_bench_row_is_rejected() {
         "[].gap_route_min",
         "[].split_epsilon_min",
     ]);
+    // A row deleted, or one written twice: P5705 names the request and the combination.
+    let codes = |rows: &[swarmplan::bench::RequestRow]| -> Vec<String> {
+        check_bench_rows(&network, &profile, requests, &config, rows, 1)
+            .unwrap()
+            .violations
+            .iter()
+            .map(|v| v.code.to_string())
+            .collect()
+    };
+    assert!(codes(&first).is_empty(), "{:?}", codes(&first));
+    let mut fewer = first.clone();
+    fewer.remove(3);
+    assert_eq!(codes(&fewer), ["P5705"]);
+    let mut more = first.clone();
+    more.insert(3, first[3].clone());
+    assert!(
+        codes(&more).contains(&"P5705".to_string()),
+        "{:?}",
+        codes(&more)
+    );
 }

@@ -584,3 +584,25 @@ fn hop_files_are_checked() {
     assert_eq!(found[0]["field"], "hop.legs[0].duration_min");
     assert_eq!(swarmplan(&["check"]).status.code(), Some(2));
 }
+
+#[test]
+fn one_document_per_check_and_a_bench_check_of_nothing_is_refused() {
+    // Two documents: refused before either is read, never "valid" for one of them alone.
+    let out = swarmplan(&["check", "--plan", "p.json", "--node-time", "r.json"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("[E0007]") && err.contains("--node-time"),
+        "{err}"
+    );
+    let out = swarmplan(&["check", "--hop-file", "h.json", "--bench", "d"]);
+    assert_eq!(out.status.code(), Some(2));
+    // --request-limit 0 would check nothing.
+    let out = swarmplan(&["check", "--bench", "d", "--request-limit", "0"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("E6007") && err.contains("--request-limit"),
+        "{err}"
+    );
+}

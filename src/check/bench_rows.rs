@@ -13,7 +13,8 @@
 //!
 //! Rows of a run made with a wall-clock limit (`--hop-time-limit`) cannot be planned again to
 //! the same numbers; [`BenchCheck::skipped`] says so. Codes P5703 (a row's request is not the
-//! request set's at its index) and P5704 (a row's combination is not one of the run's).
+//! request set's at its index), P5704 (a row's combination is not one of the run's) and P5705 (a
+//! request without its row of a combination of the run, or with two).
 
 use super::check_report;
 use super::close;
@@ -119,6 +120,25 @@ pub fn check_bench_rows(
         } else {
             None
         };
+        // Every combination of the run has exactly one row of the request.
+        for c in &config.combos {
+            let n = rows[k..end]
+                .iter()
+                .filter(|r| {
+                    (r.sharing, r.positioning, r.route) == (c.sharing, c.positioning, c.route)
+                })
+                .count();
+            if n != 1 {
+                out.violations.push(v(
+                    "P5705",
+                    format!("requests.csv[{k}..{end}]"),
+                    format!(
+                        "request {} has {n} rows of combination {}/{}/{}, the run wrote one",
+                        request.id, c.sharing, c.positioning, c.route
+                    ),
+                ));
+            }
+        }
         let distance_m = shortest_distance_m(network, &request.source, &request.destination);
         for (r, row) in rows.iter().enumerate().take(end).skip(k) {
             out.rows += 1;

@@ -10,7 +10,12 @@ use std::path::PathBuf;
 /// Re-verify a plan written by `solve --json` (or a hop file, or a node-time result): exit 0
 /// valid, 1 invalid, 2 malformed input.
 #[derive(Debug, clap::Args)]
-#[group(id = "document", required = true, args = ["plan", "hop_file", "node_time", "bench"])]
+#[group(
+    id = "document",
+    required = true,
+    multiple = false,
+    args = ["plan", "hop_file", "node_time", "bench"]
+)]
 pub struct CheckArgs {
     /// Network and profile the plan was made with.
     #[command(flatten)]
@@ -129,6 +134,14 @@ fn check_node_time(
 /// `check --bench DIR [--request-limit N]`: the run's inputs are the files given, or, when none is,
 /// the shipped instance the run names (findings-195 is the bench's default).
 fn check_bench(args: &CheckArgs, dir: &std::path::Path) -> Result<i32> {
+    if args.request_limit == Some(0) {
+        return Err(Error::invalid(
+            "E6007",
+            "--request-limit",
+            "0 requests: nothing would be checked".to_string(),
+            "give a count of at least 1, or leave it out to check every row",
+        ));
+    }
     let (config, data) = crate::bench::read_data(dir)?;
     let shipped = if config.network == inputs::FINDINGS_195.network_name
         || config.profile == inputs::FINDINGS_195.profile_name
