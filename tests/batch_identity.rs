@@ -18,6 +18,7 @@ fn batch_all_40(threads: &str) -> (Vec<String>, Vec<u8>) {
         threads,
         "--per-request",
         per_request.to_str().unwrap(),
+        "--force",
     ]);
     assert_eq!(out.status.code(), Some(0), "{out:?}");
     let csv = String::from_utf8(out.stdout).unwrap();

@@ -187,6 +187,7 @@ fn requests_and_summary_agree_with_batch() {
         "--json",
         "--per-request",
         per_request.to_str().unwrap(),
+        "--force",
     ];
     args.extend_from_slice(&COMBOS);
     let run = swarmplan(&args);

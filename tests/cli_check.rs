@@ -562,6 +562,7 @@ fn hop_files_are_checked() {
         "stop",
         "--write-hop",
         &path,
+        "--force",
         "--methods",
         "pb",
     ]);

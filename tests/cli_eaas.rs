@@ -86,7 +86,13 @@ fn a_written_hop_file_gives_the_report_of_the_request() {
         let common = ["--methods", "pb,milp", "--time-limit", "20", "--json"];
         let mut args = vec!["eaas", "--request-id", "r00001", "--hop", hop];
         args.extend(common);
-        args.extend(["--write-hop", file_arg, "--write-lp", lp.to_str().unwrap()]);
+        args.extend([
+            "--write-hop",
+            file_arg,
+            "--write-lp",
+            lp.to_str().unwrap(),
+            "--force",
+        ]);
         let from_request = swarmplan(&args);
         assert_eq!(from_request.status.code(), Some(0), "{from_request:?}");
         let mut args = vec!["eaas", "--hop-file", file_arg];
@@ -121,7 +127,11 @@ fn a_written_hop_file_gives_the_report_of_the_request() {
 #[test]
 fn a_bad_hop_file_is_reported_with_its_codes_and_exit_2() {
     let good = tmp("good.json");
-    let out = eaas_r00001("6", "pb", &["--write-hop", good.to_str().unwrap()]);
+    let out = eaas_r00001(
+        "6",
+        "pb",
+        &["--write-hop", good.to_str().unwrap(), "--force"],
+    );
     assert_eq!(out.status.code(), Some(0), "{out:?}");
     let hop: Value = serde_json::from_str(&std::fs::read_to_string(&good).unwrap()).unwrap();
     let run = |name: &str, file: &Value| {
@@ -180,6 +190,7 @@ fn a_hop_into_a_destination_with_pads_is_scored_by_arrival_battery_not_node_time
         "--json",
         "--write-hop",
         file.to_str().unwrap(),
+        "--force",
     ]);
     assert_eq!(out.status.code(), Some(0), "{out:?}");
     let a: Value = serde_json::from_slice(&out.stdout).unwrap();

@@ -251,3 +251,60 @@ fn a_file_that_cannot_be_written_exits_2_with_e0010() {
     ]);
     assert_exit_2_with(&out, "E0010", &["cannot write the file"]);
 }
+
+#[test]
+fn no_output_file_is_overwritten_unasked_and_thread_counts_are_bounded() {
+    // Each writing option refuses an existing file without --force (E0013), before any work,
+    // and leaves the file as it was; with --force it writes.
+    let path = write_tmp("existing-output.txt", b"keep me");
+    let cases: [Vec<&str>; 4] = [
+        vec!["batch", "--request-limit", "1", "--per-request", &path],
+        vec![
+            "eaas",
+            "--request-id",
+            "r00001",
+            "--hop",
+            "0",
+            "--methods",
+            "pb",
+            "--write-hop",
+            &path,
+        ],
+        vec![
+            "eaas",
+            "--request-id",
+            "r00001",
+            "--hop",
+            "0",
+            "--methods",
+            "pb",
+            "--write-lp",
+            &path,
+        ],
+        vec![
+            "node-time",
+            "--pads",
+            "2",
+            "--times",
+            "3,2,2",
+            "--write-lp",
+            &path,
+        ],
+    ];
+    for args in &cases {
+        let out = swarmplan(args);
+        assert_exit_2_with(&out, "E0013", &[&path, "--force"]);
+        assert_eq!(std::fs::read(&path).unwrap(), b"keep me", "{args:?}");
+        let mut forced = args.clone();
+        forced.push("--force");
+        let out = swarmplan(&forced);
+        assert_eq!(out.status.code(), Some(0), "{forced:?}: {}", stderr(&out));
+        assert_ne!(std::fs::read(&path).unwrap(), b"keep me", "{forced:?}");
+        std::fs::write(&path, b"keep me").unwrap();
+    }
+    // --threads: 1 to 1,024 (E0004 names the range), refused before any planning.
+    for bad in ["0", "1025", "100000"] {
+        let out = swarmplan(&["batch", "--request-limit", "5", "--threads", bad]);
+        assert_exit_2_with(&out, "E0004", &["--threads", "1024"]);
+    }
+}

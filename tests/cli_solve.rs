@@ -179,6 +179,7 @@ fn batch_gives_the_same_numbers_with_one_or_two_threads() {
             "sequential,dijkstra",
             "--per-request",
             per_request.to_str().unwrap(),
+            "--force",
             "--json",
         ]);
         assert_eq!(out.status.code(), Some(0), "{out:?}");
@@ -302,6 +303,7 @@ fn sharing_delivers_every_request_the_swarm_delivers_without_it_on_sparse_195() 
         "dijkstra",
         "--per-request",
         per.to_str().unwrap(),
+        "--force",
     ]);
     assert!(out.status.success(), "{out:?}");
     let rows: Value = serde_json::from_slice(&std::fs::read(&per).unwrap()).unwrap();

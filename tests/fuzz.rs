@@ -70,7 +70,11 @@ fn seeds() -> &'static Seeds {
         let paper: Profile = parse_toml(&profile, "paper").unwrap();
         let requests = serde_json::to_string_pretty(&set).unwrap();
         let hop_path = tmp("hop.json");
-        let out = eaas_r00001("0", "pb", &["--write-hop", hop_path.to_str().unwrap()]);
+        let out = eaas_r00001(
+            "0",
+            "pb",
+            &["--write-hop", hop_path.to_str().unwrap(), "--force"],
+        );
         assert_eq!(out.status.code(), Some(0), "{out:?}");
         let hop = std::fs::read_to_string(&hop_path).unwrap();
         let paper_195: Network = parse_json(&network, "network").unwrap();

@@ -408,6 +408,7 @@ fn highs_reads_the_lp_file_and_finds_the_known_optimum() {
             "highs",
             "--write-lp",
             path.to_str().unwrap(),
+            "--force",
         ],
     );
     assert_eq!(out.status.code(), Some(0), "{out:?}");

@@ -198,7 +198,7 @@ fn node_time_cli_writes_the_format_of_the_file_name() {
             "--method",
             "lpt",
         ];
-        swarmplan(&[&args[..], &["--write-lp", file]].concat())
+        swarmplan(&[&args[..], &["--write-lp", file, "--force"]].concat())
     };
     let path = tmp("cli_node_time.mps");
     let out = write(&path);

@@ -28,6 +28,7 @@ fn route_gaps_equal_the_gaps_of_the_per_request_delivery_times() {
         "--json",
         "--per-request",
         with_gap.to_str().unwrap(),
+        "--force",
     ]);
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
     let summaries: Vec<Value> = serde_json::from_slice(&out.stdout).unwrap();
@@ -43,6 +44,7 @@ fn route_gaps_equal_the_gaps_of_the_per_request_delivery_times() {
         &format!("{ROUTES},optimal"),
         "--per-request",
         plain.to_str().unwrap(),
+        "--force",
     ]);
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
     let plain = per_request(&plain);

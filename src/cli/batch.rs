@@ -73,6 +73,9 @@ pub struct BatchArgs {
     /// Write every request's outcome (id, success, dt, stops, failure) as JSON to this file.
     #[arg(long, value_name = "FILE")]
     pub per_request: Option<PathBuf>,
+    /// Overwrite the `--per-request` file when it exists (E0013 otherwise).
+    #[arg(long)]
+    pub force: bool,
     /// Node limit of the exact node time at every stop (search nodes, the same on every machine);
     /// a stop it stops keeps its incumbent, `status: feasible`.
     #[arg(long, value_name = "N", default_value_t = crate::node_time::DEFAULT_STOP_NODE_LIMIT)]
@@ -93,6 +96,9 @@ pub struct BatchArgs {
 
 /// Runs the subcommand.
 pub fn run(args: BatchArgs) -> Result<i32> {
+    if let Some(path) = &args.per_request {
+        super::may_write(path, args.force)?;
+    }
     let threads = experiment::threads(args.threads)?;
     let methods = if args.all {
         Methods::paper_grid(args.support)

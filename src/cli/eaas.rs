@@ -64,6 +64,9 @@ pub struct EaasArgs {
     /// running the methods: free MPS when FILE ends in `.mps`, CPLEX LP otherwise.
     #[arg(long, value_name = "FILE")]
     pub write_lp: Option<PathBuf>,
+    /// Overwrite the `--write-hop` and `--write-lp` files when they exist (E0013 otherwise).
+    #[arg(long)]
+    pub force: bool,
     /// Methods, comma-separated.
     #[arg(
         long,
@@ -123,6 +126,9 @@ pub struct EaasReport {
 /// `E4112`, `E4115` and the hop's own codes, options of the exact models), an unwritable output
 /// file, or a backend failure.
 pub fn run(args: EaasArgs) -> Result<i32> {
+    for path in args.write_hop.iter().chain(&args.write_lp) {
+        super::may_write(path, args.force)?;
+    }
     let (hop, readings) = match &args.hop_file {
         Some(path) => {
             let (profile, hop) = inputs::both(args.instance.load_profile(), read_hop_file(path))?;

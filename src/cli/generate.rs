@@ -2,14 +2,14 @@
 //! or node-time instance of a classical P||Cmax benchmark class.
 
 use super::inputs::both;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::generate::network::{DEFAULT_NODES, DEFAULT_SPACING_M, MAX_NODES, MIN_NODES};
 use crate::generate::pcmax::{generate_pcmax, PcmaxClass, PcmaxParams, MAX_JOBS, MAX_PADS};
 use crate::generate::requests::{DEFAULT_MAX_PACKAGE_KG, DEFAULT_REQUESTS, MAX_REQUESTS};
 use crate::generate::{generate_network, generate_requests, NetworkParams, RequestParams};
 use crate::problem::io::write_json;
 use crate::problem::read_network;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// What to generate.
 #[derive(Debug, clap::Subcommand)]
@@ -185,7 +185,7 @@ fn parse_max_package(s: &str) -> std::result::Result<f64, String> {
 pub fn run(cmd: GenerateCommand) -> Result<i32> {
     match cmd {
         GenerateCommand::Network(a) => {
-            may_write(&a.output, a.force)?;
+            super::may_write(&a.output, a.force)?;
             let network = generate_network(&NetworkParams {
                 nodes: a.nodes,
                 seed: a.seed,
@@ -201,7 +201,10 @@ pub fn run(cmd: GenerateCommand) -> Result<i32> {
             );
         }
         GenerateCommand::Requests(a) => {
-            let (_, (_, graph)) = both(may_write(&a.output, a.force), read_network(&a.network))?;
+            let (_, (_, graph)) = both(
+                super::may_write(&a.output, a.force),
+                read_network(&a.network),
+            )?;
             let set = generate_requests(
                 &graph,
                 &RequestParams {
@@ -220,7 +223,7 @@ pub fn run(cmd: GenerateCommand) -> Result<i32> {
         }
         GenerateCommand::NodeTime(a) => {
             if let Some(out) = &a.output {
-                may_write(out, a.force)?;
+                super::may_write(out, a.force)?;
             }
             let file = generate_pcmax(&PcmaxParams {
                 class: a.class,
@@ -260,17 +263,4 @@ pub fn run(cmd: GenerateCommand) -> Result<i32> {
         }
     }
     Ok(0)
-}
-
-/// `E0013`: `output` exists and `--force` was not given; generate never overwrites a file unasked.
-pub(crate) fn may_write(output: &Path, force: bool) -> Result<()> {
-    if force || !output.exists() {
-        return Ok(());
-    }
-    Err(Error::invalid(
-        "E0013",
-        output.display().to_string(),
-        "the output file exists; generate does not overwrite a file unasked",
-        "pass --force to overwrite it, or give another file after -o",
-    ))
 }

@@ -69,7 +69,7 @@ fn parse_centre(s: &str) -> std::result::Result<(f64, f64), String> {
 /// E1950–E1956 for unreadable or unusable input (exit code 2), every network rule (E1xxx), E0008
 /// and E0009 when a file cannot be read, E0013 when the output exists and `--force` is not given.
 pub fn run(args: ImportArgs) -> Result<i32> {
-    super::generate::may_write(&args.output, args.force)?;
+    super::may_write(&args.output, args.force)?;
     let road = match (&args.nodes, &args.edges, &args.geojson) {
         (Some(nodes), Some(edges), None) => {
             let (nodes, edges) = both(read_text(nodes), read_text(edges))?;

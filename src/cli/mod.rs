@@ -128,6 +128,20 @@ pub fn coded_usage_error(e: &clap::Error) -> Option<String> {
     Some(format!("error: [E0007] command line: {rest}"))
 }
 
+/// `E0013`: `output` exists and `--force` was not given; no command overwrites a file unasked.
+/// Called before any input is read or any work done, so a refusal costs nothing.
+pub(crate) fn may_write(output: &std::path::Path, force: bool) -> crate::error::Result<()> {
+    if force || !output.exists() {
+        return Ok(());
+    }
+    Err(crate::error::Error::invalid(
+        "E0013",
+        output.display().to_string(),
+        "the output file exists; the tool does not overwrite a file unasked",
+        "pass --force to overwrite it, or give another file",
+    ))
+}
+
 /// Whether `text` holds a rule code such as `[E1901]`.
 fn has_code(text: &str) -> bool {
     text.as_bytes().windows(7).any(|w| {

@@ -64,6 +64,9 @@ pub struct NodeTimeArgs {
     /// in `.mps`, CPLEX LP otherwise) before solving with the method asked for.
     #[arg(long, value_name = "FILE")]
     pub write_lp: Option<PathBuf>,
+    /// Overwrite the `--write-lp` file when it exists (E0013 otherwise).
+    #[arg(long)]
+    pub force: bool,
     /// Print the result as JSON on stdout.
     #[arg(long)]
     pub json: bool,
@@ -84,6 +87,9 @@ pub struct NodeTimeFile {
 
 /// Runs the subcommand; returns the exit code.
 pub fn run(args: NodeTimeArgs) -> Result<i32> {
+    if let Some(path) = &args.write_lp {
+        super::may_write(path, args.force)?;
+    }
     let (pads, times) = match (&args.file, &args.instance) {
         (_, Some(path)) => {
             let i = crate::problem::pcmax_file::read_pcmax(path)?;

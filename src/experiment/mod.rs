@@ -153,23 +153,30 @@ impl Experiment {
 /// The worker threads of a grid: `asked`, or the number of available cores.
 ///
 /// # Errors
-/// E0004 for 0 threads.
+/// E0004 for 0 threads or more than [`MAX_THREADS`].
 pub fn threads(asked: Option<usize>) -> Result<usize> {
     let threads = asked.unwrap_or_else(|| {
         std::thread::available_parallelism()
             .map(|n| n.get())
             .unwrap_or(1)
     });
-    if threads == 0 {
+    if threads == 0 || threads > MAX_THREADS {
         return Err(Error::invalid(
             "E0004",
             "--threads",
-            "0 worker threads",
-            "give --threads 1 or more",
+            format!("{threads} worker threads"),
+            format!(
+                "give --threads from 1 to {MAX_THREADS} (the cores of the machine are the most \
+                 that help)"
+            ),
         ));
     }
     Ok(threads)
 }
+
+/// The most worker threads a run may ask for: far above any machine's cores, and low enough
+/// that starting them costs nothing to speak of.
+pub const MAX_THREADS: usize = 1024;
 
 /// The requests a run plans: the first `limit` of the set (all without one).
 ///
