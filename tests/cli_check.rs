@@ -607,3 +607,30 @@ fn one_document_per_check_and_a_bench_check_of_nothing_is_refused() {
         "{err}"
     );
 }
+
+#[test]
+fn a_plan_of_a_request_given_on_the_command_line_checks_clean() {
+    // `solve --from --to --packages` plans request `cli`, which no request file holds: the plan
+    // is checked against its own request, and a changed number is still caught.
+    let out = swarmplan(&[
+        "solve",
+        "--from",
+        "n000",
+        "--to",
+        "n194",
+        "--packages",
+        "1.2,0.8,0.5",
+        "--json",
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{out:?}");
+    let mut plan: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(plan["request"]["id"], "cli");
+    let path = write("cli-request-plan.json", &plan.to_string());
+    let (code, codes) = check_output(&swarmplan(&["check", "--plan", &path, "--json"]));
+    assert_eq!((code, codes), (Some(0), Vec::<String>::new()));
+    plan["plan"]["dt_min"] = Value::from(f64_at(&plan["plan"]["dt_min"]) + 1.0);
+    let path = write("cli-request-plan-changed.json", &plan.to_string());
+    let (code, codes) = check_output(&swarmplan(&["check", "--plan", &path, "--json"]));
+    assert_eq!(code, Some(1), "{codes:?}");
+    assert!(!codes.is_empty());
+}

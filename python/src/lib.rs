@@ -310,7 +310,9 @@ impl Instance {
             "a request id (str) or a dict with source, destination and packages_kg",
         )?;
         let r = Request {
-            id: given.id.unwrap_or_else(|| "python".into()),
+            id: given
+                .id
+                .unwrap_or_else(|| swarmplan::problem::request::PYTHON_REQUEST_ID.into()),
             source: given.source,
             destination: given.destination,
             packages_kg: given.packages_kg,

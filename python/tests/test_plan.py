@@ -99,3 +99,14 @@ def test_a_plan_checked_on_another_instance_names_the_mismatch(paper):
     assert [v["code"] for v in fast.check(plan)] == ["E6005"]
     both = swarmplan.Instance.embedded("findings-195")
     assert [v["code"] for v in both.check(plan)] == ["E6004", "E6005"]
+
+
+def test_a_plan_of_a_request_given_inline_checks_clean(paper):
+    # A dict without an id is planned as request "python": the plan carries it, and check takes
+    # the plan's own request where the request set has none of that id.
+    plan = paper.plan(dict(source="n000", destination="n194", packages_kg=[1.2, 0.8, 0.5]))
+    assert plan["request"]["id"] == "python"
+    assert paper.check(plan) == []
+    changed = json.loads(json.dumps(plan))
+    changed["plan"]["dt_min"] += 1.0
+    assert paper.check(changed) != []

@@ -126,12 +126,13 @@ pub fn fingerprint_mismatch(
     out
 }
 
-/// P5041: the document's request id is in the request set.
+/// P5041: the document's request id is in the request set, unless the request was given inline
+/// ([`Request::is_inline`]: the plan is then checked against its own request).
 fn p5041_request_is_in_the_request_set(
     report: &RequestReport,
     found: Option<&Request>,
 ) -> Option<Violation> {
-    found.is_none().then(|| {
+    (found.is_none() && !report.request.is_inline()).then(|| {
         v(
             "P5041",
             "request.id",

@@ -15,6 +15,20 @@ pub struct RequestSet {
     pub requests: Vec<Request>,
 }
 
+/// The id of a request given on the command line (`solve --from --to --packages`).
+pub const COMMAND_LINE_REQUEST_ID: &str = "cli";
+/// The id of a request given as a Python dict without an id.
+pub const PYTHON_REQUEST_ID: &str = "python";
+
+impl Request {
+    /// Whether the request was given inline (on the command line or as a Python dict without an
+    /// id), not read from a request set: a plan of it carries its own request, which `check`
+    /// takes when the request set has no request of that id.
+    pub fn is_inline(&self) -> bool {
+        self.id == COMMAND_LINE_REQUEST_ID || self.id == PYTHON_REQUEST_ID
+    }
+}
+
 /// One request: deliver every package from `source` to `destination`, one delivery drone per package.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
