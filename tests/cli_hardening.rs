@@ -308,3 +308,44 @@ fn no_output_file_is_overwritten_unasked_and_thread_counts_are_bounded() {
         assert_exit_2_with(&out, "E0004", &["--threads", "1024"]);
     }
 }
+
+#[test]
+fn dash_is_standard_output_and_files_are_written_whole() {
+    // `-o -`: the JSON on stdout, no file named `-` (in the process's directory).
+    let dir = tmp("dash-output");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_swarmplan"))
+        .args([
+            "generate", "network", "--nodes", "5", "--seed", "1", "-o", "-",
+        ])
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let network: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(network["nodes"].as_array().unwrap().len(), 5);
+    assert!(
+        stderr(&out).contains("to standard output"),
+        "{}",
+        stderr(&out)
+    );
+    assert!(!dir.join("-").exists());
+    // A file written to a path: the whole document, and no temporary file left beside it.
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_swarmplan"))
+        .args([
+            "generate", "network", "--nodes", "5", "--seed", "1", "-o", "n.json",
+        ])
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let written: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("n.json")).unwrap()).unwrap();
+    assert_eq!(written, network);
+    let names: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(names, ["n.json"]);
+}

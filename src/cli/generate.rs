@@ -197,7 +197,7 @@ pub fn run(cmd: GenerateCommand) -> Result<i32> {
                 network.nodes.len(),
                 network.edges.len(),
                 a.seed,
-                a.output.display()
+                super::output_name(&a.output)
             );
         }
         GenerateCommand::Requests(a) => {
@@ -218,7 +218,7 @@ pub fn run(cmd: GenerateCommand) -> Result<i32> {
                 "wrote {} requests (seed {}) to {}",
                 set.requests.len(),
                 a.seed,
-                a.output.display()
+                super::output_name(&a.output)
             );
         }
         GenerateCommand::NodeTime(a) => {
@@ -247,7 +247,7 @@ pub fn run(cmd: GenerateCommand) -> Result<i32> {
             match &a.output {
                 Some(out) => {
                     write_json(out, &file)?;
-                    eprintln!("wrote {what} to {}", out.display());
+                    eprintln!("wrote {what} to {}", super::output_name(out));
                     eprintln!("solve with: swarmplan node-time --file {}", out.display());
                 }
                 None => {

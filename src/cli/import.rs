@@ -101,7 +101,7 @@ pub fn run(args: ImportArgs) -> Result<i32> {
         network.nodes.len(),
         network.edges.len(),
         args.seed,
-        args.output.display()
+        super::output_name(&args.output)
     );
     Ok(0)
 }

@@ -131,7 +131,7 @@ pub fn coded_usage_error(e: &clap::Error) -> Option<String> {
 /// `E0013`: `output` exists and `--force` was not given; no command overwrites a file unasked.
 /// Called before any input is read or any work done, so a refusal costs nothing.
 pub(crate) fn may_write(output: &std::path::Path, force: bool) -> crate::error::Result<()> {
-    if force || !output.exists() {
+    if force || !output.exists() || output == std::path::Path::new("-") {
         return Ok(());
     }
     Err(crate::error::Error::invalid(
@@ -140,6 +140,15 @@ pub(crate) fn may_write(output: &std::path::Path, force: bool) -> crate::error::
         "the output file exists; the tool does not overwrite a file unasked",
         "pass --force to overwrite it, or give another file",
     ))
+}
+
+/// How an output is named on stderr: `standard output` for `-`, else the path.
+pub(crate) fn output_name(output: &std::path::Path) -> String {
+    if output == std::path::Path::new("-") {
+        "standard output".to_string()
+    } else {
+        output.display().to_string()
+    }
 }
 
 /// Whether `text` holds a rule code such as `[E1901]`.

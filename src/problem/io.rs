@@ -75,12 +75,42 @@ pub fn read_toml<T: DeserializeOwned>(path: &Path) -> Result<T> {
     parse_toml(&read_text(path)?, &path.display().to_string())
 }
 
-/// Writes a value as pretty JSON with a trailing newline.
+/// Writes a value as pretty JSON with a trailing newline: to standard output when `path` is
+/// `-`, else through [`write_whole`] (never a half-written file).
 pub fn write_json<T: Serialize>(path: &Path, value: &T) -> Result<()> {
     let mut text = serde_json::to_string_pretty(value).expect("serialising plain data cannot fail");
     text.push('\n');
-    std::fs::write(path, text).map_err(|source| Error::Io {
+    if path == Path::new("-") {
+        use std::io::Write;
+        let mut out = std::io::stdout().lock();
+        return out
+            .write_all(text.as_bytes())
+            .and_then(|()| out.flush())
+            .map_err(Error::from_output);
+    }
+    write_whole(path, text.as_bytes())
+}
+
+/// Writes `bytes` to `path` whole: into a temporary file beside it, then renamed over it, so a
+/// reader (or a run stopped midway) never sees a half-written file. A path that exists and is
+/// not a regular file (a device such as `/dev/null`, a pipe) is written directly.
+///
+/// # Errors
+/// E0010 ([`Error::Io`]) when the file cannot be written.
+pub fn write_whole(path: &Path, bytes: &[u8]) -> Result<()> {
+    let io = |source| Error::Io {
         path: path.display().to_string(),
         source,
+    };
+    let regular_or_new = std::fs::metadata(path).map_or(true, |m| m.is_file());
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned());
+    let (true, Some(name)) = (regular_or_new, name) else {
+        return std::fs::write(path, bytes).map_err(io);
+    };
+    let temporary = path.with_file_name(format!(".{name}.{}.partial", std::process::id()));
+    std::fs::write(&temporary, bytes).map_err(io)?;
+    std::fs::rename(&temporary, path).map_err(|e| {
+        let _ = std::fs::remove_file(&temporary);
+        io(e)
     })
 }
