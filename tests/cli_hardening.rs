@@ -349,3 +349,27 @@ fn dash_is_standard_output_and_files_are_written_whole() {
         .collect();
     assert_eq!(names, ["n.json"]);
 }
+
+#[test]
+fn a_json_type_error_names_the_field_path() {
+    // A string where a number belongs: the message names the field, not only line and column.
+    let requests = write_tmp(
+        "typed-requests.json",
+        br#"{"schema_version": 1, "requests": [{"id": "a", "source": "n000", "destination": "n001", "packages_kg": [0.5, "3"]}]}"#,
+    );
+    let out = swarmplan(&["batch", "--requests", &requests, "--request-limit", "1"]);
+    assert_exit_2_with(&out, "E0001", &["requests[0].packages_kg[1]", "line 1"]);
+    // The same in a plan file (E6003) and a hop file (E4111).
+    let plan = write_tmp(
+        "typed-plan.json",
+        br#"{"schema_version": 1, "request": {"id": 7}}"#,
+    );
+    let out = swarmplan(&["check", "--plan", &plan]);
+    assert_exit_2_with(&out, "E6003", &["request.id"]);
+    let hop = write_tmp(
+        "typed-hop.json",
+        br#"{"schema_version": 1, "request_id": "r", "hop_index": "0"}"#,
+    );
+    let out = swarmplan(&["eaas", "--hop-file", &hop]);
+    assert_exit_2_with(&out, "E4111", &["hop_index"]);
+}

@@ -42,8 +42,8 @@ pub fn read_plan_file(path: &Path) -> Result<RequestReport> {
 /// assert!(e.to_string().contains("[E6002]"));
 /// ```
 pub fn parse_plan_file(text: &str, origin: &str) -> Result<RequestReport> {
-    let unreadable = |e: serde_json::Error| {
-        let (code, what) = if e.is_syntax() || e.is_eof() {
+    let unreadable = |e: crate::problem::io::JsonError| {
+        let (code, what) = if e.error.is_syntax() || e.error.is_eof() {
             ("E6001", "not JSON")
         } else {
             ("E6003", "not a plan document")
@@ -57,7 +57,7 @@ pub fn parse_plan_file(text: &str, origin: &str) -> Result<RequestReport> {
         )
     };
     // The version first: another version may have other fields.
-    let document: serde_json::Value = serde_json::from_str(text).map_err(unreadable)?;
+    let document: serde_json::Value = crate::problem::io::from_json(text).map_err(unreadable)?;
     let Some(fields) = document.as_object() else {
         return Err(Error::invalid(
             "E6003",
@@ -78,5 +78,5 @@ pub fn parse_plan_file(text: &str, origin: &str) -> Result<RequestReport> {
             ));
         }
     }
-    serde_json::from_str(text).map_err(unreadable)
+    crate::problem::io::from_json(text).map_err(unreadable)
 }

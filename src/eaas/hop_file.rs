@@ -145,7 +145,7 @@ pub fn read_hop_file(path: &Path) -> Result<HopFile> {
 /// (line and column), `E4112` alone for another schema version, else every violation of
 /// [`HopFile::violations`] at once.
 pub fn parse_hop_file(text: &str, origin: &str) -> Result<HopFile> {
-    let unreadable = |e: serde_json::Error| {
+    let unreadable = |e: crate::problem::io::JsonError| {
         Error::invalid(
             "E4111",
             origin,
@@ -158,14 +158,14 @@ pub fn parse_hop_file(text: &str, origin: &str) -> Result<HopFile> {
     struct Version {
         schema_version: Option<u32>,
     }
-    let version: Version = serde_json::from_str(text).map_err(unreadable)?;
+    let version: Version = crate::problem::io::from_json(text).map_err(unreadable)?;
     if let Some(v) = version
         .schema_version
         .filter(|&v| v != HOP_FILE_SCHEMA_VERSION)
     {
         return Err(Error::Invalid(vec![version_violation(v)]));
     }
-    let file: HopFile = serde_json::from_str(text).map_err(unreadable)?;
+    let file: HopFile = crate::problem::io::from_json(text).map_err(unreadable)?;
     let violations = file.violations();
     if violations.is_empty() {
         Ok(file)

@@ -39,18 +39,72 @@ pub fn read_text(path: &Path) -> Result<String> {
 
 /// Parses JSON text; `origin` names the source in messages.
 pub fn parse_json<T: DeserializeOwned>(text: &str, origin: &str) -> Result<T> {
-    serde_json::from_str(text).map_err(|e| {
+    from_json(text).map_err(|e| {
         Error::invalid(
             "E0001",
-            origin,
+            e.field(origin),
             format!(
-                "malformed JSON at line {} column {}: {e}",
-                e.line(),
-                e.column()
+                "malformed JSON at line {} column {}: {}",
+                e.error.line(),
+                e.error.column(),
+                e.error
             ),
             "fix the JSON syntax or the field named; see README.md for the schema",
         )
     })
+}
+
+/// A JSON error with the path of the field it happened in.
+#[derive(Debug)]
+pub struct JsonError {
+    /// serde_json's error (line, column, what).
+    pub error: serde_json::Error,
+    /// The field's path, `requests[3].packages_kg[0]`; empty at the top level or for a syntax
+    /// error.
+    pub path: String,
+}
+
+impl JsonError {
+    /// `origin` followed by the field's path, when there is one: `requests.json:
+    /// requests[3].packages_kg[0]`.
+    pub fn field(&self, origin: &str) -> String {
+        if self.path.is_empty() {
+            origin.to_string()
+        } else {
+            format!("{origin}: {}", self.path)
+        }
+    }
+}
+
+impl std::fmt::Display for JsonError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if self.path.is_empty() {
+            write!(f, "{}", self.error)
+        } else {
+            write!(f, "{}: {}", self.path, self.error)
+        }
+    }
+}
+
+/// Deserialises JSON text as `serde_json::from_str` does (the whole text, nothing after the
+/// value), the error carrying the path of the field it happened in.
+///
+/// # Errors
+/// The [`JsonError`].
+pub fn from_json<T: DeserializeOwned>(text: &str) -> std::result::Result<T, JsonError> {
+    let mut de = serde_json::Deserializer::from_str(text);
+    let value = serde_path_to_error::deserialize(&mut de).map_err(|e| {
+        let path = e.path().to_string();
+        JsonError {
+            error: e.into_inner(),
+            path: if path == "." { String::new() } else { path },
+        }
+    })?;
+    de.end().map_err(|error| JsonError {
+        error,
+        path: String::new(),
+    })?;
+    Ok(value)
 }
 
 /// Parses TOML text; `origin` names the source in messages.
