@@ -59,8 +59,8 @@ pub fn parse_json<T: DeserializeOwned>(text: &str, origin: &str) -> Result<T> {
 pub struct JsonError {
     /// serde_json's error (line, column, what).
     pub error: serde_json::Error,
-    /// The field's path, `requests[3].packages_kg[0]`; empty at the top level or for a syntax
-    /// error.
+    /// The field's path, `requests[3].packages_kg[0]`; empty at the top level, for a syntax
+    /// error and for an early end.
     pub path: String,
 }
 
@@ -95,9 +95,12 @@ pub fn from_json<T: DeserializeOwned>(text: &str) -> std::result::Result<T, Json
     let mut de = serde_json::Deserializer::from_str(text);
     let value = serde_path_to_error::deserialize(&mut de).map_err(|e| {
         let path = e.path().to_string();
+        let error = e.into_inner();
+        // A syntax error or an early end has no field to name (the path ends in `?`).
+        let named = error.is_data() && path != ".";
         JsonError {
-            error: e.into_inner(),
-            path: if path == "." { String::new() } else { path },
+            error,
+            path: if named { path } else { String::new() },
         }
     })?;
     de.end().map_err(|error| JsonError {
