@@ -9,9 +9,9 @@
 //! subtree); its LP is the parent's with the pad's new load row, added only when the parent's
 //! point violates it (otherwise that point is the child's optimum too) and then re-solved by
 //! microlp's dual simplex from the parent's basis, until the point keeps every pad's row. A leaf
-//! is `LP(A)` itself. Children are tried least-loaded pad
-//! first (at the parent's point), so the first dive is LPT's assignment; a node whose LP value
-//! reaches the least upper bound known (within [`PRUNE_REL`]) is pruned. When the search ends,
+//! is `LP(A)` itself. Children are tried least-loaded pad first (at the parent's point), so the
+//! first dive is LPT's assignment; a node whose LP value reaches the least upper bound known
+//! (within [`PRUNE_REL`]) is pruned. When the search ends,
 //! `V >= min(ub, p)` with `ub` the least of the leaves and the incumbent and `p` the least LP
 //! value of a node pruned (within the tolerance band below `ub`, else `p >= ub`); stopped by the
 //! node limit, `V >=` also the least value of a node left with children unexplored.
