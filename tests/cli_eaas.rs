@@ -158,6 +158,18 @@ fn a_bad_hop_file_is_reported_with_its_codes_and_exit_2() {
     for code in ["E4115", "E4003", "hop.initial_slot", "E4103", "end.pads"] {
         assert!(err.contains(code), "{code}: {err}");
     }
+    // A path with one node more than the hop's legs has edges (or no leg at all): E4115.
+    let mut extra = hop.clone();
+    let last = extra["path"].as_array().unwrap().last().unwrap().clone();
+    extra["path"].as_array_mut().unwrap().push(last);
+    let n = extra["path"].as_array().unwrap().len();
+    extra["to"] = extra["path"][n - 1].clone();
+    let err = run("extra-node.json", &extra);
+    assert!(err.contains("E4115") && err.contains("leg(s)"), "{err}");
+    let mut legless = hop.clone();
+    legless["hop"]["legs"] = serde_json::json!([]);
+    let err = run("no-leg.json", &legless);
+    assert!(err.contains("E4115") && err.contains("0 leg(s)"), "{err}");
     let path = tmp("not-json.json");
     std::fs::write(&path, "{\"schema_version\": 1,").unwrap();
     let out = swarmplan(&["eaas", "--hop-file", path.to_str().unwrap()]);

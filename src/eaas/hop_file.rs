@@ -85,6 +85,22 @@ impl HopFile {
                 "give the node ids flown over, `from` first and `to` last",
             ));
         }
+        // One leg per edge of the path: `path.len() = legs + 1`, and a hop flies at least one.
+        let legs = self.hop.legs.len();
+        if legs == 0 || self.path.len() != legs + 1 {
+            v.push(Violation::new(
+                "E4115",
+                "path",
+                format!(
+                    "path {:?} has {} node(s) for {legs} leg(s): a hop flies one leg per edge of \
+                     its path, at least one",
+                    self.path,
+                    self.path.len()
+                ),
+                "give the path the hop's legs fly (one more node than legs), or write the hop \
+                 again with `swarmplan eaas --write-hop`",
+            ));
+        }
         let prefixed = |e: Error, prefix: &str| match e {
             Error::Invalid(list) => list
                 .into_iter()
