@@ -257,30 +257,22 @@ fn no_output_file_is_overwritten_unasked_and_thread_counts_are_bounded() {
     // Each writing option refuses an existing file without --force (E0013), before any work,
     // and leaves the file as it was; with --force it writes.
     let path = write_tmp("existing-output.txt", b"keep me");
+    let eaas = |option| {
+        let request = [
+            "eaas",
+            "--request-id",
+            "r00001",
+            "--hop",
+            "0",
+            "--methods",
+            "pb",
+        ];
+        [&request[..], &[option, path.as_str()]].concat()
+    };
     let cases: [Vec<&str>; 4] = [
         vec!["batch", "--request-limit", "1", "--per-request", &path],
-        vec![
-            "eaas",
-            "--request-id",
-            "r00001",
-            "--hop",
-            "0",
-            "--methods",
-            "pb",
-            "--write-hop",
-            &path,
-        ],
-        vec![
-            "eaas",
-            "--request-id",
-            "r00001",
-            "--hop",
-            "0",
-            "--methods",
-            "pb",
-            "--write-lp",
-            &path,
-        ],
+        eaas("--write-hop"),
+        eaas("--write-lp"),
         vec![
             "node-time",
             "--pads",
