@@ -507,9 +507,10 @@ fn every_changed_number_of_a_node_time_result_is_rejected() {
     ]);
 }
 
-/// Every number of the rows of a bench run (`--joint`: route gaps and the gap split included),
-/// changed in turn in the rows of its first request, is rejected by `check --bench`'s rules
-/// naming the row and the column.
+/// Every number of the rows of a bench run (`--joint`: route gaps and the gap split included;
+/// the exact subset: `hops.csv` and `stops.csv`), changed in turn in the rows of its first
+/// request in every table, is rejected by `check --bench`'s rules naming the table, the row and
+/// the column.
 #[test]
 fn every_changed_number_of_a_bench_row_is_rejected() {
     let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("check_bench_rows");
@@ -521,7 +522,7 @@ fn every_changed_number_of_a_bench_row_is_rejected() {
             "2",
             "--joint",
             "--exact-limit",
-            "0",
+            "1",
             "--out",
         ])
         .arg(&dir)
@@ -531,25 +532,47 @@ fn every_changed_number_of_a_bench_row_is_rejected() {
     let (config, data) = swarmplan::bench::read_data(&dir).unwrap();
     let (network, _, profile, requests) = findings();
     let requests = &requests[..config.limit];
-    let first: Vec<_> = data
-        .requests
-        .iter()
-        .filter(|r| r.request_index == 0)
-        .cloned()
-        .collect();
-    assert!(first.len() >= 10, "every combination has a row");
-    let document = serde_json::to_value(&first).unwrap();
+    let of_first = |rows: Value| -> Value {
+        Value::Array(
+            rows.as_array()
+                .unwrap()
+                .iter()
+                .filter(|r| r["request_index"] == 0)
+                .cloned()
+                .collect(),
+        )
+    };
+    let document = serde_json::json!({
+        "requests": of_first(serde_json::to_value(&data.requests).unwrap()),
+        "hops": of_first(serde_json::to_value(&data.hops).unwrap()),
+        "stops": of_first(serde_json::to_value(&data.stops).unwrap()),
+        "joint": of_first(serde_json::to_value(&data.joint).unwrap()),
+    });
+    for table in ["requests", "hops", "stops", "joint"] {
+        assert!(
+            document[table].as_array().unwrap().len() >= 3,
+            "{table}: the first request has rows"
+        );
+    }
+    let tables = |doc: &Value| -> Result<swarmplan::bench::BenchData, String> {
+        let rows = |t: &str| doc[t].clone();
+        Ok(swarmplan::bench::BenchData {
+            requests: serde_json::from_value(rows("requests")).map_err(|e| e.to_string())?,
+            hops: serde_json::from_value(rows("hops")).map_err(|e| e.to_string())?,
+            stops: serde_json::from_value(rows("stops")).map_err(|e| e.to_string())?,
+            timings: Vec::new(),
+            joint: serde_json::from_value(rows("joint")).map_err(|e| e.to_string())?,
+        })
+    };
     let check = |doc: &Value| -> Result<Vec<Violation>, String> {
-        let rows: Vec<swarmplan::bench::RequestRow> =
-            serde_json::from_value(doc.clone()).map_err(|e| e.to_string())?;
-        let found = check_bench_rows(&network, &profile, requests, &config, &rows, 1)
+        let found = check_bench_rows(&network, &profile, requests, &config, &tables(doc)?, 1)
             .map_err(|e| e.to_string())?;
         assert!(found.skipped.is_none());
         Ok(found
             .violations
             .into_iter()
             .map(|mut v| {
-                v.field = v.field.trim_start_matches("requests.csv").to_string();
+                v.field = v.field.replacen(".csv", "", 1);
                 v
             })
             .collect())
@@ -557,18 +580,26 @@ fn every_changed_number_of_a_bench_row_is_rejected() {
     let mut tally = Tally::default();
     tally.change_every_number("rows of r00000", &document, |_| false, "", check);
     tally.assert_all_rejected(&[
-        "[].distance_m",
-        "[].dt_min",
-        "[].lpt_gap_sum",
-        "[].optimal_dt_min",
-        "[].route_gap",
-        "[].joint_dt_min",
-        "[].gap_route_min",
-        "[].split_epsilon_min",
+        "requests[].distance_m",
+        "requests[].dt_min",
+        "requests[].lpt_gap_sum",
+        "requests[].optimal_dt_min",
+        "requests[].route_gap",
+        "requests[].joint_dt_min",
+        "requests[].gap_route_min",
+        "requests[].split_epsilon_min",
+        "hops[].continuous",
+        "hops[].fluid_bound",
+        "hops[].gap",
+        "stops[].nt_min",
+        "stops[].lpt_nt_min",
+        "joint[].dt_min",
+        "joint[].arcs_flown",
     ]);
+    let first = tables(&document).unwrap();
     // A row deleted, or one written twice: P5705 names the request and the combination.
-    let codes = |rows: &[swarmplan::bench::RequestRow]| -> Vec<String> {
-        check_bench_rows(&network, &profile, requests, &config, rows, 1)
+    let codes = |data: &swarmplan::bench::BenchData| -> Vec<String> {
+        check_bench_rows(&network, &profile, requests, &config, data, 1)
             .unwrap()
             .violations
             .iter()
@@ -577,13 +608,44 @@ fn every_changed_number_of_a_bench_row_is_rejected() {
     };
     assert!(codes(&first).is_empty(), "{:?}", codes(&first));
     let mut fewer = first.clone();
-    fewer.remove(3);
+    fewer.requests.remove(3);
     assert_eq!(codes(&fewer), ["P5705"]);
     let mut more = first.clone();
-    more.insert(3, first[3].clone());
+    more.requests.insert(3, first.requests[3].clone());
     assert!(
         codes(&more).contains(&"P5705".to_string()),
         "{:?}",
         codes(&more)
     );
+    // The same in the other tables: the first code names the count.
+    for table in ["hops", "stops", "joint"] {
+        let mut fewer = first.clone();
+        let mut more = first.clone();
+        match table {
+            "hops" => {
+                fewer.hops.pop();
+                more.hops.push(first.hops[0].clone());
+            }
+            "stops" => {
+                fewer.stops.pop();
+                more.stops.push(first.stops[0].clone());
+            }
+            _ => {
+                fewer.joint.pop();
+                more.joint.push(first.joint[0].clone());
+            }
+        }
+        assert_eq!(codes(&fewer), ["P5705"], "{table}: a row deleted");
+        assert_eq!(
+            codes(&more).first().map(String::as_str),
+            Some("P5705"),
+            "{table}"
+        );
+    }
+    // A row of a request requests.csv does not have.
+    let mut stray = first.clone();
+    let mut row = first.stops[0].clone();
+    row.request_index = 1;
+    stray.stops.push(row);
+    assert_eq!(codes(&stray), ["P5705"]);
 }

@@ -218,7 +218,7 @@ pub fn write_figures(dir: &Path, summary: &Summary) -> Result<Vec<String>> {
             source,
         };
         let svg = svg.map_err(|e| io_error(std::io::Error::other(e.to_string())))?;
-        std::fs::write(&path, svg).map_err(io_error)?;
+        crate::problem::io::write_whole(&path, svg.as_bytes())?;
         written.push(relative);
     }
     Ok(written)

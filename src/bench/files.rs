@@ -3,7 +3,7 @@
 
 #[cfg(feature = "cli")]
 use super::figures;
-use super::{findings, BenchConfig, BenchData, Shard, Summary};
+use super::{findings, seal, BenchConfig, BenchData, Shard, Summary};
 use crate::error::{Error, Result};
 use crate::problem::io;
 use serde::de::DeserializeOwned;
@@ -12,6 +12,8 @@ use std::path::Path;
 
 /// The configuration file of a run.
 pub const CONFIG_FILE: &str = "config.json";
+/// The summary of a run, with its findings.
+pub const SUMMARY_FILE: &str = "summary.json";
 /// The data files, one row per record, reproducible byte for byte but `timings.csv`.
 pub const DATA_FILES: [&str; 5] = [
     "requests.csv",
@@ -49,13 +51,14 @@ fn csv_error(path: &Path, e: impl std::fmt::Display) -> Error {
     )
 }
 
+/// Writes a table whole (aside, then renamed).
 fn write_csv<T: Serialize>(path: &Path, rows: &[T]) -> Result<()> {
-    let io_error = |source: std::io::Error| Error::Io {
+    let mut bytes = Vec::new();
+    crate::experiment::write_csv(&mut bytes, rows).map_err(|source| Error::Io {
         path: path.display().to_string(),
         source,
-    };
-    let file = std::fs::File::create(path).map_err(io_error)?;
-    crate::experiment::write_csv(file, rows).map_err(io_error)
+    })?;
+    io::write_whole(path, &bytes)
 }
 
 fn read_csv<T: DeserializeOwned>(path: &Path) -> Result<Vec<T>> {
@@ -115,68 +118,32 @@ pub fn write_outputs(
     if config.shard == Shard::WHOLE {
         summary.figures = figures::write_figures(dir, &summary)?;
     }
-    io::write_json(&dir.join("summary.json"), &summary)?;
-    mark_complete(dir, &config)?;
+    io::write_json(&dir.join(SUMMARY_FILE), &summary)?;
+    let written: Vec<String> = std::iter::once(CONFIG_FILE)
+        .chain(DATA_FILES)
+        .chain([SUMMARY_FILE])
+        .map(String::from)
+        .chain(summary.figures.iter().cloned())
+        .collect();
+    seal::mark_complete(dir, &config, &written)?;
     Ok(summary)
-}
-
-/// The file a run writes last, atomically (written aside, then renamed): its presence says every
-/// other file of the run is complete. It holds the shard and the inputs' fingerprint.
-pub const COMPLETE_FILE: &str = "complete";
-
-/// Removes the completion mark of an earlier run in `dir` before a new run writes there, so a
-/// run stopped half way never looks complete.
-///
-/// # Errors
-/// [`Error::Io`] when the mark exists and cannot be removed.
-pub fn unmark_complete(dir: &Path) -> Result<()> {
-    match std::fs::remove_file(dir.join(COMPLETE_FILE)) {
-        Err(e) if e.kind() != std::io::ErrorKind::NotFound => Err(Error::Io {
-            path: dir.join(COMPLETE_FILE).display().to_string(),
-            source: e,
-        }),
-        _ => Ok(()),
-    }
-}
-
-fn mark_complete(dir: &Path, config: &BenchConfig) -> Result<()> {
-    let path = dir.join(COMPLETE_FILE);
-    let aside = dir.join(format!(".{COMPLETE_FILE}.tmp"));
-    let io_error = |source: std::io::Error| Error::Io {
-        path: path.display().to_string(),
-        source,
-    };
-    std::fs::write(
-        &aside,
-        format!(
-            "shard {}\ninputs_sha256 {}\n",
-            config.shard, config.inputs_sha256
-        ),
-    )
-    .map_err(io_error)?;
-    std::fs::rename(&aside, &path).map_err(io_error)
 }
 
 /// Merges the directories of the shards `0/N`, ..., `N-1/N` of one run (in any order) into the
 /// rows one run of the whole would have written, in its order.
 ///
 /// # Errors
-/// E7007 for a directory without the completion mark of a finished run, E7002 when the
+/// Those of [`seal::verify_seal`] for a directory without the completion mark of a finished run
+/// or whose files were changed after it (E7007-E7009), E7002 when the
 /// configurations (inputs' fingerprint and tool version included) differ but for the shard,
 /// E7003 when the shards are not exactly `0/N`, ..., `N-1/N`; those of [`read_data`].
 pub fn merge(dirs: &[&Path]) -> Result<(BenchConfig, BenchData)> {
     let mut parts = Vec::new();
     for dir in dirs {
-        if !dir.join(COMPLETE_FILE).exists() {
-            return Err(Error::invalid(
-                "E7007",
-                dir.display().to_string(),
-                "the shard did not finish (no `complete` mark: it was stopped, or is still running)",
-                "run that shard again (the Slurm script reruns only the shards without the mark), \
-                 then merge",
-            ));
-        }
-        parts.push((dir, read_data(dir)?));
+        let sealed = seal::verify_seal(dir)?;
+        let (config, data) = read_data(dir)?;
+        seal::agrees(dir, &sealed, &config)?;
+        parts.push((dir, (config, data)));
     }
     let Some((first_dir, (first, _))) = parts.first() else {
         return Err(Error::invalid(

@@ -21,14 +21,15 @@ pub mod figures;
 mod files;
 mod findings;
 mod runner;
+pub mod seal;
 mod summary;
 
 pub use files::{
-    may_write, merge, read_data, unmark_complete, write_outputs, COMPLETE_FILE, CONFIG_FILE,
-    DATA_FILES,
+    may_write, merge, read_data, write_outputs, CONFIG_FILE, DATA_FILES, SUMMARY_FILE,
 };
 pub use findings::{findings, Finding, Verdict};
 pub use runner::{run_grid, BenchSettings, GridRun, GridSize};
+pub use seal::{unmark_complete, verify_seal, COMPLETE_FILE};
 pub use summary::{
     DistanceBucket, GapHistogram, GapSplitSummary, HopGapSummary, JointSummary, MethodSummary,
     StopGapSummary, Summary, SUMMARY_SCHEMA_VERSION,
@@ -425,79 +426,8 @@ pub fn run(
     let experiment = config.experiment();
     let combos = experiment.planned();
     let reference_of = experiment.route_reference_positions();
-    let graph = context.graph();
-    let readings = PolicyOptions::from(&context.profile().readings);
     let keep_row = |i: usize, request: &Request, reports: Vec<RequestReport>| -> Result<Row> {
-        let position = positions[i];
-        let distance_m = match (
-            graph.index_of(&request.source),
-            graph.index_of(&request.destination),
-        ) {
-            (Some(s), Some(d)) => graph.distances_from_m(s)[d],
-            _ => f64::NAN,
-        };
-        let joint = if experiment.joint {
-            Some(context.joint_split(request, &reports)?)
-        } else {
-            None
-        };
-        let mut kept = reports
-            .into_iter()
-            .map(|report| keep_report(context, config, &readings, position, distance_m, report))
-            .collect::<Result<Vec<_>>>()?;
-        let Some(joint) = joint else {
-            return Ok((kept, Vec::new()));
-        };
-        let joint_dt = joint.joint.dt_min();
-        for (k, split) in kept.iter_mut().zip(&joint.splits) {
-            let Some(split) = split else { continue };
-            let r = &mut k.row;
-            r.joint_dt_min = joint_dt;
-            r.split_label = split.label.map(|l| serde_name(&l)).unwrap_or_default();
-            r.exact_schedule_dt_min = split.exact_schedule_dt_min;
-            r.swarm_optimum_dt_min = split.swarm_optimum_dt_min;
-            r.gap_total_min = split.total_min;
-            r.gap_sharing_min = split.sharing_min;
-            r.gap_route_min = split.route_min;
-            r.gap_swarm_min = split.swarm_min;
-            r.split_epsilon_min = Some(split.epsilon_min);
-            r.split_proven = Some(split.proven);
-        }
-        if let Some(first) = kept.first_mut() {
-            first.timings.push(TimingRow {
-                request_index: position,
-                sharing: SharingPolicy::Exact,
-                positioning: crate::precompose::Positioning::LocationAware,
-                route: RouteMethod::Optimal,
-                hop_index: None,
-                what: "joint".into(),
-                ms: joint.joint.execution_ms,
-            });
-        }
-        let rows = joint
-            .joint
-            .swarms
-            .iter()
-            .enumerate()
-            .map(|(s, swarm)| {
-                let o = swarm.plan.route_optimality.unwrap_or_default();
-                JointRow {
-                    request_index: position,
-                    request_id: request.id.clone(),
-                    positioning: swarm.positioning,
-                    support_drones: swarm.support_drones,
-                    best: joint.joint.best == Some(s),
-                    delivered: swarm.plan.delivered(),
-                    dt_min: swarm.dt_min(),
-                    stops: swarm.plan.stops().len(),
-                    proven: o.proven(),
-                    epsilon_min: o.epsilon_min,
-                    arcs_flown: o.arcs_flown,
-                    arcs_total: o.arcs_total,
-                }
-            })
-            .collect();
-        Ok((kept, rows))
+        rows_of_request(context, config, positions[i], request, reports)
     };
     let grid = context.plan_grid_rows(&planned, &combos, threads, done, &keep_row)?;
     let mut data = BenchData::default();
@@ -525,6 +455,116 @@ pub fn run(
             data.hops.extend(kept.hops);
             data.stops.extend(kept.stops);
         }
+    }
+    Ok(data)
+}
+
+/// The rows of one request: each combination's row, hops, stops and timings (the route gaps
+/// are filled in by [`run`], across combinations), and with `--joint` the joint optimum's rows.
+fn rows_of_request(
+    context: &Context,
+    config: &BenchConfig,
+    position: usize,
+    request: &Request,
+    reports: Vec<RequestReport>,
+) -> Result<Row> {
+    let experiment = config.experiment();
+    let graph = context.graph();
+    let readings = PolicyOptions::from(&context.profile().readings);
+    let distance_m = match (
+        graph.index_of(&request.source),
+        graph.index_of(&request.destination),
+    ) {
+        (Some(s), Some(d)) => graph.distances_from_m(s)[d],
+        _ => f64::NAN,
+    };
+    let joint = if experiment.joint {
+        Some(context.joint_split(request, &reports)?)
+    } else {
+        None
+    };
+    let mut kept = reports
+        .into_iter()
+        .map(|report| keep_report(context, config, &readings, position, distance_m, report))
+        .collect::<Result<Vec<_>>>()?;
+    let Some(joint) = joint else {
+        return Ok((kept, Vec::new()));
+    };
+    let joint_dt = joint.joint.dt_min();
+    for (k, split) in kept.iter_mut().zip(&joint.splits) {
+        let Some(split) = split else { continue };
+        let r = &mut k.row;
+        r.joint_dt_min = joint_dt;
+        r.split_label = split.label.map(|l| serde_name(&l)).unwrap_or_default();
+        r.exact_schedule_dt_min = split.exact_schedule_dt_min;
+        r.swarm_optimum_dt_min = split.swarm_optimum_dt_min;
+        r.gap_total_min = split.total_min;
+        r.gap_sharing_min = split.sharing_min;
+        r.gap_route_min = split.route_min;
+        r.gap_swarm_min = split.swarm_min;
+        r.split_epsilon_min = Some(split.epsilon_min);
+        r.split_proven = Some(split.proven);
+    }
+    if let Some(first) = kept.first_mut() {
+        first.timings.push(TimingRow {
+            request_index: position,
+            sharing: SharingPolicy::Exact,
+            positioning: crate::precompose::Positioning::LocationAware,
+            route: RouteMethod::Optimal,
+            hop_index: None,
+            what: "joint".into(),
+            ms: joint.joint.execution_ms,
+        });
+    }
+    let rows = joint
+        .joint
+        .swarms
+        .iter()
+        .enumerate()
+        .map(|(s, swarm)| {
+            let o = swarm.plan.route_optimality.unwrap_or_default();
+            JointRow {
+                request_index: position,
+                request_id: request.id.clone(),
+                positioning: swarm.positioning,
+                support_drones: swarm.support_drones,
+                best: joint.joint.best == Some(s),
+                delivered: swarm.plan.delivered(),
+                dt_min: swarm.dt_min(),
+                stops: swarm.plan.stops().len(),
+                proven: o.proven(),
+                epsilon_min: o.epsilon_min,
+                arcs_flown: o.arcs_flown,
+                arcs_total: o.arcs_total,
+            }
+        })
+        .collect();
+    Ok((kept, rows))
+}
+
+/// The rows of `hops.csv`, `stops.csv` and `joint.csv` a run writes for the request at
+/// `position` of its set, given the plans of every combination the run makes
+/// ([`BenchConfig::planned_combos`], in that order): what `check --bench` compares a run's tables
+/// with.
+///
+/// # Errors
+/// Those of the hop models on the exact subset and of the joint optimum.
+pub fn tables_of_request(
+    context: &Context,
+    config: &BenchConfig,
+    position: usize,
+    request: &Request,
+    reports: Vec<RequestReport>,
+) -> Result<BenchData> {
+    let (kept, joint) = rows_of_request(context, config, position, request, reports)?;
+    let reported = config.experiment().route_reference_positions().len();
+    let mut data = BenchData {
+        joint,
+        ..BenchData::default()
+    };
+    for k in kept.into_iter().take(reported) {
+        data.hops.extend(k.hops);
+        data.stops.extend(k.stops);
     }
     Ok(data)
 }

@@ -120,8 +120,6 @@ pub fn run_grid(
             "give the width of the distance buckets in km, such as 1",
         ));
     }
-    may_write(out, s.force)?;
-    unmark_complete(out)?;
     let combos = Methods {
         sharing: s.sharing.clone(),
         positioning: s.positioning.clone(),
@@ -138,6 +136,9 @@ pub fn run_grid(
     )?;
     let requests = experiment::first_requests(set.requests, s.limit)?;
     let instance = instance.with_requests(requests)?;
+    // The inputs are read and valid: only now is an earlier run's directory touched.
+    may_write(out, s.force)?;
+    unmark_complete(out)?;
     let mut context = Context::new(&instance.network, &instance.graph, &instance.profile);
     context.exact = s.exact.settings()?;
     context.node_limit = Some(s.node_limit);

@@ -11,6 +11,13 @@
 //! * from the method run again: the optimal route's `dt` and whether it is proven, and with
 //!   `--joint` the joint optimum and the parts of the gap split.
 //!
+//! The other tables are compared with the rows the run's own code writes for the plans made
+//! again (those plans checked as above): every row of `hops.csv`, `stops.csv` and `joint.csv` of
+//! a checked request, column by column (P5701 with the table, row and column), and each table's
+//! rows of the request by their key (P5705 for a missing or a repeated one, and for rows of a
+//! request `requests.csv` does not have). `timings.csv` holds machine times only; the run's seal
+//! (`complete`, verified by the caller) covers it.
+//!
 //! Rows of a run made with a wall-clock limit (`--hop-time-limit`) cannot be planned again to
 //! the same numbers; [`BenchCheck::skipped`] says so. Codes P5703 (a row's request is not the
 //! request set's at its index), P5704 (a row's combination is not one of the run's) and P5705 (a
@@ -19,7 +26,7 @@
 use super::check_report;
 use super::close;
 use super::decision::shortest_distance_m;
-use crate::bench::{BenchConfig, RequestRow};
+use crate::bench::{BenchConfig, BenchData, RequestRow};
 use crate::compose::{Context, HopPaths, PlanSettings, RequestReport};
 use crate::error::{Result, Violation};
 use crate::problem::{Network, Profile, Request, SkywayGraph};
@@ -52,8 +59,8 @@ pub struct BenchCheck {
 /// # Arguments
 /// * `network`, `profile`, `requests` - the run's inputs (their fingerprint is compared with
 ///   `config.inputs_sha256` by the caller).
-/// * `config`, `rows` - the run's `config.json` and `requests.csv`.
-/// * `limit` - requests whose rows are checked, in the order of the file.
+/// * `config`, `data` - the run's `config.json` and tables.
+/// * `limit` - requests whose rows are checked, in the order of `requests.csv`.
 ///
 /// # Errors
 /// Those of planning a request again (an input the run could plan always plans again).
@@ -66,9 +73,10 @@ pub fn check_bench_rows(
     profile: &Profile,
     requests: &[Request],
     config: &BenchConfig,
-    rows: &[RequestRow],
+    data: &BenchData,
     limit: usize,
 ) -> Result<BenchCheck> {
+    let rows = &data.requests[..];
     let mut out = BenchCheck::default();
     if config.milp.time_limit_s.is_finite() {
         out.skipped = Some(
@@ -115,6 +123,9 @@ pub fn check_bench_rows(
             .iter()
             .map(|c| context.plan(request, c))
             .collect::<Result<Vec<_>>>()?;
+        let tables =
+            crate::bench::tables_of_request(&context, config, index, request, reports.clone())?;
+        compare_tables(&mut out, data, index, &tables);
         let joint = if config.joint {
             Some(context.joint_split(request, &reports)?)
         } else {
@@ -183,7 +194,103 @@ pub fn check_bench_rows(
         }
         k = end;
     }
+    // Rows of the other tables whose request has no row in requests.csv.
+    let planned: std::collections::BTreeSet<usize> = rows.iter().map(|r| r.request_index).collect();
+    for (table, indices) in [
+        (
+            "hops.csv",
+            data.hops
+                .iter()
+                .map(|r| r.request_index)
+                .collect::<Vec<_>>(),
+        ),
+        (
+            "stops.csv",
+            data.stops.iter().map(|r| r.request_index).collect(),
+        ),
+        (
+            "joint.csv",
+            data.joint.iter().map(|r| r.request_index).collect(),
+        ),
+    ] {
+        for (r, index) in indices.into_iter().enumerate() {
+            if !planned.contains(&index) {
+                out.violations.push(v(
+                    "P5705",
+                    format!("{table}[{r}].request_index"),
+                    format!("request index {index} has no row in requests.csv"),
+                ));
+            }
+        }
+    }
     Ok(out)
+}
+
+/// Compares the rows of `hops.csv`, `stops.csv` and `joint.csv` of the request at `index` with
+/// `expected`, the rows the run's code writes for the plans made again.
+fn compare_tables(out: &mut BenchCheck, data: &BenchData, index: usize, expected: &BenchData) {
+    compare_table(out, "hops.csv", &data.hops, &expected.hops, index, |r| {
+        r.request_index
+    });
+    compare_table(out, "stops.csv", &data.stops, &expected.stops, index, |r| {
+        r.request_index
+    });
+    compare_table(out, "joint.csv", &data.joint, &expected.joint, index, |r| {
+        r.request_index
+    });
+}
+
+/// One table's rows of one request against the expected rows, in the run's order (which a
+/// merge keeps): their number (P5705), then each row column by column (P5701; numbers within
+/// the checker's tolerance).
+fn compare_table<T: serde::Serialize>(
+    out: &mut BenchCheck,
+    table: &str,
+    stated: &[T],
+    expected: &[T],
+    index: usize,
+    request_of: impl Fn(&T) -> usize,
+) {
+    let found: Vec<(usize, &T)> = stated
+        .iter()
+        .enumerate()
+        .filter(|(_, r)| request_of(r) == index)
+        .collect();
+    if found.len() != expected.len() {
+        out.violations.push(v(
+            "P5705",
+            format!("{table}, request index {index}"),
+            format!(
+                "{} rows of the request, the run writes {}",
+                found.len(),
+                expected.len()
+            ),
+        ));
+    }
+    for ((r, row), want) in found.iter().zip(expected) {
+        let (Ok(serde_json::Value::Object(a)), Ok(serde_json::Value::Object(b))) =
+            (serde_json::to_value(row), serde_json::to_value(want))
+        else {
+            continue;
+        };
+        for (column, recomputed) in &b {
+            let stated = a.get(column).unwrap_or(&serde_json::Value::Null);
+            let same = match (stated.as_f64(), recomputed.as_f64()) {
+                (Some(x), Some(y)) => close(x, y),
+                _ => stated == recomputed,
+            };
+            if !same {
+                out.violations.push(v(
+                    "P5701",
+                    format!("{table}[{r}].{column}"),
+                    format!(
+                        "states {stated}, the plan made again with the row's combination and \
+                         the run's settings gives {recomputed}"
+                    ),
+                ));
+            }
+        }
+    }
 }
 
 /// Column comparisons of one row.

@@ -11,7 +11,7 @@ use crate::bench::{self, BenchSettings, GridSize, Shard, Summary, Verdict, DATA_
 use crate::compose::RouteMethod;
 use crate::eaas::exact_hop::ExactChoices;
 use crate::eaas::SharingPolicy;
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::precompose::Positioning;
 use crate::problem::inputs::InstanceFiles;
 use std::path::{Path, PathBuf};
@@ -209,14 +209,31 @@ pub fn run(args: BenchArgs) -> Result<i32> {
     let command: Vec<String> = std::env::args().collect();
     match args.command {
         Some(BenchCommand::Merge(m)) => {
+            let dirs: Vec<&Path> = m.dirs.iter().map(PathBuf::as_path).collect();
+            // The inputs are read and verified whole before the output is touched.
+            let (config, data) = bench::merge(&dirs)?;
+            if let Some(shard) = dirs.iter().find(|d| same_dir(d, &m.out)) {
+                return Err(Error::invalid(
+                    "E7010",
+                    "--out",
+                    format!("{} is one of the shards merged", shard.display()),
+                    "give a new directory for the merged run, such as sweep/merged",
+                ));
+            }
             bench::may_write(&m.out, m.force)?;
             bench::unmark_complete(&m.out)?;
-            let dirs: Vec<&Path> = m.dirs.iter().map(PathBuf::as_path).collect();
-            let (config, data) = bench::merge(&dirs)?;
             let summary = bench::write_outputs(&m.out, &config, &data, command)?;
             report(&summary, &m.out, m.json)
         }
         None => run_grid(args.run, command),
+    }
+}
+
+/// Whether two paths name one directory (both exist and resolve to the same place).
+fn same_dir(a: &Path, b: &Path) -> bool {
+    match (std::fs::canonicalize(a), std::fs::canonicalize(b)) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => false,
     }
 }
 

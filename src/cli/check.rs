@@ -142,7 +142,10 @@ fn check_bench(args: &CheckArgs, dir: &std::path::Path) -> Result<i32> {
             "give a count of at least 1, or leave it out to check every row",
         ));
     }
+    // The seal first: a file changed after the run is named before any row is read.
+    let seal = crate::bench::verify_seal(dir)?;
     let (config, data) = crate::bench::read_data(dir)?;
+    crate::bench::seal::agrees(dir, &seal, &config)?;
     let shipped = if config.network == inputs::FINDINGS_195.network_name
         || config.profile == inputs::FINDINGS_195.profile_name
     {
@@ -177,7 +180,7 @@ fn check_bench(args: &CheckArgs, dir: &std::path::Path) -> Result<i32> {
         &instance.profile,
         requests,
         &config,
-        &data.requests,
+        &data,
         args.request_limit.unwrap_or(usize::MAX),
     )?;
     if let Some(why) = found.skipped {
