@@ -15,8 +15,12 @@
 //! * P5607: the sharing constants (`rho`, range, `gamma`, `lambda`, `delta`) are the profile's;
 //! * P5608: `end` holds the pads and pad rate of the end node (`null` when it has no pads).
 //!
-//! `hop_index` and the profile's name record where the hop comes from and are not checked; the
-//! fingerprint `made_on` is compared first, as for plans (E6004, E6005).
+//! * P5609: with `plan` (the combination of the plan the hop was taken from), the request planned
+//!   again with it has a hop `hop_index` along the file's path.
+//!
+//! Without `plan`, `hop_index` is the hop's place in a route the file does not record and is not
+//! checked; the profile's name is a label. The fingerprint `made_on` is compared first, as for
+//! plans (E6004, E6005).
 
 use super::close;
 use super::plan::{raw_leg, RawLeg};
@@ -87,6 +91,11 @@ pub fn check_hop_file(
             return out;
         }
     };
+    if let Some(plan) = &file.plan {
+        if let Some(x) = hop_of_the_plan(network, profile, request, file, plan) {
+            out.push(x);
+        }
+    }
     // P5605: the drones.
     let n = request.packages_kg.len();
     let roles_ok = hop.drones.iter().enumerate().all(|(d, s)| {
@@ -292,4 +301,59 @@ fn legs_of_the_path(network: &Network, path: &[String]) -> Result<Vec<RawLeg>, V
             })
         })
         .collect()
+}
+
+/// P5609: the request planned again with the file's `plan` has hop `hop_index` along `path`.
+fn hop_of_the_plan(
+    network: &Network,
+    profile: &Profile,
+    request: &Request,
+    file: &HopFile,
+    plan: &crate::eaas::hop_file::HopPlan,
+) -> Option<Violation> {
+    let options = match crate::compose::PlanOptions::try_from(plan) {
+        Ok(o) => o,
+        Err(why) => return Some(v("P5609", "plan.route", why)),
+    };
+    let graph = crate::problem::SkywayGraph::new(network).ok()?;
+    let context = crate::compose::Context::new(network, &graph, profile);
+    let report = match context.plan(request, &options) {
+        Ok(r) => r,
+        Err(e) => {
+            return Some(v(
+                "P5609",
+                "plan",
+                format!("the request cannot be planned again with this combination: {e}"),
+            ))
+        }
+    };
+    let hops = &report.plan.hops;
+    match hops.get(file.hop_index) {
+        Some(hop) if hop.path == file.path => None,
+        Some(hop) => Some(v(
+            "P5609",
+            "hop_index",
+            format!(
+                "hop {} of the plan ({}/{}/{}) flies {}, the file's path is {}",
+                file.hop_index,
+                options.sharing,
+                options.positioning,
+                options.route,
+                hop.path.join(" - "),
+                file.path.join(" - ")
+            ),
+        )),
+        None => Some(v(
+            "P5609",
+            "hop_index",
+            format!(
+                "the plan ({}/{}/{}) has {} hop(s), not a hop {}",
+                options.sharing,
+                options.positioning,
+                options.route,
+                hops.len(),
+                file.hop_index
+            ),
+        )),
+    }
 }

@@ -1,8 +1,8 @@
 //! One hop of a request's plan taken out as a hop file: the problem `swarmplan eaas` studies and
 //! the Python package's `Instance.hop` returns.
 
-use super::{Context, PlanOptions, RequestReport};
-use crate::eaas::hop_file::{EndPads, HopFile, HOP_FILE_SCHEMA_VERSION};
+use super::{Context, PlanOptions, RequestReport, RouteMethod};
+use crate::eaas::hop_file::{EndPads, HopFile, HopPlan, HOP_FILE_SCHEMA_VERSION};
 use crate::eaas::milp::Objective;
 use crate::error::{Error, Result};
 use crate::problem::Request;
@@ -68,7 +68,35 @@ impl Context {
             profile: Some(profile_name.to_string()),
             end,
             made_on: Some(self.fingerprint().clone()),
+            plan: Some(HopPlan::from(&report.options)),
             hop: problem,
+        })
+    }
+}
+
+impl From<&PlanOptions> for HopPlan {
+    fn from(o: &PlanOptions) -> HopPlan {
+        HopPlan {
+            sharing: o.sharing,
+            positioning: o.positioning,
+            route: o.route.to_string(),
+            support: o.support,
+        }
+    }
+}
+
+impl TryFrom<&HopPlan> for PlanOptions {
+    type Error = String;
+
+    /// The combination a hop file records; the error names a route this version does not have.
+    fn try_from(p: &HopPlan) -> std::result::Result<PlanOptions, String> {
+        let route: RouteMethod = serde_json::from_value(serde_json::Value::from(p.route.as_str()))
+            .map_err(|_| format!("`{}` is not a route method", p.route))?;
+        Ok(PlanOptions {
+            sharing: p.sharing,
+            positioning: p.positioning,
+            route,
+            support: p.support,
         })
     }
 }

@@ -51,8 +51,30 @@ pub struct HopFile {
     /// The network and profile the hop was taken from, when known.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub made_on: Option<crate::problem::fingerprint::Fingerprint>,
+    /// The plan the hop was taken from: `hop_index` is the hop's index in the plan of the
+    /// request made with this combination (`check --hop-file` plans it again and compares the
+    /// path). Absent for a hop of a route the file does not record (`evaluate`'s stops, a hop
+    /// built by hand): `hop_index` is then the hop's place in that route, and is not checked.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub plan: Option<HopPlan>,
     /// The hop's sharing problem.
     pub hop: HopProblem,
+}
+
+/// The method combination of the plan a hop file's hop was taken from, by the names the
+/// command line and plan files use (`route`: a `RouteMethod`'s name, such as `sequential`).
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HopPlan {
+    /// The sharing policy of the plan.
+    pub sharing: super::SharingPolicy,
+    /// The support drones' initial positioning.
+    pub positioning: crate::precompose::Positioning,
+    /// The route method.
+    pub route: String,
+    /// Support drones fixed by the user, if any.
+    #[serde(default)]
+    pub support: Option<usize>,
 }
 
 impl HopFile {

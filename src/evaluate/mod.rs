@@ -423,6 +423,7 @@ pub fn evaluate_route(
             profile: Some(context.profile().name.clone()),
             end,
             made_on: Some(context.fingerprint().clone()),
+            plan: None,
             hop: problem,
         };
         let written = schedule(&file)?;
