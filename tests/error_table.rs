@@ -1,7 +1,8 @@
 //! The README's error table is complete: every error code the code can return (`E` and four
-//! digits, in the code of `src/` and `python/src/`, comments aside) is covered by a row of the
-//! table under "| codes | what |" (a code, a range `E0003–E0006` or a family `E39xx`), and every
-//! code the table names alone is one the code returns.
+//! digits, and the checker's `C` and four digits, in the code of `src/` and `python/src/`,
+//! comments aside) is covered by a row of the table under "| codes | what |" (a code, a range
+//! `E0003–E0006` or a family `E39xx`), and every code the table names alone is one the code
+//! returns.
 
 mod common;
 
@@ -9,21 +10,35 @@ use common::rust_files;
 use std::collections::BTreeSet;
 use std::path::Path;
 
-/// Every `E` followed by exactly four digits in `text`.
+/// The letters of the codes the table lists: `E` (errors) and `C` (the hop checker's rules).
+const LETTERS: [u8; 2] = [b'E', b'C'];
+
+/// A code as a number: its letter times 10,000 plus its digits, so that `C3006` and `E3006`
+/// differ and a range of one letter holds only that letter's codes.
+fn code_number(letter: u8, digits: u32) -> u32 {
+    u32::from(letter) * 10_000 + digits
+}
+
+/// A code number as written.
+fn code_name(code: u32) -> String {
+    format!("{}{:04}", char::from((code / 10_000) as u8), code % 10_000)
+}
+
+/// Every `E` or `C` followed by exactly four digits in `text`.
 fn codes_in(text: &str) -> Vec<u32> {
     let b = text.as_bytes();
     let mut out = Vec::new();
     for i in 0..b.len() {
         let digits = |k: usize| b.get(i + k).is_some_and(u8::is_ascii_digit);
         let before_ok = i == 0 || !b[i - 1].is_ascii_alphanumeric();
-        if b[i] == b'E' && before_ok && (1..=4).all(digits) && !digits(5) {
-            out.push(text[i + 1..i + 5].parse().unwrap());
+        if LETTERS.contains(&b[i]) && before_ok && (1..=4).all(digits) && !digits(5) {
+            out.push(code_number(b[i], text[i + 1..i + 5].parse().unwrap()));
         }
     }
     out
 }
 
-/// The codes the code returns: every `E####` outside `//` comments.
+/// The codes the code returns: every `E####` and `C####` outside `//` comments.
 fn codes_in_the_code() -> BTreeSet<u32> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let mut files = Vec::new();
@@ -65,7 +80,9 @@ fn readme_table() -> Table {
                 let (a, b) = (codes_in(a), codes_in(b));
                 table.ranges.push((a[0], b[0]));
             } else if let Some(prefix) = item.strip_prefix('E').and_then(|s| s.strip_suffix("xx")) {
-                table.families.push(prefix.parse::<u32>().unwrap() * 100);
+                table
+                    .families
+                    .push(code_number(b'E', prefix.parse::<u32>().unwrap() * 100));
             } else {
                 let found = codes_in(item);
                 assert_eq!(
@@ -100,7 +117,7 @@ fn every_error_code_is_in_the_readme_table_and_back() {
     let missing: Vec<String> = code
         .iter()
         .filter(|&&c| !table.covers(c))
-        .map(|c| format!("E{c:04}"))
+        .map(|&c| code_name(c))
         .collect();
     assert!(
         missing.is_empty(),
@@ -111,7 +128,7 @@ fn every_error_code_is_in_the_readme_table_and_back() {
         .iter()
         .chain(table.ranges.iter().flat_map(|(a, b)| [a, b]))
         .filter(|c| !code.contains(c))
-        .map(|c| format!("E{c:04}"))
+        .map(|&c| code_name(c))
         .collect();
     assert!(
         unknown.is_empty(),
@@ -122,7 +139,12 @@ fn every_error_code_is_in_the_readme_table_and_back() {
 #[test]
 fn the_code_reader_finds_codes_and_only_codes() {
     assert_eq!(
-        codes_in(r#"Error::invalid("E0123", x) [E4567] E12345 XE1111 E12"#),
-        vec![123, 4567]
+        codes_in(r#"Error::invalid("E0123", x) [E4567] E12345 XE1111 E12 "C3006" P5001"#),
+        vec![
+            code_number(b'E', 123),
+            code_number(b'E', 4567),
+            code_number(b'C', 3006)
+        ]
     );
+    assert_eq!(code_name(code_number(b'C', 3006)), "C3006");
 }

@@ -881,7 +881,9 @@ fn a_route_without_sharing_on_flat_stop_has_the_hand_computed_delivery_time_and_
     assert_close(reference.dt_min.unwrap(), FLAT_STOP_DT_MIN, "reference dt");
     assert_eq!(reference.kind, ReferenceKind::Optimal);
     assert_eq!(reference.reorder, Reorder::Paper);
-    assert!(r.gap.unwrap().abs() <= 1e-6, "gap {:?}", r.gap);
+    let gap = r.gap.expect("a gap");
+    assert_eq!(gap.reference, ReferenceKind::Optimal);
+    assert!(gap.relative.unwrap().abs() <= 1e-6, "gap {gap:?}");
     assert_eq!(r.gap_label, None);
 }
 
@@ -909,7 +911,7 @@ fn pb_schedules_on_flat_stop_give_the_hand_computed_overshared_stop() {
     assert_close(r.dt_min.unwrap(), 27.28, "dt");
     assert_ne!(r.mode, Reorder::Free);
     assert_close(
-        r.gap.unwrap(),
+        r.gap.and_then(|g| g.relative).unwrap(),
         (27.28 - FLAT_STOP_DT_MIN) / FLAT_STOP_DT_MIN,
         "gap",
     );
@@ -1197,7 +1199,7 @@ fn paper_195_plans_fed_back_keep_their_delivery_times_and_never_beat_the_joint_o
         );
         assert_eq!(r.support_drones, pb.support_drones, "{id}");
         assert_ne!(r.mode, Reorder::Free, "{id}");
-        let gap = r.gap.expect("a gap");
+        let gap = r.gap.and_then(|g| g.relative).expect("a gap");
         assert!(
             gap >= -1e-9,
             "{id}: PB route below the joint optimum, gap {gap}"
@@ -1211,7 +1213,7 @@ fn paper_195_plans_fed_back_keep_their_delivery_times_and_never_beat_the_joint_o
 
         // The joint optimum's own route: gap 0.
         let r = fed_back(&context, request, &joint.plan, &format!("{id} joint"));
-        let gap = r.gap.expect("a gap");
+        let gap = r.gap.and_then(|g| g.relative).expect("a gap");
         assert!(gap.abs() <= 1e-6, "{id}: joint optimum fed back, gap {gap}");
     }
     // Not vacuous: PB's routes share, and the joint optimum beats some.

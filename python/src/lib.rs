@@ -1,24 +1,25 @@
 //! `swarmplan._swarmplan`: the Python binding of the swarmplan crate. Every result is the
 //! crate's own serde data turned into Python objects (the same fields as the command line's
-//! `--json`); every error a `swarmplan.SwarmplanError` carrying the crate's code. Long solves run
-//! on a worker thread with the GIL released, and Ctrl-C returns at once (see [`run_detached`]).
+//! `--json`); every error a `swarmplan.SwarmplanError` carrying the crate's code, its field and
+//! texts in the package's names (see [`in_python_words`]). Long solves run on a worker thread
+//! with the GIL released, and Ctrl-C returns at once (see [`run_detached`]).
 
 use clap::Parser;
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList};
+use pyo3::types::{PyBool, PyBytes, PyDict, PyList, PyString};
 use pythonize::{depythonize, pythonize};
 use serde::Serialize;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
 use std::time::Duration;
 use swarmplan::bench::{run_grid, GridRun};
-use swarmplan::compose::{Context, HopPaths, PlanOptions, RequestReport};
+use swarmplan::compose::{Context, HopPaths, PlanOptions, RequestReport, RouteMethod};
 use swarmplan::eaas::compare::{label_gaps, run_method, HopMethod};
 use swarmplan::eaas::exact_hop::ExactChoices;
 use swarmplan::eaas::hop_file::{parse_hop_file, HopFile};
 use swarmplan::eaas::milp::{MilpOptions, Reorder};
-use swarmplan::eaas::PolicyOptions;
+use swarmplan::eaas::{PolicyOptions, SharingPolicy};
 use swarmplan::error::{Error, Violation};
 use swarmplan::evaluate::{self, WrittenTransfer};
 use swarmplan::precompose::Positioning;
@@ -72,7 +73,12 @@ fn to_py_err(py: Python<'_>, e: Error) -> PyErr {
             )]
         }
     };
-    let err = SwarmplanError::new_err(e.to_string());
+    let violations: Vec<Violation> = violations.into_iter().map(in_python_words).collect();
+    let message = match &e {
+        Error::Invalid(_) => Error::Invalid(violations.clone()).to_string(),
+        other => in_python_text(&other.to_string()),
+    };
+    let err = SwarmplanError::new_err(message);
     let value = err.value(py);
     let first = violations.first();
     let set = || -> PyResult<()> {
@@ -87,6 +93,190 @@ fn to_py_err(py: Python<'_>, e: Error) -> PyErr {
         Ok(()) => err,
         Err(other) => other,
     }
+}
+
+/// The Python name of a command-line option of the core's messages: the keyword of the same
+/// meaning (`--hop-time-limit` is `hop_time_limit_s`, `--hop` the hop's `index`, `--count` the
+/// number of `requests` of `Instance.generate`, `--request-limit` the `limit` of `bench`), else
+/// the option with underscores (`--hop-paths` is `hop_paths`).
+fn python_name(flag: &str) -> String {
+    match flag {
+        "hop-time-limit" => "hop_time_limit_s".into(),
+        "time-limit" => "time_limit_s".into(),
+        "hop" => "index".into(),
+        "count" => "requests".into(),
+        "request-limit" => "limit".into(),
+        other => other.replace('-', "_"),
+    }
+}
+
+/// The names a choice takes (`"pb"`, `"optimal"`), for the options whose value a message
+/// quotes.
+fn choice_names(flag: &str) -> Vec<String> {
+    match flag {
+        "route" => value_names::<RouteMethod>(),
+        "sharing" => value_names::<SharingPolicy>(),
+        "positioning" => value_names::<Positioning>(),
+        "hop-paths" => value_names::<HopPaths>(),
+        "reorder" => value_names::<Reorder>(),
+        "backend" => swarmplan::solver::known_backend_names()
+            .map(String::from)
+            .collect(),
+        _ => Vec::new(),
+    }
+}
+
+/// A message of the core in the package's words: every command-line option outside backticks
+/// becomes its keyword, with its value when one follows (`--route optimal` is
+/// `route="optimal"`, `--support 32` is `support=32`); commands in backticks stay as written.
+fn in_python_text(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut quoted = false;
+    let mut rest = text;
+    while let Some(c) = rest.chars().next() {
+        if c == '`' {
+            quoted = !quoted;
+        }
+        let after = &rest[c.len_utf8()..];
+        let flag_len = after
+            .strip_prefix('-')
+            .map(|f| {
+                f.bytes()
+                    .take_while(|b| b.is_ascii_lowercase() || *b == b'-')
+                    .count()
+            })
+            .unwrap_or(0);
+        let starts_word = !out.ends_with(|p: char| p.is_alphanumeric() || p == '-');
+        if quoted || c != '-' || flag_len == 0 || !starts_word {
+            out.push(c);
+            rest = after;
+            continue;
+        }
+        let flag = after[1..1 + flag_len].trim_end_matches('-');
+        rest = &after[1 + flag.len()..];
+        let name = python_name(flag);
+        let word_len = rest
+            .strip_prefix(' ')
+            .map(|w| {
+                w.bytes()
+                    .take_while(|b| b.is_ascii_alphanumeric() || *b == b'-' || *b == b'.')
+                    .count()
+            })
+            .unwrap_or(0);
+        let word = if word_len > 0 {
+            &rest[1..1 + word_len]
+        } else {
+            ""
+        };
+        let word = word.trim_end_matches('.');
+        if !word.is_empty() && choice_names(flag).iter().any(|n| n == word) {
+            out.push_str(&format!("{name}=\"{word}\""));
+            rest = &rest[1 + word.len()..];
+        } else if !word.is_empty() && word.parse::<f64>().is_ok() {
+            out.push_str(&format!("{name}={word}"));
+            rest = &rest[1 + word.len()..];
+        } else {
+            out.push_str(&name);
+        }
+    }
+    out
+}
+
+/// A violation of the core in the package's words: its field the keyword concerned
+/// (`--route optimal` is `route`), its cause and action without command-line options
+/// ([`in_python_text`]), and the actions that only a command line can follow replaced.
+fn in_python_words(v: Violation) -> Violation {
+    let field = match (v.code, v.field.as_str()) {
+        ("E4110", "hop") => "index".to_string(),
+        (_, f) if f.starts_with("--") => {
+            let flag = f[2..].split(' ').next().unwrap_or("");
+            python_name(flag)
+        }
+        (_, f) => in_python_text(f),
+    };
+    let action = match v.code {
+        "E4113" => "give reorder=\"paper\" or \"none\": a free schedule is not always a set of \
+                    transfers a plan can carry (Hop.solve(reorder=\"free\") studies one hop)"
+            .to_string(),
+        "E4117" => "give reorder=\"paper\" or \"none\" (fewer moves); the largest number of \
+                    configurations is the command line's (swarmplan eaas --max-configurations)"
+            .to_string(),
+        "E0011" => "install the package built with its default features (a MILP backend), or \
+                    use a method without a MILP (sharing=\"pb\" or \"fb\"; Hop.solve with \
+                    \"pb\", \"fb\", \"fluid\" or \"fair\")"
+            .to_string(),
+        _ => in_python_text(&v.action),
+    };
+    Violation {
+        code: v.code,
+        field,
+        cause: in_python_text(&v.cause),
+        action,
+    }
+}
+
+/// A whole-number argument (an index, a count, a limit, a seed) as given, read by
+/// [`Whole::get`] with its Python name. PyO3's own conversion would raise a bare
+/// `OverflowError` for a negative number and take `True` as 1; here both are E0026 naming the
+/// argument. Any integer type is taken (`int`, numpy's); another type is a `TypeError`.
+#[derive(Debug, Clone)]
+struct Whole(std::result::Result<u64, String>);
+
+impl Whole {
+    /// The default of a signature.
+    const fn of(n: u64) -> Whole {
+        Whole(Ok(n))
+    }
+
+    /// The number, or E0026 naming `name` with what it should be (`what`, such as "a hop
+    /// index from 0").
+    fn get(self, py: Python<'_>, name: &str, what: &str) -> PyResult<u64> {
+        self.0
+            .map_err(|cause| to_py_err(py, invalid("E0026", name, cause, &format!("give {what}"))))
+    }
+
+    /// [`Whole::get`] as an index or a count.
+    fn index(self, py: Python<'_>, name: &str, what: &str) -> PyResult<usize> {
+        let n = self.get(py, name, what)?;
+        usize::try_from(n).map_err(|_| {
+            to_py_err(
+                py,
+                invalid(
+                    "E0026",
+                    name,
+                    format!("{n} is too large"),
+                    &format!("give {what}"),
+                ),
+            )
+        })
+    }
+}
+
+impl<'a, 'py> FromPyObject<'a, 'py> for Whole {
+    type Error = PyErr;
+
+    fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Whole> {
+        Ok(Whole(whole_of(&obj)?))
+    }
+}
+
+/// A Python integer as a whole number: `Ok(Err(cause))` for a bool, a negative number or one
+/// above `u64`; `Err` (a `TypeError`) for a value that is no integer.
+fn whole_of(obj: &Bound<'_, PyAny>) -> PyResult<std::result::Result<u64, String>> {
+    let type_name = obj.get_type().name()?.to_string();
+    if obj.is_instance_of::<PyBool>() || matches!(type_name.as_str(), "bool" | "bool_") {
+        return Ok(Err(format!(
+            "{} is a bool, not a whole number",
+            obj.repr()?
+        )));
+    }
+    let int = obj.py().import("operator")?.call_method1("index", (obj,))?;
+    if int.lt(0)? {
+        return Ok(Err(format!("{int} is negative")));
+    }
+    Ok(int
+        .extract::<u64>()
+        .map_err(|_| format!("{int} is above 2**64 - 1")))
 }
 
 /// Runs `job` on a worker thread with the GIL released, polling every 50 ms for Ctrl-C (a
@@ -168,13 +358,18 @@ fn read<T: serde::de::DeserializeOwned>(
     })
 }
 
+/// The names of a choice (`"pb"`, `"location-aware"`).
+fn value_names<T: clap::ValueEnum>() -> Vec<String> {
+    T::value_variants()
+        .iter()
+        .filter_map(|v| v.to_possible_value().map(|p| p.get_name().to_string()))
+        .collect()
+}
+
 /// A choice by its command-line name (`"pb"`, `"location-aware"`), E0026 with the names.
 fn choice<T: clap::ValueEnum>(py: Python<'_>, field: &str, name: &str) -> PyResult<T> {
     T::from_str(name, false).map_err(|_| {
-        let names: Vec<String> = T::value_variants()
-            .iter()
-            .filter_map(|v| v.to_possible_value().map(|p| p.get_name().to_string()))
-            .collect();
+        let names = value_names::<T>();
         to_py_err(
             py,
             invalid(
@@ -187,16 +382,24 @@ fn choice<T: clap::ValueEnum>(py: Python<'_>, field: &str, name: &str) -> PyResu
     })
 }
 
-/// A MILP backend by name; one not in this build says which feature builds it.
+/// A MILP backend by name; one swarmplan knows but this package was built without is E0012,
+/// saying how to build the package with it.
 fn backend_of(py: Python<'_>, name: &str) -> PyResult<MilpBackend> {
     match swarmplan::solver::backend_not_built(name) {
-        Some(cause) => Err(to_py_err(
+        Some(_) => Err(to_py_err(
             py,
             invalid(
-                "E0026",
+                "E0012",
                 "backend",
-                cause,
-                "give microlp, or build the package with the highs feature",
+                format!(
+                    "this build of the swarmplan package has no {name} backend (it was built \
+                     without the feature {name})"
+                ),
+                &format!(
+                    "give backend=\"microlp\", or install the package from a clone of swarmplan \
+                     with the feature: `MATURIN_PEP517_ARGS=\"--features {name}\" pip install .` \
+                     (building HiGHS needs cmake and libclang: apt-get install cmake libclang-dev)"
+                ),
             ),
         )),
         None => choice(py, "backend", name),
@@ -447,18 +650,24 @@ impl Instance {
     /// A seeded synthetic network and request set, as `swarmplan generate network` and
     /// `generate requests` write them (the same seed gives the same instance).
     #[staticmethod]
-    #[pyo3(signature = (seed, nodes = 195, spacing_m = 500.0, requests = 100, requests_seed = None, max_package_kg = 1.4, profile = None))]
+    #[pyo3(signature = (seed, nodes = Whole::of(195), spacing_m = 500.0, requests = Whole::of(100), requests_seed = None, max_package_kg = 1.4, profile = None))]
     #[allow(clippy::too_many_arguments)]
     fn generate(
         py: Python<'_>,
-        seed: u64,
-        nodes: usize,
+        seed: Whole,
+        nodes: Whole,
         spacing_m: f64,
-        requests: usize,
-        requests_seed: Option<u64>,
+        requests: Whole,
+        requests_seed: Option<Whole>,
         max_package_kg: f64,
         profile: Option<&str>,
     ) -> PyResult<Instance> {
+        let seed = seed.get(py, "seed", "a seed from 0 to 2**64 - 1")?;
+        let nodes = nodes.index(py, "nodes", "a node count")?;
+        let requests = requests.index(py, "requests", "a request count")?;
+        let requests_seed = requests_seed
+            .map(|s| s.get(py, "requests_seed", "a seed from 0 to 2**64 - 1"))
+            .transpose()?;
         use swarmplan::generate::{
             generate_network, generate_requests, NetworkParams, RequestParams,
         };
@@ -538,7 +747,7 @@ impl Instance {
 
     /// Plans one request, as `swarmplan solve --json` does, and returns the same document as a
     /// dict. `request` is an id or a dict with source, destination and packages_kg.
-    #[pyo3(signature = (request, sharing = "pb", positioning = "location-aware", route = "sequential", support = None, hop_paths = "rule", node_limit = 20_000_000, gap = false, backend = "microlp".to_string(), hop_time_limit_s = None, hop_node_limit = 20_000, period_min = 1.0, reorder = "paper".to_string()))]
+    #[pyo3(signature = (request, sharing = "pb", positioning = "location-aware", route = "sequential", support = None, hop_paths = "rule", node_limit = Whole::of(20_000_000), gap = false, backend = "microlp".to_string(), hop_time_limit_s = None, hop_node_limit = Whole::of(20_000), period_min = 1.0, reorder = "paper".to_string()))]
     #[allow(clippy::too_many_arguments)]
     fn plan(
         &self,
@@ -547,16 +756,19 @@ impl Instance {
         sharing: &str,
         positioning: &str,
         route: &str,
-        support: Option<usize>,
+        support: Option<Whole>,
         hop_paths: &str,
-        node_limit: u64,
+        node_limit: Whole,
         gap: bool,
         backend: String,
         hop_time_limit_s: Option<f64>,
-        hop_node_limit: u64,
+        hop_node_limit: Whole,
         period_min: f64,
         reorder: String,
     ) -> PyResult<Py<PyAny>> {
+        let support = support_arg(py, support)?;
+        let node_limit = node_limit.get(py, "node_limit", NODE_LIMIT_WHAT)?;
+        let hop_node_limit = hop_node_limit.get(py, "hop_node_limit", NODE_LIMIT_WHAT)?;
         let request = Instance::resolve_request(self, py, request)?;
         let options = PlanOptions {
             sharing: choice(py, "sharing", sharing)?,
@@ -617,18 +829,20 @@ impl Instance {
 
     /// Hop `index` of a request's plan (as `swarmplan eaas` takes it: by default the plan of
     /// PB sharing, location-aware positioning and Algorithm 1).
-    #[pyo3(signature = (request, index = 0, sharing = "pb", positioning = "location-aware", route = "sequential", support = None))]
+    #[pyo3(signature = (request, index = Whole::of(0), sharing = "pb", positioning = "location-aware", route = "sequential", support = None))]
     #[allow(clippy::too_many_arguments)]
     fn hop(
         &self,
         py: Python<'_>,
         request: &Bound<'_, PyAny>,
-        index: usize,
+        index: Whole,
         sharing: &str,
         positioning: &str,
         route: &str,
-        support: Option<usize>,
+        support: Option<Whole>,
     ) -> PyResult<Hop> {
+        let index = index.index(py, "index", "a hop index from 0")?;
+        let support = support_arg(py, support)?;
         let request = Instance::resolve_request(self, py, request)?;
         let options = PlanOptions {
             sharing: choice(py, "sharing", sharing)?,
@@ -653,7 +867,7 @@ impl Instance {
     /// time at every stop, and measures it against the joint optimum of the same swarm
     /// (`reference=True`). `policy` is a callable `policy(hop) -> schedule` called with each
     /// hop in turn (a `Hop`), or a list of schedules, one per hop.
-    #[pyo3(signature = (request, stops, policy, positioning = "location-aware", support = None, reference = true, reorder = "paper".to_string(), backend = "microlp".to_string(), hop_time_limit_s = None, hop_node_limit = 20_000, node_limit = 20_000_000))]
+    #[pyo3(signature = (request, stops, policy, positioning = "location-aware", support = None, reference = true, reorder = "paper".to_string(), backend = "microlp".to_string(), hop_time_limit_s = None, hop_node_limit = Whole::of(20_000), node_limit = Whole::of(20_000_000)))]
     #[allow(clippy::too_many_arguments)]
     fn evaluate_route(
         &self,
@@ -662,14 +876,17 @@ impl Instance {
         stops: Vec<String>,
         policy: &Bound<'_, PyAny>,
         positioning: &str,
-        support: Option<usize>,
+        support: Option<Whole>,
         reference: bool,
         reorder: String,
         backend: String,
         hop_time_limit_s: Option<f64>,
-        hop_node_limit: u64,
-        node_limit: u64,
+        hop_node_limit: Whole,
+        node_limit: Whole,
     ) -> PyResult<Py<PyAny>> {
+        let support = support_arg(py, support)?;
+        let hop_node_limit = hop_node_limit.get(py, "hop_node_limit", NODE_LIMIT_WHAT)?;
+        let node_limit = node_limit.get(py, "node_limit", NODE_LIMIT_WHAT)?;
         let request = Instance::resolve_request(self, py, request)?;
         let positioning: Positioning = choice(py, "positioning", positioning)?;
         let exact = ExactKw {
@@ -732,15 +949,7 @@ impl Instance {
                     }
                 }
             };
-            schedule_of(&written).map_err(|cause| {
-                invalid(
-                    "E0026",
-                    &field,
-                    cause,
-                    "give a list of transfers: dicts (or tuples) of support, consumer, start_min, \
-                     end_min, and optionally consumer_slot and energy_mah",
-                )
-            })
+            schedule_of(&written).map_err(|cause| invalid("E0026", &field, cause, TRANSFERS_ACTION))
         };
         let evaluation = evaluate::evaluate_route(
             &context,
@@ -802,54 +1011,141 @@ fn plan_with_gap(
     Ok(report)
 }
 
-/// A schedule written in Python: a list of dicts (`support`, `consumer`, `start_min`,
-/// `end_min`, optional `consumer_slot`, `energy_mah`) or tuples `(support, consumer, start_min,
-/// end_min[, consumer_slot])`; the cause when it cannot be read.
+/// A schedule written in Python: a sequence of transfers, each a dict (`support`, `consumer`,
+/// `start_min`, `end_min`, optional `consumer_slot` and `energy_mah`) or a sequence of numbers
+/// in the order `(support, consumer, start_min, end_min[, consumer_slot])` (a tuple, a list, a
+/// numpy row); the cause, naming `schedule[i]`, when it cannot be read.
 fn schedule_of(obj: &Bound<'_, PyAny>) -> std::result::Result<Vec<WrittenTransfer>, String> {
+    if obj.is_instance_of::<PyDict>() || is_text(obj) {
+        return Err("the schedule is not a sequence of transfers".into());
+    }
     let items: Vec<Bound<'_, PyAny>> = obj
         .try_iter()
         .and_then(|it| it.collect::<PyResult<Vec<_>>>())
-        .map_err(|_| "the schedule is not a list".to_string())?;
-    if obj.is_instance_of::<PyDict>() || obj.extract::<String>().is_ok() {
-        return Err("the schedule is not a list".into());
-    }
-    let mut out = Vec::with_capacity(items.len());
-    for (i, item) in items.iter().enumerate() {
-        if item.is_instance_of::<PyDict>() {
-            out.push(
-                depythonize::<WrittenTransfer>(item)
-                    .map_err(|e| format!("transfers[{i}] cannot be read: {e}"))?,
-            );
-        } else if let Ok((support, consumer, start_min, end_min)) =
-            item.extract::<(usize, usize, f64, f64)>()
-        {
-            out.push(WrittenTransfer {
-                support,
-                consumer,
-                start_min,
-                end_min,
-                energy_mah: None,
-                consumer_slot: None,
-            });
-        } else if let Ok((support, consumer, start_min, end_min, slot)) =
-            item.extract::<(usize, usize, f64, f64, usize)>()
-        {
-            out.push(WrittenTransfer {
-                support,
-                consumer,
-                start_min,
-                end_min,
-                energy_mah: None,
-                consumer_slot: Some(slot),
-            });
-        } else {
-            return Err(format!(
-                "transfers[{i}] is neither a dict nor a tuple (support, consumer, start_min, \
-                 end_min[, consumer_slot]) of whole numbers and numbers"
-            ));
+        .map_err(|_| "the schedule is not a sequence of transfers".to_string())?;
+    items
+        .iter()
+        .enumerate()
+        .map(|(i, item)| transfer_of(item).map_err(|cause| format!("schedule[{i}]: {cause}")))
+        .collect()
+}
+
+/// Whether `obj` is text (a `str` or `bytes`), which iterates but is no sequence of numbers.
+fn is_text(obj: &Bound<'_, PyAny>) -> bool {
+    obj.is_instance_of::<PyString>() || obj.is_instance_of::<PyBytes>()
+}
+
+/// What to give for a schedule.
+const TRANSFERS_ACTION: &str = "give a list of transfers, each a dict of support, consumer, \
+     start_min, end_min (and optionally consumer_slot, energy_mah) or a sequence of numbers \
+     (support, consumer, start_min, end_min[, consumer_slot])";
+
+/// The names of a transfer's numbers, in the order of a transfer written as a sequence.
+const TRANSFER_ORDER: [&str; 5] = [
+    "support",
+    "consumer",
+    "start_min",
+    "end_min",
+    "consumer_slot",
+];
+
+/// One transfer: a dict, or a sequence of 4 or 5 numbers in [`TRANSFER_ORDER`].
+fn transfer_of(item: &Bound<'_, PyAny>) -> std::result::Result<WrittenTransfer, String> {
+    let shape = "a dict, or a sequence (support, consumer, start_min, end_min[, consumer_slot])";
+    if let Ok(dict) = item.cast::<PyDict>() {
+        let mut got: [Option<Bound<'_, PyAny>>; 6] = Default::default();
+        for (key, value) in dict.iter() {
+            let key: String = key
+                .extract()
+                .map_err(|_| format!("the key {key} is not a str"))?;
+            let at = TRANSFER_ORDER
+                .iter()
+                .chain(&["energy_mah"])
+                .position(|k| *k == key)
+                .ok_or_else(|| {
+                    format!(
+                        "unknown key `{key}`; the keys are support, consumer, start_min, \
+                         end_min, consumer_slot and energy_mah"
+                    )
+                })?;
+            got[at] = Some(value).filter(|v| !v.is_none());
         }
+        let need = |k: usize| {
+            got[k]
+                .as_ref()
+                .ok_or_else(|| format!("no `{}`", TRANSFER_ORDER[k]))
+        };
+        return Ok(WrittenTransfer {
+            support: index_in_transfer(need(0)?, "support")?,
+            consumer: index_in_transfer(need(1)?, "consumer")?,
+            start_min: number_in_transfer(need(2)?, "start_min")?,
+            end_min: number_in_transfer(need(3)?, "end_min")?,
+            consumer_slot: got[4]
+                .as_ref()
+                .map(|v| index_in_transfer(v, "consumer_slot"))
+                .transpose()?,
+            energy_mah: got[5]
+                .as_ref()
+                .map(|v| number_in_transfer(v, "energy_mah"))
+                .transpose()?,
+        });
     }
-    Ok(out)
+    if is_text(item) {
+        return Err(format!("is text, not {shape}"));
+    }
+    let numbers: Vec<Bound<'_, PyAny>> = item
+        .try_iter()
+        .and_then(|it| it.collect::<PyResult<Vec<_>>>())
+        .map_err(|_| format!("is neither {shape}"))?;
+    if !(4..=5).contains(&numbers.len()) {
+        return Err(format!(
+            "has {} numbers, not 4 or 5: (support, consumer, start_min, end_min[, consumer_slot])",
+            numbers.len()
+        ));
+    }
+    Ok(WrittenTransfer {
+        support: index_in_transfer(&numbers[0], "support")?,
+        consumer: index_in_transfer(&numbers[1], "consumer")?,
+        start_min: number_in_transfer(&numbers[2], "start_min")?,
+        end_min: number_in_transfer(&numbers[3], "end_min")?,
+        consumer_slot: numbers
+            .get(4)
+            .map(|v| index_in_transfer(v, "consumer_slot"))
+            .transpose()?,
+        energy_mah: None,
+    })
+}
+
+/// A drone or slot index of a transfer: a whole number >= 0 (an integer, or a float with no
+/// fraction, as a row of a numpy float array holds it), never a bool.
+fn index_in_transfer(v: &Bound<'_, PyAny>, name: &str) -> std::result::Result<usize, String> {
+    let whole = match whole_of(v) {
+        Ok(w) => w,
+        Err(_) => match v.extract::<f64>() {
+            Ok(x) if x.fract() == 0.0 && x >= 0.0 && x < 2f64.powi(53) => Ok(x as u64),
+            Ok(x) => Err(format!("{x} is not a whole number >= 0")),
+            Err(_) => Err(format!("{} is not a number", repr_of(v))),
+        },
+    };
+    whole
+        .and_then(|n| usize::try_from(n).map_err(|_| format!("{n} is too large")))
+        .map_err(|cause| format!("{name}: {cause}"))
+}
+
+/// A time or an energy of a transfer: a number (NaN and infinities pass, for the checker to
+/// refuse with its code), never a bool.
+fn number_in_transfer(v: &Bound<'_, PyAny>, name: &str) -> std::result::Result<f64, String> {
+    if v.is_instance_of::<PyBool>() {
+        return Err(format!("{name}: {} is a bool, not a number", repr_of(v)));
+    }
+    v.extract::<f64>()
+        .map_err(|_| format!("{name}: {} is not a number", repr_of(v)))
+}
+
+fn repr_of(v: &Bound<'_, PyAny>) -> String {
+    v.repr()
+        .map(|r| r.to_string())
+        .unwrap_or_else(|_| "the value".into())
 }
 
 /// One hop's in-flight sharing problem: its legs (durations, consumption rates per drone and
@@ -894,6 +1190,60 @@ fn milp_options(
         time_limit_s: time_limit_s.unwrap_or(f64::INFINITY),
         node_limit,
     })
+}
+
+impl Hop {
+    /// The rows of `methods` on the hop, their gaps labelled against the best reference
+    /// among them when `label`.
+    fn rows(
+        &self,
+        py: Python<'_>,
+        methods: Vec<HopMethod>,
+        milp: MilpOptions,
+        label: bool,
+    ) -> PyResult<Py<PyAny>> {
+        let file = self.file.clone();
+        let readings = self.readings;
+        let rows = run_detached(
+            py,
+            move || {
+                let objective = file.objective();
+                let mut rows = Vec::new();
+                for m in methods {
+                    rows.push(run_method(&file.hop, &objective, m, &milp, &readings)?);
+                }
+                if label {
+                    label_gaps(&mut rows, &file.hop, &objective, milp.reorder);
+                }
+                Ok(rows)
+            },
+            |_| Ok(()),
+        )?;
+        py_of(py, &rows)
+    }
+}
+
+/// The search-node limit's description in its errors.
+const NODE_LIMIT_WHAT: &str = "a number of search nodes (a whole number >= 0)";
+
+/// An optional node limit, checked ([`Whole`]).
+fn node_limit_arg(py: Python<'_>, node_limit: Option<Whole>) -> PyResult<Option<u64>> {
+    node_limit
+        .map(|n| n.get(py, "node_limit", NODE_LIMIT_WHAT))
+        .transpose()
+}
+
+/// An optional number of support drones, checked ([`Whole`]).
+fn support_arg(py: Python<'_>, support: Option<Whole>) -> PyResult<Option<usize>> {
+    support
+        .map(|n| {
+            n.index(
+                py,
+                "support",
+                "a number of support drones from 0 to 32, or None",
+            )
+        })
+        .transpose()
 }
 
 #[pymethods]
@@ -1061,9 +1411,11 @@ impl Hop {
         swarmplan::eaas::travel_time_min(&self.file.hop)
     }
 
-    /// The moves of a re-ordering mode (`none` or `paper`): every `(support, consumer,
-    /// consumer_slot, partner)` a transfer may use, `partner` the delivery drone holding the
-    /// consumer's slot meanwhile (`None` when the consumer stays in its own slot).
+    /// The moves of a re-ordering mode (`none` or `paper`): every move a transfer may use, as a
+    /// dict with keys `support`, `consumer`, `consumer_slot` and `partner`, `partner` the
+    /// delivery drone holding the consumer's slot meanwhile (`None` when the consumer stays in
+    /// its own slot). A transfer written as a sequence takes another order: `(support,
+    /// consumer, start_min, end_min[, consumer_slot])`.
     #[pyo3(signature = (reorder = "paper"))]
     fn moves(&self, py: Python<'_>, reorder: &str) -> PyResult<Py<PyAny>> {
         let mode: Reorder = choice(py, "reorder", reorder)?;
@@ -1095,7 +1447,16 @@ impl Hop {
     /// `milp`, `fluid`, `fair` solve a model), as one row of `swarmplan eaas --json`: status,
     /// feasible, objective, bound, epsilon, grid step, schedule (`transfers`). The same defaults
     /// as `swarmplan eaas`: `paper` re-ordering, 60 s per solve, no node limit.
-    #[pyo3(signature = (method = "continuous", reorder = "paper", time_limit_s = Some(60.0), node_limit = None, period_min = 1.0, backend = "microlp"))]
+    ///
+    /// `gap` is `{"relative", "reference"}` as everywhere in the package: with `reference=True`
+    /// (the default) the row of `none`, `pb`, `fb`, `milp` or `fair` is measured against the
+    /// continuous model of the same `reorder` mode, solved alongside with the same limits (as
+    /// `swarmplan eaas --methods M,continuous` measures it). `gap` is `None` for `continuous`
+    /// itself (it is the reference) and for `fluid` (a bound, not a schedule), with
+    /// `reference=False`, when the continuous model gives no value within its limits, and with
+    /// `gap_label` `different_policy` for a heuristic schedule that swaps slots under
+    /// `reorder="none"`.
+    #[pyo3(signature = (method = "continuous", reorder = "paper", time_limit_s = Some(60.0), node_limit = None, period_min = 1.0, backend = "microlp", reference = true))]
     #[allow(clippy::too_many_arguments)]
     fn solve(
         &self,
@@ -1103,20 +1464,21 @@ impl Hop {
         method: &str,
         reorder: &str,
         time_limit_s: Option<f64>,
-        node_limit: Option<u64>,
+        node_limit: Option<Whole>,
         period_min: f64,
         backend: &str,
+        reference: bool,
     ) -> PyResult<Py<PyAny>> {
-        let rows = self.compare(
-            py,
-            vec![method.to_string()],
-            reorder,
-            time_limit_s,
-            node_limit,
-            period_min,
-            backend,
-            false,
-        )?;
+        let method: HopMethod = choice(py, "method", method)?;
+        let node_limit = node_limit_arg(py, node_limit)?;
+        let milp = milp_options(py, reorder, time_limit_s, node_limit, period_min, backend)?;
+        let measured = reference && !matches!(method, HopMethod::Continuous | HopMethod::Fluid);
+        let methods = if measured {
+            vec![method, HopMethod::Continuous]
+        } else {
+            vec![method]
+        };
+        let rows = self.rows(py, methods, milp, measured)?;
         let first = rows.bind(py).get_item(0)?;
         Ok(first.unbind())
     }
@@ -1131,7 +1493,7 @@ impl Hop {
         methods: Vec<String>,
         reorder: &str,
         time_limit_s: Option<f64>,
-        node_limit: Option<u64>,
+        node_limit: Option<Whole>,
         period_min: f64,
         backend: &str,
         label: bool,
@@ -1140,25 +1502,9 @@ impl Hop {
             .iter()
             .map(|m| choice(py, "method", m))
             .collect::<PyResult<_>>()?;
+        let node_limit = node_limit_arg(py, node_limit)?;
         let milp = milp_options(py, reorder, time_limit_s, node_limit, period_min, backend)?;
-        let file = self.file.clone();
-        let readings = self.readings;
-        let rows = run_detached(
-            py,
-            move || {
-                let objective = file.objective();
-                let mut rows = Vec::new();
-                for m in methods {
-                    rows.push(run_method(&file.hop, &objective, m, &milp, &readings)?);
-                }
-                if label {
-                    label_gaps(&mut rows, &file.hop, &objective, milp.reorder);
-                }
-                Ok(rows)
-            },
-            |_| Ok(()),
-        )?;
-        py_of(py, &rows)
+        self.rows(py, methods, milp, label)
     }
 
     /// Flies a schedule written in Python exactly as written and scores it: the independent
@@ -1168,7 +1514,7 @@ impl Hop {
     /// `reorder` mode (`reference=True`; a schedule outside that mode gets `gap_label`
     /// `outside_reference`). The reference solve is deterministic by default (a node limit, no
     /// wall-clock limit).
-    #[pyo3(signature = (schedule, reference = true, reorder = "paper", time_limit_s = None, node_limit = Some(20_000), backend = "microlp"))]
+    #[pyo3(signature = (schedule, reference = true, reorder = "paper", time_limit_s = None, node_limit = Some(Whole::of(20_000)), backend = "microlp"))]
     #[allow(clippy::too_many_arguments)]
     fn evaluate(
         &self,
@@ -1177,20 +1523,12 @@ impl Hop {
         reference: bool,
         reorder: &str,
         time_limit_s: Option<f64>,
-        node_limit: Option<u64>,
+        node_limit: Option<Whole>,
         backend: &str,
     ) -> PyResult<Py<PyAny>> {
+        let node_limit = node_limit_arg(py, node_limit)?;
         let written = schedule_of(schedule).map_err(|cause| {
-            to_py_err(
-                py,
-                invalid(
-                    "E0026",
-                    "schedule",
-                    cause,
-                    "give a list of transfers: dicts (or tuples) of support, consumer, start_min, \
-                     end_min, and optionally consumer_slot and energy_mah",
-                ),
-            )
+            to_py_err(py, invalid("E0026", "schedule", cause, TRANSFERS_ACTION))
         })?;
         let milp = milp_options(py, reorder, time_limit_s, node_limit, 1.0, backend)?;
         let file = self.file.clone();
@@ -1242,15 +1580,25 @@ fn run_bench(
         let cause = text
             .strip_prefix("error: ")
             .unwrap_or(&text)
+            .split("\n\nFor more information")
+            .next()
+            .unwrap_or("")
             .trim()
             .to_string();
+        // The keyword concerned, when the parser names one (`--threads <N>` is `threads`).
+        let field = match e.get(clap::error::ContextKind::InvalidArg) {
+            Some(clap::error::ContextValue::String(arg)) if arg.starts_with("--") => {
+                python_name(arg[2..].split([' ', '=']).next().unwrap_or(""))
+            }
+            _ => "bench arguments".to_string(),
+        };
         to_py_err(
             py,
             invalid(
                 "E0007",
-                "bench arguments",
+                &field,
                 cause,
-                "see `swarmplan bench --help`",
+                "see `swarmplan bench --help` (each keyword of swarmplan.bench is its option)",
             ),
         )
     })?;

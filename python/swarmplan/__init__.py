@@ -39,12 +39,18 @@ Schedule = Sequence[Union[Dict[str, Any], Sequence[float]]]
 def evaluate(hop: Hop, schedule: Schedule, **options: Any) -> Dict[str, Any]:
     """Flies ``schedule`` on ``hop`` exactly as written and scores it against the exact optimum.
 
-    The same as ``hop.evaluate(schedule, **options)``: a schedule that breaks a rule of the hop
-    model raises :class:`SwarmplanError` with the checker's code (``C3001``-``C3013``); one
+    The same as ``hop.evaluate(schedule, **options)``. ``schedule`` is a sequence of transfers,
+    each a dict (``support``, ``consumer``, ``start_min``, ``end_min``, optionally
+    ``consumer_slot`` and ``energy_mah``) or a sequence of numbers (a tuple, a list, a numpy
+    row) in the order ``(support, consumer, start_min, end_min[, consumer_slot])``. A schedule
+    that breaks a rule of the hop model raises :class:`SwarmplanError` with the checker's code
+    (``C3001``-``C3013``, README.md's error table); one
     that runs a drone out of battery returns ``feasible: False``; otherwise its ``value`` (node
     time in minutes at a stop, or lowest delivery arrival battery in mAh into a destination)
-    comes with its ``gap`` against the continuous-time optimum of the ``reorder`` mode: the
-    relative loss, positive when worse under either objective (README.md, "What a gap is").
+    comes with its ``gap`` against the continuous-time optimum of the ``reorder`` mode,
+    ``{"relative": loss, "reference": kind}`` as every gap of the package: the relative loss,
+    positive when worse under either objective, and the kind of its reference (``optimal``,
+    ``infimum``; README.md, "What a gap is").
     """
     return hop.evaluate(schedule, **options)
 
@@ -83,6 +89,27 @@ class BenchResult:
 
 # Python names whose command-line flag is not the name with dashes.
 _FLAGS = {"hop_time_limit_s": "--hop-time-limit", "distance_bucket_km": "--distance-bucket-km"}
+
+
+def _argument_error(field: str, cause: str, action: str) -> SwarmplanError:
+    """A coded error (E0026) of an argument checked on the Python side, as the native part
+    raises them."""
+    error = SwarmplanError(f"invalid input, 1 problem(s):\n  [E0026] {field}: {cause}; {action}")
+    error.code, error.field, error.cause, error.action = "E0026", field, cause, action
+    error.violations = [dict(code="E0026", field=field, cause=cause, action=action)]
+    return error
+
+
+def _check_whole(name: str, value: Any, flag: bool = False) -> None:
+    """Refuses a negative integer, and a bool where a number is meant (``flag``: a bool is a
+    switch such as ``joint=True``), for the options of :func:`bench`."""
+    if isinstance(value, bool):
+        if flag:
+            return
+        cause = f"{value!r} is a bool, not a number"
+        raise _argument_error(name, cause, "give a whole number >= 0")
+    if isinstance(value, int) and value < 0:
+        raise _argument_error(name, f"{value} is negative", "give a whole number >= 0")
 
 
 def _progress_printer() -> Callable[[int, int], None]:
@@ -127,6 +154,13 @@ def bench(
     ``progress`` is a callable ``progress(done, total)``, or ``True`` for a tqdm bar (a line on
     stderr without tqdm).
     """
+    _check_whole("limit", limit)
+    for key, value in options.items():
+        if isinstance(value, (list, tuple)):
+            for item in value:
+                _check_whole(key, item, flag=False)
+        else:
+            _check_whole(key, value, flag=True)
     if out is None:
         out = tempfile.mkdtemp(prefix="swarmplan-bench-")
         force = True

@@ -15,13 +15,26 @@ HopPaths = Literal["rule", "any"]
 Reorder = Literal["paper", "none", "free"]
 Method = Literal["none", "pb", "fb", "continuous", "milp", "fluid", "fair"]
 Transfer = Union[Dict[str, Any], Sequence[float]]
+"""One timed transfer: a dict with ``support``, ``consumer``, ``start_min``, ``end_min`` and
+optionally ``consumer_slot`` and ``energy_mah``, or a sequence of numbers (a tuple, a list, a
+numpy row) in the order ``(support, consumer, start_min, end_min[, consumer_slot])``. Drone and
+slot indices are whole numbers >= 0 (a float with no fraction, as a numpy float row holds
+them, is taken); a bool or a negative index is E0026."""
 Schedule = Sequence[Transfer]
+Gap = Dict[str, Any]
+"""Every gap of the package: ``{"relative": loss or None, "reference": kind}``, the relative
+loss against the reference (positive when worse, minimised or maximised; ``None`` when the
+reference is 0) and the kind of the reference (``optimal``, ``infimum``, ``incumbent``,
+``bound``). Where no gap is taken, ``gap`` is ``None`` and ``gap_label`` says why."""
 RequestLike = Union[str, Dict[str, Any]]
 
 class SwarmplanError(Exception):
-    """An error of swarmplan, with the code of the command line's error table or of the
-    checker (``E4111``, ``C3006``), the field concerned, the cause, what to do, and every
-    violation as a dict with those four keys."""
+    """An error of swarmplan, with the code of README.md's error table (``E4111``, or the
+    checker's ``C3006``), the field concerned (the Python argument, such as ``index`` or
+    ``route``), the cause, what to do, and every violation as a dict with those four keys.
+
+    Every integer argument (an index, a count, a limit, a seed) refuses a negative number and a
+    bool with E0026 naming the argument; a value of another type is a ``TypeError``."""
 
     code: Optional[str]
     field: Optional[str]
@@ -122,7 +135,8 @@ class Instance:
         node_limit: int = 20_000_000,
     ) -> Dict[str, Any]:
         """Flies the request along ``stops`` with a schedule per hop and measures the delivery
-        time against the joint optimum of the same swarm."""
+        time against the joint optimum of the same swarm: ``gap`` is a ``Gap`` (``reference``
+        ``optimal`` or ``incumbent``), or ``None`` with ``gap_label``."""
 
 class Hop:
     """One hop's in-flight sharing problem and what it is scored by."""
@@ -192,7 +206,10 @@ class Hop:
     def tt_min(self) -> float:
         """Travel time, min."""
     def moves(self, reorder: Reorder = "paper") -> List[Dict[str, Optional[int]]]:
-        """The moves a transfer may use in a re-ordering mode (``none`` or ``paper``)."""
+        """The moves a transfer may use in a re-ordering mode (``none`` or ``paper``): dicts
+        with keys ``support``, ``consumer``, ``consumer_slot`` and ``partner`` (the delivery
+        drone holding the consumer's slot meanwhile, ``None`` when the consumer stays). A
+        transfer written as a sequence takes its numbers in another order, see ``Transfer``."""
     def solve(
         self,
         method: Method = "continuous",
@@ -201,8 +218,17 @@ class Hop:
         node_limit: Optional[int] = None,
         period_min: float = 1.0,
         backend: str = "microlp",
+        reference: bool = True,
     ) -> Dict[str, Any]:
-        """One method's row of ``swarmplan eaas --json``."""
+        """One method's row of ``swarmplan eaas --json``.
+
+        ``gap`` (a ``Gap``): with ``reference=True`` the row of ``none``, ``pb``, ``fb``,
+        ``milp`` or ``fair`` is measured against the continuous model of the same ``reorder``
+        mode, solved alongside with the same limits (as ``swarmplan eaas --methods
+        M,continuous``). ``None`` for ``continuous`` (the reference itself) and ``fluid`` (a
+        bound), with ``reference=False``, or when the continuous model gives no value within
+        its limits; a heuristic schedule that swaps slots under ``reorder="none"`` gets
+        ``gap_label: different_policy`` instead."""
     def compare(
         self,
         methods: Sequence[Method] = ("pb", "fb", "continuous", "milp", "fluid", "fair"),
@@ -224,7 +250,8 @@ class Hop:
         backend: str = "microlp",
     ) -> Dict[str, Any]:
         """Flies a schedule as written, checked by the independent checker, and scores it
-        against the continuous-time optimum of the ``reorder`` mode."""
+        against the continuous-time optimum of the ``reorder`` mode: ``gap`` is a ``Gap``
+        (``reference`` ``optimal`` or ``infimum``), or ``None`` with ``gap_label``."""
 
 def run_bench(
     args: Sequence[str], progress: Optional[Callable[[int, int], None]] = None

@@ -87,8 +87,9 @@ def test_bad_options_are_coded_errors(paper):
     assert e.value.code == "E0006"
     with pytest.raises(TypeError):
         paper.plan("r00001", support="two")
-    with pytest.raises(OverflowError):
+    with pytest.raises(swarmplan.SwarmplanError) as e:
         paper.plan("r00001", support=-1)
+    assert (e.value.code, e.value.field) == ("E0026", "support")
 
 
 def test_a_plan_checked_on_another_instance_names_the_mismatch(paper):

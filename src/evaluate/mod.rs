@@ -23,7 +23,7 @@ use crate::eaas::{
 use crate::error::{Error, Result, Violation};
 use crate::precompose::Positioning;
 use crate::problem::Request;
-use crate::solver::{Gap, ReferenceKind};
+use crate::solver::{Gap, ReferenceKind, Sense};
 use serde::{Deserialize, Serialize};
 
 /// One transfer of a schedule as a user writes it: `energy_mah` and `consumer_slot` may be left
@@ -322,8 +322,9 @@ pub struct RouteEvaluation {
     pub mode: Reorder,
     /// The joint optimum of the same swarm, when asked for.
     pub reference: Option<RouteReference>,
-    /// `(dt - dt_ref) / dt_ref` when both deliver and the reference contains the route.
-    pub gap: Option<f64>,
+    /// `(dt - dt_ref) / dt_ref` with the reference's kind (`optimal` or `incumbent`), the same
+    /// shape as every gap ([`Gap`]), when both deliver and the reference contains the route.
+    pub gap: Option<Gap>,
     /// Why no gap is given: `not_delivered`, `outside_reference` (a hop schedule outside the
     /// reference's re-ordering mode), `no_reference` (the reference does not deliver).
     pub gap_label: Option<&'static str>,
@@ -519,7 +520,10 @@ impl RouteEvaluation {
                 (None, Some("outside_reference"))
             }
             (Some(_), None) => (None, Some("no_reference")),
-            (Some(dt), Some(best)) => (Some((dt - best) / best), None),
+            (Some(dt), Some(best)) => (
+                Some(Gap::new(dt, best, reference.kind, Sense::Minimise)),
+                None,
+            ),
         };
     }
 }
