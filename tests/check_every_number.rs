@@ -650,3 +650,153 @@ fn every_changed_number_of_a_bench_row_is_rejected() {
     stray.stops.push(row);
     assert_eq!(codes(&stray), ["P5705"]);
 }
+
+/// Every leaf of `value` (number, string, bool) with its path.
+fn all_leaves(value: &Value, path: String, out: &mut Vec<String>) {
+    match value {
+        Value::Object(m) => {
+            for (k, v) in m {
+                let p = if path.is_empty() {
+                    k.clone()
+                } else {
+                    format!("{path}.{k}")
+                };
+                all_leaves(v, p, out);
+            }
+        }
+        Value::Array(a) => {
+            for (i, v) in a.iter().enumerate() {
+                all_leaves(v, format!("{path}[{i}]"), out);
+            }
+        }
+        Value::Null => {}
+        _ => out.push(path),
+    }
+}
+
+/// The documents of the property below, each with its check (a parse error or a violation is
+/// "not valid") and the leaves it does not check: measurements, the settings a re-run reads,
+/// labels.
+struct Documents {
+    docs: Vec<(String, Value, Vec<String>)>,
+    network: Network,
+    profile: Profile,
+    requests: Vec<Request>,
+}
+
+impl Documents {
+    fn new() -> Documents {
+        use swarmplan::node_time::{self, Limits, NodeTimeMethod, NodeTimeReport};
+        let (network, graph, profile, requests) = findings();
+        let context = Context::new(&network, &graph, &profile);
+        let request = requests.iter().find(|r| r.id == "r00001").unwrap();
+        let options = PlanOptions {
+            sharing: SharingPolicy::Pb,
+            positioning: Positioning::LocationAware,
+            route: RouteMethod::Sequential,
+            support: None,
+        };
+        let report = context.plan(request, &options).unwrap();
+        let hop = context.hop_file_of(&report, 1, "paper-findings").unwrap();
+        let times = [60.0, 50.0, 40.0, 30.0, 20.0];
+        let solution = node_time::solve(
+            NodeTimeMethod::Exact,
+            swarmplan::solver::MilpBackend::default(),
+            3,
+            &times,
+            &Limits::default(),
+        )
+        .unwrap();
+        let node_time = NodeTimeReport::new(3, &times, solution);
+        let leaves = |v: &Value| {
+            let mut out = Vec::new();
+            all_leaves(v, String::new(), &mut out);
+            out
+        };
+        let docs = [
+            ("plan", serde_json::to_value(&report).unwrap()),
+            ("hop file", serde_json::to_value(&hop).unwrap()),
+            (
+                "node-time result",
+                serde_json::to_value(&node_time).unwrap(),
+            ),
+        ]
+        .into_iter()
+        .map(|(what, doc)| {
+            let checked: Vec<String> = leaves(&doc)
+                .into_iter()
+                .filter(|p| {
+                    !(not_checked(p)
+                        || p == "solve_ms"
+                        || (what == "hop file" && p == "profile")
+                        || (what == "node-time result" && p == "method"))
+                })
+                .collect();
+            (what.to_string(), doc, checked)
+        })
+        .collect();
+        Documents {
+            docs,
+            network,
+            profile,
+            requests,
+        }
+    }
+
+    /// Whether `doc`, the `k`-th document changed, is called valid by its check.
+    fn valid(&self, k: usize, doc: &Value) -> bool {
+        use swarmplan::node_time::NodeTimeReport;
+        match self.docs[k].0.as_str() {
+            "plan" => parse_plan_file(&doc.to_string(), "plan").is_ok_and(|report| {
+                check_report(&self.network, &self.profile, &self.requests, &report).is_empty()
+            }),
+            "hop file" => serde_json::from_value::<HopFile>(doc.clone()).is_ok_and(|file| {
+                file.violations().is_empty()
+                    && check_hop_file(&self.network, &self.profile, &self.requests, &file)
+                        .is_empty()
+            }),
+            _ => serde_json::from_value::<NodeTimeReport>(doc.clone()).is_ok_and(|r| {
+                check_node_time(&r, Some((3, &[60.0, 50.0, 40.0, 30.0, 20.0]))).is_empty()
+            }),
+        }
+    }
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(192))]
+
+    /// A plan, a hop file and a node-time result changed at any checked leaf (a number scaled
+    /// by a factor at least 0.1% away from 1 and shifted, a whole number moved by 1 to 9, a
+    /// bool flipped, a string lengthened) are never called valid; the untouched ones are.
+    #[test]
+    fn a_document_changed_anywhere_is_never_called_valid(
+        kind in 0usize..3,
+        at in proptest::prelude::any::<proptest::sample::Index>(),
+        factor in proptest::prop_oneof![0.05f64..0.999, 1.001f64..20.0],
+        shift in 1u64..10,
+    ) {
+        static DOCS: std::sync::OnceLock<Documents> = std::sync::OnceLock::new();
+        let docs = DOCS.get_or_init(|| {
+            let d = Documents::new();
+            for (k, (what, doc, _)) in d.docs.iter().enumerate() {
+                assert!(d.valid(k, doc), "the untouched {what} is valid");
+            }
+            d
+        });
+        let (what, document, checked) = &docs.docs[kind];
+        let path = at.get(checked);
+        let mut doc = document.clone();
+        let x = leaf(&mut doc, path);
+        *x = match x.clone() {
+            Value::Bool(b) => Value::Bool(!b),
+            Value::String(s) => Value::String(format!("{s}x")),
+            Value::Number(n) => match (n.as_u64(), n.as_f64()) {
+                (Some(u), _) => Value::from(u + shift),
+                (None, Some(f)) => Value::from(f * factor + shift as f64 * f.signum()),
+                _ => unreachable!("a number"),
+            },
+            other => unreachable!("a leaf: {other}"),
+        };
+        proptest::prop_assert!(!docs.valid(kind, &doc), "{what}: {path} changed to {} is called valid", leaf(&mut doc.clone(), path));
+    }
+}

@@ -365,3 +365,279 @@ fn a_json_type_error_names_the_field_path() {
     let out = swarmplan(&["eaas", "--hop-file", &hop]);
     assert_exit_2_with(&out, "E4111", &["hop_index"]);
 }
+
+#[test]
+fn options_that_apply_to_no_combination_are_refused_and_to_some_noted() {
+    // --gap with fair alone: refused by solve and batch alike (E0015; bench measures the route
+    // gaps by default and leaves fair's cells empty); beside another policy, a note on stderr
+    // and empty gap cells for fair.
+    let fair_gap: [&[&str]; 2] = [
+        &[
+            "solve",
+            "--request-id",
+            "r00001",
+            "--sharing",
+            "fair",
+            "--gap",
+        ],
+        &[
+            "batch",
+            "--request-limit",
+            "1",
+            "--sharing",
+            "fair",
+            "--gap",
+        ],
+    ];
+    for args in fair_gap {
+        assert_exit_2_with(&swarmplan(args), "E0015", &["--gap", "fair"]);
+    }
+    let out = swarmplan(&[
+        "batch",
+        "--request-limit",
+        "1",
+        "--sharing",
+        "pb,fair",
+        "--route",
+        "sequential",
+        "--gap",
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("note: --gap: the 1 combination(s) with --sharing fair"),
+        "{}",
+        stderr(&out)
+    );
+    // --support with none alone: refused (E0030); beside another policy, a note.
+    let none_support: [&[&str]; 2] = [
+        &[
+            "solve",
+            "--request-id",
+            "r00001",
+            "--sharing",
+            "none",
+            "--support",
+            "2",
+        ],
+        &[
+            "batch",
+            "--request-limit",
+            "1",
+            "--sharing",
+            "none",
+            "--support",
+            "2",
+        ],
+    ];
+    for args in none_support {
+        assert_exit_2_with(&swarmplan(args), "E0030", &["--support", "none"]);
+    }
+    let out = swarmplan(&[
+        "batch",
+        "--request-limit",
+        "1",
+        "--sharing",
+        "none,pb",
+        "--route",
+        "sequential",
+        "--support",
+        "2",
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("note: --support 2 does not apply to the"),
+        "{}",
+        stderr(&out)
+    );
+}
+
+#[test]
+fn a_narrow_distance_bucket_keeps_the_figures_by_distance() {
+    // --distance-bucket-km 1e-300 used to drop the by-distance figures without a word (the
+    // bucket count overflowed); now each request is its own bucket.
+    let dir = tmp("narrow-buckets");
+    let _ = std::fs::remove_dir_all(&dir);
+    let out = swarmplan(&[
+        "bench",
+        "--request-limit",
+        "3",
+        "--sharing",
+        "none,pb",
+        "--route",
+        "sequential",
+        "--distance-bucket-km",
+        "1e-300",
+        "--json",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let summary: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    for m in summary["methods"].as_array().unwrap() {
+        assert_eq!(m["by_distance"].as_array().unwrap().len(), 3, "{m}");
+    }
+    assert!(dir
+        .join("figures/dt-by-distance-location-aware.svg")
+        .exists());
+}
+
+#[test]
+fn an_undeliverable_request_exits_1_even_when_stdout_closes_early() {
+    // flat-deadend: the swarm cannot reach B (exit 1); the reader of stdout is gone before the
+    // plan is printed, which used to turn the exit code into 0.
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_swarmplan"))
+        .args(["solve", "--network"])
+        .arg(repo_path("instances/tiny/flat-deadend.json"))
+        .args(["--profile"])
+        .arg(repo_path("instances/tiny/flat.toml"))
+        .args([
+            "--from",
+            "A",
+            "--to",
+            "B",
+            "--packages",
+            "0.21",
+            "--sharing",
+            "none",
+            "--json",
+        ])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+}
+
+#[test]
+fn floyd_warshall_is_refused_beyond_its_stated_network_size() {
+    // 10,001 nodes: its tables would take 1.1 GiB and O(n^3) time (100,000 nodes: 112 GiB,
+    // which used to abort the process); E0029 names the size and Dijkstra.
+    let network = tmp("fw-10001.json");
+    let out = swarmplan(&[
+        "generate",
+        "network",
+        "--nodes",
+        "10001",
+        "--seed",
+        "1",
+        "--force",
+        "-o",
+        network.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let text = std::fs::read_to_string(&network).unwrap();
+    let doc: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let nodes = doc["nodes"].as_array().unwrap();
+    let (a, b) = (
+        nodes[0]["id"].as_str().unwrap(),
+        nodes[1]["id"].as_str().unwrap(),
+    );
+    let out = swarmplan(&[
+        "solve",
+        "--network",
+        network.to_str().unwrap(),
+        "--from",
+        a,
+        "--to",
+        b,
+        "--packages",
+        "0.5",
+        "--route",
+        "floyd-warshall",
+    ]);
+    assert_exit_2_with(
+        &out,
+        "E0029",
+        &["10001 nodes", "1 GiB", "10000 nodes", "--route dijkstra"],
+    );
+}
+
+#[test]
+fn no_output_is_one_of_the_inputs_even_with_force() {
+    // E0031: the tool never writes over what it reads.
+    let network = tmp("own-input-network.json");
+    std::fs::copy(repo_path("instances/tiny/flat-stop.json"), &network).unwrap();
+    let network = network.to_str().unwrap();
+    let before = std::fs::read(network).unwrap();
+    let requests = tmp("own-input-requests.json");
+    std::fs::copy(repo_path("instances/tiny/line4-requests.json"), &requests).unwrap();
+    let requests = requests.to_str().unwrap();
+    let cases: [&[&str]; 3] = [
+        &[
+            "generate",
+            "requests",
+            "--network",
+            network,
+            "--seed",
+            "1",
+            "-o",
+            network,
+            "--force",
+        ],
+        &[
+            "batch",
+            "--network",
+            network,
+            "--per-request",
+            network,
+            "--force",
+        ],
+        &[
+            "batch",
+            "--requests",
+            requests,
+            "--per-request",
+            requests,
+            "--force",
+        ],
+    ];
+    for args in cases {
+        let out = swarmplan(args);
+        assert_exit_2_with(&out, "E0031", &["the output is the input"]);
+    }
+    assert_eq!(std::fs::read(network).unwrap(), before);
+}
+
+#[test]
+fn a_hop_file_with_another_hop_index_is_not_valid() {
+    // `check --hop-file` used to accept hop_index changed from 0 to 1 or 99: the file records the
+    // plan it was taken from, and the request planned again has another hop there (P5609).
+    let hop = tmp("hop-index.json");
+    let out = swarmplan(&[
+        "eaas",
+        "--request-id",
+        "r00001",
+        "--hop",
+        "0",
+        "--methods",
+        "pb",
+        "--force",
+        "--write-hop",
+        hop.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let text = std::fs::read_to_string(&hop).unwrap();
+    let check = |text: &str, name: &str| {
+        let path = write_tmp(name, text.as_bytes());
+        swarmplan(&["check", "--hop-file", &path])
+    };
+    assert_eq!(check(&text, "hop-index-0.json").status.code(), Some(0));
+    for (index, words) in [
+        (
+            "1",
+            "hop 1 of the plan (pb/location-aware/sequential) flies",
+        ),
+        ("99", "has 10 hop(s), not a hop 99"),
+    ] {
+        let changed = text.replacen("\"hop_index\": 0", &format!("\"hop_index\": {index}"), 1);
+        let out = check(&changed, &format!("hop-index-{index}.json"));
+        assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+        let verdict = String::from_utf8_lossy(&out.stdout);
+        assert!(
+            verdict.contains("[P5609] hop_index") && verdict.contains(words),
+            "{verdict}"
+        );
+    }
+}

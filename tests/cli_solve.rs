@@ -64,31 +64,29 @@ fn solve_json_reports_the_hand_computed_sharing() {
     // flat-line A -> D, 4000 m (8 min), one 0.21 kg drone (64.8 mAh short) and one support drone:
     // PB shares 120 * (8 - 500 / 133.1) = 509.21112 mAh and delivers in 8 min; without sharing
     // the request fails (exit 1).
-    let args = |sharing| {
-        solve(
-            "flat-line.json",
-            &[
-                "--from",
-                "A",
-                "--to",
-                "D",
-                "--packages",
-                "0.21",
-                "--support",
-                "1",
-                "--sharing",
-                sharing,
-                "--json",
-            ],
-        )
+    let args = |sharing, support: &[&str]| {
+        let mut args = vec![
+            "--from",
+            "A",
+            "--to",
+            "D",
+            "--packages",
+            "0.21",
+            "--sharing",
+            sharing,
+            "--json",
+        ];
+        args.extend(support);
+        solve("flat-line.json", &args)
     };
-    let pb = args("pb");
+    let pb = args("pb", &["--support", "1"]);
     assert_eq!(pb.status.code(), Some(0), "{pb:?}");
     let plan = &json(&pb)["plan"];
     assert!(close(plan["dt_min"].as_f64().unwrap(), 8.0));
     assert!(close(plan["shared_mah"].as_f64().unwrap(), 509.211119));
     assert!(!plan["hops"][0]["transfers"].as_array().unwrap().is_empty());
-    let none = args("none");
+    // `none` flies no support drone (`--support` with it alone is refused, E0030).
+    let none = args("none", &[]);
     assert_eq!(none.status.code(), Some(1), "{none:?}");
     assert_eq!(json(&none)["plan"]["outcome"]["kind"], "dead-end");
 }

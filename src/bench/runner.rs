@@ -80,6 +80,9 @@ impl GridSize {
 /// A bench run's results, as [`run_grid`] returns them.
 #[derive(Debug)]
 pub struct GridRun {
+    /// Notes on options that apply to some combinations only
+    /// ([`experiment::applicable_options`]), for stderr.
+    pub notes: Vec<String>,
     /// The summary, as written to `summary.json`.
     pub summary: Summary,
     /// The run's configuration, as written to `config.json`.
@@ -130,6 +133,9 @@ pub fn run_grid(
     for c in &combos {
         c.validate()?;
     }
+    // The route gaps are on by default (`--no-gap` skips them), not asked for: `fair`'s empty
+    // gap cells need no refusal here, as the README's tables say.
+    let notes = experiment::applicable_options(&combos, false, None)?;
     let (instance, set) = both(
         s.instance.load_or(&FINDINGS_195),
         load_requests(s.requests.as_deref()),
@@ -197,6 +203,7 @@ pub fn run_grid(
     let summary = write_outputs(out, &config, &data, s.command.clone())?;
     let (config, data) = read_data(out)?;
     Ok(GridRun {
+        notes,
         summary,
         config,
         data,

@@ -345,32 +345,32 @@ fn method_summary(config: &BenchConfig, data: &BenchData, o: &PlanOptions) -> Me
     let route_gap_histogram = route_gaps
         .as_ref()
         .map(|gaps| GapHistogram::of(gaps.iter().copied()));
+    // Buckets by distance, those with requests only, in order: the rows sorted by bucket (a
+    // whole number as f64, so any width > 0 works, however narrow), then each run of a bucket.
     let width = config.distance_bucket_m;
-    let mut by_distance: Vec<DistanceBucket> = Vec::new();
-    let buckets = rows
+    let mut by_bucket: Vec<(f64, &RequestRow)> = rows
         .iter()
-        .map(|r| (r.distance_m / width).floor() as usize)
-        .max()
-        .map_or(0, |b| b + 1);
-    for b in 0..buckets {
-        let inside: Vec<&RequestRow> = rows
-            .iter()
-            .copied()
-            .filter(|r| (r.distance_m / width).floor() as usize == b)
-            .collect();
-        if inside.is_empty() {
-            continue;
-        }
-        let ok: Vec<&RequestRow> = inside.iter().copied().filter(|r| r.success).collect();
-        by_distance.push(DistanceBucket {
-            from_m: b as f64 * width,
-            to_m: (b + 1) as f64 * width,
-            requests: inside.len(),
-            delivered: ok.len(),
-            mean_dt_min: (!ok.is_empty()).then(|| mean_of(&ok, |r| r.dt_min)),
-            mean_nt_min: (!ok.is_empty()).then(|| mean_of(&ok, |r| r.nt_min)),
-        });
-    }
+        .map(|&r| {
+            let b = (r.distance_m / width).floor();
+            (if b.is_nan() { 0.0 } else { b }, r)
+        })
+        .collect();
+    by_bucket.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let by_distance: Vec<DistanceBucket> = by_bucket
+        .chunk_by(|a, b| a.0 == b.0)
+        .map(|run| {
+            let b = run[0].0;
+            let ok: Vec<&RequestRow> = run.iter().map(|x| x.1).filter(|r| r.success).collect();
+            DistanceBucket {
+                from_m: b * width,
+                to_m: (b + 1.0) * width,
+                requests: run.len(),
+                delivered: ok.len(),
+                mean_dt_min: (!ok.is_empty()).then(|| mean_of(&ok, |r| r.dt_min)),
+                mean_nt_min: (!ok.is_empty()).then(|| mean_of(&ok, |r| r.nt_min)),
+            }
+        })
+        .collect();
     let times: Vec<f64> = data
         .timings
         .iter()

@@ -6,11 +6,11 @@
 use super::inputs::{ExactArgs, InstanceArgs};
 use crate::compose::{Context, RouteMethod};
 use crate::eaas::SharingPolicy;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::experiment::{self, summarise_grid, write_summaries, Baseline, Experiment, Methods};
 use crate::precompose::Positioning;
 use crate::problem::io;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// Plan every request of a request set and summarise.
 #[derive(Debug, clap::Args)]
@@ -97,6 +97,13 @@ pub struct BatchArgs {
 /// Runs the subcommand.
 pub fn run(args: BatchArgs) -> Result<i32> {
     if let Some(path) = &args.per_request {
+        let inputs = [
+            &args.instance.network,
+            &args.instance.profile,
+            &args.requests,
+        ];
+        let inputs: Vec<&Path> = inputs.into_iter().flatten().map(PathBuf::as_path).collect();
+        super::distinct_from_inputs(&[path], &inputs)?;
         super::may_write(path, args.force)?;
     }
     let threads = experiment::threads(args.threads)?;
@@ -118,6 +125,7 @@ pub fn run(args: BatchArgs) -> Result<i32> {
     for combo in &experiment.combos {
         combo.validate()?;
     }
+    let notes = experiment::applicable_options(&experiment.combos, args.gap, args.support)?;
     let (instance, set) = args.instance.load_with_requests(args.requests.as_deref())?;
     let requests = experiment::first_requests(set.requests, args.limit)?;
     let instance = instance.with_requests(requests)?;
@@ -139,6 +147,9 @@ pub fn run(args: BatchArgs) -> Result<i32> {
         args.per_request.is_some(),
     )?;
     bar.finish_and_clear();
+    for note in &notes {
+        eprintln!("{note}");
+    }
     super::inputs::report_budget(grid.requests, requests.len(), grid.requests);
     if !args.json {
         for s in &grid.summaries {
@@ -168,8 +179,11 @@ pub fn run(args: BatchArgs) -> Result<i32> {
         super::print_json(&grid.summaries)?;
     } else {
         // Data, as the JSON: every float with all its digits (the lines on stderr are rounded).
-        write_summaries(std::io::stdout().lock(), &grid.summaries, args.gap)
-            .map_err(Error::from_output)?;
+        super::stdout_written(write_summaries(
+            std::io::stdout().lock(),
+            &grid.summaries,
+            args.gap,
+        ))?;
     }
     Ok(0)
 }

@@ -259,6 +259,9 @@ fn run_grid(args: RunArgs, command: Vec<String>) -> Result<i32> {
         &|n| bar.inc(n),
     )?;
     bar.finish_and_clear();
+    for note in &run.notes {
+        eprintln!("{note}");
+    }
     if let Some(stop) = run.budget {
         eprintln!("{stop}");
     }

@@ -32,7 +32,7 @@ use crate::error::{Error, Result};
 use crate::precompose::Positioning;
 use crate::solver::MilpBackend;
 use serde::Serialize;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// Arguments of `swarmplan eaas`.
 #[derive(Debug, clap::Args)]
@@ -126,7 +126,26 @@ pub struct EaasReport {
 /// `E4112`, `E4115` and the hop's own codes, options of the exact models), an unwritable output
 /// file, or a backend failure.
 pub fn run(args: EaasArgs) -> Result<i32> {
-    for path in args.write_hop.iter().chain(&args.write_lp) {
+    let outputs: Vec<&Path> = args
+        .write_hop
+        .iter()
+        .chain(&args.write_lp)
+        .map(PathBuf::as_path)
+        .collect();
+    let inputs = [
+        &args.instance.network,
+        &args.instance.profile,
+        &args.requests,
+        &args.hop_file,
+    ];
+    let mut inputs: Vec<&Path> = inputs.into_iter().flatten().map(PathBuf::as_path).collect();
+    if let (Some(hop), Some(lp)) = (&args.write_hop, &args.write_lp) {
+        if hop == lp {
+            inputs.push(hop);
+        }
+    }
+    super::distinct_from_inputs(&outputs, &inputs)?;
+    for path in &outputs {
         super::may_write(path, args.force)?;
     }
     let (hop, readings) = match &args.hop_file {

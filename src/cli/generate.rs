@@ -201,6 +201,7 @@ pub fn run(cmd: GenerateCommand) -> Result<i32> {
             );
         }
         GenerateCommand::Requests(a) => {
+            super::distinct_from_inputs(&[&a.output], &[&a.network])?;
             let (_, (_, graph)) = both(
                 super::may_write(&a.output, a.force),
                 read_network(&a.network),

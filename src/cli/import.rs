@@ -69,6 +69,12 @@ fn parse_centre(s: &str) -> std::result::Result<(f64, f64), String> {
 /// E1950–E1956 for unreadable or unusable input (exit code 2), every network rule (E1xxx), E0008
 /// and E0009 when a file cannot be read, E0013 when the output exists and `--force` is not given.
 pub fn run(args: ImportArgs) -> Result<i32> {
+    let inputs: Vec<&std::path::Path> = [&args.nodes, &args.edges, &args.geojson]
+        .into_iter()
+        .flatten()
+        .map(std::path::PathBuf::as_path)
+        .collect();
+    super::distinct_from_inputs(&[&args.output], &inputs)?;
     super::may_write(&args.output, args.force)?;
     let road = match (&args.nodes, &args.edges, &args.geojson) {
         (Some(nodes), Some(edges), None) => {

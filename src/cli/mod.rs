@@ -9,7 +9,7 @@ use serde::Serialize;
 macro_rules! outln {
     ($($arg:tt)*) => {{
         use std::io::Write as _;
-        writeln!(std::io::stdout().lock(), $($arg)*).map_err($crate::Error::from_output)?
+        $crate::cli::stdout_written(writeln!(std::io::stdout().lock(), $($arg)*))?
     }};
 }
 
@@ -142,6 +142,31 @@ pub(crate) fn may_write(output: &std::path::Path, force: bool) -> crate::error::
     ))
 }
 
+/// E0031 when an output path names one of the command's inputs (the same file, however it is
+/// spelled): the tool never writes over what it reads, `--force` or not.
+pub(crate) fn distinct_from_inputs(
+    outputs: &[&std::path::Path],
+    inputs: &[&std::path::Path],
+) -> crate::error::Result<()> {
+    for output in outputs {
+        let Ok(o) = std::fs::canonicalize(output) else {
+            continue;
+        };
+        if let Some(input) = inputs
+            .iter()
+            .find(|i| std::fs::canonicalize(i).is_ok_and(|i| i == o))
+        {
+            return Err(crate::error::Error::invalid(
+                "E0031",
+                output.display().to_string(),
+                format!("the output is the input {}", input.display()),
+                "give another output file: the tool does not write over what it reads",
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// How an output is named on stderr: `standard output` for `-`, else the path.
 pub(crate) fn output_name(output: &std::path::Path) -> String {
     if output == std::path::Path::new("-") {
@@ -168,6 +193,27 @@ pub fn print_json<T: Serialize>(value: &T) -> crate::error::Result<()> {
         serde_json::to_string_pretty(value).expect("serialising plain data cannot fail")
     );
     Ok(())
+}
+
+/// Set once a write to stdout found its reader gone (`| head`).
+static STDOUT_GONE: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+/// The result of a write to stdout: a closed pipe (the reader stopped early, as `| head` does)
+/// is not an error, so the command still ends with its own exit code (1 for an undeliverable
+/// request, a broken rule); later writes are skipped. Any other failure is an output error.
+///
+/// # Errors
+/// [`crate::Error::Output`] for a failure other than a closed pipe.
+pub fn stdout_written(result: std::io::Result<()>) -> crate::error::Result<()> {
+    use std::sync::atomic::Ordering;
+    match result {
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => {
+            STDOUT_GONE.store(true, Ordering::Relaxed);
+            Ok(())
+        }
+        Err(e) if !STDOUT_GONE.load(Ordering::Relaxed) => Err(crate::Error::from_output(e)),
+        _ => Ok(()),
+    }
 }
 
 /// `n` and `word`, with an `s` unless `n` is 1: "1 combination", "20 combinations".

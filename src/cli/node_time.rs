@@ -88,6 +88,12 @@ pub struct NodeTimeFile {
 /// Runs the subcommand; returns the exit code.
 pub fn run(args: NodeTimeArgs) -> Result<i32> {
     if let Some(path) = &args.write_lp {
+        let inputs: Vec<&std::path::Path> = [&args.file, &args.instance]
+            .into_iter()
+            .flatten()
+            .map(std::path::PathBuf::as_path)
+            .collect();
+        super::distinct_from_inputs(&[path], &inputs)?;
         super::may_write(path, args.force)?;
     }
     let (pads, times) = match (&args.file, &args.instance) {

@@ -109,17 +109,8 @@ pub fn run(args: SolveArgs) -> Result<i32> {
         support: args.support,
     };
     context.validate(&options)?;
-    if args.gap && args.sharing == SharingPolicy::Fair {
-        return Err(Error::invalid(
-            "E0015",
-            "--gap",
-            format!(
-                "--gap compares with --route optimal, which supports the simulated sharing \
-                 policies (none, idle-support, pb, fb) and exact, not {}",
-                args.sharing
-            ),
-            "use --gap with --sharing none, idle-support, pb, fb or exact",
-        ));
+    for note in crate::experiment::applicable_options(&[options], args.gap, args.support)? {
+        eprintln!("{note}");
     }
     // A hop solve can take up to --hop-time-limit, and a route makes many.
     let spinner = args

@@ -48,6 +48,15 @@ impl PlanOptions {
     }
 }
 
+/// The largest network `--route floyd-warshall` plans on: its all-pairs tables take
+/// [`ALL_PAIRS_BYTES_PER_PAIR`] bytes a pair (1.1 GiB at 10,000 nodes) and its time grows as
+/// n^3; beyond, E0029 (use Dijkstra on the same costs).
+pub const FLOYD_WARSHALL_MAX_NODES: usize = 10_000;
+
+/// Bytes a pair of nodes of Floyd-Warshall's tables: the distance (`f64`) and the predecessor
+/// (`u32`), [`crate::network::floyd_warshall`].
+pub const ALL_PAIRS_BYTES_PER_PAIR: f64 = 12.0;
+
 /// The settings behind the numbers of a plan besides its method combination: the hop model of
 /// the exact and fair policies, the node limit of every stop and the paths of an optimal
 /// route's hops. With them `check` plans the request again and compares the numbers only the
@@ -309,12 +318,31 @@ impl Context {
     ///
     /// # Errors
     /// E0015 ([`PlanOptions::validate`]); E0016 for [`RouteMethod::Optimal`] with
-    /// [`HopPaths::Any`] and a simulated policy that shares (pb, fb).
+    /// [`HopPaths::Any`] and a simulated policy that shares (pb, fb); E0029 for
+    /// [`RouteMethod::FloydWarshall`] on more than [`FLOYD_WARSHALL_MAX_NODES`] nodes.
     ///
     /// # Complexity
     /// O(1).
     pub fn validate(&self, options: &PlanOptions) -> Result<()> {
         options.validate()?;
+        let nodes = self.graph().node_count();
+        if options.route == RouteMethod::FloydWarshall && nodes > FLOYD_WARSHALL_MAX_NODES {
+            let gib =
+                |n: usize| (n as f64).powi(2) * ALL_PAIRS_BYTES_PER_PAIR / (1u64 << 30) as f64;
+            return Err(Error::invalid(
+                "E0029",
+                "--route floyd-warshall",
+                format!(
+                    "Floyd-Warshall's all-pairs tables on {nodes} nodes take {:.0} GiB ({} bytes \
+                     a pair) and O(n^3) time; it is meant for networks up to {} nodes ({:.1} GiB)",
+                    gib(nodes),
+                    ALL_PAIRS_BYTES_PER_PAIR,
+                    FLOYD_WARSHALL_MAX_NODES,
+                    gib(FLOYD_WARSHALL_MAX_NODES)
+                ),
+                "use --route dijkstra: the same edge costs, one source at a time",
+            ));
+        }
         if options.route == RouteMethod::Optimal
             && self.hop_paths == HopPaths::Any
             && options.sharing.shares()

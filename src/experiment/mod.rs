@@ -92,6 +92,67 @@ impl Methods {
     }
 }
 
+/// Whether a run's options apply to its combinations, the same in `solve`, `batch` and `bench`:
+/// an option that applies to none of them is refused, one that applies to some only is noted
+/// (the notes returned, for stderr).
+///
+/// - `--gap` (`route_gap`): no route gap under `fair` (the fair QP's layout is no optimum of any
+///   hop, so `--route optimal` does not take it): E0015 when every combination is `fair`;
+/// - `--support`: `none`, the paper's baseline, flies no support drone: E0030 when every
+///   combination is `none`.
+///
+/// # Errors
+/// [`Error::Invalid`] E0015, E0030.
+pub fn applicable_options(
+    combos: &[PlanOptions],
+    route_gap: bool,
+    support: Option<usize>,
+) -> Result<Vec<String>> {
+    let mut notes = Vec::new();
+    let fair = combos
+        .iter()
+        .filter(|c| c.sharing == SharingPolicy::Fair)
+        .count();
+    if route_gap && fair > 0 {
+        if fair == combos.len() {
+            return Err(Error::invalid(
+                "E0015",
+                "--gap",
+                "--gap compares with --route optimal, which supports the simulated sharing \
+                 policies (none, idle-support, pb, fb) and exact, not fair",
+                "use --gap with --sharing none, idle-support, pb, fb or exact",
+            ));
+        }
+        notes.push(format!(
+            "note: --gap: the {fair} combination(s) with --sharing fair have no route gap (the \
+             fair QP's layout is no optimum of any hop); their gap cells stay empty"
+        ));
+    }
+    let none = combos
+        .iter()
+        .filter(|c| c.sharing == SharingPolicy::None)
+        .count();
+    if let (Some(k), true) = (support, none > 0) {
+        if none == combos.len() {
+            return Err(Error::invalid(
+                "E0030",
+                "--support",
+                format!(
+                    "--support {k} with --sharing none: the paper's baseline flies no support \
+                     drone"
+                ),
+                "leave --support out, or use a sharing policy that flies support drones \
+                 (idle-support, pb, fb, exact, fair)",
+            ));
+        }
+        notes.push(format!(
+            "note: --support {k} does not apply to the {none} combination(s) with --sharing none \
+             (the paper's baseline flies no support drone)"
+        ));
+    }
+    Ok(notes)
+}
+
 /// The combinations a run reports and what each is compared with:
 ///
 /// - the route gap (with `route_gap`): a combination with a heuristic route and a simulated or
