@@ -142,7 +142,7 @@ pub fn merge(dirs: &[&Path]) -> Result<(BenchConfig, BenchData)> {
     for dir in dirs {
         let sealed = seal::verify_seal(dir)?;
         let (config, data) = read_data(dir)?;
-        seal::agrees(dir, &sealed, &config)?;
+        seal::seal_agrees(dir, &sealed, &config)?;
         parts.push((dir, (config, data)));
     }
     let Some((first_dir, (first, _))) = parts.first() else {

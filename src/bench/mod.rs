@@ -21,7 +21,7 @@ pub mod figures;
 mod files;
 mod findings;
 mod runner;
-pub mod seal;
+mod seal;
 mod summary;
 
 pub use files::{
@@ -29,7 +29,7 @@ pub use files::{
 };
 pub use findings::{findings, Finding, Verdict};
 pub use runner::{run_grid, BenchSettings, GridRun, GridSize};
-pub use seal::{unmark_complete, verify_seal, COMPLETE_FILE};
+pub use seal::{seal_agrees, unmark_complete, verify_seal, Seal, SealedFile, COMPLETE_FILE};
 pub use summary::{
     DistanceBucket, GapHistogram, GapSplitSummary, HopGapSummary, JointSummary, MethodSummary,
     StopGapSummary, Summary, SUMMARY_SCHEMA_VERSION,

@@ -229,7 +229,7 @@ pub fn verify_seal(dir: &Path) -> Result<Seal> {
 ///
 /// # Errors
 /// E7009.
-pub fn agrees(dir: &Path, seal: &Seal, config: &BenchConfig) -> Result<()> {
+pub fn seal_agrees(dir: &Path, seal: &Seal, config: &BenchConfig) -> Result<()> {
     if seal.shard == config.shard && seal.inputs_sha256 == config.inputs_sha256 {
         return Ok(());
     }

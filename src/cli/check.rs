@@ -145,7 +145,7 @@ fn check_bench(args: &CheckArgs, dir: &std::path::Path) -> Result<i32> {
     // The seal first: a file changed after the run is named before any row is read.
     let seal = crate::bench::verify_seal(dir)?;
     let (config, data) = crate::bench::read_data(dir)?;
-    crate::bench::seal::agrees(dir, &seal, &config)?;
+    crate::bench::seal_agrees(dir, &seal, &config)?;
     let shipped = if config.network == inputs::FINDINGS_195.network_name
         || config.profile == inputs::FINDINGS_195.profile_name
     {
