@@ -365,3 +365,26 @@ fn a_json_type_error_names_the_field_path() {
     let out = swarmplan(&["eaas", "--hop-file", &hop]);
     assert_exit_2_with(&out, "E4111", &["hop_index"]);
 }
+
+#[test]
+fn input_files_may_start_with_a_utf8_byte_order_mark() {
+    // Was: E0001 at line 1 column 1 (JSON) and E5009 on an invisible `\u{feff}3` (P||Cmax).
+    let bom = |name: &str, rel: &str| {
+        let mut bytes = b"\xef\xbb\xbf".to_vec();
+        bytes.extend(std::fs::read(repo_path(rel)).unwrap());
+        write_tmp(name, &bytes)
+    };
+    let network = bom("bom-network.json", "instances/tiny/flat-stop.json");
+    let out = swarmplan(&["inspect", "--network", &network]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let pcmax = bom(
+        "bom-pcmax.txt",
+        "instances/node_time/pcmax-u1-n10-m3-seed1.txt",
+    );
+    let out = swarmplan(&["node-time", "--instance", &pcmax, "--method", "lpt"]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let profile = bom("bom-profile.toml", "instances/tiny/flat.toml");
+    let flat_stop = repo_arg("instances/tiny/flat-stop.json");
+    let out = solve_a_to_b(&flat_stop, &profile, &["--sharing", "none"]);
+    assert!(matches!(out.status.code(), Some(0 | 1)), "{}", stderr(&out));
+}

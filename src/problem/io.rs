@@ -6,7 +6,8 @@ use serde::de::DeserializeOwned;
 use serde::Serialize;
 use std::path::Path;
 
-/// Reads a text file whole.
+/// Reads a text file whole. A leading UTF-8 byte-order mark (U+FEFF, written by some editors)
+/// is dropped, so every reader of JSON, TOML and P||Cmax files accepts it.
 ///
 /// # Errors
 /// [`Error::Invalid`] with `E0008` when the file cannot be read (missing, a directory, no
@@ -21,7 +22,7 @@ pub fn read_text(path: &Path) -> Result<String> {
             "check the path, that it names a file and not a directory, and its read permission",
         )
     })?;
-    String::from_utf8(bytes).map_err(|e| {
+    let text = String::from_utf8(bytes).map_err(|e| {
         let good = &e.as_bytes()[..e.utf8_error().valid_up_to()];
         let line = 1 + good.iter().filter(|&&b| b == b'\n').count();
         let column = 1 + good.iter().rev().take_while(|&&b| b != b'\n').count();
@@ -34,6 +35,10 @@ pub fn read_text(path: &Path) -> Result<String> {
             ),
             "save the file as UTF-8 (JSON and TOML files are UTF-8 text)",
         )
+    })?;
+    Ok(match text.strip_prefix('\u{feff}') {
+        Some(rest) => rest.to_string(),
+        None => text,
     })
 }
 
