@@ -388,3 +388,40 @@ fn input_files_may_start_with_a_utf8_byte_order_mark() {
     let out = solve_a_to_b(&flat_stop, &profile, &["--sharing", "none"]);
     assert!(matches!(out.status.code(), Some(0 | 1)), "{}", stderr(&out));
 }
+
+#[test]
+fn a_directory_given_as_an_output_file_exits_2_with_e0010() {
+    // Was: E0013 "the output file exists", then with --force "Is a directory (os error 21)".
+    let dir = tmp("output-directory");
+    std::fs::create_dir_all(&dir).unwrap();
+    let dir = dir.to_str().unwrap();
+    let roads = repo_arg("instances/import-samples/roads.geojson");
+    let import = ["import", "--geojson", &roads, "--seed", "1", "-o", dir];
+    let generate = [
+        "generate", "network", "--nodes", "5", "--seed", "1", "-o", dir,
+    ];
+    let lp = [
+        "node-time",
+        "--pads",
+        "2",
+        "--times",
+        "3,2",
+        "--write-lp",
+        dir,
+    ];
+    for args in [&import[..], &generate[..], &lp[..]] {
+        for force in [false, true] {
+            let mut args = args.to_vec();
+            if force {
+                args.push("--force");
+            }
+            let out = swarmplan(&args);
+            assert_exit_2_with(&out, "E0010", &[dir, "is a directory", "path of a file"]);
+            assert!(
+                !stderr(&out).contains("E0013"),
+                "{args:?}: {}",
+                stderr(&out)
+            );
+        }
+    }
+}

@@ -158,8 +158,10 @@ pub fn write_json<T: Serialize>(path: &Path, value: &T) -> Result<()> {
 /// not a regular file (a device such as `/dev/null`, a pipe) is written directly.
 ///
 /// # Errors
-/// E0010 ([`Error::Io`]) when the file cannot be written.
+/// E0010: [`Error::Invalid`] when `path` is a directory ([`refuse_directory`]), [`Error::Io`]
+/// when the file cannot be written.
 pub fn write_whole(path: &Path, bytes: &[u8]) -> Result<()> {
+    refuse_directory(path)?;
     let io = |source| Error::Io {
         path: path.display().to_string(),
         source,
@@ -175,4 +177,25 @@ pub fn write_whole(path: &Path, bytes: &[u8]) -> Result<()> {
         let _ = std::fs::remove_file(&temporary);
         io(e)
     })
+}
+
+/// `E0010` when `path` is a directory: an output is written to a file, never into a folder by
+/// a name of the tool's choosing. Checked by [`write_whole`], and by the command line before
+/// any work (`-o`, `--write-lp` and the other options that name an output file).
+///
+/// # Errors
+/// [`Error::Invalid`] with `E0010`, naming the path.
+pub fn refuse_directory(path: &Path) -> Result<()> {
+    if !path.is_dir() {
+        return Ok(());
+    }
+    Err(Error::invalid(
+        "E0010",
+        path.display().to_string(),
+        "the output path is a directory; an output is written to a file",
+        format!(
+            "give the path of a file, such as {} inside it",
+            path.join("FILE").display()
+        ),
+    ))
 }
