@@ -425,3 +425,40 @@ fn a_directory_given_as_an_output_file_exits_2_with_e0010() {
         }
     }
 }
+
+#[test]
+fn negative_numbers_on_the_command_line_get_their_range_errors() {
+    // Was: E0007 "unexpected argument '-1' found", as if -1 were an option.
+    let network = repo_arg("instances/tiny/flat-stop.json");
+    let profile = repo_arg("instances/tiny/flat.toml");
+    let out = swarmplan(&[
+        "solve",
+        "--network",
+        &network,
+        "--profile",
+        &profile,
+        "--from",
+        "A",
+        "--to",
+        "B",
+        "--packages",
+        "-1,0.5",
+    ]);
+    assert_exit_2_with(&out, "E3302", &["--packages[0]", "-1"]);
+    let out = swarmplan(&["batch", "--request-limit", "1", "--time-budget", "-1"]);
+    assert_exit_2_with(&out, "E0028", &["--time-budget", "-1"]);
+    let bench_dir = tmp("negative-bucket");
+    let out = swarmplan(&[
+        "bench",
+        "--distance-bucket-km",
+        "-1",
+        "-o",
+        bench_dir.to_str().unwrap(),
+    ]);
+    assert_exit_2_with(&out, "E7006", &["--distance-bucket-km", "-1"]);
+    let out = swarmplan(&["node-time", "--pads", "-1", "--times", "3,2"]);
+    assert_exit_2_with(&out, "E5001", &["--pads", "-1"]);
+    let out = swarmplan(&["node-time", "--pads", "2", "--times", "-3,2"]);
+    assert_exit_2_with(&out, "E5003", &["charge_times_min[0]", "-3"]);
+}
+

@@ -31,7 +31,12 @@ pub struct SolveArgs {
     #[arg(long, value_name = "NODE", requires_all = ["from", "packages"])]
     pub to: Option<String>,
     /// Package masses in kg, comma-separated, one delivery drone each (e.g. 1.2,0.8).
-    #[arg(long, value_name = "KG,KG,...", requires_all = ["from", "to"])]
+    #[arg(
+        long,
+        value_name = "KG,KG,...",
+        requires_all = ["from", "to"],
+        allow_hyphen_values = true
+    )]
     pub packages: Option<String>,
     /// In-flight energy sharing policy.
     #[arg(long, value_enum, default_value = "pb")]
