@@ -462,3 +462,70 @@ fn negative_numbers_on_the_command_line_get_their_range_errors() {
     assert_exit_2_with(&out, "E5003", &["charge_times_min[0]", "-3"]);
 }
 
+/// The longest run of ASCII digits in `text`.
+fn longest_digit_run(text: &str) -> usize {
+    text.split(|c: char| !c.is_ascii_digit())
+        .map(str::len)
+        .max()
+        .unwrap_or(0)
+}
+
+#[test]
+fn huge_numbers_are_echoed_in_exponent_form() {
+    // Was: 1e308 as 309 digits in the messages of --packages and --time-budget.
+    let network = repo_arg("instances/tiny/flat-stop.json");
+    let profile = repo_arg("instances/tiny/flat.toml");
+    let x = flat_stop_with("x1e308-echo.json", r#""x_m": 2500.0"#, r#""x_m": 1e308"#);
+    let cases = [
+        (solve_a_to_b(&x, &profile, &["--sharing", "none"]), "E1106"),
+        (
+            swarmplan(&[
+                "solve",
+                "--network",
+                &network,
+                "--profile",
+                &profile,
+                "--from",
+                "A",
+                "--to",
+                "B",
+                "--packages",
+                "1e308",
+            ]),
+            "E3303",
+        ),
+        (
+            swarmplan(&["batch", "--request-limit", "1", "--time-budget", "1e308"]),
+            "E0028",
+        ),
+        (
+            swarmplan(&["node-time", "--pads", "2", "--times", "-1e300,2"]),
+            "E5003",
+        ),
+        // Was a panic (a deadline beyond the clock's range).
+        (
+            swarmplan(&[
+                "eaas",
+                "--request-id",
+                "r00001",
+                "--hop",
+                "0",
+                "--methods",
+                "milp",
+                "--time-limit",
+                "1e300",
+            ]),
+            "E4105",
+        ),
+    ];
+    for (out, code) in cases {
+        assert_exit_2_with(&out, code, &["e30"]);
+        assert!(
+            ["E5003", "E4105"].contains(&code) || stderr(&out).contains("1e308"),
+            "{}",
+            stderr(&out)
+        );
+        let err = stderr(&out);
+        assert!(longest_digit_run(&err) < 20, "{code}: {err}");
+    }
+}

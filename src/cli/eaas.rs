@@ -158,7 +158,16 @@ pub fn run(args: EaasArgs) -> Result<i32> {
             size.constraints
         );
     }
-    let rows = rows(&hop.hop, &objective, &args, &readings)?;
+    // The exact methods check their time limit (E4105) under the library's name for it.
+    let rows = rows(&hop.hop, &objective, &args, &readings).map_err(|e| match e {
+        Error::Invalid(mut list) => {
+            for v in list.iter_mut().filter(|v| v.field == "time_limit_s") {
+                v.field = "--time-limit".to_string();
+            }
+            Error::Invalid(list)
+        }
+        other => other,
+    })?;
     let out = EaasReport {
         request_id: hop.request_id,
         hop: hop.hop_index,
