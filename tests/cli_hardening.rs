@@ -529,3 +529,29 @@ fn huge_numbers_are_echoed_in_exponent_form() {
         assert!(longest_digit_run(&err) < 20, "{code}: {err}");
     }
 }
+
+#[test]
+fn a_full_disk_is_a_coded_error_for_files_and_for_standard_output() {
+    let Ok(full) = std::fs::OpenOptions::new().write(true).open("/dev/full") else {
+        return;
+    };
+    // A device is written to, not overwritten: no --force asked for.
+    let out = swarmplan(&[
+        "generate",
+        "network",
+        "--nodes",
+        "5",
+        "--seed",
+        "1",
+        "-o",
+        "/dev/full",
+    ]);
+    assert_exit_2_with(&out, "E0010", &["/dev/full", "cannot write the file"]);
+    // Was: "cannot write the results to stdout" without a code, exit 1.
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_swarmplan"))
+        .args(["node-time", "--pads", "2", "--times", "3,2", "--json"])
+        .stdout(full)
+        .output()
+        .unwrap();
+    assert_exit_2_with(&out, "E0010", &["standard output", "cannot write"]);
+}
