@@ -19,7 +19,6 @@
 //! limit (`incumbent`), or the fluid LP bound (`bound`); a PB or FB schedule outside the
 //! re-ordering mode of the exact models is labelled `different_policy` instead.
 
-use super::human::json_name;
 use super::inputs::{self, InstanceArgs};
 use crate::compose::{Context, PlanOptions, RouteMethod};
 use crate::eaas::compare::{label_gaps, run_method};
@@ -30,6 +29,7 @@ use crate::eaas::milp::{write_lp, MilpOptions, ModelFormat, Objective, Reorder};
 use crate::eaas::{HopProblem, PolicyOptions, SharingPolicy};
 use crate::error::{Error, Result};
 use crate::precompose::Positioning;
+use crate::problem::io::json_name;
 use crate::solver::MilpBackend;
 use serde::Serialize;
 use std::path::PathBuf;

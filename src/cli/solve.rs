@@ -1,11 +1,11 @@
 //! `swarmplan solve`: plan one request and print the plan.
 
-use super::human::json_name;
 use super::inputs::{self, ExactArgs, InstanceArgs};
 use crate::compose::{Context, HopPaths, PlanOptions, RequestReport, RouteMethod};
 use crate::eaas::SharingPolicy;
 use crate::error::{Error, Result};
 use crate::precompose::Positioning;
+use crate::problem::io::json_name;
 use crate::problem::Request;
 use std::path::PathBuf;
 

@@ -199,3 +199,23 @@ pub fn refuse_directory(path: &Path) -> Result<()> {
         ),
     ))
 }
+
+/// The name a value goes by in JSON (`diamond`, `optimal`, `time_limit_no_solution`), so that
+/// human output, the checker's messages and `--json` speak of the same things with the same
+/// words. A number is its JSON text, `None` is `null`, a list or a struct its compact JSON.
+///
+/// # Example
+/// ```
+/// use swarmplan::problem::io::json_name;
+/// use swarmplan::problem::FormationKind;
+/// assert_eq!(json_name(&FormationKind::Diamond), "diamond");
+/// assert_eq!(json_name(&Some(0.5)), "0.5");
+/// assert_eq!(json_name(&None::<f64>), "null");
+/// ```
+pub fn json_name<T: serde::Serialize>(value: &T) -> String {
+    match serde_json::to_value(value) {
+        Ok(serde_json::Value::String(s)) => s,
+        Ok(other) => other.to_string(),
+        Err(_) => String::new(),
+    }
+}
