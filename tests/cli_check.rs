@@ -118,6 +118,34 @@ fn f64_at(v: &Value) -> f64 {
     v.as_f64().unwrap()
 }
 
+/// A hand-edited plan's violations say what happened and what to do, not that the tool has a
+/// bug (was: "report it with the instance and the request").
+#[test]
+fn a_changed_plan_is_told_to_be_made_again_not_reported() {
+    let t = tiny();
+    let mut p = t.plan();
+    let b = &mut p["plan"]["hops"][0]["arrival_battery_mah"][2];
+    *b = Value::from(f64_at(b) + 10.0);
+    let path = write("edited.json", &serde_json::to_string_pretty(&p).unwrap());
+    let mut args = t.args("check");
+    args.extend(["--plan", &path]);
+    let out = swarmplan(&args);
+    assert_eq!(out.status.code(), Some(1), "{out:?}");
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains("[P5015]") && text.contains("[P5022]"),
+        "{text}"
+    );
+    assert!(!text.contains("report it"), "{text}");
+    for words in [
+        "changed after it was made",
+        "make it again",
+        "swarmplan solve",
+    ] {
+        assert!(text.contains(words), "'{words}': {text}");
+    }
+}
+
 #[test]
 fn a_tiny_plan_passes_and_each_changed_number_breaks_its_rule() {
     let t = tiny();
