@@ -52,7 +52,10 @@ pub enum Error {
     Invalid(Vec<Violation>),
     /// A file could not be written (`E0010`). A file that cannot be read is an [`Error::Invalid`]
     /// with `E0008` or `E0009`.
-    #[error("[E0010] {path}: cannot write the file: {source}; check that its directory exists and is writable")]
+    #[error(
+        "[E0010] {path}: cannot write the file: {source}; check that its directory exists and \
+         is writable and that its disk has space"
+    )]
     Io {
         /// The path concerned.
         path: String,
@@ -60,8 +63,12 @@ pub enum Error {
         #[source]
         source: std::io::Error,
     },
-    /// The results could not be written to stdout.
-    #[error("cannot write the results to stdout: {0}")]
+    /// The results could not be written to standard output (`E0010`, as a file that cannot be
+    /// written); a closed pipe is told apart by [`Error::is_broken_pipe`].
+    #[error(
+        "[E0010] standard output: cannot write the results: {0}; check where \
+         standard output goes: the disk it writes to may be full"
+    )]
     Output(#[source] std::io::Error),
     /// An optimization backend failed in a way that is not a solve outcome.
     #[error("solver backend {backend} failed: {message}")]
@@ -92,11 +99,12 @@ impl Error {
         Error::Invalid(vec![Violation::new(code, field, cause, action)])
     }
 
-    /// Process exit code: 2 for bad input (including unreadable files), 1 for a failed run.
+    /// Process exit code: 2 for bad input (including files that cannot be read or written, and
+    /// a standard output that cannot be written), 1 for a failed run.
     pub fn exit_code(&self) -> i32 {
         match self {
-            Error::Invalid(_) | Error::Io { .. } => 2,
-            Error::Backend { .. } | Error::Output(_) => 1,
+            Error::Invalid(_) | Error::Io { .. } | Error::Output(_) => 2,
+            Error::Backend { .. } => 1,
         }
     }
 

@@ -118,6 +118,34 @@ fn f64_at(v: &Value) -> f64 {
     v.as_f64().unwrap()
 }
 
+/// A hand-edited plan's violations say what happened and what to do, not that the tool has a
+/// bug (was: "report it with the instance and the request").
+#[test]
+fn a_changed_plan_is_told_to_be_made_again_not_reported() {
+    let t = tiny();
+    let mut p = t.plan();
+    let b = &mut p["plan"]["hops"][0]["arrival_battery_mah"][2];
+    *b = Value::from(f64_at(b) + 10.0);
+    let path = write("edited.json", &serde_json::to_string_pretty(&p).unwrap());
+    let mut args = t.args("check");
+    args.extend(["--plan", &path]);
+    let out = swarmplan(&args);
+    assert_eq!(out.status.code(), Some(1), "{out:?}");
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains("[P5015]") && text.contains("[P5022]"),
+        "{text}"
+    );
+    assert!(!text.contains("report it"), "{text}");
+    for words in [
+        "changed after it was made",
+        "make it again",
+        "swarmplan solve",
+    ] {
+        assert!(text.contains(words), "'{words}': {text}");
+    }
+}
+
 #[test]
 fn a_tiny_plan_passes_and_each_changed_number_breaks_its_rule() {
     let t = tiny();
@@ -548,6 +576,68 @@ fn node_time_results_are_checked() {
     ]);
     assert_eq!(mismatch.status.code(), Some(1), "{mismatch:?}");
     assert_eq!(stdout_json(&mismatch)[0]["field"], "charge_times_min[4]");
+}
+
+/// Asserts exit code 2 and that stderr names `code` and every one of `words`.
+fn assert_exit_2_with(out: &Output, code: &str, words: &[&str]) {
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{code}: {err}");
+    assert!(err.contains(&format!("[{code}]")), "{code} missing: {err}");
+    for w in words {
+        assert!(err.contains(w), "{code}: '{w}' missing: {err}");
+    }
+}
+
+/// `check --node-time` in words: a gap that does not fit the status is told as relative gaps
+/// against their references (was Rust debug text, `Some(Gap { relative: Some(0.5), reference:
+/// Bound })`); a negative charge time in the result, or in the instance file, is bad input
+/// (E5003, exit 2, the file and field named), not a violation of the exhaustive optimum.
+#[test]
+fn node_time_checks_speak_in_words_and_a_negative_charge_time_is_input() {
+    let out = swarmplan(&["node-time", "--pads", "2", "--times", "3,2,2", "--json"]);
+    assert_eq!(out.status.code(), Some(0), "{out:?}");
+    let result = stdout_json(&out);
+    let mut gap = result.clone();
+    gap["gap"] = serde_json::json!({"relative": 0.5, "reference": "bound"});
+    let path = write("node-time-gap.json", &gap.to_string());
+    let out = swarmplan(&["check", "--node-time", &path]);
+    assert_eq!(out.status.code(), Some(1), "{out:?}");
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("[P5505]"), "{text}");
+    assert!(
+        text.contains("relative gap 0.5 against the lower bound")
+            && text.contains("status optimal gives relative gap 0 against the optimum"),
+        "{text}"
+    );
+    for debug in ["Some(", "Gap {", "Optimal", "Bound"] {
+        assert!(!text.contains(debug), "{debug}: {text}");
+    }
+    let mut negative = result.clone();
+    negative["charge_times_min"][0] = (-3.0).into();
+    let path = write("node-time-negative.json", &negative.to_string());
+    let out = swarmplan(&["check", "--node-time", &path]);
+    assert_exit_2_with(
+        &out,
+        "E5003",
+        &["node-time-negative.json", "charge_times_min[0]", "-3"],
+    );
+    let ok = write("node-time-ok.json", &result.to_string());
+    let instance = write(
+        "node-time-negative-instance.json",
+        r#"{"pads": 2, "charge_times_min": [3, -2, 2]}"#,
+    );
+    let out = swarmplan(&[
+        "check",
+        "--node-time",
+        &ok,
+        "--node-time-instance",
+        &instance,
+    ]);
+    assert_exit_2_with(
+        &out,
+        "E5003",
+        &["node-time-negative-instance.json", "charge_times_min[1]"],
+    );
 }
 
 /// `check --hop-file`: the hop `eaas --write-hop` writes passes; its first leg said to last a

@@ -641,3 +641,193 @@ fn a_hop_file_with_another_hop_index_is_not_valid() {
         );
     }
 }
+
+#[test]
+fn input_files_may_start_with_a_utf8_byte_order_mark() {
+    // Was: E0001 at line 1 column 1 (JSON) and E5009 on an invisible `\u{feff}3` (P||Cmax).
+    let bom = |name: &str, rel: &str| {
+        let mut bytes = b"\xef\xbb\xbf".to_vec();
+        bytes.extend(std::fs::read(repo_path(rel)).unwrap());
+        write_tmp(name, &bytes)
+    };
+    let network = bom("bom-network.json", "instances/tiny/flat-stop.json");
+    let out = swarmplan(&["inspect", "--network", &network]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let pcmax = bom(
+        "bom-pcmax.txt",
+        "instances/node_time/pcmax-u1-n10-m3-seed1.txt",
+    );
+    let out = swarmplan(&["node-time", "--instance", &pcmax, "--method", "lpt"]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let profile = bom("bom-profile.toml", "instances/tiny/flat.toml");
+    let flat_stop = repo_arg("instances/tiny/flat-stop.json");
+    let out = solve_a_to_b(&flat_stop, &profile, &["--sharing", "none"]);
+    assert!(matches!(out.status.code(), Some(0 | 1)), "{}", stderr(&out));
+}
+
+#[test]
+fn a_directory_given_as_an_output_file_exits_2_with_e0010() {
+    // Was: E0013 "the output file exists", then with --force "Is a directory (os error 21)".
+    let dir = tmp("output-directory");
+    std::fs::create_dir_all(&dir).unwrap();
+    let dir = dir.to_str().unwrap();
+    let roads = repo_arg("instances/import-samples/roads.geojson");
+    let import = ["import", "--geojson", &roads, "--seed", "1", "-o", dir];
+    let generate = [
+        "generate", "network", "--nodes", "5", "--seed", "1", "-o", dir,
+    ];
+    let lp = [
+        "node-time",
+        "--pads",
+        "2",
+        "--times",
+        "3,2",
+        "--write-lp",
+        dir,
+    ];
+    for args in [&import[..], &generate[..], &lp[..]] {
+        for force in [false, true] {
+            let mut args = args.to_vec();
+            if force {
+                args.push("--force");
+            }
+            let out = swarmplan(&args);
+            assert_exit_2_with(&out, "E0010", &[dir, "is a directory", "path of a file"]);
+            assert!(
+                !stderr(&out).contains("E0013"),
+                "{args:?}: {}",
+                stderr(&out)
+            );
+        }
+    }
+}
+
+#[test]
+fn negative_numbers_on_the_command_line_get_their_range_errors() {
+    // Was: E0007 "unexpected argument '-1' found", as if -1 were an option.
+    let network = repo_arg("instances/tiny/flat-stop.json");
+    let profile = repo_arg("instances/tiny/flat.toml");
+    let out = swarmplan(&[
+        "solve",
+        "--network",
+        &network,
+        "--profile",
+        &profile,
+        "--from",
+        "A",
+        "--to",
+        "B",
+        "--packages",
+        "-1,0.5",
+    ]);
+    assert_exit_2_with(&out, "E3302", &["--packages[0]", "-1"]);
+    let out = swarmplan(&["batch", "--request-limit", "1", "--time-budget", "-1"]);
+    assert_exit_2_with(&out, "E0028", &["--time-budget", "-1"]);
+    let bench_dir = tmp("negative-bucket");
+    let out = swarmplan(&[
+        "bench",
+        "--distance-bucket-km",
+        "-1",
+        "-o",
+        bench_dir.to_str().unwrap(),
+    ]);
+    assert_exit_2_with(&out, "E7006", &["--distance-bucket-km", "-1"]);
+    let out = swarmplan(&["node-time", "--pads", "-1", "--times", "3,2"]);
+    assert_exit_2_with(&out, "E5001", &["--pads", "-1"]);
+    let out = swarmplan(&["node-time", "--pads", "2", "--times", "-3,2"]);
+    assert_exit_2_with(&out, "E5003", &["charge_times_min[0]", "-3"]);
+}
+
+/// The longest run of ASCII digits in `text`.
+fn longest_digit_run(text: &str) -> usize {
+    text.split(|c: char| !c.is_ascii_digit())
+        .map(str::len)
+        .max()
+        .unwrap_or(0)
+}
+
+#[test]
+fn huge_numbers_are_echoed_in_exponent_form() {
+    // Was: 1e308 as 309 digits in the messages of --packages and --time-budget.
+    let network = repo_arg("instances/tiny/flat-stop.json");
+    let profile = repo_arg("instances/tiny/flat.toml");
+    let x = flat_stop_with("x1e308-echo.json", r#""x_m": 2500.0"#, r#""x_m": 1e308"#);
+    let cases = [
+        (solve_a_to_b(&x, &profile, &["--sharing", "none"]), "E1106"),
+        (
+            swarmplan(&[
+                "solve",
+                "--network",
+                &network,
+                "--profile",
+                &profile,
+                "--from",
+                "A",
+                "--to",
+                "B",
+                "--packages",
+                "1e308",
+            ]),
+            "E3303",
+        ),
+        (
+            swarmplan(&["batch", "--request-limit", "1", "--time-budget", "1e308"]),
+            "E0028",
+        ),
+        (
+            swarmplan(&["node-time", "--pads", "2", "--times", "-1e300,2"]),
+            "E5003",
+        ),
+        // Was a panic (a deadline beyond the clock's range).
+        (
+            swarmplan(&[
+                "eaas",
+                "--request-id",
+                "r00001",
+                "--hop",
+                "0",
+                "--methods",
+                "milp",
+                "--time-limit",
+                "1e300",
+            ]),
+            "E4105",
+        ),
+    ];
+    for (out, code) in cases {
+        assert_exit_2_with(&out, code, &["e30"]);
+        assert!(
+            ["E5003", "E4105"].contains(&code) || stderr(&out).contains("1e308"),
+            "{}",
+            stderr(&out)
+        );
+        let err = stderr(&out);
+        assert!(longest_digit_run(&err) < 20, "{code}: {err}");
+    }
+}
+
+#[test]
+fn a_full_disk_is_a_coded_error_for_files_and_for_standard_output() {
+    let Ok(full) = std::fs::OpenOptions::new().write(true).open("/dev/full") else {
+        return;
+    };
+    // A device is written to, not overwritten: no --force asked for.
+    let out = swarmplan(&[
+        "generate",
+        "network",
+        "--nodes",
+        "5",
+        "--seed",
+        "1",
+        "-o",
+        "/dev/full",
+    ]);
+    assert_exit_2_with(&out, "E0010", &["/dev/full", "cannot write the file"]);
+    // Was: "cannot write the results to stdout" without a code, exit 1.
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_swarmplan"))
+        .args(["node-time", "--pads", "2", "--times", "3,2", "--json"])
+        .stdout(full)
+        .output()
+        .unwrap();
+    assert_exit_2_with(&out, "E0010", &["standard output", "cannot write"]);
+}

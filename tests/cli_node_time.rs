@@ -156,9 +156,9 @@ fn a_closed_stdout_ends_quietly_and_a_full_disk_is_reported() {
             .output()
             .unwrap();
         let stderr = String::from_utf8_lossy(&out.stderr);
-        assert_eq!(out.status.code(), Some(1), "{stderr}");
+        assert_eq!(out.status.code(), Some(2), "{stderr}");
         assert!(
-            stderr.contains("cannot write the results to stdout"),
+            stderr.contains("[E0010] standard output: cannot write the results"),
             "{stderr}"
         );
     }

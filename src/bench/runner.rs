@@ -8,7 +8,7 @@ use super::{read_data, run, unmark_complete, write_outputs, BenchConfig, BenchDa
 use crate::compose::{Context, RouteMethod};
 use crate::eaas::exact_hop::ExactChoices;
 use crate::eaas::SharingPolicy;
-use crate::error::{both, Error, Result};
+use crate::error::{both, show, Error, Result};
 use crate::experiment::{self, Baseline, BudgetStop, Methods};
 use crate::precompose::Positioning;
 use crate::problem::inputs::{load_requests, InstanceFiles};
@@ -119,7 +119,7 @@ pub fn run_grid(
         return Err(Error::invalid(
             "E7006",
             "--distance-bucket-km",
-            format!("{} is not a width > 0", s.distance_bucket_km),
+            format!("{} is not a width > 0", show(s.distance_bucket_km)),
             "give the width of the distance buckets in km, such as 1",
         ));
     }

@@ -29,6 +29,7 @@ use super::decision::shortest_distance_m;
 use crate::bench::{BenchConfig, BenchData, RequestRow};
 use crate::compose::{Context, HopPaths, PlanSettings, RequestReport};
 use crate::error::{Result, Violation};
+use crate::problem::io::json_name;
 use crate::problem::{Network, Profile, Request, SkywayGraph};
 use crate::solver::SolveStatus;
 
@@ -101,8 +102,10 @@ pub fn check_bench_rows(
                 "P5703",
                 format!("requests.csv[{k}].request_index"),
                 format!(
-                    "request {} at index {}: the run's requests have {found:?} there",
-                    row.request_id, row.request_index
+                    "request {} at index {}: the run's requests have {} there",
+                    row.request_id,
+                    row.request_index,
+                    found.map_or("none".to_string(), |id| format!("`{id}`"))
                 ),
             ));
         }
@@ -161,8 +164,10 @@ pub fn check_bench_rows(
                     "P5704",
                     format!("{f}.sharing"),
                     format!(
-                        "combination {:?}/{:?}/{:?} is not one of the run's",
-                        row.sharing, row.positioning, row.route
+                        "combination {}/{}/{} is not one of the run's",
+                        json_name(&row.sharing),
+                        json_name(&row.positioning),
+                        json_name(&row.route)
                     ),
                 ));
                 continue;
@@ -324,13 +329,13 @@ impl Columns<'_> {
             (a, b) => a.is_none() && b.is_none(),
         };
         if !same {
-            self.differs(column, format!("{stated:?}"), format!("{recomputed:?}"));
+            self.differs(column, json_name(&stated), json_name(&recomputed));
         }
     }
 
-    fn exact<T: PartialEq + std::fmt::Debug>(&mut self, column: &str, stated: T, recomputed: T) {
+    fn exact<T: PartialEq + serde::Serialize>(&mut self, column: &str, stated: T, recomputed: T) {
         if stated != recomputed {
-            self.differs(column, format!("{stated:?}"), format!("{recomputed:?}"));
+            self.differs(column, json_name(&stated), json_name(&recomputed));
         }
     }
 

@@ -9,6 +9,7 @@
 use super::close;
 use crate::compose::RequestReport;
 use crate::error::Violation;
+use crate::problem::io::json_name;
 use crate::problem::profile::{FailureModel, FailureTerms};
 use crate::problem::{Network, Profile, Request};
 use std::cmp::Ordering;
@@ -96,8 +97,10 @@ pub fn check_support_decision(
                 "P5045",
                 "support_decision.level",
                 format!(
-                    "states {:?}, row {} of the redundancy table is {:?}",
-                    stated.level, got.row, row.level
+                    "states {}, row {} of the redundancy table is {}",
+                    json_name(&stated.level),
+                    got.row,
+                    json_name(&row.level)
                 ),
             ));
         }
@@ -107,8 +110,11 @@ pub fn check_support_decision(
             "P5045",
             "support_decision.model",
             format!(
-                "states {:?} with {:?} terms, the profile has {:?} with {:?}",
-                stated.model, stated.term_mode, profile.failure.model, profile.failure.terms
+                "states {} with {} terms, the profile has {} with {}",
+                json_name(&stated.model),
+                json_name(&stated.term_mode),
+                json_name(&profile.failure.model),
+                json_name(&profile.failure.terms)
             ),
         ));
     }

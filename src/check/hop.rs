@@ -27,7 +27,9 @@ pub(super) fn v(code: &'static str, field: String, cause: String) -> Violation {
         code,
         field,
         cause,
-        "the schedule breaks the hop model; report it with the instance",
+        "the schedule breaks the hop model: it was changed after it was made, or made for \
+         another hop; make it again (`swarmplan solve ... --json` for a plan's hops, `swarmplan \
+         eaas` for one hop) on the instance it is checked with",
     )
 }
 

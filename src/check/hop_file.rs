@@ -28,6 +28,7 @@ use crate::eaas::hop_file::HopFile;
 use crate::energy;
 use crate::error::Violation;
 use crate::formation;
+use crate::problem::io::json_name;
 use crate::problem::{Drone, FormationKind, Network, Profile, Request, Role, Swarm};
 
 fn v(code: &'static str, field: impl Into<String>, cause: impl Into<String>) -> Violation {
@@ -107,9 +108,9 @@ pub fn check_hop_file(
             "P5605",
             "hop.drones",
             format!(
-                "roles {:?}: the request's {n} packages need {n} delivery drones first, then \
+                "roles {}: the request's {n} packages need {n} delivery drones first, then \
                  support drones",
-                hop.drones.iter().map(|d| d.role).collect::<Vec<_>>()
+                json_name(&hop.drones.iter().map(|d| d.role).collect::<Vec<_>>())
             ),
         ));
         return out;
@@ -264,7 +265,8 @@ pub fn check_hop_file(
             "P5608",
             "end",
             format!(
-                "states {stated:?}, the end node `{}` has {pads} pads",
+                "states {}, the end node `{}` has {pads} pads",
+                json_name(&stated),
                 file.to
             ),
         )),

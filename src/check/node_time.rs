@@ -8,9 +8,11 @@
 
 use super::plan::{optimal_makespan_min, OPTIMALITY_CHECK_DRONES};
 use super::{close, RELATIVE_TOLERANCE};
+use crate::error::show;
 use crate::error::Violation;
 use crate::node_time::NodeTimeReport;
-use crate::solver::{ReferenceKind, SolveStatus};
+use crate::problem::io::json_name;
+use crate::solver::{Gap, ReferenceKind, SolveStatus};
 
 fn v(code: &'static str, field: impl Into<String>, cause: impl Into<String>) -> Violation {
     Violation::new(
@@ -135,9 +137,11 @@ pub fn check_node_time(
             "P5503",
             "lower_bound_min",
             format!(
-                "states {} with status {:?}: a lower bound lies in [0, {makespan}], equal to the \
+                "states {} with status {}: a lower bound lies in [0, {}], equal to the \
                  makespan when optimal",
-                s.lower_bound_min, s.status
+                show(s.lower_bound_min),
+                json_name(&s.status),
+                show(makespan)
             ),
         ));
     }
@@ -185,17 +189,30 @@ pub fn check_node_time(
             "P5505",
             field,
             format!(
-                "states {:?}, status {:?} gives {:?} (against {})",
-                report.gap,
-                s.status,
-                expected,
-                match expected.map(|g| g.reference) {
-                    Some(ReferenceKind::Optimal) => "the optimum",
-                    Some(_) => "the lower bound",
-                    None => "nothing",
-                }
+                "states {}; status {} gives {}",
+                gap_words(report.gap),
+                json_name(&s.status),
+                gap_words(expected)
             ),
         ));
     }
     out
+}
+
+/// A gap in words, its relative value as the document writes it: `relative gap 0.5 against the
+/// lower bound`, `no gap` (`null`).
+fn gap_words(gap: Option<Gap>) -> String {
+    let Some(g) = gap else {
+        return "no gap (null)".to_string();
+    };
+    let against = match g.reference {
+        ReferenceKind::Optimal => "the optimum",
+        ReferenceKind::Incumbent => "an incumbent",
+        ReferenceKind::Bound => "the lower bound",
+        ReferenceKind::Infimum => "the infimum",
+    };
+    match g.relative {
+        Some(r) => format!("relative gap {} against {against}", show(r)),
+        None => format!("no relative gap (null: a reference of 0) against {against}"),
+    }
 }

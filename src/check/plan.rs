@@ -37,6 +37,7 @@ use crate::eaas::{self, HopOutcome, HopProblem, SharingPolicy};
 use crate::energy;
 use crate::error::Violation;
 use crate::formation;
+use crate::problem::io::json_name;
 use crate::problem::profile::Candidates;
 use crate::problem::{Network, Node, Profile, Request};
 use crate::problem::{Role, Swarm, Wind};
@@ -56,7 +57,9 @@ fn v(code: &'static str, field: impl Into<String>, cause: impl Into<String>) -> 
         code,
         field,
         cause,
-        "the plan breaks the composition model; report it with the instance and the request",
+        "the plan breaks the composition model: it was changed after it was made, or made on \
+         another network or profile; make it again with `swarmplan solve ... --json` on the \
+         instance it is checked with",
     )
 }
 
@@ -283,8 +286,8 @@ fn p5039_drones_are_the_profiles(raw: &Raw) -> Vec<Violation> {
                         "P5039",
                         format!("swarm.drones[{i}].{field}"),
                         format!(
-                            "{:?} drone with {stated} {unit}, the profile gives {expected} {unit}",
-                            d.role
+                            "{} drone with {stated} {unit}, the profile gives {expected} {unit}",
+                            json_name(&d.role)
                         ),
                     ));
                 }
@@ -311,8 +314,8 @@ fn p5040_slots_are_the_formations(raw: &Raw) -> Option<Violation> {
             "P5040",
             "swarm.slots_m",
             format!(
-                "not the slots of a {:?} formation of {} drones at {} m spacing",
-                swarm.formation,
+                "not the slots of a {} formation of {} drones at {} m spacing",
+                json_name(&swarm.formation),
                 swarm.drones.len(),
                 raw.profile.formation.spacing_m
             ),
@@ -818,9 +821,9 @@ fn p5016_no_transfer_without_sharing(raw: &Raw, f: &str, hop: &Hop) -> Option<Vi
             "P5016",
             format!("{f}.transfers"),
             format!(
-                "{} transfer(s) under sharing policy {:?}, which does not share",
+                "{} transfer(s) under sharing policy {}, which does not share",
                 hop.transfers.len(),
-                raw.sharing
+                json_name(&raw.sharing)
             ),
         )
     })

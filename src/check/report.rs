@@ -10,6 +10,7 @@ use super::search;
 use crate::compose::RequestReport;
 use crate::error::Violation;
 use crate::problem::fingerprint::Fingerprint;
+use crate::problem::io::json_name;
 use crate::problem::{Network, Profile, Request};
 
 fn v(code: &'static str, field: impl Into<String>, cause: impl Into<String>) -> Violation {
@@ -188,8 +189,9 @@ fn p5043_summary_matches_the_swarm(report: &RequestReport) -> Vec<Violation> {
             "P5043",
             "formation",
             format!(
-                "formation {:?}, the swarm flies {:?}",
-                report.formation, swarm.formation
+                "formation {}, the swarm flies {}",
+                json_name(&report.formation),
+                json_name(&swarm.formation)
             ),
         ));
     }
@@ -213,8 +215,9 @@ fn p5043_summary_matches_the_swarm(report: &RequestReport) -> Vec<Violation> {
             "P5043",
             "options.support",
             format!(
-                "options.support {given:?} (sharing {:?}), the swarm flies {flown}",
-                report.options.sharing
+                "options.support {} (sharing {}), the swarm flies {flown}",
+                json_name(&given),
+                json_name(&report.options.sharing)
             ),
         ));
     }
@@ -223,8 +226,8 @@ fn p5043_summary_matches_the_swarm(report: &RequestReport) -> Vec<Violation> {
             "P5043",
             "support_drones",
             format!(
-                "sharing {:?} flies no support drone, the swarm has {flown}",
-                report.options.sharing
+                "sharing {} flies no support drone, the swarm has {flown}",
+                json_name(&report.options.sharing)
             ),
         ));
     }

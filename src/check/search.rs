@@ -20,6 +20,7 @@ use crate::compose::{Context, RequestReport};
 use crate::eaas::exact::ExactStatus;
 use crate::eaas::exact_hop::HopGoal;
 use crate::error::Violation;
+use crate::problem::io::json_name;
 use crate::problem::{Network, Profile, Request, SkywayGraph};
 use serde_json::Value;
 
@@ -81,9 +82,9 @@ pub fn check_consistency(report: &RequestReport) -> Vec<Violation> {
                 out.push(consistency(
                     format!("{f}.bound"),
                     format!(
-                        "states {bound}, a lower bound of objective {objective} (status {:?}, \
+                        "states {bound}, a lower bound of objective {objective} (status {}, \
                          epsilon {epsilon}) lies in [{lowest}, {highest}]",
-                        solve.status
+                        json_name(&solve.status)
                     ),
                 ));
             }
@@ -92,12 +93,18 @@ pub fn check_consistency(report: &RequestReport) -> Vec<Violation> {
             (Some(ExactStatus::OptimalWithin), Some(e)) if e >= 0.0 => epsilon_sum += e,
             (Some(ExactStatus::OptimalWithin), e) => out.push(consistency(
                 format!("{f}.epsilon"),
-                format!("status optimal_within states epsilon {e:?}, a distance >= 0"),
+                format!(
+                    "status optimal_within states epsilon {}, a distance >= 0",
+                    json_name(&e)
+                ),
             )),
             (_, None) => {}
             (status, Some(e)) => out.push(consistency(
                 format!("{f}.epsilon"),
-                format!("states epsilon {e} with status {status:?}: only optimal_within has one"),
+                format!(
+                    "states epsilon {e} with status {}: only optimal_within has one",
+                    json_name(&status)
+                ),
             )),
         }
     }
@@ -167,8 +174,9 @@ pub fn check_consistency(report: &RequestReport) -> Vec<Violation> {
             out.push(consistency(
                 "route_gap.gap",
                 format!(
-                    "states {:?}, (dt - optimal_dt_min) / optimal_dt_min is {expected:?}",
-                    gap.gap
+                    "states {}, (dt - optimal_dt_min) / optimal_dt_min is {}",
+                    json_name(&gap.gap),
+                    json_name(&expected)
                 ),
             ));
         }

@@ -68,7 +68,7 @@ pub struct BatchArgs {
     /// Wall-clock budget of the whole run, seconds: no request is started after it, and the
     /// output is that of the requests before the first one left out (the same numbers as
     /// `--request-limit K` for that K, said on stderr with the remaining work) [default: none].
-    #[arg(long, value_name = "S")]
+    #[arg(long, value_name = "S", allow_negative_numbers = true)]
     pub time_budget: Option<f64>,
     /// Write every request's outcome (id, success, dt, stops, failure) as JSON to this file.
     #[arg(long, value_name = "FILE")]

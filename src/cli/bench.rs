@@ -138,7 +138,12 @@ pub struct RunArgs {
     #[arg(long, value_name = "N", default_value_t = crate::node_time::DEFAULT_STOP_NODE_LIMIT)]
     pub node_limit: u64,
     /// Width of the distance buckets, km.
-    #[arg(long, value_name = "KM", default_value_t = 1.0)]
+    #[arg(
+        long,
+        value_name = "KM",
+        default_value_t = 1.0,
+        allow_negative_numbers = true
+    )]
     pub distance_bucket_km: f64,
     /// Plan only the requests at positions I, I + N, I + 2N, ... (0 <= I < N); merge the shards
     /// with `bench merge`.
@@ -151,7 +156,7 @@ pub struct RunArgs {
     /// files are those of the requests before the first one left out (`config.json` records
     /// that `--request-limit`, so they are the files of `--request-limit K` for that K; stderr says what
     /// remains) [default: none].
-    #[arg(long, value_name = "S")]
+    #[arg(long, value_name = "S", allow_negative_numbers = true)]
     pub time_budget: Option<f64>,
     /// Output directory.
     #[arg(long, short = 'o', value_name = "DIR", required = true)]

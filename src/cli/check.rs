@@ -105,16 +105,37 @@ pub fn run(args: CheckArgs) -> Result<i32> {
     Ok(if violations.is_empty() { 0 } else { 1 })
 }
 
-/// `check --node-time R [--node-time-instance F]`.
+/// `check --node-time R [--node-time-instance F]`. The instance recorded in R and the one in F
+/// are input: the node-time rules (E5001-E5004, a negative charge time is E5003) apply to them
+/// as to `node-time`'s, each field named with its file.
 fn check_node_time(
     path: &std::path::Path,
     instance: Option<&std::path::Path>,
     json: bool,
 ) -> Result<i32> {
+    let valid = |file: &std::path::Path, pads: usize, times: &[f64]| {
+        crate::node_time::validate(pads, times).map_err(|e| match e {
+            Error::Invalid(list) => Error::Invalid(
+                list.into_iter()
+                    .map(|v| Violation {
+                        field: format!("{}: {}", file.display(), v.field),
+                        ..v
+                    })
+                    .collect(),
+            ),
+            other => other,
+        })
+    };
     let report: crate::node_time::NodeTimeReport = crate::problem::io::read_json(path)?;
     let given = instance
         .map(crate::problem::io::read_json::<super::node_time::NodeTimeFile>)
         .transpose()?;
+    let recorded = valid(path, report.pads, &report.charge_times_min);
+    let stated = match (instance, &given) {
+        (Some(file), Some(f)) => valid(file, f.pads, &f.charge_times_min),
+        _ => Ok(()),
+    };
+    crate::error::both(recorded, stated)?;
     let found = crate::check::node_time::check_node_time(
         &report,
         given
@@ -126,7 +147,7 @@ fn check_node_time(
         report.charge_times_min.len(),
         report.pads,
         report.solution.method,
-        crate::cli::human::json_name(&report.solution.status)
+        crate::problem::io::json_name(&report.solution.status)
     );
     print_verdict(&what, &found, json)
 }

@@ -19,7 +19,6 @@
 //! limit (`incumbent`), or the fluid LP bound (`bound`); a PB or FB schedule outside the
 //! re-ordering mode of the exact models is labelled `different_policy` instead.
 
-use super::human::json_name;
 use super::inputs::{self, InstanceArgs};
 use crate::compose::{Context, PlanOptions, RouteMethod};
 use crate::eaas::compare::{label_gaps, run_method};
@@ -30,6 +29,7 @@ use crate::eaas::milp::{write_lp, MilpOptions, ModelFormat, Objective, Reorder};
 use crate::eaas::{HopProblem, PolicyOptions, SharingPolicy};
 use crate::error::{Error, Result};
 use crate::precompose::Positioning;
+use crate::problem::io::json_name;
 use crate::solver::MilpBackend;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -177,7 +177,16 @@ pub fn run(args: EaasArgs) -> Result<i32> {
             size.constraints
         );
     }
-    let rows = rows(&hop.hop, &objective, &args, &readings)?;
+    // The exact methods check their time limit (E4105) under the library's name for it.
+    let rows = rows(&hop.hop, &objective, &args, &readings).map_err(|e| match e {
+        Error::Invalid(mut list) => {
+            for v in list.iter_mut().filter(|v| v.field == "time_limit_s") {
+                v.field = "--time-limit".to_string();
+            }
+            Error::Invalid(list)
+        }
+        other => other,
+    })?;
     let out = EaasReport {
         request_id: hop.request_id,
         hop: hop.hop_index,

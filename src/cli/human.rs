@@ -48,20 +48,3 @@ pub fn gap_percent(gap: f64, decimals: usize) -> String {
         format!("{text}%")
     }
 }
-
-/// The name a value goes by in JSON (`diamond`, `optimal`, `time_limit_no_solution`), so that
-/// human output and `--json` speak of the same things with the same words.
-///
-/// # Example
-/// ```
-/// use swarmplan::cli::human::json_name;
-/// use swarmplan::problem::FormationKind;
-/// assert_eq!(json_name(&FormationKind::Diamond), "diamond");
-/// ```
-pub fn json_name<T: serde::Serialize>(value: &T) -> String {
-    match serde_json::to_value(value) {
-        Ok(serde_json::Value::String(s)) => s,
-        Ok(other) => other.to_string(),
-        Err(_) => String::new(),
-    }
-}

@@ -1,11 +1,11 @@
 //! `swarmplan inspect`: describe a network and, for a request, the swarm it would fly.
 
-use super::human::json_name;
 use super::inputs::InstanceArgs;
 use crate::compose::Context;
 use crate::energy;
 use crate::error::Result;
 use crate::precompose::{Positioning, SupportDecision};
+use crate::problem::io::json_name;
 use crate::problem::FormationKind;
 use crate::problem::Swarm;
 use crate::problem::Wind;

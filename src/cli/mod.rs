@@ -128,10 +128,16 @@ pub fn coded_usage_error(e: &clap::Error) -> Option<String> {
     Some(format!("error: [E0007] command line: {rest}"))
 }
 
-/// `E0013`: `output` exists and `--force` was not given; no command overwrites a file unasked.
-/// Called before any input is read or any work done, so a refusal costs nothing.
+/// `E0010` when `output` is a directory; `E0013` when it is a file that exists and `--force`
+/// was not given: no command overwrites a file unasked (a device such as `/dev/null` is written
+/// to, not overwritten). Called before any input is read or any work done, so a refusal costs
+/// nothing.
 pub(crate) fn may_write(output: &std::path::Path, force: bool) -> crate::error::Result<()> {
-    if force || !output.exists() || output == std::path::Path::new("-") {
+    if output == std::path::Path::new("-") {
+        return Ok(());
+    }
+    crate::problem::io::refuse_directory(output)?;
+    if force || !output.is_file() {
         return Ok(());
     }
     Err(crate::error::Error::invalid(

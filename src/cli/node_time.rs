@@ -24,7 +24,9 @@ pub struct NodeTimeArgs {
     #[arg(
         long,
         required_unless_present_any = ["file", "instance"],
-        conflicts_with_all = ["file", "instance"]
+        conflicts_with_all = ["file", "instance"],
+        value_parser = parse_pads,
+        allow_negative_numbers = true
     )]
     pub pads: Option<usize>,
     /// Charge time of each drone in minutes, comma-separated, e.g. 60,50,40.
@@ -70,6 +72,18 @@ pub struct NodeTimeArgs {
     /// Print the result as JSON on stdout.
     #[arg(long)]
     pub json: bool,
+}
+
+/// `--pads`: a whole number; a negative one is E5001 (0 pads is E5001 too, from
+/// [`node_time::validate`], with the other problems of the instance).
+fn parse_pads(s: &str) -> std::result::Result<usize, String> {
+    match s.trim().parse::<usize>() {
+        Ok(n) => Ok(n),
+        Err(_) if s.trim().parse::<i64>().is_ok() => Err(format!(
+            "[E5001] --pads: {s} is negative; give the number of pads at the node, at least 1"
+        )),
+        Err(e) => Err(e.to_string()),
+    }
 }
 
 /// Node-time instance file.

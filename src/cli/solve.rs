@@ -1,11 +1,11 @@
 //! `swarmplan solve`: plan one request and print the plan.
 
-use super::human::json_name;
 use super::inputs::{self, ExactArgs, InstanceArgs};
 use crate::compose::{Context, HopPaths, PlanOptions, RequestReport, RouteMethod};
 use crate::eaas::SharingPolicy;
 use crate::error::{Error, Result};
 use crate::precompose::Positioning;
+use crate::problem::io::json_name;
 use crate::problem::Request;
 use std::path::PathBuf;
 
@@ -31,7 +31,12 @@ pub struct SolveArgs {
     #[arg(long, value_name = "NODE", requires_all = ["from", "packages"])]
     pub to: Option<String>,
     /// Package masses in kg, comma-separated, one delivery drone each (e.g. 1.2,0.8).
-    #[arg(long, value_name = "KG,KG,...", requires_all = ["from", "to"])]
+    #[arg(
+        long,
+        value_name = "KG,KG,...",
+        requires_all = ["from", "to"],
+        allow_hyphen_values = true
+    )]
     pub packages: Option<String>,
     /// In-flight energy sharing policy.
     #[arg(long, value_enum, default_value = "pb")]

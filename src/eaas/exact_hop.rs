@@ -16,7 +16,7 @@ use super::milp::{ExactStatus, MilpOptions, Objective, Reorder};
 use super::{
     simulate_with, ExactPolicy, Heuristic, HopOutcome, HopProblem, PolicyOptions, SharingPolicy,
 };
-use crate::error::{Error, Result, Violation};
+use crate::error::{show, Error, Result, Violation};
 use crate::solver::MilpBackend;
 use serde::{Deserialize, Serialize};
 
@@ -92,7 +92,7 @@ impl ExactChoices {
             v.push(Violation::new(
                 "E4101",
                 "--period-min",
-                format!("{} is not a finite duration > 0", self.period_min),
+                format!("{} is not a finite duration > 0", show(self.period_min)),
                 "give the grid step in minutes, such as 1.0",
             ));
         }
@@ -100,7 +100,7 @@ impl ExactChoices {
             v.push(Violation::new(
                 "E4105",
                 "--hop-time-limit",
-                format!("{t} is not a time in (0, 1e6] seconds"),
+                format!("{} is not a time in (0, 1e6] seconds", show(t)),
                 "give the time limit of each hop solve in seconds, such as 10, or leave it out \
                  for none",
             ));

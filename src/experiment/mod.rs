@@ -16,7 +16,7 @@ pub use summary::{
 
 use crate::compose::{lpt_gap, Plan, PlanOptions, RouteMethod, RoutePair};
 use crate::eaas::SharingPolicy;
-use crate::error::{Error, Result};
+use crate::error::{show, Error, Result};
 use crate::precompose::Positioning;
 use crate::problem::Request;
 use serde::{Serialize, Serializer};
@@ -268,7 +268,7 @@ pub fn deadline(budget_s: Option<f64>) -> Result<Option<std::time::Instant>> {
         return Err(Error::invalid(
             "E0028",
             "--time-budget",
-            format!("{s} is not a time in (0, 1e7] seconds"),
+            format!("{} is not a time in (0, 1e7] seconds", show(s)),
             "give the run's budget in seconds, such as 600, or leave it out for none",
         ));
     }

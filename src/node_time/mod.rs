@@ -230,7 +230,7 @@ pub fn validate(pads: usize, charge_times_min: &[f64]) -> Result<()> {
             violations.push(Violation::new(
                 "E5003",
                 format!("charge_times_min[{j}]"),
-                format!("charge time {p} min is negative"),
+                format!("charge time {} min is negative", show(p)),
                 "give a charge time of 0 minutes or more",
             ));
         }

@@ -6,7 +6,8 @@ use serde::de::DeserializeOwned;
 use serde::Serialize;
 use std::path::Path;
 
-/// Reads a text file whole.
+/// Reads a text file whole. A leading UTF-8 byte-order mark (U+FEFF, written by some editors)
+/// is dropped, so every reader of JSON, TOML and P||Cmax files accepts it.
 ///
 /// # Errors
 /// [`Error::Invalid`] with `E0008` when the file cannot be read (missing, a directory, no
@@ -21,7 +22,7 @@ pub fn read_text(path: &Path) -> Result<String> {
             "check the path, that it names a file and not a directory, and its read permission",
         )
     })?;
-    String::from_utf8(bytes).map_err(|e| {
+    let text = String::from_utf8(bytes).map_err(|e| {
         let good = &e.as_bytes()[..e.utf8_error().valid_up_to()];
         let line = 1 + good.iter().filter(|&&b| b == b'\n').count();
         let column = 1 + good.iter().rev().take_while(|&&b| b != b'\n').count();
@@ -34,6 +35,10 @@ pub fn read_text(path: &Path) -> Result<String> {
             ),
             "save the file as UTF-8 (JSON and TOML files are UTF-8 text)",
         )
+    })?;
+    Ok(match text.strip_prefix('\u{feff}') {
+        Some(rest) => rest.to_string(),
+        None => text,
     })
 }
 
@@ -153,8 +158,10 @@ pub fn write_json<T: Serialize>(path: &Path, value: &T) -> Result<()> {
 /// not a regular file (a device such as `/dev/null`, a pipe) is written directly.
 ///
 /// # Errors
-/// E0010 ([`Error::Io`]) when the file cannot be written.
+/// E0010: [`Error::Invalid`] when `path` is a directory ([`refuse_directory`]), [`Error::Io`]
+/// when the file cannot be written.
 pub fn write_whole(path: &Path, bytes: &[u8]) -> Result<()> {
+    refuse_directory(path)?;
     let io = |source| Error::Io {
         path: path.display().to_string(),
         source,
@@ -170,4 +177,45 @@ pub fn write_whole(path: &Path, bytes: &[u8]) -> Result<()> {
         let _ = std::fs::remove_file(&temporary);
         io(e)
     })
+}
+
+/// `E0010` when `path` is a directory: an output is written to a file, never into a folder by
+/// a name of the tool's choosing. Checked by [`write_whole`], and by the command line before
+/// any work (`-o`, `--write-lp` and the other options that name an output file).
+///
+/// # Errors
+/// [`Error::Invalid`] with `E0010`, naming the path.
+pub fn refuse_directory(path: &Path) -> Result<()> {
+    if !path.is_dir() {
+        return Ok(());
+    }
+    Err(Error::invalid(
+        "E0010",
+        path.display().to_string(),
+        "the output path is a directory; an output is written to a file",
+        format!(
+            "give the path of a file, such as {} inside it",
+            path.join("FILE").display()
+        ),
+    ))
+}
+
+/// The name a value goes by in JSON (`diamond`, `optimal`, `time_limit_no_solution`), so that
+/// human output, the checker's messages and `--json` speak of the same things with the same
+/// words. A number is its JSON text, `None` is `null`, a list or a struct its compact JSON.
+///
+/// # Example
+/// ```
+/// use swarmplan::problem::io::json_name;
+/// use swarmplan::problem::FormationKind;
+/// assert_eq!(json_name(&FormationKind::Diamond), "diamond");
+/// assert_eq!(json_name(&Some(0.5)), "0.5");
+/// assert_eq!(json_name(&None::<f64>), "null");
+/// ```
+pub fn json_name<T: serde::Serialize>(value: &T) -> String {
+    match serde_json::to_value(value) {
+        Ok(serde_json::Value::String(s)) => s,
+        Ok(other) => other.to_string(),
+        Err(_) => String::new(),
+    }
 }

@@ -355,15 +355,14 @@ impl ModelFormat {
     }
 }
 
-/// Writes the text of an exported model to `path` (replaced if it exists).
+/// Writes the text of an exported model to `path` (replaced if it exists), whole, as
+/// [`crate::problem::io::write_whole`] does.
 ///
 /// # Errors
-/// [`Error::Io`] when the file cannot be written.
+/// E0010: [`Error::Io`] when the file cannot be written, [`Error::Invalid`] when `path` is a
+/// directory.
 pub fn write_model_file(path: &Path, text: &str) -> Result<()> {
-    std::fs::write(path, text).map_err(|source| Error::Io {
-        path: path.display().to_string(),
-        source,
-    })
+    crate::problem::io::write_whole(path, text.as_bytes())
 }
 
 impl CapturedModel {

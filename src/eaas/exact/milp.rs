@@ -32,7 +32,7 @@ pub use super::{
 };
 use crate::eaas::simulate::evaluate;
 use crate::eaas::{reorder, sharing_budget_mah, HopProblem, Role, Transfer, TIME_TOL_MIN};
-use crate::error::{Error, Result};
+use crate::error::{show, Error, Result};
 pub use crate::solver::lp_file::LpSize;
 pub use crate::solver::lp_file::ModelFormat;
 use crate::solver::lp_file::{write_model_file, LpCapture};
@@ -91,7 +91,7 @@ pub fn validate_period_min(period_min: f64) -> Result<()> {
         Err(Error::invalid(
             "E4101",
             "period_min",
-            format!("{period_min} is not a finite duration > 0"),
+            format!("{} is not a finite duration > 0", show(period_min)),
             "give the grid step in minutes, such as 1.0",
         ))
     }
@@ -127,7 +127,10 @@ impl Grid {
                 return Err(Error::invalid(
                     "E4102",
                     "period_min",
-                    format!("more than {MAX_PERIODS} periods at {period_min} min"),
+                    format!(
+                        "more than {MAX_PERIODS} periods at {} min",
+                        show(period_min)
+                    ),
                     "choose a longer period",
                 ));
             }

@@ -18,7 +18,7 @@
 //! types, input validation, the objective of a replayed schedule and the moves of a mode.
 
 use super::{reorder, validate, HopOutcome, HopProblem, Role, Transfer};
-use crate::error::{Error, Result, Violation};
+use crate::error::{show, Error, Result, Violation};
 use crate::node_time;
 use crate::solver::{BackendStatus, MilpOutcome, SolveStatus};
 use serde::{Deserialize, Serialize};
@@ -257,7 +257,7 @@ pub fn validate_objective(objective: &Objective) -> Result<()> {
             v.push(Violation::new(
                 "E4104",
                 "pad_rate_mah_per_min",
-                format!("{pad_rate_mah_per_min} is not a finite rate > 0"),
+                format!("{} is not a finite rate > 0", show(pad_rate_mah_per_min)),
                 "give the pad charging rate in mAh/min",
             ));
         }
@@ -280,14 +280,20 @@ pub(crate) fn validate_inputs(
 }
 
 fn validate_time_limit(time_limit_s: f64) -> Result<()> {
-    // Infinity: no wall-clock limit.
-    if time_limit_s > 0.0 {
+    // Infinity: no wall-clock limit. A finite one is at most `MAX_TIME_LIMIT_S`, as every time
+    // limit (a longer one would overflow the clock's deadline).
+    let max = crate::node_time::MAX_TIME_LIMIT_S;
+    if time_limit_s == f64::INFINITY || (time_limit_s > 0.0 && time_limit_s <= max) {
         Ok(())
     } else {
         Err(Error::invalid(
             "E4105",
             "time_limit_s",
-            format!("{time_limit_s} is not a time > 0"),
+            format!(
+                "{} is not a time in (0, {}] seconds",
+                show(time_limit_s),
+                show(max)
+            ),
             "give the time limit in seconds, or none for no wall-clock limit",
         ))
     }

@@ -182,7 +182,7 @@ fn e1103_coordinate_finite(i: usize, name: &str, v: f64, out: &mut Vec<Violation
         out.push(Violation::new(
             "E1103",
             format!("nodes[{i}].{name}"),
-            format!("coordinate is {v}"),
+            format!("coordinate is {}", show(v)),
             "give a finite coordinate in metres",
         ));
     }
@@ -214,7 +214,7 @@ fn e1104_pad_rate_positive(i: usize, node: &Node, out: &mut Vec<Violation>) {
         Some(rate) if !positive_rate(rate) => out.push(Violation::new(
             "E1104",
             format!("nodes[{i}].pad_charge_rate_mah_per_min"),
-            format!("pad charge rate is {rate}"),
+            format!("pad charge rate is {}", show(rate)),
             "give a finite rate above 0 mAh/min, or omit it to use the profile's rate",
         )),
         _ => {}
@@ -326,15 +326,17 @@ fn e1204_length_positive(j: usize, edge: &Edge, length: EdgeLength, out: &mut Ve
         EdgeLength::Given(d) if !positive_length(d) => out.push(Violation::new(
             "E1204",
             format!("edges[{j}].distance_m"),
-            format!("distance is {d}"),
+            format!("distance is {}", show(d)),
             "give a finite distance above 0 m, or omit it to use the Euclidean distance",
         )),
         EdgeLength::Euclidean(d) if !positive_length(d) => out.push(Violation::new(
             "E1204",
             format!("edges[{j}].distance_m"),
             format!(
-                "distance_m is absent and the Euclidean distance between '{}' and '{}' is {d}",
-                edge.from, edge.to
+                "distance_m is absent and the Euclidean distance between '{}' and '{}' is {}",
+                edge.from,
+                edge.to,
+                show(d)
             ),
             "give distance_m, or distinct finite coordinates to the two nodes",
         )),
@@ -375,7 +377,7 @@ fn e1205_wind_speed_not_negative(j: usize, edge: &Edge, out: &mut Vec<Violation>
         out.push(Violation::new(
             "E1205",
             format!("edges[{j}].wind_speed_mps"),
-            format!("wind speed is {w}"),
+            format!("wind speed is {}", show(w)),
             "give a finite wind speed of 0 m/s or more",
         ));
     }
@@ -389,7 +391,8 @@ fn e1206_wind_speed_below_limit(j: usize, edge: &Edge, out: &mut Vec<Violation>)
             "E1206",
             format!("edges[{j}].wind_speed_mps"),
             format!(
-                "wind speed {w} m/s is at or over the safe-flight limit {MAX_WIND_SPEED_MPS} m/s"
+                "wind speed {} m/s is at or over the safe-flight limit {MAX_WIND_SPEED_MPS} m/s",
+                show(w)
             ),
             "drones cannot fly this edge: lower the wind speed below 13.8 m/s or remove the edge",
         ));
@@ -403,7 +406,7 @@ fn e1207_wind_direction_in_range(j: usize, edge: &Edge, out: &mut Vec<Violation>
         out.push(Violation::new(
             "E1207",
             format!("edges[{j}].wind_from_deg"),
-            format!("wind direction is {dir}"),
+            format!("wind direction is {}", show(dir)),
             "give the direction the wind blows from in degrees clockwise from north, within [0, 360]",
         ));
     }

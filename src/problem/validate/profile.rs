@@ -111,7 +111,7 @@ fn e2002_positive(p: &Profile, out: &mut Vec<Violation>) {
             out.push(Violation::new(
                 "E2002",
                 field,
-                format!("must be a finite number above 0, got {v}"),
+                format!("must be a finite number above 0, got {}", show(v)),
                 "set a positive value; see instances/profiles/paper.toml for its source",
             ));
         }
@@ -136,7 +136,7 @@ fn e2003_non_negative(p: &Profile, out: &mut Vec<Violation>) {
             out.push(Violation::new(
                 "E2003",
                 field,
-                format!("must be a finite number at least 0, got {v}"),
+                format!("must be a finite number at least 0, got {}", show(v)),
                 "set a value of 0 or more",
             ));
         }
@@ -150,7 +150,7 @@ fn e2004_parasitic_fraction_below_1(p: &Profile, out: &mut Vec<Violation>) {
         out.push(Violation::new(
             "E2004",
             "energy.parasitic_fraction",
-            format!("must be in [0, 1), got {c_par}"),
+            format!("must be in [0, 1), got {}", show(c_par)),
             "set the share of cruise power spent against drag, e.g. 0.1",
         ));
     }
@@ -163,7 +163,7 @@ fn e2005_min_position_factor_at_most_1(p: &Profile, out: &mut Vec<Violation>) {
         out.push(Violation::new(
             "E2005",
             "formation.min_position_factor",
-            format!("must be at most 1, got {mf}"),
+            format!("must be at most 1, got {}", show(mf)),
             "set a floor in (0, 1], e.g. 0.5",
         ));
     }
@@ -201,7 +201,7 @@ fn e2007_extra_batteries_within_payload(p: &Profile, out: &mut Vec<Violation>) {
                 "{} extra batteries weigh {:.3} kg, over drone.max_payload_kg = {} kg",
                 p.support.extra_batteries,
                 p.support_payload_kg(),
-                p.drone.max_payload_kg
+                show(p.drone.max_payload_kg)
             ),
             "carry fewer extra batteries or raise the max payload",
         ));
@@ -219,8 +219,8 @@ fn e2008_reserve_below_support_capacity(p: &Profile, out: &mut Vec<Violation>) {
             "sharing.delta_mah",
             format!(
                 "support reserve {} mAh is not below the support capacity {} mAh",
-                p.sharing.delta_mah,
-                p.support_capacity_mah()
+                show(p.sharing.delta_mah),
+                show(p.support_capacity_mah())
             ),
             "lower the reserve or add extra batteries",
         ));
@@ -238,7 +238,8 @@ fn e2009_threshold_below_battery(p: &Profile, out: &mut Vec<Violation>) {
             "sharing.gamma_mah",
             format!(
                 "request threshold {} mAh is not below the battery capacity {} mAh",
-                p.sharing.gamma_mah, p.drone.battery_mah
+                show(p.sharing.gamma_mah),
+                show(p.drone.battery_mah)
             ),
             "set gamma below drone.battery_mah (the paper profile uses 20% of it)",
         ));
@@ -263,7 +264,10 @@ fn e2011_first_row_starts_at_0(rows: &[RedundancyRow], out: &mut Vec<Violation>)
         Some(first) if first.from_pct != 0.0 => out.push(Violation::new(
             "E2011",
             "redundancy.rows[0].from_pct",
-            format!("the first row must start at 0, got {}", first.from_pct),
+            format!(
+                "the first row must start at 0, got {}",
+                show(first.from_pct)
+            ),
             "start the table at from_pct = 0",
         )),
         _ => {}
@@ -295,7 +299,10 @@ fn e2012_rows_increasing_within_0_100(rows: &[RedundancyRow], i: usize, out: &mu
         out.push(Violation::new(
             "E2012",
             format!("redundancy.rows[{i}].from_pct"),
-            format!("must be in [0, 100] and above the previous row's, got {from_pct}"),
+            format!(
+                "must be in [0, 100] and above the previous row's, got {}",
+                show(from_pct)
+            ),
             "list rows in strictly increasing from_pct within 0..100",
         ));
     }
@@ -311,7 +318,10 @@ fn e2020_normalised_weights_within_0_1(p: &Profile, out: &mut Vec<Violation>) {
             out.push(Violation::new(
                 "E2020",
                 field,
-                format!("a weight of normalised terms must be in [0, 1], got {v}"),
+                format!(
+                    "a weight of normalised terms must be in [0, 1], got {}",
+                    show(v)
+                ),
                 "set the weight between 0 and 1, or set failure.terms = \"per-unit\"",
             ));
         }
@@ -328,7 +338,10 @@ fn e2022_per_unit_weights_not_negative(p: &Profile, out: &mut Vec<Violation>) {
             out.push(Violation::new(
                 "E2022",
                 field,
-                format!("a per-unit weight must be a finite number at least 0, got {v}"),
+                format!(
+                    "a per-unit weight must be a finite number at least 0, got {}",
+                    show(v)
+                ),
                 "set the share of a battery the factor consumes per unit of it, e.g. \
                  distance = 0.03 (3% per minute of flight, the paper's example)",
             ));

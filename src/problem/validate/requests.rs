@@ -1,6 +1,6 @@
 //! Request rules (E3xxx), one function per rule code; the table of codes is in [`super`].
 
-use crate::error::Violation;
+use crate::error::{show, Violation};
 use crate::problem::{Request, RequestSet, SkywayGraph, MAX_DELIVERY_DRONES};
 use std::collections::HashMap;
 
@@ -275,7 +275,7 @@ fn e3302_package_positive(at: &str, p: usize, m: f64, out: &mut Vec<Violation>) 
         out.push(Violation::new(
             "E3302",
             format!("{at}.packages_kg[{p}]"),
-            format!("package mass is {m}"),
+            format!("package mass is {}", show(m)),
             "give a finite package mass above 0 kg",
         ));
     }
@@ -293,7 +293,11 @@ fn e3303_package_at_most_max_payload(
         out.push(Violation::new(
             "E3303",
             format!("{at}.packages_kg[{p}]"),
-            format!("package mass {m} kg is over the drone's max payload {max_payload_kg} kg"),
+            format!(
+                "package mass {} kg is over the drone's max payload {} kg",
+                show(m),
+                show(max_payload_kg)
+            ),
             "split the package, or use a profile whose drone carries more",
         ));
     }
