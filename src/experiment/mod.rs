@@ -98,7 +98,7 @@ impl Methods {
 ///
 /// - `--gap` (`route_gap`): no route gap under `fair` (the fair QP's layout is no optimum of any
 ///   hop, so `--route optimal` does not take it): E0015 when every combination is `fair`;
-/// - `--support`: `none`, the paper's baseline, flies no support drone: E0030 when every
+/// - `--support` above 0: `none`, the paper's baseline, flies no support drone: E0030 when every
 ///   combination is `none`.
 ///
 /// # Errors
@@ -132,7 +132,8 @@ pub fn applicable_options(
         .iter()
         .filter(|c| c.sharing == SharingPolicy::None)
         .count();
-    if let (Some(k), true) = (support, none > 0) {
+    // `--support 0` agrees with `none`, which flies no support drone.
+    if let (Some(k @ 1..), true) = (support, none > 0) {
         if none == combos.len() {
             return Err(Error::invalid(
                 "E0030",
