@@ -6,6 +6,15 @@
 //! each hop, the node time and pad assignment at every recharging stop, and the delivery time
 //! `dt = sum tt + sum nt`. A request the swarm cannot complete is a failed plan with its typed
 //! outcome ([`PlanOutcome`]), never an error.
+//!
+//! Where a method of [`Planner`] goes: one file per route method (`sequential.rs`: Algorithm 1
+//! and A*; `adjacent.rs`: Algorithm 1's literal candidates; `baselines.rs`: Dijkstra and
+//! Floyd–Warshall; `optimal.rs`: the optimal route under the hop-path rule; `any_path.rs` and
+//! `walks.rs`: over any hop path; `joint.rs`: the joint optimum under `exact`), or one per phase
+//! that several methods share (`flight.rs`: flying one hop and the node time at its stop;
+//! `split.rs`: the replays of a plan and the gap split; `studied.rs`: a hop taken out as a hop
+//! file). A new route method gets a file of its own; a step two methods share goes to the file of
+//! its phase. [`Context`] (`request.rs`, `grid.rs`) plans requests end to end with the planners.
 
 mod adjacent;
 mod any_path;
