@@ -70,6 +70,19 @@ pub enum Error {
          standard output goes: the disk it writes to may be full"
     )]
     Output(#[source] std::io::Error),
+    /// A broken invariant of the tool's own code, a bug (never bad input, never a solve
+    /// outcome): `code` names the invariant (README's error table), `context` where it broke.
+    /// Retries of a failed solve never match it.
+    #[error(
+        "[{code}] internal error: {context}; this is a bug: report it with the instance and the \
+         command"
+    )]
+    Internal {
+        /// The invariant's code.
+        code: &'static str,
+        /// Where and how it broke.
+        context: String,
+    },
     /// An optimization backend failed in a way that is not a solve outcome.
     #[error("solver backend {backend} failed: {message}")]
     Backend {
@@ -89,6 +102,14 @@ fn list(violations: &[Violation]) -> String {
 }
 
 impl Error {
+    /// An [`Error::Internal`]: the invariant `code` broke, `context` says where.
+    pub fn internal(code: &'static str, context: impl Into<String>) -> Self {
+        Error::Internal {
+            code,
+            context: context.into(),
+        }
+    }
+
     /// A single-violation [`Error::Invalid`].
     pub fn invalid(
         code: &'static str,
@@ -104,7 +125,7 @@ impl Error {
     pub fn exit_code(&self) -> i32 {
         match self {
             Error::Invalid(_) | Error::Io { .. } | Error::Output(_) => 2,
-            Error::Backend { .. } => 1,
+            Error::Backend { .. } | Error::Internal { .. } => 1,
         }
     }
 

@@ -59,19 +59,18 @@ fn to_py_err(py: Python<'_>, e: Error) -> PyErr {
             source.to_string(),
             "check the output stream",
         )],
-        Error::Backend { backend, message } => {
-            let code = if message.starts_with("E0019") {
-                "E0019"
-            } else {
-                "E0027"
-            };
-            vec![Violation::new(
-                code,
-                backend.clone(),
-                message.clone(),
-                "report it with the instance and the call",
-            )]
-        }
+        Error::Backend { backend, message } => vec![Violation::new(
+            "E0027",
+            backend.clone(),
+            message.clone(),
+            "report it with the instance and the call",
+        )],
+        Error::Internal { code, context } => vec![Violation::new(
+            code,
+            "internal",
+            context.clone(),
+            "a bug: report it with the instance and the call",
+        )],
     };
     let violations: Vec<Violation> = violations.into_iter().map(in_python_words).collect();
     let message = match &e {
@@ -311,12 +310,7 @@ fn run_detached<T: Send + 'static>(
             Ok(Err(_)) | Err(std::sync::mpsc::RecvTimeoutError::Disconnected) => {
                 return Err(to_py_err(
                     py,
-                    Error::Backend {
-                        backend: "swarmplan".into(),
-                        message: "E0019: the solve stopped on an internal error (a bug: \
-                                  report it with the instance and the call)"
-                            .into(),
-                    },
+                    Error::internal("E0032", "the solve's worker thread stopped (a panic)"),
                 ))
             }
             Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {

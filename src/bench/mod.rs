@@ -584,7 +584,7 @@ fn keep_report(
     let mut lpt = (0, 0, 0.0);
     for gap in lpt_gaps(plan)?.into_iter().flatten() {
         lpt.0 += 1;
-        lpt.1 += usize::from(gap.abs() <= 1e-9);
+        lpt.1 += usize::from(gap.abs() <= crate::solver::ZERO_GAP_TOL);
         lpt.2 += gap;
     }
     let mut kept = Kept {

@@ -372,7 +372,7 @@ impl Columns<'_> {
                     0.0
                 };
                 proven += 1;
-                equal += usize::from(gap.abs() <= 1e-9);
+                equal += usize::from(gap.abs() <= crate::solver::ZERO_GAP_TOL);
                 gap_sum += gap;
             }
         }

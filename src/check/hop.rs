@@ -19,7 +19,7 @@ use crate::problem::Role;
 pub(super) const T_TOL: f64 = 1e-7;
 
 pub(super) fn e_tol(x: f64) -> f64 {
-    1e-6 * (1.0 + x.abs())
+    super::INTEGRATION_TOLERANCE * (1.0 + x.abs())
 }
 
 pub(super) fn v(code: &'static str, field: String, cause: String) -> Violation {
@@ -537,7 +537,7 @@ fn c3014_feasibility_matches(outcome: &HopOutcome, run: &Integration) -> Option<
 fn c3015_first_failure_matches(outcome: &HopOutcome, run: &Integration) -> Vec<Violation> {
     let mut out = Vec::new();
     if let (Some((d, t)), Some(f)) = (run.first_below, outcome.failure) {
-        if f.drone != d || (f.time_min - t).abs() > 1e-6 * (1.0 + t) {
+        if f.drone != d || (f.time_min - t).abs() > super::INTEGRATION_TOLERANCE * (1.0 + t) {
             out.push(v(
                 "C3015",
                 "failure".into(),

@@ -26,6 +26,12 @@ pub use report::check_report;
 /// sums and products of the same inputs; a JSON or CSV round trip keeps every digit).
 pub const RELATIVE_TOLERANCE: f64 = 1e-9;
 
+/// Tolerance of a quantity the checkers integrate again over time (a battery, a charge time, a
+/// node time built from them), relative above 1 and absolute below: the replay sums many legs
+/// and transfers in another order than the planner, so it agrees to about `1e-12` per step, and
+/// `1e-6` leaves room for thousands of steps while catching any change a user makes by hand.
+pub const INTEGRATION_TOLERANCE: f64 = 1e-6;
+
 /// Whether `a` and `b` agree within [`RELATIVE_TOLERANCE`] (absolute below 1).
 pub(crate) fn close(a: f64, b: f64) -> bool {
     a == b || (a - b).abs() <= RELATIVE_TOLERANCE * a.abs().max(b.abs()).max(1.0)

@@ -148,7 +148,7 @@ pub fn check_node_time(
     // P5504: the optimum by exhaustive search.
     if n <= OPTIMALITY_CHECK_DRONES && report.pads > 0 {
         let best = optimal_makespan_min(times, report.pads);
-        let slack = 1e-6 * (1.0 + best);
+        let slack = super::INTEGRATION_TOLERANCE * (1.0 + best);
         if s.lower_bound_min > best + slack {
             out.push(v(
                 "P5504",

@@ -49,7 +49,7 @@ use std::collections::HashMap;
 pub const OPTIMALITY_CHECK_DRONES: usize = 10;
 
 fn close(a: f64, b: f64) -> bool {
-    (a - b).abs() <= 1e-6 * (1.0 + a.abs().max(b.abs()))
+    (a - b).abs() <= super::INTEGRATION_TOLERANCE * (1.0 + a.abs().max(b.abs()))
 }
 
 fn v(code: &'static str, field: impl Into<String>, cause: impl Into<String>) -> Violation {
@@ -734,7 +734,7 @@ fn p5033_legs_follow_the_path(raw: &Raw, f: &str, hop: &Hop, distance_m: f64) ->
 fn p5044_legs_are_the_edges(raw: &Raw, f: &str, hop: &Hop, legs: &[RawLeg]) -> Vec<Violation> {
     let angle_close = |a: f64, b: f64| {
         let d = (a - b).rem_euclid(360.0);
-        d.min(360.0 - d) <= 1e-6 * 360.0
+        d.min(360.0 - d) <= super::INTEGRATION_TOLERANCE * 360.0
     };
     let mut out = Vec::new();
     for (j, ((stated, raw_leg), ends)) in hop
@@ -1129,7 +1129,7 @@ fn p5026_nt_is_the_makespan(f: &str, stop: &Stop, ct: &[f64]) -> Option<Violatio
 /// labelled optimal: a node limit may leave a feasible incumbent).
 fn p5028_nt_is_optimal(f: &str, stop: &Stop, ct: &[f64], pads: usize) -> Option<Violation> {
     let best = optimal_makespan_min(ct, pads);
-    (stop.nt_min > best + 1e-6 * (1.0 + best)).then(|| {
+    (stop.nt_min > best + super::INTEGRATION_TOLERANCE * (1.0 + best)).then(|| {
         v(
             "P5028",
             format!("{f}.nt_min"),
@@ -1150,7 +1150,7 @@ fn p5027_nt_above_the_lower_bound(
 ) -> Option<Violation> {
     let max_ct = ct.iter().copied().fold(0.0, f64::max);
     let bound = max_ct.max(ct.iter().sum::<f64>() / pads as f64);
-    (stop.nt_min < bound - 1e-6 * (1.0 + bound)).then(|| {
+    (stop.nt_min < bound - super::INTEGRATION_TOLERANCE * (1.0 + bound)).then(|| {
         v(
             "P5027",
             format!("{f}.nt_min"),

@@ -362,9 +362,11 @@ impl Planner {
             .graph
             .path_from_nodes(&nodes)
             .filter(|_| nodes.len() == hop.path.len())
-            .ok_or_else(|| Error::Backend {
-                backend: "compose".into(),
-                message: format!("the plan's hop path {:?} is not a network path", hop.path),
+            .ok_or_else(|| {
+                Error::internal(
+                    "E0019",
+                    format!("the plan's hop path {:?} is not a network path", hop.path),
+                )
             })?;
         let problem = self.hop_problem(&path, &hop.departure_battery_mah)?;
         let end = nodes.last().copied().unwrap_or(0);

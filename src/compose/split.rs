@@ -271,16 +271,15 @@ impl Context {
                 return Ok(split);
             }
             // The exact model contains the heuristic's schedules: a bug if reached.
-            return Err(crate::error::Error::Backend {
-                backend: "compose".into(),
-                message: format!(
-                    "E0019: request {}: the exact schedules do not fly the {} plan's route \
-                     ({}); report it with the instance",
+            return Err(crate::error::Error::internal(
+                "E0019",
+                format!(
+                    "request {}: the exact schedules do not fly the {} plan's route ({})",
                     report.request.id,
                     o_name(report),
                     replay.plan.outcome
                 ),
-            });
+            ));
         }
         split.exact_schedule_dt_min = Some(replay.plan.dt_min);
         split.sharing_min = Some(plan.dt_min - replay.plan.dt_min);
@@ -296,15 +295,15 @@ impl Context {
                 split.label = Some(SplitLabel::Unproven);
                 return Ok(split);
             }
-            return Err(crate::error::Error::Backend {
-                backend: "compose".into(),
-                message: format!(
-                    "E0019: request {}: the {} plan's route flies with exact schedules, its \
-                     swarm's proven optimum does not deliver; report it with the instance",
+            return Err(crate::error::Error::internal(
+                "E0019",
+                format!(
+                    "request {}: the {} plan's route flies with exact schedules, its swarm's \
+                     proven optimum does not deliver",
                     report.request.id,
                     o_name(report)
                 ),
-            });
+            ));
         };
         split.route_min = Some(replay.plan.dt_min - own_dt);
         split.swarm_min = Some(own_dt - joint_dt);
@@ -336,7 +335,7 @@ impl Planner {
     /// each stop; into the destination without sharing when that flies, as Algorithm 1 does.
     ///
     /// # Errors
-    /// E0019 (a backend error) when a hop path of `plan` is not a network path; those of
+    /// E0019 ([`crate::Error::Internal`]) when a hop path of `plan` is not a network path; those of
     /// [`Planner::fly`] and [`Planner::stop_at`].
     pub(crate) fn replay_exact(&self, plan: &Plan) -> Result<Replay> {
         // The replay's solves are not a composition's: counted here and dropped.
@@ -391,12 +390,14 @@ impl Planner {
                 replay.plan = replay.plan.fail(PlanOutcome::HopInfeasible {
                     from: hop.from.clone(),
                     to: hop.to.clone(),
-                    failure: failure.ok_or_else(|| crate::error::Error::Backend {
-                        backend: "compose".into(),
-                        message: format!(
-                            "E0019: the hop from {} does not fly and reports no failure",
-                            hop.from
-                        ),
+                    failure: failure.ok_or_else(|| {
+                        crate::error::Error::internal(
+                            "E0019",
+                            format!(
+                                "the hop from {} does not fly and reports no failure",
+                                hop.from
+                            ),
+                        )
                     })?,
                 });
                 return Ok(replay);
@@ -411,8 +412,8 @@ impl Planner {
 }
 
 fn not_a_path(at: &str) -> crate::error::Error {
-    crate::error::Error::Backend {
-        backend: "compose".into(),
-        message: format!("E0019: the plan's hop from {at} is not a path of the network"),
-    }
+    crate::error::Error::internal(
+        "E0019",
+        format!("the plan's hop from {at} is not a path of the network"),
+    )
 }

@@ -1543,14 +1543,13 @@ pub fn solve_continuous(
     }
     if let (Some(c), Some(b)) = (&best, bound) {
         if distance(c, b) < -tolerance(b) {
-            return Err(Error::Backend {
-                backend: options.backend.to_string(),
-                message: format!(
-                    "E4119: a replayed schedule ({}) beats the model's proven bound ({b}); \
-                     report it with the instance",
-                    c.value
+            return Err(Error::internal(
+                "E4119",
+                format!(
+                    "{}: a replayed schedule ({}) beats the model's proven bound ({b})",
+                    options.backend, c.value
                 ),
-            });
+            ));
         }
     }
     // Optimal only when a schedule of the model without margin reaches the bound; a schedule of

@@ -655,14 +655,13 @@ pub fn solve_milp(
             return Ok(out);
         }
         if !replay.feasible {
-            return Err(Error::Backend {
-                backend: options.backend.to_string(),
-                message: format!(
-                    "E4106: the schedule returned does not fly (first failure {:?}); \
-                     report it with the instance",
-                    replay.failure
+            return Err(Error::internal(
+                "E4106",
+                format!(
+                    "{}: the schedule returned does not fly (first failure {:?})",
+                    options.backend, replay.failure
                 ),
-            });
+            ));
         }
         let fb = replay.final_battery_mah.clone();
         out.outcome = Some(replay);
