@@ -81,9 +81,8 @@ const PARTITION_MAX_PADS: usize = 7;
 
 /// The first decision of bin completion is at `LB + FIRST_GUESS_EXCESS d` when the bound is
 /// `sum/k` and the optimum is expected above it by `d` (`expected_excess`): just above the
-/// optimum, most often, so the incumbents that follow start close to it. Measured on 30 drones
-/// on 8 and 9 pads (real and `U[1,10000]`): 1.5 to 1.9 times faster than starting at `LB`;
-/// 1.75 and 3.5 were slower than 2.5.
+/// optimum, most often, so the incumbents that follow start close to it.
+/// Measured: `models/experiments/node_time.md`, "Tuning constants of the exact method".
 const FIRST_GUESS_EXCESS: f64 = 2.5;
 
 /// Real-valued times with more than [`PARTITION_MAX_DRONES`] drones and at least this many per
@@ -101,8 +100,8 @@ const PARTITION_SWITCH_DRONES_PER_PAD: usize = 6;
 
 /// Nodes (completion queries and placements, and the queries' work: `partition.rs`,
 /// `WORK_PER_NODE`) after which sequential partitioning hands over to bin completion, keeping its
-/// lower bound: about 30 ms at 30 drones on 7 pads, beyond the slowest of 200 instances where the
-/// instance suits partitioning (75,000 queries; on another 200, 52,000 queries and 780,000 nodes).
+/// lower bound.
+/// Measured: `models/experiments/node_time.md`, "Tuning constants of the exact method".
 const PARTITION_SWITCH_NODES: u64 = 1_000_000;
 
 /// Nodes one bin-completion decision runs before the LP bound (`bounds/lp.rs`) and the
@@ -111,61 +110,44 @@ const PARTITION_SWITCH_NODES: u64 = 1_000_000;
 const STALL_NODES: u64 = 100_000;
 
 /// Largest knapsack table (`drones x (C + 1)` cells, whole minutes) for which the LP bound is
-/// tried after the first slice; a larger one (an LP solve of tenths of a second) waits for
-/// slice [`LP_LATE_SLICE`], by which time bin completion has usually decided (u3 of the
-/// classical classes: 50 drones, 10 pads, times up to 10,000 min; `models/experiments/
-/// node_time.md`).
+/// tried after the first slice; a larger one waits for slice [`LP_LATE_SLICE`].
+/// Measured: `models/experiments/node_time.md`, "Tuning constants of the exact method".
 const LP_EARLY_MAX_CELLS: f64 = (1u64 << 20) as f64;
 
-/// The slice (counted from 0) after which the LP bound is tried on a large knapsack table: after
-/// slice 5 (6.3 million nodes in all, about a fifth of a second) u3 50x10 proves every instance
-/// within 182 ms where after slice 2 one took a full second, and the classes that need the LP
-/// (nu2, nu3) wait a fraction of their seconds (`models/experiments/node_time.md`).
+/// The slice (counted from 0) after which the LP bound is tried on a large knapsack table.
+/// Measured: `models/experiments/node_time.md`, "Tuning constants of the exact method".
 const LP_LATE_SLICE: u64 = 5;
 
 /// Expected excess of the optimum over `sum/k` (whole minutes, `expected_excess` at a resolution
 /// of 1 min) below which a perfect assignment (every load at `ceil(sum/k)` or below) is expected:
 /// sequential partitioning is not chosen, and the LP bound on a large knapsack table
-/// ([`LP_EARLY_MAX_CELLS`]) is not tried at `ceil(sum/k)`, which it could only refute if no such
-/// assignment existed (u3 100x25 of the classical classes: 2.3 s of column generation that never
-/// proved anything; on small tables, l2 and l5 at 100x40, the LP is cheap and does refute
-/// `ceil(sum/k)` where the estimate is wrong; `models/experiments/node_time.md`).
+/// ([`LP_EARLY_MAX_CELLS`]) is not tried at `ceil(sum/k)`.
+/// Measured: `models/experiments/node_time.md`, "Tuning constants of the exact method".
 const PERFECT_EXCESS_MAX_MIN: f64 = 0.5;
 
 /// Nodes of an LP dive (`dive.rs`) per node of the slice after which it runs (mostly restricted
-/// LP solves, counted 20,000 each, `bounds/lp.rs`). With 16 the first dive of l6 100x40 of the
-/// classical classes (0.7 to 1.2 million nodes, 50 to 100 ms) ends after the first slice
-/// (100,000 nodes) instead of the fourth or fifth, which took l6 seeds 2 and 3 from 0.5–0.9 s
-/// to 2–3 s; on u2 100x25, where the perfect-partition search answers before the dive does,
-/// the times stay within their spread (`models/experiments/node_time.md`). The budget is
-/// checked between LP solves, so a dive may pass it by one solve and its pricing.
+/// LP solves, counted 20,000 each, `bounds/lp.rs`). The budget is checked between LP solves, so a
+/// dive may pass it by one solve and its pricing.
+/// Measured: `models/experiments/node_time.md`, "Tuning constants of the exact method".
 const DIVE_SLICE_FACTOR: u64 = 16;
 
 /// Most drones per pad (on average) for which a stalled decision repacks pad groups
-/// (`repack.rs`) after the perfect-partition search: with four per pad a pair of pads has 256
-/// splits and the pairwise search stalls (u3 and u2 at 100x25 of the classical classes); with
-/// five (u3 50x10) the pairwise search reaches the bound alone, and repacking only delays it
-/// (15–20% longer on four of ten instances, `models/experiments/node_time.md`).
+/// (`repack.rs`) after the perfect-partition search.
+/// Measured: `models/experiments/node_time.md`, "Tuning constants of the exact method".
 const REPACK_MAX_DRONES_PER_PAD: usize = 4;
 
 /// Most drones per pad (on average) for which a stalled decision tries the exact front and
 /// covered tail (`cover.rs`) after the repacking, with the slice's nodes ([`COVER_SLICE_FACTOR`]
-/// times as many where the LP bound is skipped at the volume bound): with four per pad (u3
-/// 100x25 of the classical classes) it finds the perfect assignments the other searches miss;
-/// with more, a tail's patterns multiply (`models/experiments/node_time.md`).
+/// times as many where the LP bound is skipped at the volume bound).
+/// Measured: `models/experiments/node_time.md`, "Tuning constants of the exact method".
 const COVER_MAX_DRONES_PER_PAD: usize = 4;
 
 /// Nodes of the exact front and covered tail per slice, in slices, at a decision where the LP
 /// bound is skipped (at the volume bound `ceil(sum/k)` with a perfect assignment expected,
-/// [`PERFECT_EXCESS_MAX_MIN`], and a large knapsack table, [`LP_EARLY_MAX_CELLS`]): the other
-/// searches there only move drones between pads, so the cover is what finds the perfect
-/// assignment. Its attempts meet a cover at random, and the other searches of a slice cost the
-/// same whatever its share, so a larger share brings the first cover sooner. On u3 100x25 seeds
-/// 1, 5 and 8 of the classical classes, each with three other seeds of the draws (one run each),
-/// 5, 4, 6 and 8 of the nine runs met a cover within 10 s with the factors 1, 2, 4 and 8, 7 with
-/// 16 and 5 with 32. Elsewhere one slice: given at every decision, or at every decision at the
-/// volume bound, it took l2 100x40 seeds 8 and 10 (where the LP does not refute the volume bound
-/// and bin completion does) from 0.2–0.3 s to 0.45–0.6 s (`models/experiments/node_time.md`).
+/// [`PERFECT_EXCESS_MAX_MIN`], and a large knapsack table, [`LP_EARLY_MAX_CELLS`]): there the
+/// cover is what finds the perfect assignment, and a larger share brings the first cover sooner.
+/// Elsewhere one slice.
+/// Measured: `models/experiments/node_time.md`, "Tuning constants of the exact method".
 const COVER_SLICE_FACTOR: u64 = 8;
 
 /// Largest load of the assignment `pad_of` of the sorted drones `p`.
