@@ -56,6 +56,7 @@ pub mod formation;
 pub mod generate;
 pub mod network;
 pub mod node_time;
+pub mod plot;
 pub mod precompose;
 pub mod problem;
 pub mod solver;

@@ -716,7 +716,7 @@ fn draw_grouped_bars(h: &GroupedBars) -> Drawn<String> {
 
 /// Colours that stay dark and distinct in print: Okabe and Ito's colour-blind-safe set without
 /// its yellow and sky blue, then three dark spares. Each has a relative luminance below 0.3.
-const PRINT_COLOURS: [RGBColor; 8] = [
+pub(crate) const PRINT_COLOURS: [RGBColor; 8] = [
     RGBColor(0x00, 0x00, 0x00), // black
     RGBColor(0x00, 0x72, 0xB2), // blue
     RGBColor(0xD5, 0x5E, 0x00), // vermillion

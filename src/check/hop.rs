@@ -143,6 +143,29 @@ pub fn fly_as_written(
     (Some(outcome), violations)
 }
 
+/// Every drone's battery over the hop when `transfers` are flown as written: this checker's own
+/// re-integration, sampled where it cuts the hop (leg ends, transfer starts and ends).
+///
+/// # Returns
+/// `(t, every drone's battery)`, min and mAh, at `t = 0` and at the end of every piece, in order
+/// of `t` up to `tt`; every battery is linear between two points. `None` when a transfer names a
+/// drone or slot that does not exist or has a time that is not a finite number (see
+/// [`fly_as_written`]).
+///
+/// # Complexity
+/// `O(P * (D + T))` for `P` pieces, `D` drones and `T` transfers.
+pub fn battery_trajectory(
+    problem: &HopProblem,
+    transfers: &[Transfer],
+) -> Option<Vec<(f64, Vec<f64>)>> {
+    let hop = HopView::new(problem);
+    let malformed = transfers.iter().any(|x| {
+        c3001_transfer_names_existing_drones(&hop, "", x).is_some()
+            || !(x.start_min.is_finite() && x.end_min.is_finite())
+    });
+    (!malformed).then(|| integrate(&hop, transfers).points)
+}
+
 /// The hop problem with what every rule needs of it.
 struct HopView<'a> {
     problem: &'a HopProblem,
@@ -364,6 +387,9 @@ struct Integration {
     /// `(support drone, battery, delta)` at the end of every piece where a sharing support
     /// drone is below its reserve.
     below_reserve: Vec<(usize, f64, f64)>,
+    /// `(t, every drone's battery)` at 0 and at the end of every piece: the batteries are linear
+    /// in between.
+    points: Vec<(f64, Vec<f64>)>,
 }
 
 /// Integrates every battery over the pieces cut by leg ends and transfer starts and ends: on
@@ -392,6 +418,7 @@ fn integrate(hop: &HopView, ts: &[Transfer]) -> Integration {
         first_below: None,
         above_capacity: Vec::new(),
         below_reserve: Vec::new(),
+        points: vec![(0.0, bat.clone())],
     };
     for w in cuts.windows(2) {
         let (a, b) = (w[0], w[1]);
@@ -452,6 +479,7 @@ fn integrate(hop: &HopView, ts: &[Transfer]) -> Integration {
                     .push((x.support, bat[x.support], problem.delta_mah));
             }
         }
+        run.points.push((b, bat.clone()));
     }
     run.battery = bat;
     run

@@ -838,40 +838,7 @@ fn p5015_schedule_passes_the_hop_checker(
     hop: &Hop,
     legs: &[RawLeg],
 ) -> Vec<Violation> {
-    let (profile, swarm) = (raw.profile, raw.swarm);
-    let s = &profile.sharing;
-    let problem = HopProblem {
-        legs: legs
-            .iter()
-            .map(|l| eaas::LegRates {
-                duration_min: l.distance_m / raw.speed_m_per_min,
-                rate_mah_per_min: energy::rate_matrix_mah_per_min(
-                    profile,
-                    swarm,
-                    l.heading_deg,
-                    &l.wind,
-                )
-                .into(),
-            })
-            .collect(),
-        drones: swarm
-            .drones
-            .iter()
-            .zip(&hop.departure_battery_mah)
-            .map(|(d, &b)| eaas::DroneState {
-                role: d.role,
-                capacity_mah: d.capacity_mah,
-                battery_mah: b,
-            })
-            .collect(),
-        slots_m: swarm.slots_m.clone(),
-        initial_slot: swarm.initial_slot.clone(),
-        rho_mah_per_min: s.rate_mah_per_min,
-        range_m: s.range_m,
-        gamma_mah: s.gamma_mah,
-        lambda_mah: s.lambda_mah,
-        delta_mah: s.delta_mah,
-    };
+    let problem = hop_problem(raw.profile, raw.swarm, legs, &hop.departure_battery_mah);
     // A plan records arrival batteries, not the lowest ones: the lowest are left to the
     // re-integration, whose below-zero test (C3014) is what feasibility means.
     let outcome = HopOutcome {
@@ -893,6 +860,92 @@ fn p5015_schedule_passes_the_hop_checker(
             )
         })
         .collect()
+}
+
+/// The hop problem of a hop flown over `legs` from `departure_battery_mah` (one per drone), built
+/// from the profile, the energy model and the swarm.
+fn hop_problem(
+    profile: &Profile,
+    swarm: &Swarm,
+    legs: &[RawLeg],
+    departure_battery_mah: &[f64],
+) -> HopProblem {
+    let s = &profile.sharing;
+    let speed_m_per_min = profile.drone.speed_kmh * 1000.0 / 60.0;
+    HopProblem {
+        legs: legs
+            .iter()
+            .map(|l| eaas::LegRates {
+                duration_min: l.distance_m / speed_m_per_min,
+                rate_mah_per_min: energy::rate_matrix_mah_per_min(
+                    profile,
+                    swarm,
+                    l.heading_deg,
+                    &l.wind,
+                )
+                .into(),
+            })
+            .collect(),
+        drones: swarm
+            .drones
+            .iter()
+            .zip(departure_battery_mah)
+            .map(|(d, &b)| eaas::DroneState {
+                role: d.role,
+                capacity_mah: d.capacity_mah,
+                battery_mah: b,
+            })
+            .collect(),
+        slots_m: swarm.slots_m.clone(),
+        initial_slot: swarm.initial_slot.clone(),
+        rho_mah_per_min: s.rate_mah_per_min,
+        range_m: s.range_m,
+        gamma_mah: s.gamma_mah,
+        lambda_mah: s.lambda_mah,
+        delta_mah: s.delta_mah,
+    }
+}
+
+/// The hop problem `hop`'s schedule is checked on (P5015), rebuilt from the raw network, the
+/// profile, the energy model and the swarm: the legs of the hop's path as the network's edges,
+/// the hop's departure batteries.
+///
+/// # Returns
+/// `None` when the problem cannot be rebuilt: the swarm is not well formed (P5037), the hop's
+/// path is not a path of the network (P5009-P5011), or its departure batteries are not one per
+/// drone.
+///
+/// # Complexity
+/// `O(N + L * S + L * D^2)` for `N` nodes, `S` edges, `L` legs and `D` drones.
+pub fn rebuilt_hop_problem(
+    network: &Network,
+    profile: &Profile,
+    swarm: &Swarm,
+    hop: &Hop,
+) -> Option<HopProblem> {
+    let n = swarm.drones.len();
+    if !p5037_swarm_is_well_formed(swarm).is_empty()
+        || hop.departure_battery_mah.len() != n
+        || p5009_path_runs_between_the_hop_ends("", hop).is_some()
+    {
+        return None;
+    }
+    let index = super::node_index(network);
+    let nodes: Vec<usize> = hop
+        .path
+        .iter()
+        .map(|id| index.get(id.as_str()).copied())
+        .collect::<Option<_>>()?;
+    let legs: Vec<RawLeg> = nodes
+        .windows(2)
+        .map(|w| raw_leg(network, w[0], w[1]))
+        .collect::<Option<_>>()?;
+    Some(hop_problem(
+        profile,
+        swarm,
+        &legs,
+        &hop.departure_battery_mah,
+    ))
 }
 
 /// The plan's field a hop checker's field stands for: a hop outcome's batteries are the hop's
@@ -1162,11 +1215,14 @@ fn p5027_nt_above_the_lower_bound(
     })
 }
 
-/// Optimal makespan of `ct` on `pads` identical pads by exhaustive search: each drone in turn goes
-/// on a pad already used or on the first empty one (pads are interchangeable), cut when the
-/// partial makespan reaches the best found.
-/// The optimal makespan of `ct` on `pads` pads by exhaustive search (0 without drones).
-pub(super) fn optimal_makespan_min(ct: &[f64], pads: usize) -> f64 {
+/// The optimal makespan of `ct` on `pads` identical pads by exhaustive search (0 without drones):
+/// each drone in turn goes on a pad already used or on the first empty one (pads are
+/// interchangeable), cut when the partial makespan reaches the best found.
+///
+/// # Complexity
+/// At most `pads^n / pads!` assignments for `n` drones: meant for at most
+/// [`OPTIMALITY_CHECK_DRONES`] drones.
+pub fn optimal_makespan_min(ct: &[f64], pads: usize) -> f64 {
     fn go(i: usize, ct: &[f64], load: &mut Vec<f64>, pads: usize, best: &mut f64) {
         let makespan = load.iter().copied().fold(0.0, f64::max);
         if makespan >= *best {

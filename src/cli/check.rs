@@ -232,7 +232,7 @@ fn print_verdict(what: &str, violations: &[Violation], json: bool) -> Result<i32
 }
 
 /// The plan file, or standard input for `-`.
-fn read_plan(path: &std::path::Path) -> Result<RequestReport> {
+pub(crate) fn read_plan(path: &std::path::Path) -> Result<RequestReport> {
     if path.as_os_str() != "-" {
         return plan_file::read_plan_file(path);
     }
@@ -242,7 +242,7 @@ fn read_plan(path: &std::path::Path) -> Result<RequestReport> {
             "E0008",
             "standard input",
             format!("cannot read the plan: {e}"),
-            "pipe the output of `swarmplan solve --json` into `swarmplan check --plan -`",
+            "pipe the output of `swarmplan solve --json` into `--plan -`",
         )
     })?;
     let text = String::from_utf8(bytes).map_err(|e| {
@@ -253,7 +253,7 @@ fn read_plan(path: &std::path::Path) -> Result<RequestReport> {
                 "not UTF-8 text: invalid byte at byte {}",
                 e.utf8_error().valid_up_to()
             ),
-            "pipe the output of `swarmplan solve --json` into `swarmplan check --plan -`",
+            "pipe the output of `swarmplan solve --json` into `--plan -`",
         )
     })?;
     plan_file::parse_plan_file(&text, "standard input")

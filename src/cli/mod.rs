@@ -23,6 +23,7 @@ pub mod import;
 pub mod inputs;
 pub mod inspect;
 pub mod node_time;
+pub mod plot;
 pub mod progress;
 pub mod solve;
 
@@ -57,6 +58,8 @@ pub enum Command {
     Eaas(eaas::EaasArgs),
     /// Re-verify a plan written by `solve --json` with the independent checker.
     Check(check::CheckArgs),
+    /// Draw a plan written by `solve --json` (and another of the same request) as an SVG.
+    Plot(plot::PlotArgs),
 }
 
 /// Parses the process arguments, runs the subcommand, prints errors, returns the exit code.
@@ -85,6 +88,7 @@ pub fn main() -> i32 {
         Command::Bench(args) => bench::run(args),
         Command::Eaas(args) => eaas::run(args),
         Command::Check(args) => check::run(args),
+        Command::Plot(args) => plot::run(args),
     };
     match result {
         Ok(code) => code,

@@ -1,0 +1,12 @@
+//! The figure of one plan, or of two plans of the same request side by side (`swarmplan plot`):
+//! the route on the network, every drone's battery against time with the in-flight transfers,
+//! and the pad schedule of every stop.
+//!
+//! [`data`] computes what is drawn from the plan documents and the raw instance (the planning
+//! core's types and the independent checker's re-integration, no plotting crate); [`draw`]
+//! places it in an SVG with plotters, a front end's dependency (feature `cli`).
+
+pub mod data;
+/// Drawn by the front ends only (feature `cli`, which brings plotters).
+#[cfg(feature = "cli")]
+pub mod draw;
