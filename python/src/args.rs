@@ -3,6 +3,7 @@
 
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyBytes, PyDict, PyString};
+use serde::de::DeserializeOwned;
 use swarmplan::evaluate::WrittenTransfer;
 use swarmplan::solver::MilpBackend;
 
@@ -72,17 +73,29 @@ pub(crate) fn whole_of(obj: &Bound<'_, PyAny>) -> PyResult<std::result::Result<u
         .map_err(|_| format!("{int} is above 2**64 - 1")))
 }
 
-/// The names of a choice (`"pb"`, `"location-aware"`).
-pub(crate) fn value_names<T: clap::ValueEnum>() -> Vec<String> {
-    T::value_variants()
-        .iter()
-        .filter_map(|v| v.to_possible_value().map(|p| p.get_name().to_string()))
-        .collect()
+/// The names of a choice (`"pb"`, `"location-aware"`), as its serde form reads them: those
+/// that serde's error for a name that is none lists (`expected one of `a`, `b`` or `expected
+/// `a` or `b``), so the list follows the enum.
+pub(crate) fn value_names<T: DeserializeOwned>() -> Vec<String> {
+    match serde_json::from_value::<T>(serde_json::Value::String(String::new())) {
+        Ok(_) => Vec::new(),
+        Err(e) => {
+            let text = e.to_string();
+            let expected = text.split_once("expected").map_or("", |(_, rest)| rest);
+            expected
+                .split('`')
+                .skip(1)
+                .step_by(2)
+                .map(String::from)
+                .collect()
+        }
+    }
 }
 
-/// A choice by its command-line name (`"pb"`, `"location-aware"`), E0026 with the names.
-pub(crate) fn choice<T: clap::ValueEnum>(py: Python<'_>, field: &str, name: &str) -> PyResult<T> {
-    T::from_str(name, false).map_err(|_| {
+/// A choice by its name (`"pb"`, `"location-aware"`, the command line's names), read through
+/// serde; E0026 naming `field` and listing the names.
+pub(crate) fn choice<T: DeserializeOwned>(py: Python<'_>, field: &str, name: &str) -> PyResult<T> {
+    serde_json::from_value(serde_json::Value::String(name.to_string())).map_err(|_| {
         let names = value_names::<T>();
         to_py_err(
             py,

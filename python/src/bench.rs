@@ -1,74 +1,121 @@
-//! `swarmplan.bench`'s native part: a bench run of the core, its progress and its tables.
+//! `swarmplan.bench`'s native part: a bench run of the core ([`run_grid`] with its
+//! [`BenchSettings`] built from the keywords), its progress and its tables. The core alone
+//! draws no figures (they are the command line's, feature `cli`): a run from Python writes the
+//! tables, `config.json` and `summary.json`.
 
-use clap::Parser;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use pythonize::pythonize;
+use std::path::PathBuf;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
-use swarmplan::bench::{run_grid, GridRun};
+use swarmplan::bench::{run_grid, BenchSettings, GridRun, Shard};
 
+use crate::args::{backend_of, choice, Whole, NODE_LIMIT_WHAT};
 use crate::convert::json;
-use crate::errors::{invalid, python_name, to_py_err};
+use crate::errors::{in_python_text, to_py_err};
 use crate::worker::run_detached;
 
-/// Runs `swarmplan bench` with the command-line arguments `args` (without `swarmplan bench`),
-/// writing its files to `--out`, and returns `{"summary", "config", "tables"}` (tables: lists
-/// of records, one list per CSV). `progress(done, total)` is called as plans are made.
+/// Choices by name, each read with [`choice`] (E0026 naming `field`).
+fn choices<T: serde::de::DeserializeOwned>(
+    py: Python<'_>,
+    field: &str,
+    names: Option<Vec<String>>,
+) -> PyResult<Option<Vec<T>>> {
+    names
+        .map(|names| names.iter().map(|n| choice(py, field, n)).collect())
+        .transpose()
+}
+
+/// A count of a bench setting ([`Whole::index`]).
+fn count(py: Python<'_>, n: Option<Whole>, name: &str, what: &str) -> PyResult<Option<usize>> {
+    n.map(|n| n.index(py, name, what)).transpose()
+}
+
+/// Runs a bench run of the core into `out` and returns `{"summary", "config", "tables",
+/// "elapsed_s"}` (tables: lists of records, one list per CSV). Every keyword is a setting of
+/// the run; `None` is its default, the command line's (`swarmplan bench --help`).
+/// `progress(done, total)` is called as plans are made. See `swarmplan.bench`.
 #[pyfunction]
-#[pyo3(signature = (args, progress = None))]
+#[pyo3(signature = (
+    out, *, limit = None, sharing = None, positioning = None, route = None, gap = true,
+    joint = false, exact_limit = None, backend = None, hop_time_limit_s = None,
+    hop_node_limit = None, period_min = 1.0, reorder = "paper", node_limit = None,
+    distance_bucket_km = None, shard = None, threads = None, time_budget_s = None,
+    network = None, profile = None, literal = false, requests = None, force = false,
+    progress = None, command = None
+))]
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn run_bench(
     py: Python<'_>,
-    args: Vec<String>,
+    out: PathBuf,
+    limit: Option<Whole>,
+    sharing: Option<Vec<String>>,
+    positioning: Option<Vec<String>>,
+    route: Option<Vec<String>>,
+    gap: bool,
+    joint: bool,
+    exact_limit: Option<Whole>,
+    backend: Option<&str>,
+    hop_time_limit_s: Option<f64>,
+    hop_node_limit: Option<Whole>,
+    period_min: f64,
+    reorder: &str,
+    node_limit: Option<Whole>,
+    distance_bucket_km: Option<f64>,
+    shard: Option<&str>,
+    threads: Option<Whole>,
+    time_budget_s: Option<f64>,
+    network: Option<PathBuf>,
+    profile: Option<PathBuf>,
+    literal: bool,
+    requests: Option<PathBuf>,
+    force: bool,
     progress: Option<Py<PyAny>>,
+    command: Option<Vec<String>>,
 ) -> PyResult<Py<PyAny>> {
-    let argv: Vec<String> = ["swarmplan", "bench"]
-        .iter()
-        .map(|s| s.to_string())
-        .chain(args)
-        .collect();
-    let cli = swarmplan::cli::Cli::try_parse_from(&argv).map_err(|e| {
-        let text = e.render().to_string();
-        let cause = text
-            .strip_prefix("error: ")
-            .unwrap_or(&text)
-            .split("\n\nFor more information")
-            .next()
-            .unwrap_or("")
-            .trim()
-            .to_string();
-        // The keyword concerned, when the parser names one (`--threads <N>` is `threads`).
-        let field = match e.get(clap::error::ContextKind::InvalidArg) {
-            Some(clap::error::ContextValue::String(arg)) if arg.starts_with("--") => {
-                python_name(arg[2..].split([' ', '=']).next().unwrap_or(""))
-            }
-            _ => "bench arguments".to_string(),
-        };
-        to_py_err(
-            py,
-            invalid(
-                "E0007",
-                &field,
-                cause,
-                "see `swarmplan bench --help` (each keyword of swarmplan.bench is its option)",
-            ),
-        )
-    })?;
-    let swarmplan::cli::Command::Bench(bench) = cli.command else {
-        unreachable!("parsed as bench")
-    };
-    if bench.command.is_some() {
-        return Err(to_py_err(
-            py,
-            invalid(
-                "E0007",
-                "bench arguments",
-                "merge is not a run".into(),
-                "merge shards with `swarmplan bench merge`",
-            ),
-        ));
+    let mut settings = BenchSettings::new(out);
+    settings.instance.network = network;
+    settings.instance.profile = profile;
+    settings.instance.literal = literal;
+    settings.requests = requests;
+    settings.limit = count(py, limit, "limit", "a number of requests")?;
+    if let Some(v) = choices(py, "sharing", sharing)? {
+        settings.sharing = v;
     }
-    let settings = bench.run.settings(argv);
+    if let Some(v) = choices(py, "positioning", positioning)? {
+        settings.positioning = v;
+    }
+    if let Some(v) = choices(py, "route", route)? {
+        settings.route = v;
+    }
+    settings.gap = gap;
+    settings.joint = joint;
+    if let Some(n) = count(py, exact_limit, "exact_limit", "a number of requests")? {
+        settings.exact_limit = n;
+    }
+    if let Some(b) = backend {
+        settings.exact.backend = backend_of(py, b)?;
+    }
+    settings.exact.hop_time_limit_s = hop_time_limit_s;
+    if let Some(n) = hop_node_limit {
+        settings.exact.hop_node_limit = n.get(py, "hop_node_limit", NODE_LIMIT_WHAT)?;
+    }
+    settings.exact.period_min = period_min;
+    settings.exact.reorder = choice(py, "reorder", reorder)?;
+    if let Some(n) = node_limit {
+        settings.node_limit = n.get(py, "node_limit", NODE_LIMIT_WHAT)?;
+    }
+    if let Some(km) = distance_bucket_km {
+        settings.distance_bucket_km = km;
+    }
+    if let Some(text) = shard {
+        settings.shard = Shard::parse(text).map_err(|e| to_py_err(py, e))?;
+    }
+    settings.threads = count(py, threads, "threads", "a number of worker threads")?;
+    settings.time_budget_s = time_budget_s;
+    settings.force = force;
+    settings.command = command.unwrap_or_else(|| vec!["swarmplan.bench".into()]);
     let total = Arc::new(AtomicU64::new(0));
     let done = Arc::new(AtomicU64::new(0));
     let (t, d) = (total.clone(), done.clone());
@@ -97,7 +144,7 @@ pub(crate) fn run_bench(
         },
     )?;
     if let Some(stop) = run.budget {
-        eprintln!("{stop}");
+        eprintln!("{}", in_python_text(&stop.to_string()));
     }
     let out = PyDict::new(py);
     out.set_item("summary", pythonize(py, &json(&run.summary))?)?;

@@ -84,7 +84,7 @@ pub(crate) fn to_py_err(py: Python<'_>, e: Error) -> PyErr {
 
 /// The Python name of a command-line option of the core's messages: the keyword of the same
 /// meaning (`--hop-time-limit` is `hop_time_limit_s`, `--hop` the hop's `index`, `--count` the
-/// number of `requests` of `Instance.generate`, `--request-limit` the `limit` of `bench`), else
+/// number of `requests` of `Instance.generate`, `--request-limit` the `limit` of `bench`, `--time-budget` its `time_budget_s`), else
 /// the option with underscores (`--hop-paths` is `hop_paths`).
 pub(crate) fn python_name(flag: &str) -> String {
     match flag {
@@ -93,6 +93,7 @@ pub(crate) fn python_name(flag: &str) -> String {
         "hop" => "index".into(),
         "count" => "requests".into(),
         "request-limit" => "limit".into(),
+        "time-budget" => "time_budget_s".into(),
         other => other.replace('-', "_"),
     }
 }

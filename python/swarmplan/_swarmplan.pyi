@@ -254,9 +254,34 @@ class Hop:
         (``reference`` ``optimal`` or ``infimum``), or ``None`` with ``gap_label``."""
 
 def run_bench(
-    args: Sequence[str], progress: Optional[Callable[[int, int], None]] = None
+    out: Union[str, PathLike[str]],
+    *,
+    limit: Optional[int] = None,
+    sharing: Optional[Sequence[Sharing]] = None,
+    positioning: Optional[Sequence[Positioning]] = None,
+    route: Optional[Sequence[Route]] = None,
+    gap: bool = True,
+    joint: bool = False,
+    exact_limit: Optional[int] = None,
+    backend: Optional[str] = None,
+    hop_time_limit_s: Optional[float] = None,
+    hop_node_limit: Optional[int] = None,
+    period_min: float = 1.0,
+    reorder: Reorder = "paper",
+    node_limit: Optional[int] = None,
+    distance_bucket_km: Optional[float] = None,
+    shard: Optional[str] = None,
+    threads: Optional[int] = None,
+    time_budget_s: Optional[float] = None,
+    network: Optional[Union[str, PathLike[str]]] = None,
+    profile: Optional[Union[str, PathLike[str]]] = None,
+    literal: bool = False,
+    requests: Optional[Union[str, PathLike[str]]] = None,
+    force: bool = False,
+    progress: Optional[Callable[[int, int], None]] = None,
+    command: Optional[Sequence[str]] = None,
 ) -> Dict[str, Any]:
-    """``swarmplan bench`` with command-line arguments; see :func:`swarmplan.bench`."""
+    """A bench run of the core into ``out`` (no figures); see :func:`swarmplan.bench`."""
 
 def shipped_names() -> Dict[str, List[str]]:
     """The names of the shipped networks and profiles."""

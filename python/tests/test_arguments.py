@@ -115,9 +115,10 @@ def test_bench_limit_minus_one_and_threads_true():
     assert (e.code, e.field) == ("E0026", "limit")
     e = coded(swarmplan.bench, limit=1, threads=-1)
     assert (e.code, e.field) == ("E0026", "threads")
-    # A switch is a bool; an option with a value given True is the parser's usage error.
     e = coded(swarmplan.bench, limit=1, threads=True)
-    assert (e.code, e.field) == ("E0007", "threads")
+    assert (e.code, e.field) == ("E0026", "threads")
+    e = coded(swarmplan.bench, limit=1, exact_limit=-1)
+    assert (e.code, e.field) == ("E0026", "exact_limit")
 
 
 # ---- Transfers: any sequence of numbers in the order (support, consumer, start_min, end_min
