@@ -109,9 +109,13 @@ pub(crate) fn choice<T: DeserializeOwned>(py: Python<'_>, field: &str, name: &st
     })
 }
 
-/// A MILP backend by name; one swarmplan knows but this package was built without is E0012,
-/// saying how to build the package with it.
-pub(crate) fn backend_of(py: Python<'_>, name: &str) -> PyResult<MilpBackend> {
+/// A MILP backend by name (`None`: the default, [`MilpBackend::default`], `microlp` in the
+/// default build); one swarmplan knows but this package was built without is E0012, saying how
+/// to build the package with it.
+pub(crate) fn backend_of(py: Python<'_>, name: Option<&str>) -> PyResult<MilpBackend> {
+    let Some(name) = name else {
+        return Ok(MilpBackend::default());
+    };
     match swarmplan::solver::backend_not_built(name) {
         Some(_) => Err(to_py_err(
             py,
@@ -135,6 +139,16 @@ pub(crate) fn backend_of(py: Python<'_>, name: &str) -> PyResult<MilpBackend> {
 
 /// The search-node limit's description in its errors.
 pub(crate) const NODE_LIMIT_WHAT: &str = "a number of search nodes (a whole number >= 0)";
+
+/// A node limit, checked ([`Whole`]); `None` is `default`.
+pub(crate) fn limit_or(
+    py: Python<'_>,
+    n: Option<Whole>,
+    name: &str,
+    default: u64,
+) -> PyResult<u64> {
+    n.map_or(Ok(default), |n| n.get(py, name, NODE_LIMIT_WHAT))
+}
 
 /// An optional node limit, checked ([`Whole`]).
 pub(crate) fn node_limit_arg(py: Python<'_>, node_limit: Option<Whole>) -> PyResult<Option<u64>> {

@@ -94,9 +94,7 @@ pub(crate) fn run_bench(
     if let Some(n) = count(py, exact_limit, "exact_limit", "a number of requests")? {
         settings.exact_limit = n;
     }
-    if let Some(b) = backend {
-        settings.exact.backend = backend_of(py, b)?;
-    }
+    settings.exact.backend = backend_of(py, backend)?;
     settings.exact.hop_time_limit_s = hop_time_limit_s;
     if let Some(n) = hop_node_limit {
         settings.exact.hop_node_limit = n.get(py, "hop_node_limit", NODE_LIMIT_WHAT)?;

@@ -35,7 +35,7 @@ pub(crate) fn milp_options(
     time_limit_s: Option<f64>,
     node_limit: Option<u64>,
     period_min: f64,
-    backend: &str,
+    backend: Option<&str>,
 ) -> PyResult<MilpOptions> {
     let backend = backend_of(py, backend)?;
     let mut v = Vec::new();
@@ -303,7 +303,7 @@ impl Hop {
     /// `reference=False`, when the continuous model gives no value within its limits, and with
     /// `gap_label` `different_policy` for a heuristic schedule that swaps slots under
     /// `reorder="none"`.
-    #[pyo3(signature = (method = "continuous", reorder = "paper", time_limit_s = Some(60.0), node_limit = None, period_min = 1.0, backend = "microlp", reference = true))]
+    #[pyo3(signature = (method = "continuous", reorder = "paper", time_limit_s = Some(60.0), node_limit = None, period_min = 1.0, backend = None, reference = true))]
     #[allow(clippy::too_many_arguments)]
     fn solve(
         &self,
@@ -313,7 +313,7 @@ impl Hop {
         time_limit_s: Option<f64>,
         node_limit: Option<Whole>,
         period_min: f64,
-        backend: &str,
+        backend: Option<&str>,
         reference: bool,
     ) -> PyResult<Py<PyAny>> {
         let method: HopMethod = choice(py, "method", method)?;
@@ -332,7 +332,7 @@ impl Hop {
 
     /// Solves the hop with several methods side by side and labels each row's gap against the
     /// best reference, as `swarmplan eaas --json` prints its rows.
-    #[pyo3(signature = (methods = vec!["pb".to_string(), "fb".to_string(), "continuous".to_string(), "milp".to_string(), "fluid".to_string(), "fair".to_string()], reorder = "paper", time_limit_s = Some(60.0), node_limit = None, period_min = 1.0, backend = "microlp", label = true))]
+    #[pyo3(signature = (methods = vec!["pb".to_string(), "fb".to_string(), "continuous".to_string(), "milp".to_string(), "fluid".to_string(), "fair".to_string()], reorder = "paper", time_limit_s = Some(60.0), node_limit = None, period_min = 1.0, backend = None, label = true))]
     #[allow(clippy::too_many_arguments)]
     fn compare(
         &self,
@@ -342,7 +342,7 @@ impl Hop {
         time_limit_s: Option<f64>,
         node_limit: Option<Whole>,
         period_min: f64,
-        backend: &str,
+        backend: Option<&str>,
         label: bool,
     ) -> PyResult<Py<PyAny>> {
         let methods: Vec<HopMethod> = methods
@@ -361,7 +361,7 @@ impl Hop {
     /// `reorder` mode (`reference=True`; a schedule outside that mode gets `gap_label`
     /// `outside_reference`). The reference solve is deterministic by default (a node limit, no
     /// wall-clock limit).
-    #[pyo3(signature = (schedule, reference = true, reorder = "paper", time_limit_s = None, node_limit = Some(Whole::of(20_000)), backend = "microlp"))]
+    #[pyo3(signature = (schedule, reference = true, reorder = "paper", time_limit_s = None, node_limit = Some(Whole::of(swarmplan::eaas::exact_hop::DEFAULT_HOP_NODE_LIMIT)), backend = None))]
     #[allow(clippy::too_many_arguments)]
     fn evaluate(
         &self,
@@ -371,7 +371,7 @@ impl Hop {
         reorder: &str,
         time_limit_s: Option<f64>,
         node_limit: Option<Whole>,
-        backend: &str,
+        backend: Option<&str>,
     ) -> PyResult<Py<PyAny>> {
         let node_limit = node_limit_arg(py, node_limit)?;
         let written = schedule_of(schedule).map_err(|cause| {

@@ -13,7 +13,7 @@ use swarmplan::precompose::Positioning;
 use swarmplan::problem::{io, shipped, Instance as Problem, Request, RequestSet};
 
 use crate::args::{
-    backend_of, choice, schedule_of, support_arg, Whole, NODE_LIMIT_WHAT, TRANSFERS_ACTION,
+    backend_of, choice, limit_or, schedule_of, support_arg, Whole, TRANSFERS_ACTION,
 };
 use crate::convert::{py_of, read};
 use crate::errors::{invalid, to_py_err, Result};
@@ -38,7 +38,7 @@ pub(crate) struct Instance {
 /// The exact-sharing settings of `--sharing exact|fair` and of the references, as the command
 /// line reads them (E4101, E4105, E4113).
 pub(crate) struct ExactKw {
-    backend: String,
+    backend: Option<String>,
     hop_time_limit_s: Option<f64>,
     hop_node_limit: u64,
     period_min: f64,
@@ -48,7 +48,7 @@ pub(crate) struct ExactKw {
 impl ExactKw {
     fn context(&self, py: Python<'_>, data: &InstanceData, node_limit: u64) -> PyResult<Context> {
         let choices = ExactChoices {
-            backend: backend_of(py, &self.backend)?,
+            backend: backend_of(py, self.backend.as_deref())?,
             hop_time_limit_s: self.hop_time_limit_s,
             hop_node_limit: self.hop_node_limit,
             period_min: self.period_min,
@@ -256,20 +256,26 @@ impl Instance {
     /// A seeded synthetic network and request set, as `swarmplan generate network` and
     /// `generate requests` write them (the same seed gives the same instance).
     #[staticmethod]
-    #[pyo3(signature = (seed, nodes = Whole::of(195), spacing_m = 500.0, requests = Whole::of(100), requests_seed = None, max_package_kg = 1.4, profile = None))]
+    #[pyo3(signature = (seed, nodes = None, spacing_m = None, requests = Whole::of(100), requests_seed = None, max_package_kg = None, profile = None))]
     #[allow(clippy::too_many_arguments)]
     fn generate(
         py: Python<'_>,
         seed: Whole,
-        nodes: Whole,
-        spacing_m: f64,
+        nodes: Option<Whole>,
+        spacing_m: Option<f64>,
         requests: Whole,
         requests_seed: Option<Whole>,
-        max_package_kg: f64,
+        max_package_kg: Option<f64>,
         profile: Option<&str>,
     ) -> PyResult<Instance> {
         let seed = seed.get(py, "seed", "a seed from 0 to 2**64 - 1")?;
-        let nodes = nodes.index(py, "nodes", "a node count")?;
+        let nodes = nodes
+            .map(|n| n.index(py, "nodes", "a node count"))
+            .transpose()?
+            .unwrap_or(swarmplan::generate::network::DEFAULT_NODES);
+        let spacing_m = spacing_m.unwrap_or(swarmplan::generate::network::DEFAULT_SPACING_M);
+        let max_package_kg =
+            max_package_kg.unwrap_or(swarmplan::generate::requests::DEFAULT_MAX_PACKAGE_KG);
         let requests = requests.index(py, "requests", "a request count")?;
         let requests_seed = requests_seed
             .map(|s| s.get(py, "requests_seed", "a seed from 0 to 2**64 - 1"))
@@ -353,7 +359,7 @@ impl Instance {
 
     /// Plans one request, as `swarmplan solve --json` does, and returns the same document as a
     /// dict. `request` is an id or a dict with source, destination and packages_kg.
-    #[pyo3(signature = (request, sharing = "pb", positioning = "location-aware", route = "sequential", support = None, hop_paths = "rule", node_limit = Whole::of(20_000_000), gap = false, backend = "microlp".to_string(), hop_time_limit_s = None, hop_node_limit = Whole::of(20_000), period_min = 1.0, reorder = "paper".to_string()))]
+    #[pyo3(signature = (request, sharing = "pb", positioning = "location-aware", route = "sequential", support = None, hop_paths = "rule", node_limit = None, gap = false, backend = None, hop_time_limit_s = None, hop_node_limit = None, period_min = 1.0, reorder = "paper".to_string()))]
     #[allow(clippy::too_many_arguments)]
     fn plan(
         &self,
@@ -364,17 +370,27 @@ impl Instance {
         route: &str,
         support: Option<Whole>,
         hop_paths: &str,
-        node_limit: Whole,
+        node_limit: Option<Whole>,
         gap: bool,
-        backend: String,
+        backend: Option<String>,
         hop_time_limit_s: Option<f64>,
-        hop_node_limit: Whole,
+        hop_node_limit: Option<Whole>,
         period_min: f64,
         reorder: String,
     ) -> PyResult<Py<PyAny>> {
         let support = support_arg(py, support)?;
-        let node_limit = node_limit.get(py, "node_limit", NODE_LIMIT_WHAT)?;
-        let hop_node_limit = hop_node_limit.get(py, "hop_node_limit", NODE_LIMIT_WHAT)?;
+        let node_limit = limit_or(
+            py,
+            node_limit,
+            "node_limit",
+            swarmplan::node_time::DEFAULT_STOP_NODE_LIMIT,
+        )?;
+        let hop_node_limit = limit_or(
+            py,
+            hop_node_limit,
+            "hop_node_limit",
+            swarmplan::eaas::exact_hop::DEFAULT_HOP_NODE_LIMIT,
+        )?;
         let request = Instance::resolve_request(self, py, request)?;
         let options = PlanOptions {
             sharing: choice(py, "sharing", sharing)?,
@@ -473,7 +489,7 @@ impl Instance {
     /// time at every stop, and measures it against the joint optimum of the same swarm
     /// (`reference=True`). `policy` is a callable `policy(hop) -> schedule` called with each
     /// hop in turn (a `Hop`), or a list of schedules, one per hop.
-    #[pyo3(signature = (request, stops, policy, positioning = "location-aware", support = None, reference = true, reorder = "paper".to_string(), backend = "microlp".to_string(), hop_time_limit_s = None, hop_node_limit = Whole::of(20_000), node_limit = Whole::of(20_000_000)))]
+    #[pyo3(signature = (request, stops, policy, positioning = "location-aware", support = None, reference = true, reorder = "paper".to_string(), backend = None, hop_time_limit_s = None, hop_node_limit = None, node_limit = None))]
     #[allow(clippy::too_many_arguments)]
     fn evaluate_route(
         &self,
@@ -485,14 +501,24 @@ impl Instance {
         support: Option<Whole>,
         reference: bool,
         reorder: String,
-        backend: String,
+        backend: Option<String>,
         hop_time_limit_s: Option<f64>,
-        hop_node_limit: Whole,
-        node_limit: Whole,
+        hop_node_limit: Option<Whole>,
+        node_limit: Option<Whole>,
     ) -> PyResult<Py<PyAny>> {
         let support = support_arg(py, support)?;
-        let hop_node_limit = hop_node_limit.get(py, "hop_node_limit", NODE_LIMIT_WHAT)?;
-        let node_limit = node_limit.get(py, "node_limit", NODE_LIMIT_WHAT)?;
+        let hop_node_limit = limit_or(
+            py,
+            hop_node_limit,
+            "hop_node_limit",
+            swarmplan::eaas::exact_hop::DEFAULT_HOP_NODE_LIMIT,
+        )?;
+        let node_limit = limit_or(
+            py,
+            node_limit,
+            "node_limit",
+            swarmplan::node_time::DEFAULT_STOP_NODE_LIMIT,
+        )?;
         let request = Instance::resolve_request(self, py, request)?;
         let positioning: Positioning = choice(py, "positioning", positioning)?;
         let exact = ExactKw {

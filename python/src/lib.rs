@@ -44,5 +44,32 @@ fn _swarmplan(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run_bench, m)?)?;
     m.add_function(wrap_pyfunction!(shipped_names, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    // The crate's defaults, which the keywords left as `None` take.
+    m.add(
+        "DEFAULT_NODE_LIMIT",
+        swarmplan::node_time::DEFAULT_STOP_NODE_LIMIT,
+    )?;
+    m.add(
+        "DEFAULT_HOP_NODE_LIMIT",
+        swarmplan::eaas::exact_hop::DEFAULT_HOP_NODE_LIMIT,
+    )?;
+    m.add(
+        "DEFAULT_BACKEND",
+        swarmplan::solver::MilpBackend::default().to_string(),
+    )?;
+    m.add("DEFAULT_EXACT_LIMIT", swarmplan::bench::DEFAULT_EXACT_LIMIT)?;
+    m.add(
+        "DEFAULT_DISTANCE_BUCKET_KM",
+        swarmplan::bench::DEFAULT_DISTANCE_BUCKET_KM,
+    )?;
+    m.add("DEFAULT_NODES", swarmplan::generate::network::DEFAULT_NODES)?;
+    m.add(
+        "DEFAULT_SPACING_M",
+        swarmplan::generate::network::DEFAULT_SPACING_M,
+    )?;
+    m.add(
+        "DEFAULT_MAX_PACKAGE_KG",
+        swarmplan::generate::requests::DEFAULT_MAX_PACKAGE_KG,
+    )?;
     Ok(())
 }

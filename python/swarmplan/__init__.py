@@ -19,10 +19,32 @@ import sys
 import tempfile
 from typing import Any, Callable, Dict, List, Optional, Sequence, Union
 
-from ._swarmplan import Hop, Instance, SwarmplanError, __version__, shipped_names
+from ._swarmplan import (
+    DEFAULT_BACKEND,
+    DEFAULT_DISTANCE_BUCKET_KM,
+    DEFAULT_EXACT_LIMIT,
+    DEFAULT_HOP_NODE_LIMIT,
+    DEFAULT_MAX_PACKAGE_KG,
+    DEFAULT_NODE_LIMIT,
+    DEFAULT_NODES,
+    DEFAULT_SPACING_M,
+    Hop,
+    Instance,
+    SwarmplanError,
+    __version__,
+    shipped_names,
+)
 from ._swarmplan import run_bench as _run_bench
 
 __all__ = [
+    "DEFAULT_BACKEND",
+    "DEFAULT_DISTANCE_BUCKET_KM",
+    "DEFAULT_EXACT_LIMIT",
+    "DEFAULT_HOP_NODE_LIMIT",
+    "DEFAULT_MAX_PACKAGE_KG",
+    "DEFAULT_NODE_LIMIT",
+    "DEFAULT_NODES",
+    "DEFAULT_SPACING_M",
     "BenchResult",
     "Hop",
     "Instance",

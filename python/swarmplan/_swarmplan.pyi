@@ -8,6 +8,23 @@ import numpy.typing as npt
 
 __version__: str
 
+DEFAULT_NODE_LIMIT: int
+"""Search nodes of the exact node time at every stop (``node_limit=None``): 20_000_000."""
+DEFAULT_HOP_NODE_LIMIT: int
+"""Branch-and-bound nodes of each hop model's MILP call (``hop_node_limit=None``): 20_000."""
+DEFAULT_BACKEND: str
+"""The MILP backend of ``backend=None``: ``"microlp"`` in the default build."""
+DEFAULT_EXACT_LIMIT: int
+"""Requests whose hops and stops a bench run solves again exactly: 5."""
+DEFAULT_DISTANCE_BUCKET_KM: float
+"""Width of a bench run's distance buckets, km: 1.0."""
+DEFAULT_NODES: int
+"""Nodes of ``Instance.generate``: 195."""
+DEFAULT_SPACING_M: float
+"""Grid spacing of ``Instance.generate``, m: 500.0."""
+DEFAULT_MAX_PACKAGE_KG: float
+"""Largest package of ``Instance.generate``, kg: 1.4."""
+
 Sharing = Literal["none", "idle-support", "pb", "fb", "exact", "fair"]
 Positioning = Literal["location-aware", "energy-aware"]
 Route = Literal["sequential", "astar", "dijkstra", "floyd-warshall", "optimal"]
@@ -63,11 +80,11 @@ class Instance:
     @staticmethod
     def generate(
         seed: int,
-        nodes: int = 195,
-        spacing_m: float = 500.0,
+        nodes: Optional[int] = None,
+        spacing_m: Optional[float] = None,
         requests: int = 100,
         requests_seed: Optional[int] = None,
-        max_package_kg: float = 1.4,
+        max_package_kg: Optional[float] = None,
         profile: Optional[str] = None,
     ) -> Instance:
         """A seeded synthetic network and request set (``swarmplan generate``)."""
@@ -99,11 +116,11 @@ class Instance:
         route: Route = "sequential",
         support: Optional[int] = None,
         hop_paths: HopPaths = "rule",
-        node_limit: int = 20_000_000,
+        node_limit: Optional[int] = None,
         gap: bool = False,
-        backend: str = "microlp",
+        backend: Optional[str] = None,
         hop_time_limit_s: Optional[float] = None,
-        hop_node_limit: int = 20_000,
+        hop_node_limit: Optional[int] = None,
         period_min: float = 1.0,
         reorder: Reorder = "paper",
     ) -> Dict[str, Any]:
@@ -129,10 +146,10 @@ class Instance:
         support: Optional[int] = None,
         reference: bool = True,
         reorder: Reorder = "paper",
-        backend: str = "microlp",
+        backend: Optional[str] = None,
         hop_time_limit_s: Optional[float] = None,
-        hop_node_limit: int = 20_000,
-        node_limit: int = 20_000_000,
+        hop_node_limit: Optional[int] = None,
+        node_limit: Optional[int] = None,
     ) -> Dict[str, Any]:
         """Flies the request along ``stops`` with a schedule per hop and measures the delivery
         time against the joint optimum of the same swarm: ``gap`` is a ``Gap`` (``reference``
@@ -217,7 +234,7 @@ class Hop:
         time_limit_s: Optional[float] = 60.0,
         node_limit: Optional[int] = None,
         period_min: float = 1.0,
-        backend: str = "microlp",
+        backend: Optional[str] = None,
         reference: bool = True,
     ) -> Dict[str, Any]:
         """One method's row of ``swarmplan eaas --json``.
@@ -236,7 +253,7 @@ class Hop:
         time_limit_s: Optional[float] = 60.0,
         node_limit: Optional[int] = None,
         period_min: float = 1.0,
-        backend: str = "microlp",
+        backend: Optional[str] = None,
         label: bool = True,
     ) -> List[Dict[str, Any]]:
         """Several methods side by side, gaps labelled against the best reference."""
@@ -246,8 +263,8 @@ class Hop:
         reference: bool = True,
         reorder: Reorder = "paper",
         time_limit_s: Optional[float] = None,
-        node_limit: Optional[int] = 20_000,
-        backend: str = "microlp",
+        node_limit: Optional[int] = 20_000,  # DEFAULT_HOP_NODE_LIMIT; None: no limit
+        backend: Optional[str] = None,
     ) -> Dict[str, Any]:
         """Flies a schedule as written, checked by the independent checker, and scores it
         against the continuous-time optimum of the ``reorder`` mode: ``gap`` is a ``Gap``
