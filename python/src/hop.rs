@@ -5,7 +5,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use pythonize::pythonize;
 use std::sync::Arc;
-use swarmplan::eaas::compare::{label_gaps, run_method, HopMethod};
+use swarmplan::eaas::compare::{label_gaps, run_method, HopMethod, MethodRow};
 use swarmplan::eaas::hop_file::{parse_hop_file, HopFile};
 use swarmplan::eaas::milp::{MilpOptions, Reorder};
 use swarmplan::eaas::PolicyOptions;
@@ -16,6 +16,7 @@ use crate::args::{backend_of, choice, node_limit_arg, schedule_of, Whole, TRANSF
 use crate::convert::{numpy, py_of};
 use crate::errors::{invalid, to_py_err};
 use crate::instance::load_profile;
+use crate::results::{HopEvaluation, HopResult};
 use crate::worker::run_detached;
 
 /// One hop's in-flight sharing problem: its legs (durations, consumption rates per drone and
@@ -71,10 +72,10 @@ impl Hop {
         methods: Vec<HopMethod>,
         milp: MilpOptions,
         label: bool,
-    ) -> PyResult<Py<PyAny>> {
+    ) -> PyResult<Vec<MethodRow>> {
         let file = self.file.clone();
         let readings = self.readings;
-        let rows = run_detached(
+        run_detached(
             py,
             move || {
                 let objective = file.objective();
@@ -88,8 +89,7 @@ impl Hop {
                 Ok(rows)
             },
             |_| Ok(()),
-        )?;
-        py_of(py, &rows)
+        )
     }
 }
 
@@ -315,7 +315,7 @@ impl Hop {
         period_min: f64,
         backend: Option<&str>,
         reference: bool,
-    ) -> PyResult<Py<PyAny>> {
+    ) -> PyResult<HopResult> {
         let method: HopMethod = choice(py, "method", method)?;
         let node_limit = node_limit_arg(py, node_limit)?;
         let milp = milp_options(py, reorder, time_limit_s, node_limit, period_min, backend)?;
@@ -326,8 +326,7 @@ impl Hop {
             vec![method]
         };
         let rows = self.rows(py, methods, milp, measured)?;
-        let first = rows.bind(py).get_item(0)?;
-        Ok(first.unbind())
+        Ok(HopResult::of(&rows[0]))
     }
 
     /// Solves the hop with several methods side by side and labels each row's gap against the
@@ -344,14 +343,15 @@ impl Hop {
         period_min: f64,
         backend: Option<&str>,
         label: bool,
-    ) -> PyResult<Py<PyAny>> {
+    ) -> PyResult<Vec<HopResult>> {
         let methods: Vec<HopMethod> = methods
             .iter()
             .map(|m| choice(py, "method", m))
             .collect::<PyResult<_>>()?;
         let node_limit = node_limit_arg(py, node_limit)?;
         let milp = milp_options(py, reorder, time_limit_s, node_limit, period_min, backend)?;
-        self.rows(py, methods, milp, label)
+        let rows = self.rows(py, methods, milp, label)?;
+        Ok(rows.iter().map(HopResult::of).collect())
     }
 
     /// Flies a schedule written in Python exactly as written and scores it: the independent
@@ -372,7 +372,7 @@ impl Hop {
         time_limit_s: Option<f64>,
         node_limit: Option<Whole>,
         backend: Option<&str>,
-    ) -> PyResult<Py<PyAny>> {
+    ) -> PyResult<HopEvaluation> {
         let node_limit = node_limit_arg(py, node_limit)?;
         let written = schedule_of(schedule).map_err(|cause| {
             to_py_err(py, invalid("E0026", "schedule", cause, TRANSFERS_ACTION))
@@ -391,7 +391,7 @@ impl Hop {
             },
             |_| Ok(()),
         )?;
-        py_of(py, &evaluation)
+        Ok(HopEvaluation::of(&evaluation))
     }
 
     fn __repr__(&self) -> String {

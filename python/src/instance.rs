@@ -18,6 +18,7 @@ use crate::args::{
 use crate::convert::{py_of, read};
 use crate::errors::{invalid, to_py_err, Result};
 use crate::hop::Hop;
+use crate::results::{Plan, RouteEvaluation};
 use crate::worker::run_detached;
 
 /// A network, a profile and a request set, validated together.
@@ -377,7 +378,7 @@ impl Instance {
         hop_node_limit: Option<Whole>,
         period_min: f64,
         reorder: String,
-    ) -> PyResult<Py<PyAny>> {
+    ) -> PyResult<Plan> {
         let support = support_arg(py, support)?;
         let node_limit = limit_or(
             py,
@@ -426,20 +427,22 @@ impl Instance {
             },
             |_| Ok(()),
         )?;
-        py_of(py, &report)
+        Ok(Plan::of(&report))
     }
 
     /// Re-verifies a plan (a dict as `plan` returns, or its JSON text) with the independent
     /// checker; returns every violation (dicts with code, field, cause, action), empty when the
     /// plan passes.
     fn check(&self, py: Python<'_>, plan: &Bound<'_, PyAny>) -> PyResult<Py<PyAny>> {
-        let text = match plan.extract::<String>() {
-            Ok(t) => t,
-            Err(_) => py
-                .import("json")?
+        let text = if let Ok(typed) = plan.cast::<Plan>() {
+            typed.get().document().to_string()
+        } else if let Ok(t) = plan.extract::<String>() {
+            t
+        } else {
+            py.import("json")?
                 .getattr("dumps")?
                 .call1((plan,))?
-                .extract()?,
+                .extract()?
         };
         let report = swarmplan::check::plan_file::parse_plan_file(&text, "the plan given")
             .map_err(|e| to_py_err(py, e))?;
@@ -505,7 +508,7 @@ impl Instance {
         hop_time_limit_s: Option<f64>,
         hop_node_limit: Option<Whole>,
         node_limit: Option<Whole>,
-    ) -> PyResult<Py<PyAny>> {
+    ) -> PyResult<RouteEvaluation> {
         let support = support_arg(py, support)?;
         let hop_node_limit = limit_or(
             py,
@@ -614,7 +617,7 @@ impl Instance {
             )?;
             evaluation.measure_against(found);
         }
-        py_of(py, &evaluation)
+        Ok(RouteEvaluation::of(&evaluation))
     }
 
     fn __repr__(&self) -> String {

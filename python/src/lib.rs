@@ -6,8 +6,8 @@
 //!
 //! One module per concern: [`errors`] (the exception and the core's messages in the package's
 //! words), [`args`] (arguments read as the core's values), [`convert`] (serde data <-> Python),
-//! [`worker`] (solves off the GIL), [`instance`], [`hop`] and [`bench`] (the classes and
-//! functions of the package).
+//! [`worker`] (solves off the GIL), [`results`] (the typed results), [`instance`], [`hop`] and
+//! [`bench`] (the classes and functions of the package).
 
 mod args;
 mod bench;
@@ -15,6 +15,7 @@ mod convert;
 mod errors;
 mod hop;
 mod instance;
+mod results;
 mod worker;
 
 use pyo3::prelude::*;
@@ -25,6 +26,7 @@ use bench::run_bench;
 use errors::SwarmplanError;
 use hop::Hop;
 use instance::Instance;
+use results::{HopEvaluation, HopResult, Plan, RouteEvaluation};
 
 /// The names of the shipped networks and profiles.
 #[pyfunction]
@@ -41,6 +43,10 @@ fn _swarmplan(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("SwarmplanError", m.py().get_type::<SwarmplanError>())?;
     m.add_class::<Instance>()?;
     m.add_class::<Hop>()?;
+    m.add_class::<Plan>()?;
+    m.add_class::<HopResult>()?;
+    m.add_class::<HopEvaluation>()?;
+    m.add_class::<RouteEvaluation>()?;
     m.add_function(wrap_pyfunction!(run_bench, m)?)?;
     m.add_function(wrap_pyfunction!(shipped_names, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

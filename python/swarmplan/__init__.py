@@ -8,7 +8,7 @@ defaults, codes and JSON fields as the ``swarmplan`` command line.
 >>> instance = swarmplan.Instance.embedded("paper-195")
 >>> hop = instance.hop("r00042")
 >>> result = swarmplan.evaluate(hop, [])        # the empty schedule, scored
->>> result["feasible"], result["gap_label"] is None
+>>> result.feasible, result.gap_label is None
 (True, True)
 """
 
@@ -29,7 +29,11 @@ from ._swarmplan import (
     DEFAULT_NODES,
     DEFAULT_SPACING_M,
     Hop,
+    HopEvaluation,
+    HopResult,
     Instance,
+    Plan,
+    RouteEvaluation,
     SwarmplanError,
     __version__,
     shipped_names,
@@ -47,7 +51,11 @@ __all__ = [
     "DEFAULT_SPACING_M",
     "BenchResult",
     "Hop",
+    "HopEvaluation",
+    "HopResult",
     "Instance",
+    "Plan",
+    "RouteEvaluation",
     "SwarmplanError",
     "__version__",
     "bench",
@@ -58,21 +66,38 @@ __all__ = [
 Schedule = Sequence[Union[Dict[str, Any], Sequence[float]]]
 
 
-def evaluate(hop: Hop, schedule: Schedule, **options: Any) -> Dict[str, Any]:
+def evaluate(hop: Hop, schedule: Schedule, **options: Any) -> HopEvaluation:
     """Flies ``schedule`` on ``hop`` exactly as written and scores it against the exact optimum.
 
-    The same as ``hop.evaluate(schedule, **options)``. ``schedule`` is a sequence of transfers,
-    each a dict (``support``, ``consumer``, ``start_min``, ``end_min``, optionally
-    ``consumer_slot`` and ``energy_mah``) or a sequence of numbers (a tuple, a list, a numpy
-    row) in the order ``(support, consumer, start_min, end_min[, consumer_slot])``. A schedule
-    that breaks a rule of the hop model raises :class:`SwarmplanError` with the checker's code
-    (``C3001``-``C3013``, README.md's error table); one
-    that runs a drone out of battery returns ``feasible: False``; otherwise its ``value`` (node
-    time in minutes at a stop, or lowest delivery arrival battery in mAh into a destination)
-    comes with its ``gap`` against the continuous-time optimum of the ``reorder`` mode,
-    ``{"relative": loss, "reference": kind}`` as every gap of the package: the relative loss,
-    positive when worse under either objective, and the kind of its reference (``optimal``,
-    ``infimum``; README.md, "What a gap is").
+    The same as ``hop.evaluate(schedule, **options)``.
+
+    Parameters
+    ----------
+    hop : Hop
+        The hop flown.
+    schedule : sequence of transfers
+        Each transfer a dict (``support``, ``consumer``, ``start_min``, ``end_min``, optionally
+        ``consumer_slot`` and ``energy_mah``) or a sequence of numbers (a tuple, a list, a
+        numpy row) in the order ``(support, consumer, start_min, end_min[, consumer_slot])``.
+    **options
+        The keywords of :meth:`Hop.evaluate` (``reference``, ``reorder``, ``time_limit_s``,
+        ``node_limit``, ``backend``).
+
+    Returns
+    -------
+    HopEvaluation
+        ``feasible`` False when a drone runs out of battery; otherwise ``value`` (node time in
+        minutes at a stop, or lowest delivery arrival battery in mAh into a destination) with
+        its ``gap`` against the continuous-time optimum of the ``reorder`` mode,
+        ``{"relative": loss, "reference": kind}`` as every gap of the package: the relative
+        loss, positive when worse under either objective, and the kind of its reference
+        (``optimal``, ``infimum``; README.md, "What a gap is").
+
+    Raises
+    ------
+    SwarmplanError
+        With the checker's code (``C3001``-``C3013``, README.md's error table) for a schedule
+        that breaks a rule of the hop model; E0026 for one that is not a list of transfers.
     """
     return hop.evaluate(schedule, **options)
 

@@ -59,6 +59,152 @@ class SwarmplanError(Exception):
     action: Optional[str]
     violations: List[Dict[str, str]]
 
+class Plan:
+    """A planned request: the document ``swarmplan solve --json`` prints."""
+
+    def to_dict(self) -> Dict[str, Any]:
+        """The whole result as plain data (the command line's ``--json`` document)."""
+    def to_json(self) -> str:
+        """The whole result as JSON text."""
+
+    @property
+    def schema_version(self) -> int: ...
+    @property
+    def request(self) -> Dict[str, Any]: ...
+    @property
+    def options(self) -> Dict[str, Any]: ...
+    @property
+    def formation(self) -> str: ...
+    @property
+    def support_decision(self) -> Dict[str, Any]: ...
+    @property
+    def support_drones(self) -> int: ...
+    @property
+    def swarm(self) -> Dict[str, Any]: ...
+    @property
+    def plan(self) -> Dict[str, Any]:
+        """The composed plan: ``hops``, ``dt_min``, ``tt_min``, ``nt_min``, ``outcome``, ..."""
+    @property
+    def execution_ms(self) -> float: ...
+    @property
+    def made_on(self) -> Optional[Dict[str, Any]]: ...
+    @property
+    def route_gap(self) -> Optional[Dict[str, Any]]:
+        """With ``gap=True``: ``{"reference", "optimal_dt_min", "gap", ...}``."""
+    @property
+    def settings(self) -> Optional[Dict[str, Any]]: ...
+
+class HopResult:
+    """One method's result on a hop: a row of ``swarmplan eaas --json``."""
+
+    def to_dict(self) -> Dict[str, Any]:
+        """The whole result as plain data (the command line's ``--json`` document)."""
+    def to_json(self) -> str:
+        """The whole result as JSON text."""
+
+    @property
+    def method(self) -> str: ...
+    @property
+    def kind(self) -> str: ...
+    @property
+    def status(self) -> Optional[str]: ...
+    @property
+    def feasible(self) -> Optional[bool]: ...
+    @property
+    def objective(self) -> Optional[float]: ...
+    @property
+    def objective_proven(self) -> bool: ...
+    @property
+    def bound(self) -> Optional[float]: ...
+    @property
+    def qp_squared_deficits_mah2(self) -> Optional[float]: ...
+    @property
+    def gap(self) -> Optional[Gap]: ...
+    @property
+    def gap_label(self) -> Optional[str]: ...
+    @property
+    def epsilon(self) -> Optional[float]: ...
+    @property
+    def grid_step_min(self) -> Optional[float]: ...
+    @property
+    def solve_ms(self) -> float: ...
+    @property
+    def transfers(self) -> List[Dict[str, Any]]: ...
+    @property
+    def free_schedule(self) -> Optional[Dict[str, Any]]: ...
+
+class HopEvaluation:
+    """A hop schedule flown as written and scored (``Hop.evaluate``, ``swarmplan.evaluate``)."""
+
+    def to_dict(self) -> Dict[str, Any]:
+        """The whole result as plain data (the command line's ``--json`` document)."""
+    def to_json(self) -> str:
+        """The whole result as JSON text."""
+
+    @property
+    def feasible(self) -> bool: ...
+    @property
+    def failure(self) -> Optional[Dict[str, Any]]: ...
+    @property
+    def transfers(self) -> List[Dict[str, Any]]: ...
+    @property
+    def final_battery_mah(self) -> List[float]: ...
+    @property
+    def min_battery_mah(self) -> List[float]: ...
+    @property
+    def shared_mah(self) -> float: ...
+    @property
+    def objective(self) -> Union[str, Dict[str, Any]]: ...
+    @property
+    def value(self) -> Optional[float]: ...
+    @property
+    def value_proven(self) -> bool: ...
+    @property
+    def mode(self) -> str: ...
+    @property
+    def reference(self) -> Optional[Dict[str, Any]]: ...
+    @property
+    def gap(self) -> Optional[Gap]: ...
+    @property
+    def gap_label(self) -> Optional[str]: ...
+
+class RouteEvaluation:
+    """A route flown with a schedule per hop (``Instance.evaluate_route``)."""
+
+    def to_dict(self) -> Dict[str, Any]:
+        """The whole result as plain data (the command line's ``--json`` document)."""
+    def to_json(self) -> str:
+        """The whole result as JSON text."""
+
+    @property
+    def request_id(self) -> str: ...
+    @property
+    def stops(self) -> List[str]: ...
+    @property
+    def positioning(self) -> str: ...
+    @property
+    def support_drones(self) -> int: ...
+    @property
+    def delivered(self) -> bool: ...
+    @property
+    def tt_min(self) -> float: ...
+    @property
+    def nt_min(self) -> float: ...
+    @property
+    def dt_min(self) -> Optional[float]: ...
+    @property
+    def dt_proven(self) -> bool: ...
+    @property
+    def hops(self) -> List[Dict[str, Any]]: ...
+    @property
+    def mode(self) -> str: ...
+    @property
+    def reference(self) -> Optional[Dict[str, Any]]: ...
+    @property
+    def gap(self) -> Optional[Gap]: ...
+    @property
+    def gap_label(self) -> Optional[str]: ...
+
 class Instance:
     """A skyway network, a parameter profile and a request set, validated together."""
 
@@ -123,9 +269,9 @@ class Instance:
         hop_node_limit: Optional[int] = None,
         period_min: float = 1.0,
         reorder: Reorder = "paper",
-    ) -> Dict[str, Any]:
-        """Plans one request; the document ``swarmplan solve --json`` prints."""
-    def check(self, plan: Union[str, Dict[str, Any]]) -> List[Dict[str, str]]:
+    ) -> Plan:
+        """Plans one request; ``to_dict()`` is the document ``swarmplan solve --json`` prints."""
+    def check(self, plan: Union[Plan, str, Dict[str, Any]]) -> List[Dict[str, str]]:
         """Every violation the independent checker finds in a plan (empty: it passes)."""
     def hop(
         self,
@@ -150,7 +296,7 @@ class Instance:
         hop_time_limit_s: Optional[float] = None,
         hop_node_limit: Optional[int] = None,
         node_limit: Optional[int] = None,
-    ) -> Dict[str, Any]:
+    ) -> RouteEvaluation:
         """Flies the request along ``stops`` with a schedule per hop and measures the delivery
         time against the joint optimum of the same swarm: ``gap`` is a ``Gap`` (``reference``
         ``optimal`` or ``incumbent``), or ``None`` with ``gap_label``."""
@@ -236,7 +382,7 @@ class Hop:
         period_min: float = 1.0,
         backend: Optional[str] = None,
         reference: bool = True,
-    ) -> Dict[str, Any]:
+    ) -> HopResult:
         """One method's row of ``swarmplan eaas --json``.
 
         ``gap`` (a ``Gap``): with ``reference=True`` the row of ``none``, ``pb``, ``fb``,
@@ -255,7 +401,7 @@ class Hop:
         period_min: float = 1.0,
         backend: Optional[str] = None,
         label: bool = True,
-    ) -> List[Dict[str, Any]]:
+    ) -> List[HopResult]:
         """Several methods side by side, gaps labelled against the best reference."""
     def evaluate(
         self,
@@ -265,7 +411,7 @@ class Hop:
         time_limit_s: Optional[float] = None,
         node_limit: Optional[int] = 20_000,  # DEFAULT_HOP_NODE_LIMIT; None: no limit
         backend: Optional[str] = None,
-    ) -> Dict[str, Any]:
+    ) -> HopEvaluation:
         """Flies a schedule as written, checked by the independent checker, and scores it
         against the continuous-time optimum of the ``reorder`` mode: ``gap`` is a ``Gap``
         (``reference`` ``optimal`` or ``infimum``), or ``None`` with ``gap_label``."""
