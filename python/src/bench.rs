@@ -32,10 +32,29 @@ fn count(py: Python<'_>, n: Option<Whole>, name: &str, what: &str) -> PyResult<O
     n.map(|n| n.index(py, name, what)).transpose()
 }
 
-/// Runs a bench run of the core into `out` and returns `{"summary", "config", "tables",
-/// "elapsed_s"}` (tables: lists of records, one list per CSV). Every keyword is a setting of
-/// the run; `None` is its default, the command line's (`swarmplan bench --help`).
-/// `progress(done, total)` is called as plans are made. See `swarmplan.bench`.
+/// A bench run of the core into `out`, the native part of `swarmplan.bench` (which documents
+/// every keyword); no SVG figures (they are the command line's).
+///
+/// Parameters
+/// ----------
+/// out : str or os.PathLike
+///     Output directory.
+/// **settings
+///     The run's settings by keyword; `None` takes the command line's default.
+/// progress : callable or None, default None
+///     `progress(done, total)`, called as plans are made.
+/// command : list of str or None, default None
+///     The call recorded in `summary.json`.
+///
+/// Returns
+/// -------
+/// dict
+///     `{"summary", "config", "tables", "elapsed_s"}`, `tables` the rows of each CSV as dicts.
+///
+/// Raises
+/// ------
+/// SwarmplanError
+///     E0026 for an unknown choice or a negative count; the run's codes (E7005, E7006, ...).
 #[pyfunction]
 #[pyo3(signature = (
     out, *, limit = None, sharing = None, positioning = None, route = None, gap = true,

@@ -17,8 +17,19 @@ pyo3::create_exception!(
     swarmplan,
     SwarmplanError,
     PyException,
-    "An error of swarmplan: `code` (such as \"E4111\" or a checker code \"C3006\"), `field`, \
-     `cause`, `action`, and `violations` (every broken rule as a dict with those four keys)."
+    "An error of swarmplan, with the code of README.md's error table.\n\n\
+     Attributes\n\
+     ----------\n\
+     code : str or None\n    \
+     The first violation's code, such as \"E4111\" or a checker code \"C3006\".\n\
+     field : str or None\n    \
+     The argument or field concerned, in the package's names (\"index\", \"route\").\n\
+     cause : str or None\n    \
+     What is wrong.\n\
+     action : str or None\n    \
+     What to do.\n\
+     violations : list of dict\n    \
+     Every broken rule, each with the keys code, field, cause and action.\n"
 );
 
 /// Result of the crate.

@@ -19,10 +19,35 @@ use crate::instance::load_profile;
 use crate::results::{HopEvaluation, HopResult};
 use crate::worker::run_detached;
 
-/// One hop's in-flight sharing problem: its legs (durations, consumption rates per drone and
-/// slot), drones (roles, capacities, departure batteries), formation slots, sharing rate and
-/// range, and what it is scored by (the node time on the pads at its end, or the lowest delivery
-/// arrival battery into a destination).
+/// One hop's in-flight sharing problem and what it is scored by.
+///
+/// Its legs (durations, consumption rates per drone and slot), drones (roles, capacities,
+/// departure batteries), formation slots, sharing rate and range, and its objective: the node
+/// time on the pads at its end, or the lowest delivery arrival battery into a destination. Take
+/// one from a plan (`Instance.hop`) or a hop file (`Hop.from_file`, `Hop.from_json`); solve it
+/// (`solve`, `compare`) or score a schedule of one's own (`evaluate`).
+///
+/// Attributes
+/// ----------
+/// request_id : str
+///     The request whose plan holds the hop.
+/// index : int
+///     Index of the hop in that plan.
+/// path : list of str
+///     Node ids flown over.
+/// drones : int
+///     Number of drones (delivery drones first).
+/// roles : list of str
+///     `"delivery"` or `"support"` per drone.
+/// capacity_mah, battery_mah, durations_min, rates_mah_per_min, slots_m : numpy.ndarray
+///     Capacities and departure batteries per drone (mAh), leg durations (min), consumption
+///     rates `[leg, drone, slot]` (mAh/min), slot positions `[slot, 2]` (m).
+/// initial_slot : list of int
+///     Slot of every drone outside transfers.
+/// rho_mah_per_min, range_m, delta_mah, tt_min : float
+///     Sharing rate, largest transfer distance, support reserve, travel time.
+/// end, objective, problem
+///     The pads at the end (or `None`), what the hop is scored by, the whole problem.
 #[pyclass(frozen, module = "swarmplan")]
 pub(crate) struct Hop {
     pub(crate) file: Arc<HopFile>,
@@ -96,7 +121,22 @@ impl Hop {
 #[pymethods]
 impl Hop {
     /// Reads a hop file (JSON, as `swarmplan eaas --write-hop` and `Hop.write` write it).
-    /// `profile` (a shipped name or a TOML file, default `paper`) gives PB's and FB's readings.
+    ///
+    /// Parameters
+    /// ----------
+    /// path : str or os.PathLike
+    ///     The hop file.
+    /// profile : str or None, default None
+    ///     A shipped profile name or a TOML file whose readings PB and FB follow; `None`: `paper`.
+    ///
+    /// Returns
+    /// -------
+    /// Hop
+    ///
+    /// Raises
+    /// ------
+    /// SwarmplanError
+    ///     E4112 for another schema version; the hop file's input codes.
     #[staticmethod]
     #[pyo3(signature = (path, profile = None))]
     fn from_file(py: Python<'_>, path: std::path::PathBuf, profile: Option<&str>) -> PyResult<Hop> {
@@ -109,6 +149,22 @@ impl Hop {
     }
 
     /// A hop from the JSON text of a hop file.
+    ///
+    /// Parameters
+    /// ----------
+    /// text : str
+    ///     The hop file's JSON text.
+    /// profile : str or None, default None
+    ///     A shipped profile name or a TOML file whose readings PB and FB follow; `None`: `paper`.
+    ///
+    /// Returns
+    /// -------
+    /// Hop
+    ///
+    /// Raises
+    /// ------
+    /// SwarmplanError
+    ///     E4112 for another schema version; the hop file's input codes.
     #[staticmethod]
     #[pyo3(signature = (text, profile = None))]
     fn from_json(py: Python<'_>, text: &str, profile: Option<&str>) -> PyResult<Hop> {
@@ -121,11 +177,25 @@ impl Hop {
     }
 
     /// The hop file's JSON text.
+    ///
+    /// Returns
+    /// -------
+    /// str
     fn to_json(&self) -> String {
         serde_json::to_string_pretty(&*self.file).expect("serialising plain data cannot fail")
     }
 
     /// Writes the hop file (JSON).
+    ///
+    /// Parameters
+    /// ----------
+    /// path : str or os.PathLike
+    ///     Where to write it.
+    ///
+    /// Raises
+    /// ------
+    /// SwarmplanError
+    ///     E0010 when the file cannot be written.
     fn write(&self, py: Python<'_>, path: std::path::PathBuf) -> PyResult<()> {
         swarmplan::eaas::hop_file::write_hop_file(&path, &self.file).map_err(|e| to_py_err(py, e))
     }
@@ -258,11 +328,25 @@ impl Hop {
         swarmplan::eaas::travel_time_min(&self.file.hop)
     }
 
-    /// The moves of a re-ordering mode (`none` or `paper`): every move a transfer may use, as a
-    /// dict with keys `support`, `consumer`, `consumer_slot` and `partner`, `partner` the
-    /// delivery drone holding the consumer's slot meanwhile (`None` when the consumer stays in
-    /// its own slot). A transfer written as a sequence takes another order: `(support,
-    /// consumer, start_min, end_min[, consumer_slot])`.
+    /// The moves a transfer may use in a re-ordering mode.
+    ///
+    /// Parameters
+    /// ----------
+    /// reorder : str, default "paper"
+    ///     `none` (only consumers in range in their own slots) or `paper` (also swaps).
+    ///
+    /// Returns
+    /// -------
+    /// list of dict
+    ///     Keys `support`, `consumer`, `consumer_slot` and `partner`, `partner` the delivery drone
+    ///     holding the consumer's slot meanwhile (`None` when the consumer stays in its own slot). A
+    ///     transfer written as a sequence takes another order: `(support, consumer, start_min,
+    ///     end_min[, consumer_slot])`.
+    ///
+    /// Raises
+    /// ------
+    /// SwarmplanError
+    ///     E0026 for `free` (no fixed list of moves) or an unknown mode.
     #[pyo3(signature = (reorder = "paper"))]
     fn moves(&self, py: Python<'_>, reorder: &str) -> PyResult<Py<PyAny>> {
         let mode: Reorder = choice(py, "reorder", reorder)?;
@@ -290,20 +374,49 @@ impl Hop {
         Ok(list.call1((out,))?.unbind())
     }
 
-    /// Solves the hop with one method (`pb`, `fb`, `none` simulate a heuristic; `continuous`,
-    /// `milp`, `fluid`, `fair` solve a model), as one row of `swarmplan eaas --json`: status,
-    /// feasible, objective, bound, epsilon, grid step, schedule (`transfers`). The same defaults
-    /// as `swarmplan eaas`: `paper` re-ordering, 60 s per solve, no node limit.
+    /// Solves the hop with one method, as one row of `swarmplan eaas --json`.
     ///
-    /// `gap` is `{"relative", "reference"}` as everywhere in the package: with `reference=True`
-    /// (the default) the row of `none`, `pb`, `fb`, `milp` or `fair` is measured against the
-    /// continuous model of the same `reorder` mode, solved alongside with the same limits (as
-    /// `swarmplan eaas --methods M,continuous` measures it). `gap` is `None` for `continuous`
-    /// itself (it is the reference) and for `fluid` (a bound, not a schedule), with
-    /// `reference=False`, when the continuous model gives no value within its limits, and with
-    /// `gap_label` `different_policy` for a heuristic schedule that swaps slots under
-    /// `reorder="none"`.
+    /// `pb`, `fb`, `none` simulate a heuristic; `continuous`, `milp`, `fluid`, `fair` solve a
+    /// model. The same defaults as `swarmplan eaas`: `paper` re-ordering, 60 s per solve, no node
+    /// limit.
+    ///
+    /// Parameters
+    /// ----------
+    /// method : str, default "continuous"
+    ///     `none`, `pb`, `fb`, `continuous`, `milp`, `fluid` or `fair`.
+    /// reorder : str, default "paper"
+    ///     `paper`, `none` or `free` (the continuous model only).
+    /// time_limit_s : float or None, default 60.0
+    ///     Wall-clock limit of each solve, s; `None`: none.
+    /// node_limit : int or None, default None
+    ///     Branch-and-bound nodes of each MILP call; `None`: none.
+    /// period_min : float, default 1.0
+    ///     Longest period of the grid MILP, min.
+    /// backend : str or None, default None
+    ///     MILP backend; `None`: `DEFAULT_BACKEND` (`microlp`).
+    /// reference : bool, default True
+    ///     Measure the row of `none`, `pb`, `fb`, `milp` or `fair` against the continuous model of
+    ///     the same `reorder` mode, solved alongside with the same limits (as `swarmplan eaas
+    ///     --methods M,continuous`).
+    ///
+    /// Returns
+    /// -------
+    /// HopResult
+    ///     Status, feasibility, objective, bound, epsilon, grid step and schedule (`transfers`).
+    ///     `gap` is `{"relative", "reference"}`, or `None` for `continuous` (the reference itself),
+    ///     `fluid` (a bound), `reference=False`, or when the continuous model gives no value within
+    ///     its limits; a heuristic schedule that swaps slots under `reorder="none"` gets
+    ///     `gap_label` `different_policy`.
+    ///
+    /// Raises
+    /// ------
+    /// SwarmplanError
+    ///     E0026 for an unknown method or mode; E4105 (time limit), E4101 (period); E0012 for a
+    ///     backend this build lacks.
     #[pyo3(signature = (method = "continuous", reorder = "paper", time_limit_s = Some(60.0), node_limit = None, period_min = 1.0, backend = None, reference = true))]
+    #[pyo3(
+        text_signature = "(self, /, method='continuous', reorder='paper', time_limit_s=60.0, node_limit=None, period_min=1.0, backend=None, reference=True)"
+    )]
     #[allow(clippy::too_many_arguments)]
     fn solve(
         &self,
@@ -329,9 +442,38 @@ impl Hop {
         Ok(HopResult::of(&rows[0]))
     }
 
-    /// Solves the hop with several methods side by side and labels each row's gap against the
-    /// best reference, as `swarmplan eaas --json` prints its rows.
+    /// Solves the hop with several methods side by side, as `swarmplan eaas --json` prints its rows.
+    ///
+    /// Parameters
+    /// ----------
+    /// methods : list of str, default ["pb", "fb", "continuous", "milp", "fluid", "fair"]
+    ///     The methods, each as `solve` takes it.
+    /// reorder : str, default "paper"
+    ///     `paper`, `none` or `free`.
+    /// time_limit_s : float or None, default 60.0
+    ///     Wall-clock limit of each solve, s; `None`: none.
+    /// node_limit : int or None, default None
+    ///     Branch-and-bound nodes of each MILP call; `None`: none.
+    /// period_min : float, default 1.0
+    ///     Longest period of the grid MILP, min.
+    /// backend : str or None, default None
+    ///     MILP backend; `None`: `DEFAULT_BACKEND` (`microlp`).
+    /// label : bool, default True
+    ///     Label each row's gap against the best reference among the rows.
+    ///
+    /// Returns
+    /// -------
+    /// list of HopResult
+    ///     One per method, in order.
+    ///
+    /// Raises
+    /// ------
+    /// SwarmplanError
+    ///     As `solve`.
     #[pyo3(signature = (methods = vec!["pb".to_string(), "fb".to_string(), "continuous".to_string(), "milp".to_string(), "fluid".to_string(), "fair".to_string()], reorder = "paper", time_limit_s = Some(60.0), node_limit = None, period_min = 1.0, backend = None, label = true))]
+    #[pyo3(
+        text_signature = "(self, /, methods=('pb', 'fb', 'continuous', 'milp', 'fluid', 'fair'), reorder='paper', time_limit_s=60.0, node_limit=None, period_min=1.0, backend=None, label=True)"
+    )]
     #[allow(clippy::too_many_arguments)]
     fn compare(
         &self,
@@ -354,14 +496,47 @@ impl Hop {
         Ok(rows.iter().map(HopResult::of).collect())
     }
 
-    /// Flies a schedule written in Python exactly as written and scores it: the independent
-    /// checker judges it (a rule broken raises `SwarmplanError` with the checker's code, such as
-    /// C3006 for a consumer out of range), running out of battery is a result (`feasible`
-    /// False), and its objective is measured against the continuous-time optimum of the
-    /// `reorder` mode (`reference=True`; a schedule outside that mode gets `gap_label`
-    /// `outside_reference`). The reference solve is deterministic by default (a node limit, no
-    /// wall-clock limit).
+    /// Flies a schedule written in Python exactly as written and scores it.
+    ///
+    /// The independent checker judges the schedule; running out of battery is a result (`feasible`
+    /// False); its objective is measured against the continuous-time optimum of the `reorder` mode.
+    /// The reference solve is deterministic by default (a node limit, no wall-clock limit).
+    ///
+    /// Parameters
+    /// ----------
+    /// schedule : sequence of transfers
+    ///     Each a dict (`support`, `consumer`, `start_min`, `end_min`, optionally `consumer_slot`
+    ///     and `energy_mah`) or a sequence of numbers `(support, consumer, start_min, end_min[,
+    ///     consumer_slot])` (a tuple, a list, a numpy row).
+    /// reference : bool, default True
+    ///     Measure against the continuous-time optimum.
+    /// reorder : str, default "paper"
+    ///     The reference's re-ordering mode (`paper`, `none`, `free`); a schedule outside it gets
+    ///     `gap_label` `outside_reference`.
+    /// time_limit_s : float or None, default None
+    ///     Wall-clock limit of the reference solve, s; `None`: none.
+    /// node_limit : int or None, default DEFAULT_HOP_NODE_LIMIT (20,000)
+    ///     Branch-and-bound nodes of each MILP call of the reference; `None`: no limit.
+    /// backend : str or None, default None
+    ///     MILP backend; `None`: `DEFAULT_BACKEND` (`microlp`).
+    ///
+    /// Returns
+    /// -------
+    /// HopEvaluation
+    ///     `gap` is `{"relative", "reference"}` (reference `optimal` or `infimum`), or `None` with
+    ///     `gap_label`.
+    ///
+    /// Raises
+    /// ------
+    /// SwarmplanError
+    ///     The checker's code for a schedule that breaks a rule of the hop model (C3001-C3013, such
+    ///     as C3006 for a consumer out of range); E0026 for a schedule of the wrong shape.
     #[pyo3(signature = (schedule, reference = true, reorder = "paper", time_limit_s = None, node_limit = Some(Whole::of(swarmplan::eaas::exact_hop::DEFAULT_HOP_NODE_LIMIT)), backend = None))]
+    // The default node limit is the crate's constant, not a literal: the signature `help()`
+    // shows states its value (tests/test_defaults.py checks it against the constant).
+    #[pyo3(
+        text_signature = "(self, /, schedule, reference=True, reorder='paper', time_limit_s=None, node_limit=20000, backend=None)"
+    )]
     #[allow(clippy::too_many_arguments)]
     fn evaluate(
         &self,

@@ -31,6 +31,19 @@ pub(crate) struct InstanceData {
 
 /// A planning instance: a skyway network, a parameter profile and a request set, validated
 /// together (the same rules and codes as the command line).
+///
+/// Make one with `Instance.embedded`, `Instance.from_files` or `Instance.generate`; plan its
+/// requests (`plan`), check plans (`check`), take out a hop (`hop`) or fly a route of one's own
+/// (`evaluate_route`).
+///
+/// Attributes
+/// ----------
+/// network_name, profile_name, requests_name : str
+///     Where the network, the profile and the requests come from.
+/// request_ids : list of str
+///     Ids of the requests, in the set's order.
+/// network, profile : dict
+///     The network as its JSON reads, the profile as its TOML reads.
 #[pyclass(frozen, module = "swarmplan")]
 pub(crate) struct Instance {
     inner: Arc<InstanceData>,
@@ -170,10 +183,27 @@ pub(crate) fn load_profile(
 
 #[pymethods]
 impl Instance {
-    /// A shipped network by name (`paper-195`, `findings-195`, `sparse-195`) with a shipped
-    /// profile (`paper`, `paper-findings`, `fast-sharing`, `redundancy-levels`, or a TOML
-    /// file; default: the network's own, `paper-findings` for findings-195, else `paper`) and
-    /// the shipped 10,000 requests. `literal` reads the paper word for word (`--literal`).
+    /// A shipped network with a shipped profile and the shipped 10,000 requests.
+    ///
+    /// Parameters
+    /// ----------
+    /// network : str, default "paper-195"
+    ///     `paper-195`, `findings-195` or `sparse-195`.
+    /// profile : str or None, default None
+    ///     A shipped profile (`paper`, `paper-findings`, `fast-sharing`, `redundancy-levels`) or a
+    ///     TOML file; `None`: the network's own (`paper-findings` for findings-195, else `paper`).
+    /// literal : bool, default False
+    ///     Read the paper word for word where it can be read several ways (`--literal`).
+    ///
+    /// Returns
+    /// -------
+    /// Instance
+    ///
+    /// Raises
+    /// ------
+    /// SwarmplanError
+    ///     E0020 (no shipped network of that name), E0021 (no shipped profile of that name), or the
+    ///     codes of an invalid profile file.
     #[staticmethod]
     #[pyo3(signature = (network = "paper-195", profile = None, literal = false))]
     fn embedded(
@@ -197,9 +227,29 @@ impl Instance {
         ))
     }
 
-    /// A network file (JSON), a profile (a shipped name or a TOML file; default `paper`) and
-    /// requests: a request file (JSON), a list of request dicts, or `None` for the shipped
-    /// requests.
+    /// An instance from a network file, a profile and requests.
+    ///
+    /// Parameters
+    /// ----------
+    /// network : str or os.PathLike
+    ///     The network file (JSON).
+    /// profile : str or None, default None
+    ///     A shipped profile name or a TOML file; `None`: `paper`.
+    /// requests : str, os.PathLike, list of dict or None, default None
+    ///     A request file (JSON), a list of request dicts (`id`, `source`, `destination`,
+    ///     `packages_kg`), or `None` for the shipped requests.
+    /// literal : bool, default False
+    ///     Read the paper word for word (`--literal`).
+    ///
+    /// Returns
+    /// -------
+    /// Instance
+    ///
+    /// Raises
+    /// ------
+    /// SwarmplanError
+    ///     The input codes of the files (E1xxx network, E2xxx profile, E3xxx requests), E0026 for a
+    ///     request list of the wrong shape.
     #[staticmethod]
     #[pyo3(signature = (network, profile = None, requests = None, literal = false))]
     fn from_files(
@@ -254,10 +304,40 @@ impl Instance {
         ))
     }
 
-    /// A seeded synthetic network and request set, as `swarmplan generate network` and
-    /// `generate requests` write them (the same seed gives the same instance).
+    /// A seeded synthetic network and request set, as `swarmplan generate network` and `generate
+    /// requests` write them (the same seed gives the same instance).
+    ///
+    /// Parameters
+    /// ----------
+    /// seed : int
+    ///     Seed of the network (and of the requests unless `requests_seed` is given).
+    /// nodes : int or None, default None
+    ///     Number of rooftop nodes; `None`: `DEFAULT_NODES` (195).
+    /// spacing_m : float or None, default None
+    ///     Street-grid spacing, m; `None`: `DEFAULT_SPACING_M` (500.0).
+    /// requests : int, default 100
+    ///     Number of requests.
+    /// requests_seed : int or None, default None
+    ///     Seed of the requests; `None`: `seed`.
+    /// max_package_kg : float or None, default None
+    ///     Largest package mass, kg; `None`: `DEFAULT_MAX_PACKAGE_KG` (1.4).
+    /// profile : str or None, default None
+    ///     A shipped profile name or a TOML file; `None`: `paper`.
+    ///
+    /// Returns
+    /// -------
+    /// Instance
+    ///
+    /// Raises
+    /// ------
+    /// SwarmplanError
+    ///     E0026 for a negative count or seed or a bool; the generator's codes (E19xx network, E39xx
+    ///     requests).
     #[staticmethod]
     #[pyo3(signature = (seed, nodes = None, spacing_m = None, requests = Whole::of(100), requests_seed = None, max_package_kg = None, profile = None))]
+    #[pyo3(
+        text_signature = "(seed, nodes=None, spacing_m=None, requests=100, requests_seed=None, max_package_kg=None, profile=None)"
+    )]
     #[allow(clippy::too_many_arguments)]
     fn generate(
         py: Python<'_>,
@@ -352,15 +432,73 @@ impl Instance {
         py_of(py, &self.inner.instance.profile)
     }
 
-    /// One request as a dict (`id`, `source`, `destination`, `packages_kg`).
+    /// One request of the instance.
+    ///
+    /// Parameters
+    /// ----------
+    /// id : str or dict
+    ///     A request id, or a dict with `source`, `destination` and `packages_kg` (checked against
+    ///     the network).
+    ///
+    /// Returns
+    /// -------
+    /// dict
+    ///     `{"id", "source", "destination", "packages_kg"}`.
+    ///
+    /// Raises
+    /// ------
+    /// SwarmplanError
+    ///     E3401 for an unknown id, E3xxx for a request dict the network refuses, E0026 for one of
+    ///     the wrong shape.
     fn request(&self, py: Python<'_>, id: &Bound<'_, PyAny>) -> PyResult<Py<PyAny>> {
         let r = Instance::resolve_request(self, py, id)?;
         py_of(py, &r)
     }
 
-    /// Plans one request, as `swarmplan solve --json` does, and returns the same document as a
-    /// dict. `request` is an id or a dict with source, destination and packages_kg.
-    #[pyo3(signature = (request, sharing = "pb", positioning = "location-aware", route = "sequential", support = None, hop_paths = "rule", node_limit = None, gap = false, backend = None, hop_time_limit_s = None, hop_node_limit = None, period_min = 1.0, reorder = "paper".to_string()))]
+    /// Plans one request, as `swarmplan solve --json` does.
+    ///
+    /// Parameters
+    /// ----------
+    /// request : str or dict
+    ///     A request id, or a dict with `source`, `destination` and `packages_kg`.
+    /// sharing : str, default "pb"
+    ///     `none`, `idle-support`, `pb`, `fb`, `exact` or `fair`.
+    /// positioning : str, default "location-aware"
+    ///     `location-aware` or `energy-aware`.
+    /// route : str, default "sequential"
+    ///     `sequential`, `astar`, `dijkstra`, `floyd-warshall` or `optimal`.
+    /// support : int or None, default None
+    ///     Support drones flown; `None`: the redundancy table's decision.
+    /// hop_paths : str, default "rule"
+    ///     Hop paths of `route="optimal"`: `rule` (shortest paths) or `any`.
+    /// node_limit : int or None, default None
+    ///     Search nodes of the exact node time at every stop; `None`: `DEFAULT_NODE_LIMIT`
+    ///     (20,000,000).
+    /// gap : bool, default False
+    ///     Also plan the optimal route of the same combination and give `route_gap`.
+    /// backend : str or None, default None
+    ///     MILP backend of the exact hop models; `None`: `DEFAULT_BACKEND` (`microlp`).
+    /// hop_time_limit_s : float or None, default None
+    ///     Wall-clock limit of each hop solve, s; `None`: none.
+    /// hop_node_limit : int or None, default None
+    ///     Branch-and-bound nodes of each MILP call; `None`: `DEFAULT_HOP_NODE_LIMIT` (20,000).
+    /// period_min : float, default 1.0
+    ///     Longest period of the grid MILP, min.
+    /// reorder : str, default "paper"
+    ///     Re-ordering of the exact hop models: `paper` or `none`.
+    ///
+    /// Returns
+    /// -------
+    /// Plan
+    ///     The plan; `to_dict()` is the document `swarmplan solve --json` prints.
+    ///
+    /// Raises
+    /// ------
+    /// SwarmplanError
+    ///     E0026 for an unknown choice (listing the choices) or a negative number; E0015, E0016
+    ///     for combinations that do not apply; E4101, E4105, E4113 for the hop settings; E0006 for
+    ///     too many support drones; E3401 for an unknown request.
+    #[pyo3(signature = (request, sharing = "pb", positioning = "location-aware", route = "sequential", support = None, hop_paths = "rule", node_limit = None, gap = false, backend = None, hop_time_limit_s = None, hop_node_limit = None, period_min = 1.0, reorder = "paper"))]
     #[allow(clippy::too_many_arguments)]
     fn plan(
         &self,
@@ -377,7 +515,7 @@ impl Instance {
         hop_time_limit_s: Option<f64>,
         hop_node_limit: Option<Whole>,
         period_min: f64,
-        reorder: String,
+        reorder: &str,
     ) -> PyResult<Plan> {
         let support = support_arg(py, support)?;
         let node_limit = limit_or(
@@ -405,7 +543,7 @@ impl Instance {
             hop_time_limit_s,
             hop_node_limit,
             period_min,
-            reorder,
+            reorder: reorder.to_string(),
         };
         // Checked here, reported before any work.
         let settings = {
@@ -430,9 +568,22 @@ impl Instance {
         Ok(Plan::of(&report))
     }
 
-    /// Re-verifies a plan (a dict as `plan` returns, or its JSON text) with the independent
-    /// checker; returns every violation (dicts with code, field, cause, action), empty when the
-    /// plan passes.
+    /// Re-verifies a plan with the independent checker.
+    ///
+    /// Parameters
+    /// ----------
+    /// plan : Plan, dict or str
+    ///     A plan as `plan` returns it, its `to_dict()`, or its JSON text.
+    ///
+    /// Returns
+    /// -------
+    /// list of dict
+    ///     Every violation (`code`, `field`, `cause`, `action`); empty when the plan passes.
+    ///
+    /// Raises
+    /// ------
+    /// SwarmplanError
+    ///     E6001 for text that is no plan document.
     fn check(&self, py: Python<'_>, plan: &Bound<'_, PyAny>) -> PyResult<Py<PyAny>> {
         let text = if let Ok(typed) = plan.cast::<Plan>() {
             typed.get().document().to_string()
@@ -452,9 +603,37 @@ impl Instance {
         py_of(py, &violations)
     }
 
-    /// Hop `index` of a request's plan (as `swarmplan eaas` takes it: by default the plan of
-    /// PB sharing, location-aware positioning and Algorithm 1).
+    /// Hop `index` of a request's plan, as `swarmplan eaas` takes it (by default the plan of PB
+    /// sharing, location-aware positioning and Algorithm 1).
+    ///
+    /// Parameters
+    /// ----------
+    /// request : str or dict
+    ///     A request id, or a dict with `source`, `destination` and `packages_kg`.
+    /// index : int, default 0
+    ///     The hop's index in the plan (0 = the first).
+    /// sharing : str, default "pb"
+    ///     The plan's sharing policy.
+    /// positioning : str, default "location-aware"
+    ///     The plan's positioning.
+    /// route : str, default "sequential"
+    ///     The plan's route method.
+    /// support : int or None, default None
+    ///     Support drones flown; `None`: the redundancy table's decision.
+    ///
+    /// Returns
+    /// -------
+    /// Hop
+    ///
+    /// Raises
+    /// ------
+    /// SwarmplanError
+    ///     E4110 for an index beyond the plan's hops; E0026 for an unknown choice or a negative
+    ///     index.
     #[pyo3(signature = (request, index = Whole::of(0), sharing = "pb", positioning = "location-aware", route = "sequential", support = None))]
+    #[pyo3(
+        text_signature = "(self, /, request, index=0, sharing='pb', positioning='location-aware', route='sequential', support=None)"
+    )]
     #[allow(clippy::too_many_arguments)]
     fn hop(
         &self,
@@ -487,12 +666,53 @@ impl Instance {
         })
     }
 
-    /// Flies a request along `stops` (node ids, source first, destination last) with a
-    /// schedule per hop, every hop from full batteries along the shortest path, the exact node
-    /// time at every stop, and measures it against the joint optimum of the same swarm
-    /// (`reference=True`). `policy` is a callable `policy(hop) -> schedule` called with each
-    /// hop in turn (a `Hop`), or a list of schedules, one per hop.
-    #[pyo3(signature = (request, stops, policy, positioning = "location-aware", support = None, reference = true, reorder = "paper".to_string(), backend = None, hop_time_limit_s = None, hop_node_limit = None, node_limit = None))]
+    /// Flies a request along `stops` with a schedule per hop and measures its delivery time against
+    /// the joint optimum of the same swarm.
+    ///
+    /// Every hop departs from full batteries along the shortest path; the node time at every stop is
+    /// exact.
+    ///
+    /// Parameters
+    /// ----------
+    /// request : str or dict
+    ///     A request id, or a dict with `source`, `destination` and `packages_kg`.
+    /// stops : list of str
+    ///     Node ids, the source first and the destination last.
+    /// policy : callable or list of schedules
+    ///     `policy(hop) -> schedule`, called with each hop in turn (a `Hop`), or one schedule per
+    ///     hop; a schedule is a list of transfers as `Hop.evaluate` takes them.
+    /// positioning : str, default "location-aware"
+    ///     `location-aware` or `energy-aware`.
+    /// support : int or None, default None
+    ///     Support drones flown; `None`: the redundancy table's decision.
+    /// reference : bool, default True
+    ///     Measure against the joint optimum (`route="optimal"`, `sharing="exact"`).
+    /// reorder : str, default "paper"
+    ///     Re-ordering of the reference: `paper` or `none`.
+    /// backend : str or None, default None
+    ///     MILP backend; `None`: `DEFAULT_BACKEND` (`microlp`).
+    /// hop_time_limit_s : float or None, default None
+    ///     Wall-clock limit of each hop solve of the reference, s; `None`: none.
+    /// hop_node_limit : int or None, default None
+    ///     Branch-and-bound nodes of each MILP call; `None`: `DEFAULT_HOP_NODE_LIMIT` (20,000).
+    /// node_limit : int or None, default None
+    ///     Search nodes of the exact node time at every stop; `None`: `DEFAULT_NODE_LIMIT`
+    ///     (20,000,000).
+    ///
+    /// Returns
+    /// -------
+    /// RouteEvaluation
+    ///     `gap` is `{"relative", "reference"}` (reference `optimal` or `incumbent`), or `None`
+    ///     with `gap_label`.
+    ///
+    /// Raises
+    /// ------
+    /// SwarmplanError
+    ///     E0022-E0025 for stops that are no route; the checker's codes for a schedule that breaks a
+    ///     rule; E0026 for a policy or schedule of the wrong shape.
+    /// Exception
+    ///     Whatever `policy` raises.
+    #[pyo3(signature = (request, stops, policy, positioning = "location-aware", support = None, reference = true, reorder = "paper", backend = None, hop_time_limit_s = None, hop_node_limit = None, node_limit = None))]
     #[allow(clippy::too_many_arguments)]
     fn evaluate_route(
         &self,
@@ -503,7 +723,7 @@ impl Instance {
         positioning: &str,
         support: Option<Whole>,
         reference: bool,
-        reorder: String,
+        reorder: &str,
         backend: Option<String>,
         hop_time_limit_s: Option<f64>,
         hop_node_limit: Option<Whole>,
@@ -529,7 +749,7 @@ impl Instance {
             hop_time_limit_s,
             hop_node_limit,
             period_min: 1.0,
-            reorder,
+            reorder: reorder.to_string(),
         };
         let context = exact.context(py, &self.inner, node_limit)?;
         let readings = PolicyOptions::from(&self.inner.instance.profile.readings);

@@ -29,6 +29,11 @@ use instance::Instance;
 use results::{HopEvaluation, HopResult, Plan, RouteEvaluation};
 
 /// The names of the shipped networks and profiles.
+///
+/// Returns
+/// -------
+/// dict
+///     `{"networks": [...], "profiles": [...]}`.
 #[pyfunction]
 fn shipped_names(py: Python<'_>) -> PyResult<Py<PyAny>> {
     let d = PyDict::new(py);

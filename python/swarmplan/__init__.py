@@ -105,8 +105,20 @@ def evaluate(hop: Hop, schedule: Schedule, **options: Any) -> HopEvaluation:
 class BenchResult:
     """The results of :func:`bench`: the summary, the configuration and the tables.
 
-    ``tables`` maps each table (``requests``, ``hops``, ``stops``, ``timings``, ``joint``) to
-    its rows as dicts, the same rows as the CSV files in ``out``.
+    Attributes
+    ----------
+    summary : dict
+        ``summary.json``: the methods' statistics, findings, the command recorded;
+        ``figures`` is empty (the command line alone draws them).
+    config : dict
+        ``config.json``: the run's inputs and settings.
+    tables : dict
+        Each table (``requests``, ``hops``, ``stops``, ``timings``, ``joint``) as its rows,
+        dicts, the same rows as the CSV files in ``out``.
+    elapsed_s : float
+        Wall-clock time of the planning, s.
+    out : str
+        The output directory.
     """
 
     def __init__(self, raw: Dict[str, Any], out: str) -> None:

@@ -2,7 +2,10 @@
 an unknown choice names its argument and lists every choice."""
 
 import ast
+import inspect
 import re
+
+import pydoc
 
 import pytest
 
@@ -77,3 +80,73 @@ def test_an_unknown_method_lists_the_methods(paper):
         paper.hop("r00042").solve("simplex")
     assert (e.value.code, e.value.field) == ("E0026", "method")
     assert e.value.action == "give one of none, pb, fb, continuous, milp, fluid, fair"
+
+
+DOCUMENTED = [
+    swarmplan.Instance.embedded, swarmplan.Instance.from_files, swarmplan.Instance.generate,
+    swarmplan.Instance.request, swarmplan.Instance.plan, swarmplan.Instance.check,
+    swarmplan.Instance.hop, swarmplan.Instance.evaluate_route,
+    swarmplan.Hop.from_file, swarmplan.Hop.from_json, swarmplan.Hop.write, swarmplan.Hop.moves,
+    swarmplan.Hop.solve, swarmplan.Hop.compare, swarmplan.Hop.evaluate,
+    swarmplan.evaluate, swarmplan.bench, swarmplan.BenchResult.frame,
+]
+
+
+@pytest.mark.parametrize("function", DOCUMENTED, ids=lambda f: f.__qualname__)
+def test_help_shows_numpydoc_sections(function):
+    doc = inspect.getdoc(function)
+    assert "Parameters\n----------" in doc
+    assert "Returns\n-------" in doc or function.__name__ == "write"
+    assert "Raises\n------" in doc
+    # Every keyword of the signature is described.
+    for name in inspect.signature(function).parameters:
+        if name not in ("self", "options"):
+            assert f"\n{name} :" in doc or doc.startswith(f"{name} :"), name
+
+
+def test_help_of_plan_gives_the_defaults():
+    text = pydoc.render_doc(swarmplan.Instance.plan, renderer=pydoc.plaintext)
+    assert "node_limit=None" in text
+    assert f"DEFAULT_NODE_LIMIT`\n    ({swarmplan.DEFAULT_NODE_LIMIT:,})" in swarmplan.Instance.plan.__doc__
+    assert f"({swarmplan.DEFAULT_HOP_NODE_LIMIT:,})" in swarmplan.Instance.plan.__doc__
+    assert f"(`{swarmplan.DEFAULT_BACKEND}`)" in swarmplan.Instance.plan.__doc__
+
+
+@pytest.mark.parametrize("cls", [swarmplan.Instance, swarmplan.Hop, swarmplan.SwarmplanError,
+                                 swarmplan.BenchResult])
+def test_classes_document_their_attributes(cls):
+    assert "Attributes\n----------" in inspect.getdoc(cls)
+
+
+def test_no_signature_hides_a_default():
+    for cls in (swarmplan.Instance, swarmplan.Hop):
+        for name, function in vars(cls).items():
+            if callable(function) and not name.startswith("_"):
+                for p in inspect.signature(function).parameters.values():
+                    assert p.default is not Ellipsis, f"{cls.__name__}.{name}({p.name})"
+    evaluate = inspect.signature(swarmplan.Hop.evaluate).parameters
+    assert evaluate["node_limit"].default == swarmplan.DEFAULT_HOP_NODE_LIMIT
+
+
+def stub_methods():
+    tree = ast.parse((REPO / "python/swarmplan/_swarmplan.pyi").read_text())
+    for cls in (n for n in tree.body if isinstance(n, ast.ClassDef) and n.name in ("Instance", "Hop")):
+        for f in cls.body:
+            if isinstance(f, ast.FunctionDef) and not f.decorator_list == [ast.Name("property")] \
+                    and not any(isinstance(d, ast.Name) and d.id == "property" for d in f.decorator_list):
+                yield cls.name, f
+
+
+@pytest.mark.parametrize("cls,method", [(c, f) for c, f in stub_methods()],
+                         ids=[f"{c}.{f.name}" for c, f in stub_methods()])
+def test_the_signature_is_the_stubs(cls, method):
+    args = method.args.args
+    defaults = [None] * (len(args) - len(method.args.defaults)) + method.args.defaults
+    want = [(a.arg, ast.literal_eval(d) if d is not None else inspect.Parameter.empty)
+            for a, d in zip(args, defaults) if a.arg != "self"]
+    got = [(p.name, p.default) for p in
+           inspect.signature(getattr(getattr(swarmplan, cls), method.name)).parameters.values()
+           if p.name != "self"]
+    # A tuple in the stub is a list at run time (methods=...).
+    got = [(n, tuple(d) if isinstance(d, list) else d) for n, d in got]
+    assert got == want
