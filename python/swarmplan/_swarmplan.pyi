@@ -1,4 +1,4 @@
-"""Type stubs of the native part of swarmplan (built from python/src/lib.rs)."""
+"""Type stubs of the native part of swarmplan (built from python/src/, one module per concern)."""
 
 from os import PathLike
 from typing import Any, Callable, Dict, List, Literal, Optional, Sequence, Union
