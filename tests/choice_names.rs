@@ -4,7 +4,8 @@
 use clap::ValueEnum;
 use serde::{de::DeserializeOwned, Serialize};
 use std::fmt::Display;
-use swarmplan::compose::{FixedRoute, RouteMethod};
+use swarmplan::compose::{FixedRoute, HopPaths, RouteMethod};
+use swarmplan::eaas::compare::HopMethod;
 use swarmplan::eaas::milp::Reorder;
 use swarmplan::eaas::SharingPolicy;
 use swarmplan::node_time::NodeTimeMethod;
@@ -54,6 +55,11 @@ fn every_choice_has_one_name() {
     );
     assert_eq!(names::<Positioning>(), ["location-aware", "energy-aware"]);
     assert_eq!(names::<Reorder>(), ["paper", "free", "none"]);
+    assert_eq!(names::<HopPaths>(), ["rule", "any"]);
+    assert_eq!(
+        names::<HopMethod>(),
+        ["none", "pb", "fb", "continuous", "milp", "fluid", "fair"]
+    );
     assert_eq!(names::<NodeTimeMethod>(), ["exact", "milp", "lpt", "brute"]);
     assert_eq!(
         names::<FormationKind>(),
@@ -69,6 +75,11 @@ fn every_choice_reads_back_from_its_name() {
     reads_back::<SharingPolicy>();
     reads_back::<Positioning>();
     reads_back::<Reorder>();
+    // The Python package reads these through serde.
+    reads_back::<RouteMethod>();
+    reads_back::<HopPaths>();
+    reads_back::<HopMethod>();
+    reads_back::<swarmplan::solver::MilpBackend>();
     reads_back::<FormationKind>();
     reads_back::<PbRequest>();
     reads_back::<Candidates>();

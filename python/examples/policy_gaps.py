@@ -57,17 +57,17 @@ def main():
     for request_id in instance.request_ids[: args.hops]:
         hop = instance.hop(request_id, 0)
         result = swarmplan.evaluate(hop, late_top_up(hop))
-        gap = result["gap"]
+        gap = result.gap
         if gap is not None and gap["relative"] is not None:
             # A gap is a loss: positive is worse under either objective.
             worse = gap["relative"]
             gaps.append(100.0 * worse)
             shown = f"{100.0 * worse:8.3f}% against the {gap['reference']}"
         else:
-            labels[result["gap_label"]] = labels.get(result["gap_label"], 0) + 1
-            shown = result["gap_label"]
+            labels[result.gap_label] = labels.get(result.gap_label, 0) + 1
+            shown = result.gap_label
         print(f"{request_id} hop 0 {len(hop.path) - 1:2d} edge(s) {hop.drones:2d} drones: "
-              f"feasible {result['feasible']!s:5} value {result['value']!s:>20} {shown}")
+              f"feasible {result.feasible!s:5} value {result.value!s:>20} {shown}")
     print(f"{len(gaps)} hops with a gap: mean {statistics.mean(gaps):.3f}%, "
           f"median {statistics.median(gaps):.3f}%, max {max(gaps):.3f}%; without: {labels or 'none'}")
     try:

@@ -8,7 +8,7 @@ defaults, codes and JSON fields as the ``swarmplan`` command line.
 >>> instance = swarmplan.Instance.embedded("paper-195")
 >>> hop = instance.hop("r00042")
 >>> result = swarmplan.evaluate(hop, [])        # the empty schedule, scored
->>> result["feasible"], result["gap_label"] is None
+>>> result.feasible, result.gap_label is None
 (True, True)
 """
 
@@ -19,13 +19,43 @@ import sys
 import tempfile
 from typing import Any, Callable, Dict, List, Optional, Sequence, Union
 
-from ._swarmplan import Hop, Instance, SwarmplanError, __version__, shipped_names
+from ._swarmplan import (
+    DEFAULT_BACKEND,
+    DEFAULT_DISTANCE_BUCKET_KM,
+    DEFAULT_EXACT_LIMIT,
+    DEFAULT_HOP_NODE_LIMIT,
+    DEFAULT_MAX_PACKAGE_KG,
+    DEFAULT_NODE_LIMIT,
+    DEFAULT_NODES,
+    DEFAULT_SPACING_M,
+    Hop,
+    HopEvaluation,
+    HopResult,
+    Instance,
+    Plan,
+    RouteEvaluation,
+    SwarmplanError,
+    __version__,
+    shipped_names,
+)
 from ._swarmplan import run_bench as _run_bench
 
 __all__ = [
+    "DEFAULT_BACKEND",
+    "DEFAULT_DISTANCE_BUCKET_KM",
+    "DEFAULT_EXACT_LIMIT",
+    "DEFAULT_HOP_NODE_LIMIT",
+    "DEFAULT_MAX_PACKAGE_KG",
+    "DEFAULT_NODE_LIMIT",
+    "DEFAULT_NODES",
+    "DEFAULT_SPACING_M",
     "BenchResult",
     "Hop",
+    "HopEvaluation",
+    "HopResult",
     "Instance",
+    "Plan",
+    "RouteEvaluation",
     "SwarmplanError",
     "__version__",
     "bench",
@@ -36,21 +66,38 @@ __all__ = [
 Schedule = Sequence[Union[Dict[str, Any], Sequence[float]]]
 
 
-def evaluate(hop: Hop, schedule: Schedule, **options: Any) -> Dict[str, Any]:
+def evaluate(hop: Hop, schedule: Schedule, **options: Any) -> HopEvaluation:
     """Flies ``schedule`` on ``hop`` exactly as written and scores it against the exact optimum.
 
-    The same as ``hop.evaluate(schedule, **options)``. ``schedule`` is a sequence of transfers,
-    each a dict (``support``, ``consumer``, ``start_min``, ``end_min``, optionally
-    ``consumer_slot`` and ``energy_mah``) or a sequence of numbers (a tuple, a list, a numpy
-    row) in the order ``(support, consumer, start_min, end_min[, consumer_slot])``. A schedule
-    that breaks a rule of the hop model raises :class:`SwarmplanError` with the checker's code
-    (``C3001``-``C3013``, README.md's error table); one
-    that runs a drone out of battery returns ``feasible: False``; otherwise its ``value`` (node
-    time in minutes at a stop, or lowest delivery arrival battery in mAh into a destination)
-    comes with its ``gap`` against the continuous-time optimum of the ``reorder`` mode,
-    ``{"relative": loss, "reference": kind}`` as every gap of the package: the relative loss,
-    positive when worse under either objective, and the kind of its reference (``optimal``,
-    ``infimum``; README.md, "What a gap is").
+    The same as ``hop.evaluate(schedule, **options)``.
+
+    Parameters
+    ----------
+    hop : Hop
+        The hop flown.
+    schedule : sequence of transfers
+        Each transfer a dict (``support``, ``consumer``, ``start_min``, ``end_min``, optionally
+        ``consumer_slot`` and ``energy_mah``) or a sequence of numbers (a tuple, a list, a
+        numpy row) in the order ``(support, consumer, start_min, end_min[, consumer_slot])``.
+    **options
+        The keywords of :meth:`Hop.evaluate` (``reference``, ``reorder``, ``time_limit_s``,
+        ``node_limit``, ``backend``).
+
+    Returns
+    -------
+    HopEvaluation
+        ``feasible`` False when a drone runs out of battery; otherwise ``value`` (node time in
+        minutes at a stop, or lowest delivery arrival battery in mAh into a destination) with
+        its ``gap`` against the continuous-time optimum of the ``reorder`` mode,
+        ``{"relative": loss, "reference": kind}`` as every gap of the package: the relative
+        loss, positive when worse under either objective, and the kind of its reference
+        (``optimal``, ``infimum``; README.md, "What a gap is").
+
+    Raises
+    ------
+    SwarmplanError
+        With the checker's code (``C3001``-``C3013``, README.md's error table) for a schedule
+        that breaks a rule of the hop model; E0026 for one that is not a list of transfers.
     """
     return hop.evaluate(schedule, **options)
 
@@ -58,8 +105,20 @@ def evaluate(hop: Hop, schedule: Schedule, **options: Any) -> Dict[str, Any]:
 class BenchResult:
     """The results of :func:`bench`: the summary, the configuration and the tables.
 
-    ``tables`` maps each table (``requests``, ``hops``, ``stops``, ``timings``, ``joint``) to
-    its rows as dicts, the same rows as the CSV files in ``out``.
+    Attributes
+    ----------
+    summary : dict
+        ``summary.json``: the methods' statistics, findings, the command recorded;
+        ``figures`` is empty (the command line alone draws them).
+    config : dict
+        ``config.json``: the run's inputs and settings.
+    tables : dict
+        Each table (``requests``, ``hops``, ``stops``, ``timings``, ``joint``) as its rows,
+        dicts, the same rows as the CSV files in ``out``.
+    elapsed_s : float
+        Wall-clock time of the planning, s.
+    out : str
+        The output directory.
     """
 
     def __init__(self, raw: Dict[str, Any], out: str) -> None:
@@ -69,8 +128,31 @@ class BenchResult:
         self.elapsed_s: float = raw["elapsed_s"]
         self.out: str = out
 
+    def to_dict(self) -> Dict[str, Any]:
+        """The result as plain data: ``{"summary", "config", "tables", "elapsed_s", "out"}``."""
+        return dict(summary=self.summary, config=self.config, tables=self.tables,
+                    elapsed_s=self.elapsed_s, out=self.out)
+
     def frame(self, table: str = "requests") -> Any:
-        """One table as a pandas DataFrame (pandas is needed for this method only)."""
+        """One table as a pandas DataFrame (pandas is needed for this method only).
+
+        Parameters
+        ----------
+        table : str, default "requests"
+            ``requests``, ``hops``, ``stops``, ``timings`` or ``joint``.
+
+        Returns
+        -------
+        pandas.DataFrame
+            The table's rows.
+
+        Raises
+        ------
+        KeyError
+            For a table that does not exist.
+        ImportError
+            Without pandas.
+        """
         if table not in self.tables:
             raise KeyError(f"no table {table!r}; the tables are {sorted(self.tables)}")
         try:
@@ -85,31 +167,6 @@ class BenchResult:
     def __repr__(self) -> str:
         sizes = ", ".join(f"{k} {len(v)}" for k, v in self.tables.items())
         return f"BenchResult(out={self.out!r}, {sizes})"
-
-
-# Python names whose command-line flag is not the name with dashes.
-_FLAGS = {"hop_time_limit_s": "--hop-time-limit", "distance_bucket_km": "--distance-bucket-km"}
-
-
-def _argument_error(field: str, cause: str, action: str) -> SwarmplanError:
-    """A coded error (E0026) of an argument checked on the Python side, as the native part
-    raises them."""
-    error = SwarmplanError(f"invalid input, 1 problem(s):\n  [E0026] {field}: {cause}; {action}")
-    error.code, error.field, error.cause, error.action = "E0026", field, cause, action
-    error.violations = [dict(code="E0026", field=field, cause=cause, action=action)]
-    return error
-
-
-def _check_whole(name: str, value: Any, flag: bool = False) -> None:
-    """Refuses a negative integer, and a bool where a number is meant (``flag``: a bool is a
-    switch such as ``joint=True``), for the options of :func:`bench`."""
-    if isinstance(value, bool):
-        if flag:
-            return
-        cause = f"{value!r} is a bool, not a number"
-        raise _argument_error(name, cause, "give a whole number >= 0")
-    if isinstance(value, int) and value < 0:
-        raise _argument_error(name, f"{value} is negative", "give a whole number >= 0")
 
 
 def _progress_printer() -> Callable[[int, int], None]:
@@ -146,39 +203,65 @@ def bench(
     force: bool = False,
     **options: Any,
 ) -> BenchResult:
-    """Runs ``swarmplan bench`` and returns its tables.
+    """Runs a bench run (the paper's experiments and the gap report) and returns its tables.
 
-    Every keyword is the command line's option of the same name (``sharing=["pb", "fb"]``,
-    ``joint=True``, ``exact_limit=0``, ``threads=2``, ``hop_time_limit_s=10``, ...), with the
-    same defaults. The files are written to ``out`` (a temporary directory when ``None``).
-    ``progress`` is a callable ``progress(done, total)``, or ``True`` for a tqdm bar (a line on
-    stderr without tqdm).
+    The same run as ``swarmplan bench``, made by the planning core: the same tables
+    (``requests.csv``, ``hops.csv``, ``stops.csv``, ``timings.csv``, ``joint.csv``),
+    ``config.json`` and ``summary.json``, but no SVG figures (``figures/*.svg`` are drawn by
+    the command line only; ``summary["figures"]`` is empty).
+
+    Parameters
+    ----------
+    limit : int or None, default 500
+        Plan only the first ``limit`` requests of the set (``None``: all of them).
+    out : str or os.PathLike or None, default None
+        Output directory; a new temporary directory when ``None``.
+    progress : callable or bool or None, default None
+        ``progress(done, total)``, called as plans are made; ``True`` for a tqdm bar (a line
+        on stderr without tqdm).
+    force : bool, default False
+        Overwrite the files of an earlier run in ``out``.
+    **options
+        The run's other settings, each ``None`` (or left out) for the command line's default:
+        ``sharing``, ``positioning``, ``route`` (lists of names; default ``["none", "pb",
+        "fb"]``, both positionings, ``["sequential", "astar", "dijkstra",
+        "floyd-warshall"]``), ``gap`` (bool, default True: plan the optimal routes the route
+        gaps are measured against), ``joint`` (bool, default False), ``exact_limit`` (default
+        :data:`DEFAULT_EXACT_LIMIT`), ``backend`` (default :data:`DEFAULT_BACKEND`),
+        ``hop_time_limit_s`` (default None), ``hop_node_limit`` (default
+        :data:`DEFAULT_HOP_NODE_LIMIT`), ``period_min`` (default 1.0), ``reorder`` (default
+        ``"paper"``), ``node_limit`` (default :data:`DEFAULT_NODE_LIMIT`),
+        ``distance_bucket_km`` (default :data:`DEFAULT_DISTANCE_BUCKET_KM`), ``shard``
+        (``"I/N"``), ``threads`` (default: every core), ``time_budget_s``, ``network``,
+        ``profile`` (files), ``literal`` (bool), ``requests`` (a request file).
+
+    Returns
+    -------
+    BenchResult
+        The summary, the configuration and the tables of the run.
+
+    Raises
+    ------
+    SwarmplanError
+        E0026 for an unknown choice (``sharing=["pbx"]``), a negative count or a bool where a
+        number is meant; E7005 when ``out`` holds an earlier run and ``force`` is False;
+        E7006 for a bucket width that is not > 0; the run's own codes.
+    TypeError
+        For a keyword that is no setting of the run.
     """
-    _check_whole("limit", limit)
-    for key, value in options.items():
-        if isinstance(value, (list, tuple)):
-            for item in value:
-                _check_whole(key, item, flag=False)
-        else:
-            _check_whole(key, value, flag=True)
     if out is None:
         out = tempfile.mkdtemp(prefix="swarmplan-bench-")
         force = True
-    args: List[str] = ["--out", os.fspath(out)]
-    if limit is not None:
-        args += ["--request-limit", str(limit)]
-    if force:
-        args.append("--force")
-    for key, value in options.items():
-        flag = _FLAGS.get(key, "--" + key.replace("_", "-"))
-        if value is None or value is False:
-            continue
-        if value is True:
-            args.append(flag)
-        elif isinstance(value, (list, tuple)):
-            args += [flag, ",".join(str(v) for v in value)]
-        else:
-            args += [flag, str(value)]
+    command = ["swarmplan.bench", f"limit={limit!r}"] + [
+        f"{key}={value!r}" for key, value in sorted(options.items())
+    ]
     callback = _progress_printer() if progress is True else progress or None
-    raw = _run_bench(args, callback)
+    raw = _run_bench(
+        os.fspath(out),
+        limit=limit,
+        force=force,
+        progress=callback,
+        command=command,
+        **options,
+    )
     return BenchResult(raw, os.fspath(out))

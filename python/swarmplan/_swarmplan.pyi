@@ -1,4 +1,4 @@
-"""Type stubs of the native part of swarmplan (built from python/src/lib.rs)."""
+"""Type stubs of the native part of swarmplan (built from python/src/, one module per concern)."""
 
 from os import PathLike
 from typing import Any, Callable, Dict, List, Literal, Optional, Sequence, Union
@@ -7,6 +7,23 @@ import numpy as np
 import numpy.typing as npt
 
 __version__: str
+
+DEFAULT_NODE_LIMIT: int
+"""Search nodes of the exact node time at every stop (``node_limit=None``): 20_000_000."""
+DEFAULT_HOP_NODE_LIMIT: int
+"""Branch-and-bound nodes of each hop model's MILP call (``hop_node_limit=None``): 20_000."""
+DEFAULT_BACKEND: str
+"""The MILP backend of ``backend=None``: ``"microlp"`` in the default build."""
+DEFAULT_EXACT_LIMIT: int
+"""Requests whose hops and stops a bench run solves again exactly: 5."""
+DEFAULT_DISTANCE_BUCKET_KM: float
+"""Width of a bench run's distance buckets, km: 1.0."""
+DEFAULT_NODES: int
+"""Nodes of ``Instance.generate``: 195."""
+DEFAULT_SPACING_M: float
+"""Grid spacing of ``Instance.generate``, m: 500.0."""
+DEFAULT_MAX_PACKAGE_KG: float
+"""Largest package of ``Instance.generate``, kg: 1.4."""
 
 Sharing = Literal["none", "idle-support", "pb", "fb", "exact", "fair"]
 Positioning = Literal["location-aware", "energy-aware"]
@@ -42,6 +59,152 @@ class SwarmplanError(Exception):
     action: Optional[str]
     violations: List[Dict[str, str]]
 
+class Plan:
+    """A planned request: the document ``swarmplan solve --json`` prints."""
+
+    def to_dict(self) -> Dict[str, Any]:
+        """The whole result as plain data (the command line's ``--json`` document)."""
+    def to_json(self) -> str:
+        """The whole result as JSON text."""
+
+    @property
+    def schema_version(self) -> int: ...
+    @property
+    def request(self) -> Dict[str, Any]: ...
+    @property
+    def options(self) -> Dict[str, Any]: ...
+    @property
+    def formation(self) -> str: ...
+    @property
+    def support_decision(self) -> Dict[str, Any]: ...
+    @property
+    def support_drones(self) -> int: ...
+    @property
+    def swarm(self) -> Dict[str, Any]: ...
+    @property
+    def plan(self) -> Dict[str, Any]:
+        """The composed plan: ``hops``, ``dt_min``, ``tt_min``, ``nt_min``, ``outcome``, ..."""
+    @property
+    def execution_ms(self) -> float: ...
+    @property
+    def made_on(self) -> Optional[Dict[str, Any]]: ...
+    @property
+    def route_gap(self) -> Optional[Dict[str, Any]]:
+        """With ``gap=True``: ``{"reference", "optimal_dt_min", "gap", ...}``."""
+    @property
+    def settings(self) -> Optional[Dict[str, Any]]: ...
+
+class HopResult:
+    """One method's result on a hop: a row of ``swarmplan eaas --json``."""
+
+    def to_dict(self) -> Dict[str, Any]:
+        """The whole result as plain data (the command line's ``--json`` document)."""
+    def to_json(self) -> str:
+        """The whole result as JSON text."""
+
+    @property
+    def method(self) -> str: ...
+    @property
+    def kind(self) -> str: ...
+    @property
+    def status(self) -> Optional[str]: ...
+    @property
+    def feasible(self) -> Optional[bool]: ...
+    @property
+    def objective(self) -> Optional[float]: ...
+    @property
+    def objective_proven(self) -> bool: ...
+    @property
+    def bound(self) -> Optional[float]: ...
+    @property
+    def qp_squared_deficits_mah2(self) -> Optional[float]: ...
+    @property
+    def gap(self) -> Optional[Gap]: ...
+    @property
+    def gap_label(self) -> Optional[str]: ...
+    @property
+    def epsilon(self) -> Optional[float]: ...
+    @property
+    def grid_step_min(self) -> Optional[float]: ...
+    @property
+    def solve_ms(self) -> float: ...
+    @property
+    def transfers(self) -> List[Dict[str, Any]]: ...
+    @property
+    def free_schedule(self) -> Optional[Dict[str, Any]]: ...
+
+class HopEvaluation:
+    """A hop schedule flown as written and scored (``Hop.evaluate``, ``swarmplan.evaluate``)."""
+
+    def to_dict(self) -> Dict[str, Any]:
+        """The whole result as plain data (the command line's ``--json`` document)."""
+    def to_json(self) -> str:
+        """The whole result as JSON text."""
+
+    @property
+    def feasible(self) -> bool: ...
+    @property
+    def failure(self) -> Optional[Dict[str, Any]]: ...
+    @property
+    def transfers(self) -> List[Dict[str, Any]]: ...
+    @property
+    def final_battery_mah(self) -> List[float]: ...
+    @property
+    def min_battery_mah(self) -> List[float]: ...
+    @property
+    def shared_mah(self) -> float: ...
+    @property
+    def objective(self) -> Union[str, Dict[str, Any]]: ...
+    @property
+    def value(self) -> Optional[float]: ...
+    @property
+    def value_proven(self) -> bool: ...
+    @property
+    def mode(self) -> str: ...
+    @property
+    def reference(self) -> Optional[Dict[str, Any]]: ...
+    @property
+    def gap(self) -> Optional[Gap]: ...
+    @property
+    def gap_label(self) -> Optional[str]: ...
+
+class RouteEvaluation:
+    """A route flown with a schedule per hop (``Instance.evaluate_route``)."""
+
+    def to_dict(self) -> Dict[str, Any]:
+        """The whole result as plain data (the command line's ``--json`` document)."""
+    def to_json(self) -> str:
+        """The whole result as JSON text."""
+
+    @property
+    def request_id(self) -> str: ...
+    @property
+    def stops(self) -> List[str]: ...
+    @property
+    def positioning(self) -> str: ...
+    @property
+    def support_drones(self) -> int: ...
+    @property
+    def delivered(self) -> bool: ...
+    @property
+    def tt_min(self) -> float: ...
+    @property
+    def nt_min(self) -> float: ...
+    @property
+    def dt_min(self) -> Optional[float]: ...
+    @property
+    def dt_proven(self) -> bool: ...
+    @property
+    def hops(self) -> List[Dict[str, Any]]: ...
+    @property
+    def mode(self) -> str: ...
+    @property
+    def reference(self) -> Optional[Dict[str, Any]]: ...
+    @property
+    def gap(self) -> Optional[Gap]: ...
+    @property
+    def gap_label(self) -> Optional[str]: ...
+
 class Instance:
     """A skyway network, a parameter profile and a request set, validated together."""
 
@@ -63,11 +226,11 @@ class Instance:
     @staticmethod
     def generate(
         seed: int,
-        nodes: int = 195,
-        spacing_m: float = 500.0,
+        nodes: Optional[int] = None,
+        spacing_m: Optional[float] = None,
         requests: int = 100,
         requests_seed: Optional[int] = None,
-        max_package_kg: float = 1.4,
+        max_package_kg: Optional[float] = None,
         profile: Optional[str] = None,
     ) -> Instance:
         """A seeded synthetic network and request set (``swarmplan generate``)."""
@@ -99,16 +262,16 @@ class Instance:
         route: Route = "sequential",
         support: Optional[int] = None,
         hop_paths: HopPaths = "rule",
-        node_limit: int = 20_000_000,
+        node_limit: Optional[int] = None,
         gap: bool = False,
-        backend: str = "microlp",
+        backend: Optional[str] = None,
         hop_time_limit_s: Optional[float] = None,
-        hop_node_limit: int = 20_000,
+        hop_node_limit: Optional[int] = None,
         period_min: float = 1.0,
         reorder: Reorder = "paper",
-    ) -> Dict[str, Any]:
-        """Plans one request; the document ``swarmplan solve --json`` prints."""
-    def check(self, plan: Union[str, Dict[str, Any]]) -> List[Dict[str, str]]:
+    ) -> Plan:
+        """Plans one request; ``to_dict()`` is the document ``swarmplan solve --json`` prints."""
+    def check(self, plan: Union[Plan, str, Dict[str, Any]]) -> List[Dict[str, str]]:
         """Every violation the independent checker finds in a plan (empty: it passes)."""
     def hop(
         self,
@@ -129,11 +292,11 @@ class Instance:
         support: Optional[int] = None,
         reference: bool = True,
         reorder: Reorder = "paper",
-        backend: str = "microlp",
+        backend: Optional[str] = None,
         hop_time_limit_s: Optional[float] = None,
-        hop_node_limit: int = 20_000,
-        node_limit: int = 20_000_000,
-    ) -> Dict[str, Any]:
+        hop_node_limit: Optional[int] = None,
+        node_limit: Optional[int] = None,
+    ) -> RouteEvaluation:
         """Flies the request along ``stops`` with a schedule per hop and measures the delivery
         time against the joint optimum of the same swarm: ``gap`` is a ``Gap`` (``reference``
         ``optimal`` or ``incumbent``), or ``None`` with ``gap_label``."""
@@ -217,9 +380,9 @@ class Hop:
         time_limit_s: Optional[float] = 60.0,
         node_limit: Optional[int] = None,
         period_min: float = 1.0,
-        backend: str = "microlp",
+        backend: Optional[str] = None,
         reference: bool = True,
-    ) -> Dict[str, Any]:
+    ) -> HopResult:
         """One method's row of ``swarmplan eaas --json``.
 
         ``gap`` (a ``Gap``): with ``reference=True`` the row of ``none``, ``pb``, ``fb``,
@@ -236,9 +399,9 @@ class Hop:
         time_limit_s: Optional[float] = 60.0,
         node_limit: Optional[int] = None,
         period_min: float = 1.0,
-        backend: str = "microlp",
+        backend: Optional[str] = None,
         label: bool = True,
-    ) -> List[Dict[str, Any]]:
+    ) -> List[HopResult]:
         """Several methods side by side, gaps labelled against the best reference."""
     def evaluate(
         self,
@@ -246,17 +409,42 @@ class Hop:
         reference: bool = True,
         reorder: Reorder = "paper",
         time_limit_s: Optional[float] = None,
-        node_limit: Optional[int] = 20_000,
-        backend: str = "microlp",
-    ) -> Dict[str, Any]:
+        node_limit: Optional[int] = 20_000,  # DEFAULT_HOP_NODE_LIMIT; None: no limit
+        backend: Optional[str] = None,
+    ) -> HopEvaluation:
         """Flies a schedule as written, checked by the independent checker, and scores it
         against the continuous-time optimum of the ``reorder`` mode: ``gap`` is a ``Gap``
         (``reference`` ``optimal`` or ``infimum``), or ``None`` with ``gap_label``."""
 
 def run_bench(
-    args: Sequence[str], progress: Optional[Callable[[int, int], None]] = None
+    out: Union[str, PathLike[str]],
+    *,
+    limit: Optional[int] = None,
+    sharing: Optional[Sequence[Sharing]] = None,
+    positioning: Optional[Sequence[Positioning]] = None,
+    route: Optional[Sequence[Route]] = None,
+    gap: bool = True,
+    joint: bool = False,
+    exact_limit: Optional[int] = None,
+    backend: Optional[str] = None,
+    hop_time_limit_s: Optional[float] = None,
+    hop_node_limit: Optional[int] = None,
+    period_min: float = 1.0,
+    reorder: Reorder = "paper",
+    node_limit: Optional[int] = None,
+    distance_bucket_km: Optional[float] = None,
+    shard: Optional[str] = None,
+    threads: Optional[int] = None,
+    time_budget_s: Optional[float] = None,
+    network: Optional[Union[str, PathLike[str]]] = None,
+    profile: Optional[Union[str, PathLike[str]]] = None,
+    literal: bool = False,
+    requests: Optional[Union[str, PathLike[str]]] = None,
+    force: bool = False,
+    progress: Optional[Callable[[int, int], None]] = None,
+    command: Optional[Sequence[str]] = None,
 ) -> Dict[str, Any]:
-    """``swarmplan bench`` with command-line arguments; see :func:`swarmplan.bench`."""
+    """A bench run of the core into ``out`` (no figures); see :func:`swarmplan.bench`."""
 
 def shipped_names() -> Dict[str, List[str]]:
     """The names of the shipped networks and profiles."""

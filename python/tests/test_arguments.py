@@ -115,9 +115,10 @@ def test_bench_limit_minus_one_and_threads_true():
     assert (e.code, e.field) == ("E0026", "limit")
     e = coded(swarmplan.bench, limit=1, threads=-1)
     assert (e.code, e.field) == ("E0026", "threads")
-    # A switch is a bool; an option with a value given True is the parser's usage error.
     e = coded(swarmplan.bench, limit=1, threads=True)
-    assert (e.code, e.field) == ("E0007", "threads")
+    assert (e.code, e.field) == ("E0026", "threads")
+    e = coded(swarmplan.bench, limit=1, exact_limit=-1)
+    assert (e.code, e.field) == ("E0026", "exact_limit")
 
 
 # ---- Transfers: any sequence of numbers in the order (support, consumer, start_min, end_min
@@ -160,10 +161,10 @@ def test_transfers_in_every_sequence_form(needy, form):
     got = needy.evaluate(schedule, reference=False)
     if form == "numpy int rows":
         # Served on [0, 2) and [2, 4): 20 mAh each, b0 = 25 - 40 + 20 = 5, b1 = 25 - 20 = 5.
-        assert got["value"] == pytest.approx(5.0)
+        assert got.value == pytest.approx(5.0)
     else:
-        assert got["value"] == pytest.approx(LOWEST_ARRIVAL_MAH)
-    assert [(t["support"], t["consumer"]) for t in got["transfers"]] == [(2, 0), (2, 1)]
+        assert got.value == pytest.approx(LOWEST_ARRIVAL_MAH)
+    assert [(t["support"], t["consumer"]) for t in got.transfers] == [(2, 0), (2, 1)]
 
 
 @pytest.mark.parametrize("bad,cause", [
@@ -186,7 +187,7 @@ def test_bad_transfers_are_e0026_naming_the_schedule(needy, bad, cause):
 def test_evaluate_gap_shape(needy):
     got = swarmplan.evaluate(needy, AS_DICTS)
     # Arrival battery, maximised: 2.5 mAh against the optimum 5 is a loss of 50 %.
-    assert got["gap"] == {"relative": pytest.approx(0.5), "reference": "optimal"}
+    assert got.gap == {"relative": pytest.approx(0.5), "reference": "optimal"}
 
 
 def test_hop_solve_pb_has_a_gap():
@@ -194,22 +195,22 @@ def test_hop_solve_pb_has_a_gap():
     # mAh/min, against the optimum 20 min (no sharing): a loss of (40 - 20) / 20 = 100 %.
     hop = known_hop("pb_overshares_3_pads", dict(pads=3, pad_rate_mah_per_min=1.0))
     row = hop.solve("pb")
-    assert row["objective"] == pytest.approx(40.0)
-    assert row["gap"] == {"relative": pytest.approx(1.0), "reference": "optimal"}
-    assert hop.solve("pb", reference=False)["gap"] is None
-    assert hop.solve("continuous")["gap"] is None  # the reference itself
-    assert hop.compare(["pb", "continuous"])[0]["gap"] == row["gap"]
+    assert row.objective == pytest.approx(40.0)
+    assert row.gap == {"relative": pytest.approx(1.0), "reference": "optimal"}
+    assert hop.solve("pb", reference=False).gap is None
+    assert hop.solve("continuous").gap is None  # the reference itself
+    assert hop.compare(["pb", "continuous"])[0].gap == row.gap
 
 
 def test_evaluate_route_gap_shape(paper):
     plan = paper.plan("r00023", sharing="exact", route="optimal")
-    hops = plan["plan"]["hops"]
+    hops = plan.plan["hops"]
     stops = [hops[0]["from"]] + [h["to"] for h in hops]
     got = paper.evaluate_route("r00023", stops, [h["transfers"] for h in hops])
-    assert set(got["gap"]) == {"relative", "reference"}
-    assert got["gap"]["reference"] == got["reference"]["kind"] == "optimal"
+    assert set(got.gap) == {"relative", "reference"}
+    assert got.gap["reference"] == got.reference["kind"] == "optimal"
     # The optimum's own route and schedules: no loss.
-    assert abs(got["gap"]["relative"]) <= 1e-9
+    assert abs(got.gap["relative"]) <= 1e-9
 
 
 # ---- Error fields and messages in Python names.
@@ -251,7 +252,7 @@ def test_too_many_support_drones(paper):
 
 
 def test_hop_index_beyond_the_plan_names_index(paper):
-    hops = len(paper.plan("r00042")["plan"]["hops"])
+    hops = len(paper.plan("r00042").plan["hops"])
     e = coded(paper.hop, "r00042", index=hops)
     assert (e.code, e.field) == ("E4110", "index")
 

@@ -1,6 +1,7 @@
 """The bench from Python: the command line's run, its tables as records, progress, Ctrl-C."""
 
 import csv
+import json
 import threading
 import time
 import _thread
@@ -72,7 +73,10 @@ def test_bench_is_reproducible_and_frames(tmp_path):
 def test_bench_refuses_bad_options(tmp_path):
     with pytest.raises(swarmplan.SwarmplanError) as e:
         swarmplan.bench(limit=2, sharing=["pbx"])
-    assert e.value.code == "E0007"
+    assert (e.value.code, e.value.field) == ("E0026", "sharing")
+    assert "idle-support" in e.value.action and "fair" in e.value.action
+    with pytest.raises(TypeError):
+        swarmplan.bench(limit=2, colour="red")
     with pytest.raises(swarmplan.SwarmplanError) as e:
         swarmplan.bench(limit=2, distance_bucket_km=0)
     assert e.value.code == "E7006"
@@ -80,6 +84,22 @@ def test_bench_refuses_bad_options(tmp_path):
     with pytest.raises(swarmplan.SwarmplanError) as e:
         swarmplan.bench(limit=1, out=tmp_path, exact_limit=0, sharing=["none"], route=["astar"])
     assert e.value.code == "E7005"
+
+
+def test_the_defaults_are_the_command_lines(cli, tmp_path):
+    # Only the request count and the exact subset are set (to keep it short): every other
+    # setting is its default on both fronts, and the configurations they record are equal.
+    py = swarmplan.bench(limit=1, out=tmp_path / "py", exact_limit=0, threads=2)
+    cli("bench", "--request-limit", 1, "--exact-limit", 0, "--threads", 2, "--out", tmp_path / "cli")
+    want = json.loads((tmp_path / "cli" / "config.json").read_text())
+    assert py.config == want
+    assert json.loads((tmp_path / "py" / "config.json").read_text()) == want
+    # The core alone draws no figures; the command line does.
+    assert py.summary["figures"] == []
+    assert not (tmp_path / "py" / "figures").exists()
+    assert (tmp_path / "cli" / "figures").is_dir()
+    assert py.summary["command"][0] == "swarmplan.bench"
+    assert py.to_dict()["config"] == want
 
 
 def test_a_long_run_releases_the_gil_and_stops_on_ctrl_c():

@@ -20,17 +20,17 @@ def test_the_empty_schedule_is_eaas_none(paper, cli_json, tmp_path, request_id, 
     hop.write(path)
     want = cli_json("eaas", "--hop-file", path, "--methods", "none,continuous", "--json")["rows"]
     got = swarmplan.evaluate(hop, [])
-    assert got["feasible"] == want[0]["feasible"]
-    assert got["value"] == want[0]["objective"]
-    assert got["mode"] == "none" and got["shared_mah"] == 0.0
-    ref = got["reference"]
+    assert got.feasible == want[0]["feasible"]
+    assert got.value == want[0]["objective"]
+    assert got.mode == "none" and got.shared_mah == 0.0
+    ref = got.reference
     assert ref["status"] == want[1]["status"] and ref["value"] == pytest.approx(want[1]["objective"], rel=1e-12)
-    if got["feasible"]:
+    if got.feasible:
         # A gap is a loss, positive under either sense: node time minimised, arrival maximised.
-        loss = got["value"] - ref["value"] if hop.end is not None else ref["value"] - got["value"]
-        assert got["gap"]["relative"] == pytest.approx(loss / abs(ref["value"]))
+        loss = got.value - ref["value"] if hop.end is not None else ref["value"] - got.value
+        assert got.gap["relative"] == pytest.approx(loss / abs(ref["value"]))
     else:
-        assert got["gap"] is None and got["gap_label"] == "infeasible"
+        assert got.gap is None and got.gap_label == "infeasible"
 
 
 def test_the_empty_schedule_batteries_are_hand_integrated(paper):
@@ -39,26 +39,26 @@ def test_the_empty_schedule_batteries_are_hand_integrated(paper):
     # No transfer: every drone draws its own slot's rate on every leg.
     slot = hop.initial_slot
     used = np.einsum("l,ld->d", hop.durations_min, hop.rates_mah_per_min[:, np.arange(hop.drones), slot])
-    np.testing.assert_allclose(got["final_battery_mah"], hop.battery_mah - used, rtol=1e-12)
-    assert got["reference"] is None and got["gap"] is None
+    np.testing.assert_allclose(got.final_battery_mah, hop.battery_mah - used, rtol=1e-12)
+    assert got.reference is None and got.gap is None
 
 
 @pytest.mark.parametrize("request_id,index", HOPS)
 def test_pb_and_the_continuous_optimum_score_as_eaas_says(paper, request_id, index):
     hop = paper.hop(request_id, index)
-    rows = {r["method"]: r for r in hop.compare(["pb", "continuous"], time_limit_s=None, node_limit=20000)}
-    pb = hop.evaluate(rows["pb"]["transfers"])
-    assert pb["feasible"] == rows["pb"]["feasible"]
-    if pb["feasible"]:
-        assert pb["value"] == pytest.approx(rows["pb"]["objective"], rel=1e-9)
+    rows = {r.method: r for r in hop.compare(["pb", "continuous"], time_limit_s=None, node_limit=20000)}
+    pb = hop.evaluate(rows["pb"].transfers)
+    assert pb.feasible == rows["pb"].feasible
+    if pb.feasible:
+        assert pb.value == pytest.approx(rows["pb"].objective, rel=1e-9)
     best = rows["continuous"]
-    if best["status"] == "optimal" and best["feasible"]:
-        own = hop.evaluate(best["transfers"])
-        assert own["value"] == pytest.approx(best["objective"], rel=1e-9, abs=1e-9)
-        assert abs(own["gap"]["relative"]) <= 1e-9
+    if best.status == "optimal" and best.feasible:
+        own = hop.evaluate(best.transfers)
+        assert own.value == pytest.approx(best.objective, rel=1e-9, abs=1e-9)
+        assert abs(own.gap["relative"]) <= 1e-9
         # The optimum is never beaten: a loss under either sense of the objective.
-        if pb["feasible"]:
-            assert pb["gap"]["relative"] >= -1e-9
+        if pb.feasible:
+            assert pb.gap["relative"] >= -1e-9
 
 
 def serve(hop, duration):
@@ -82,11 +82,11 @@ def test_a_written_transfer_moves_rho_times_its_duration(paper):
     for t in schedule:
         moved[t["support"]] -= hop.rho_mah_per_min * 0.5
         moved[t["consumer"]] += hop.rho_mah_per_min * 0.5
-    np.testing.assert_allclose(got["final_battery_mah"], np.array(empty["final_battery_mah"]) + moved, rtol=1e-12)
-    assert got["shared_mah"] == pytest.approx(hop.rho_mah_per_min * 0.5 * len(schedule))
+    np.testing.assert_allclose(got.final_battery_mah, np.array(empty.final_battery_mah) + moved, rtol=1e-12)
+    assert got.shared_mah == pytest.approx(hop.rho_mah_per_min * 0.5 * len(schedule))
     # Tuples read the same as dicts.
     tuples = [(t["support"], t["consumer"], t["start_min"], t["end_min"]) for t in schedule]
-    assert hop.evaluate(tuples, reference=False)["final_battery_mah"] == got["final_battery_mah"]
+    assert hop.evaluate(tuples, reference=False).final_battery_mah == got.final_battery_mah
 
 
 def test_a_swap_is_outside_the_none_mode(paper):
@@ -95,9 +95,9 @@ def test_a_swap_is_outside_the_none_mode(paper):
     schedule = [dict(support=swap["support"], consumer=swap["consumer"], start_min=0.0,
                      end_min=0.1, consumer_slot=swap["consumer_slot"])]
     paper_mode = hop.evaluate(schedule, reorder="paper")
-    assert paper_mode["mode"] == "paper" and paper_mode["gap"] is not None
+    assert paper_mode.mode == "paper" and paper_mode.gap is not None
     none_mode = hop.evaluate(schedule, reorder="none")
-    assert none_mode["gap"] is None and none_mode["gap_label"] == "outside_reference"
+    assert none_mode.gap is None and none_mode.gap_label == "outside_reference"
 
 
 def checker_code(hop, schedule):
@@ -152,10 +152,10 @@ def test_a_schedule_that_runs_a_drone_dry_is_a_result(paper):
     rate = hop.rates_mah_per_min[0, 0, hop.initial_slot[0]]
     assert 1.0 / rate < hop.durations_min[0]  # dry within the first leg
     got = hop.evaluate([])
-    assert got["feasible"] is False and got["value"] is None
-    assert got["failure"]["drone"] == 0
-    assert got["failure"]["time_min"] == pytest.approx(1.0 / rate, rel=1e-9)
-    assert got["gap"] is None and got["gap_label"] == "infeasible"
+    assert got.feasible is False and got.value is None
+    assert got.failure["drone"] == 0
+    assert got.failure["time_min"] == pytest.approx(1.0 / rate, rel=1e-9)
+    assert got.gap is None and got.gap_label == "infeasible"
 
 
 def needy_pair(end):
@@ -177,16 +177,16 @@ LOPSIDED = [dict(support=2, consumer=0, start_min=0.0, end_min=1.75),
 
 def test_a_maximised_loss_reads_as_a_positive_gap():
     got = swarmplan.evaluate(needy_pair(None), LOPSIDED)
-    assert got["value"] == pytest.approx(2.5)
-    assert got["reference"]["value"] == pytest.approx(5.0)
+    assert got.value == pytest.approx(2.5)
+    assert got.reference["value"] == pytest.approx(5.0)
     # Arrival battery, maximised: 2.5 mAh against 5 is a loss of (5 - 2.5) / 5 = 50 %.
-    assert got["gap"]["reference"] == "optimal"
-    assert got["gap"]["relative"] == pytest.approx(0.5)
+    assert got.gap["reference"] == "optimal"
+    assert got.gap["relative"] == pytest.approx(0.5)
 
 
 def test_a_minimised_loss_reads_as_a_positive_gap():
     got = swarmplan.evaluate(needy_pair(dict(pads=3, pad_rate_mah_per_min=1.0)), LOPSIDED)
     # Deficits 97.5, 92.5 and 40 (all shared) on 3 pads at 1 mAh/min: 97.5 min against 95.
-    assert got["value"] == pytest.approx(97.5)
-    assert got["reference"]["value"] == pytest.approx(95.0)
-    assert got["gap"]["relative"] == pytest.approx(2.5 / 95.0)
+    assert got.value == pytest.approx(97.5)
+    assert got.reference["value"] == pytest.approx(95.0)
+    assert got.gap["relative"] == pytest.approx(2.5 / 95.0)

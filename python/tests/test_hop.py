@@ -103,16 +103,18 @@ def test_compare_is_eaas(hop_and_file, cli_json):
         "eaas", "--hop-file", path, "--methods", ",".join(METHODS),
         "--node-limit", 20000, "--time-limit", 1e6, "--json",
     )["rows"]
-    assert without_times(rows) == without_times(want)
+    assert all(isinstance(r, swarmplan.HopResult) for r in rows)
+    assert without_times([r.to_dict() for r in rows]) == without_times(want)
 
 
 def test_solve_is_one_row(hop_and_file, cli_json):
     hop, _, path = hop_and_file
     row = hop.solve("continuous", reorder="none", time_limit_s=None)
     want = cli_json("eaas", "--hop-file", path, "--methods", "continuous", "--reorder", "none", "--json")["rows"][0]
-    assert row["status"] == want["status"] == "optimal"
-    assert row["objective"] == want["objective"]
-    assert row["transfers"] == want["transfers"]
+    assert row.status == want["status"] == "optimal"
+    assert row.objective == want["objective"]
+    assert row.transfers == want["transfers"]
+    assert without_times(row.to_dict()) == without_times(want)
 
 
 def test_solve_rejects_bad_settings(hop_and_file):
@@ -129,7 +131,7 @@ def test_solve_rejects_bad_settings(hop_and_file):
 
 
 def test_hop_index_beyond_the_plan_is_e4110(paper):
-    hops = len(paper.plan("r00042")["plan"]["hops"])
+    hops = len(paper.plan("r00042").plan["hops"])
     with pytest.raises(swarmplan.SwarmplanError) as e:
         paper.hop("r00042", hops)
     assert e.value.code == "E4110"

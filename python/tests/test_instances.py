@@ -68,7 +68,7 @@ def test_from_files_reads_the_same_instance_as_embedded(paper):
     assert i.request_ids == paper.request_ids
     a = i.plan("r00007")
     b = paper.plan("r00007")
-    assert a["plan"] == b["plan"]
+    assert a.plan == b.plan
 
 
 def test_from_files_takes_requests_as_dicts_and_checks_them():

@@ -1,7 +1,6 @@
-"""Planning a request: the same document as `swarmplan solve --json`, checked by the
-independent checker; bad options get coded errors."""
+"""Planning a request: a typed Plan whose `to_dict()` is the document `swarmplan solve --json`
+prints, checked by the independent checker; bad options get coded errors."""
 
-import copy
 import json
 
 import pytest
@@ -29,35 +28,40 @@ def test_plan_is_the_command_lines_plan(paper, cli_json, sharing, positioning, r
         "solve", "--request-id", "r00023", "--sharing", sharing,
         "--positioning", positioning, "--route", route, "--json",
     )
-    assert without_times(got) == without_times(want)
+    assert isinstance(got, swarmplan.Plan)
+    assert without_times(got.to_dict()) == without_times(want)
+    assert without_times(got.plan) == without_times(want["plan"])
+    assert got.options == want["options"] and got.request == want["request"]
     assert paper.check(got) == []
 
 
 def test_plan_with_gap_is_solve_gap(paper, cli_json):
     got = paper.plan("r00042", gap=True)
     want = cli_json("solve", "--request-id", "r00042", "--gap", "--json")
-    assert got["route_gap"] == want["route_gap"]
-    optimal = paper.plan("r00042", route="optimal")["plan"]["dt_min"]
-    assert got["route_gap"]["optimal_dt_min"] == optimal
-    assert got["route_gap"]["gap"] == pytest.approx((got["plan"]["dt_min"] - optimal) / optimal)
+    assert got.route_gap == want["route_gap"]
+    optimal = paper.plan("r00042", route="optimal").plan["dt_min"]
+    assert got.route_gap["optimal_dt_min"] == optimal
+    assert got.route_gap["gap"] == pytest.approx((got.plan["dt_min"] - optimal) / optimal)
 
 
 def test_plan_of_a_request_given_as_a_dict(paper, cli_json):
     got = paper.plan({"source": "n000", "destination": "n194", "packages_kg": [1.2, 0.8, 0.5]}, sharing="fb")
     want = cli_json("solve", "--from", "n000", "--to", "n194", "--packages", "1.2,0.8,0.5", "--sharing", "fb", "--json")
-    assert without_times(got)["plan"] == without_times(want)["plan"]
+    assert without_times(got.plan) == without_times(want["plan"])
 
 
 def test_plans_are_reproducible(paper):
     a = paper.plan("r00100", sharing="exact", route="optimal")
     b = paper.plan("r00100", sharing="exact", route="optimal")
-    assert without_times(a) == without_times(b)
+    assert without_times(a.to_dict()) == without_times(b.to_dict())
 
 
 def test_check_finds_a_changed_number_and_accepts_json_text(paper):
     plan = paper.plan("r00001")
-    assert paper.check(json.dumps(plan)) == []
-    bad = copy.deepcopy(plan)
+    assert paper.check(json.dumps(plan.to_dict())) == []
+    assert paper.check(plan.to_json()) == []
+    assert paper.check(plan.to_dict()) == []
+    bad = plan.to_dict()
     bad["plan"]["dt_min"] += 5.0
     codes = {v["code"] for v in paper.check(bad)}
     assert codes and all(c.startswith("P5") for c in codes)
@@ -106,8 +110,8 @@ def test_a_plan_of_a_request_given_inline_checks_clean(paper):
     # A dict without an id is planned as request "python": the plan carries it, and check takes
     # the plan's own request where the request set has none of that id.
     plan = paper.plan(dict(source="n000", destination="n194", packages_kg=[1.2, 0.8, 0.5]))
-    assert plan["request"]["id"] == "python"
+    assert plan.request["id"] == "python"
     assert paper.check(plan) == []
-    changed = json.loads(json.dumps(plan))
+    changed = plan.to_dict()
     changed["plan"]["dt_min"] += 1.0
     assert paper.check(changed) != []

@@ -8,32 +8,32 @@ REQUESTS = ["r00001", "r00023", "r00100"]
 
 
 def stops_of(plan):
-    hops = plan["plan"]["hops"]
+    hops = plan.plan["hops"]
     return [hops[0]["from"]] + [h["to"] for h in hops]
 
 
 @pytest.mark.parametrize("request_id", REQUESTS)
 def test_a_plans_own_route_and_schedules_give_its_delivery_time(paper, request_id):
     plan = paper.plan(request_id, sharing="pb", route="optimal")
-    assert plan["plan"]["outcome"]["kind"] == "delivered"
-    schedules = [h["transfers"] for h in plan["plan"]["hops"]]
+    assert plan.plan["outcome"]["kind"] == "delivered"
+    schedules = [h["transfers"] for h in plan.plan["hops"]]
     got = paper.evaluate_route(request_id, stops_of(plan), schedules, reference=False)
-    assert got["delivered"] and got["dt_proven"]
-    assert got["dt_min"] == pytest.approx(plan["plan"]["dt_min"], rel=1e-9)
-    assert got["tt_min"] == pytest.approx(plan["plan"]["tt_min"], rel=1e-9)
-    assert got["nt_min"] == pytest.approx(plan["plan"]["nt_min"], rel=1e-9)
-    assert [h["hop"]["path"] for h in got["hops"]] == [h["path"] for h in plan["plan"]["hops"]]
+    assert got.delivered and got.dt_proven
+    assert got.dt_min == pytest.approx(plan.plan["dt_min"], rel=1e-9)
+    assert got.tt_min == pytest.approx(plan.plan["tt_min"], rel=1e-9)
+    assert got.nt_min == pytest.approx(plan.plan["nt_min"], rel=1e-9)
+    assert [h["hop"]["path"] for h in got.hops] == [h["path"] for h in plan.plan["hops"]]
 
 
 @pytest.mark.parametrize("request_id", REQUESTS)
 def test_the_reference_is_the_joint_optimum_of_the_swarm(paper, request_id):
     best = paper.plan(request_id, sharing="exact", route="optimal")
     # The optimum's own route and schedules reach it; a policy of our own is at or above it.
-    own = paper.evaluate_route(request_id, stops_of(best), [h["transfers"] for h in best["plan"]["hops"]])
-    assert own["reference"]["dt_min"] == best["plan"]["dt_min"]
-    assert own["reference"]["kind"] == "optimal"
-    assert own["gap"]["reference"] == "optimal"
-    assert abs(own["gap"]["relative"]) <= 1e-9
+    own = paper.evaluate_route(request_id, stops_of(best), [h["transfers"] for h in best.plan["hops"]])
+    assert own.reference["dt_min"] == best.plan["dt_min"]
+    assert own.reference["kind"] == "optimal"
+    assert own.gap["reference"] == "optimal"
+    assert abs(own.gap["relative"]) <= 1e-9
     seen = []
 
     def idle(hop):
@@ -43,19 +43,19 @@ def test_the_reference_is_the_joint_optimum_of_the_swarm(paper, request_id):
     pb = paper.plan(request_id, sharing="pb", route="optimal")
     mine = paper.evaluate_route(request_id, stops_of(pb), idle)
     assert all(isinstance(h, swarmplan.Hop) for h in seen)
-    assert [h.path for h in seen] == [h["path"] for h in pb["plan"]["hops"]][: len(seen)]
+    assert [h.path for h in seen] == [h["path"] for h in pb.plan["hops"]][: len(seen)]
     assert all(list(h.battery_mah) == list(h.capacity_mah) for h in seen)  # every hop departs full
-    if mine["delivered"]:
-        assert mine["gap"]["relative"] >= -1e-12
-        assert mine["dt_min"] == pytest.approx(best["plan"]["dt_min"] * (1 + mine["gap"]["relative"]), rel=1e-9)
+    if mine.delivered:
+        assert mine.gap["relative"] >= -1e-12
+        assert mine.dt_min == pytest.approx(best.plan["dt_min"] * (1 + mine.gap["relative"]), rel=1e-9)
     else:
-        assert mine["gap"] is None and mine["gap_label"] == "not_delivered"
+        assert mine.gap is None and mine.gap_label == "not_delivered"
 
 
 def test_no_sharing_on_the_idle_support_route_is_that_plan(paper):
     plan = paper.plan("r00023", sharing="idle-support", route="optimal")
     got = paper.evaluate_route("r00023", stops_of(plan), lambda hop: [], reference=False)
-    assert got["dt_min"] == pytest.approx(plan["plan"]["dt_min"], rel=1e-9)
+    assert got.dt_min == pytest.approx(plan.plan["dt_min"], rel=1e-9)
 
 
 def test_bad_stops_are_coded(paper):

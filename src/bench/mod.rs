@@ -28,7 +28,9 @@ pub use files::{
     may_write, merge, read_data, write_outputs, CONFIG_FILE, DATA_FILES, SUMMARY_FILE,
 };
 pub use findings::{findings, Finding, Verdict};
-pub use runner::{run_grid, BenchSettings, GridRun, GridSize};
+pub use runner::{
+    run_grid, BenchSettings, GridRun, GridSize, DEFAULT_DISTANCE_BUCKET_KM, DEFAULT_EXACT_LIMIT,
+};
 pub use seal::{seal_agrees, unmark_complete, verify_seal, Seal, SealedFile, COMPLETE_FILE};
 pub use summary::{
     DistanceBucket, GapHistogram, GapSplitSummary, HopGapSummary, JointSummary, MethodSummary,

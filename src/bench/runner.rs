@@ -60,6 +60,48 @@ pub struct BenchSettings {
     pub command: Vec<String>,
 }
 
+impl BenchSettings {
+    /// The settings of `swarmplan bench --out OUT` with every other option at its default: the
+    /// whole shipped request set, sharing `none,pb,fb`, both positionings, the four heuristic
+    /// route methods, the route gaps, no joint optimum, 5 exact requests, the default hop
+    /// settings ([`ExactChoices::default`]), [`crate::node_time::DEFAULT_STOP_NODE_LIMIT`] nodes
+    /// per stop, 1 km buckets, the whole run, every core, no time budget.
+    pub fn new(out: PathBuf) -> BenchSettings {
+        BenchSettings {
+            instance: InstanceFiles::default(),
+            requests: None,
+            limit: None,
+            sharing: vec![SharingPolicy::None, SharingPolicy::Pb, SharingPolicy::Fb],
+            positioning: vec![Positioning::LocationAware, Positioning::EnergyAware],
+            route: vec![
+                RouteMethod::Sequential,
+                RouteMethod::Astar,
+                RouteMethod::Dijkstra,
+                RouteMethod::FloydWarshall,
+            ],
+            gap: true,
+            joint: false,
+            exact_limit: DEFAULT_EXACT_LIMIT,
+            exact: ExactChoices::default(),
+            node_limit: crate::node_time::DEFAULT_STOP_NODE_LIMIT,
+            distance_bucket_km: DEFAULT_DISTANCE_BUCKET_KM,
+            shard: Shard::WHOLE,
+            threads: None,
+            time_budget_s: None,
+            out,
+            force: false,
+            command: Vec::new(),
+        }
+    }
+}
+
+/// Requests (the first of the set) whose hops and stops a bench run solves again exactly, by
+/// default.
+pub const DEFAULT_EXACT_LIMIT: usize = 5;
+
+/// Width of a bench run's distance buckets by default, km.
+pub const DEFAULT_DISTANCE_BUCKET_KM: f64 = 1.0;
+
 /// The size of a run's grid: the requests it plans (those of its shard) and the combinations
 /// each is planned with (those reported and the references they need).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

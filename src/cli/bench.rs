@@ -110,7 +110,7 @@ pub struct RunArgs {
     pub joint: bool,
     /// Requests (the first of the set) whose hops under PB and FB are solved again by the
     /// continuous-time model and the fluid bound, and whose stops' LPT node times are compared with the exact ones.
-    #[arg(long, value_name = "N", default_value_t = 5)]
+    #[arg(long, value_name = "N", default_value_t = bench::DEFAULT_EXACT_LIMIT)]
     pub exact_limit: usize,
     /// Hop models: MILP backend.
     #[arg(
@@ -141,7 +141,7 @@ pub struct RunArgs {
     #[arg(
         long,
         value_name = "KM",
-        default_value_t = 1.0,
+        default_value_t = bench::DEFAULT_DISTANCE_BUCKET_KM,
         allow_negative_numbers = true
     )]
     pub distance_bucket_km: f64,

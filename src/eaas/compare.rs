@@ -17,10 +17,10 @@ use super::{
 };
 use crate::error::Result;
 use crate::solver::{Gap, ReferenceKind};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// A method that can be run on a hop.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum HopMethod {
