@@ -54,6 +54,7 @@ pub mod evaluate;
 pub mod experiment;
 pub mod formation;
 pub mod generate;
+pub mod human;
 pub mod network;
 pub mod node_time;
 pub mod plot;

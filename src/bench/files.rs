@@ -2,7 +2,7 @@
 //! directories of shards into the one a single run writes.
 
 #[cfg(feature = "cli")]
-use super::figures;
+use super::{figures, report};
 use super::{findings, seal, BenchConfig, BenchData, Shard, Summary};
 use crate::error::{Error, Result};
 use crate::problem::io;
@@ -88,8 +88,8 @@ pub fn read_data(dir: &Path) -> Result<(BenchConfig, BenchData)> {
 
 /// Writes a run (or a merge) to `dir`: the configuration and the tables, then the summary with
 /// the findings and the figures, computed from the tables as written (so a run and the merge of
-/// its shards summarise the same numbers). A shard's directory gets no figures: its summary
-/// covers only its own requests.
+/// its shards summarise the same numbers), and `report.html`, which shows them on one page. A
+/// shard's directory gets neither figures nor report: its summary covers only its own requests.
 ///
 /// # Errors
 /// [`Error::Io`] when a file cannot be written; those of [`read_data`].
@@ -125,6 +125,12 @@ pub fn write_outputs(
         .map(String::from)
         .chain(summary.figures.iter().cloned())
         .collect();
+    // The report, filled from the summary and the figures as written (feature `cli`, like them).
+    #[cfg(feature = "cli")]
+    let written = match config.shard == Shard::WHOLE {
+        true => [written, vec![report::write_report(dir, &summary)?]].concat(),
+        false => written,
+    };
     seal::mark_complete(dir, &config, &written)?;
     Ok(summary)
 }

@@ -13,16 +13,21 @@
 //!   continuous-time model (`models/eaas_config.md`) and the fluid bound, with the heuristic's gap;
 //! - `stops.csv` ([`StopRow`]): on the same subset, every stop's exact node time against LPT;
 //! - `timings.csv` ([`TimingRow`]): execution times, machine-dependent;
-//! - `summary.json` ([`Summary`]) and the SVG figures of [`figures`].
+//! - `summary.json` ([`Summary`]), the SVG figures of [`figures`] and the page `report.html`
+//!   that shows them all (`report`).
 
 /// Drawn by the front ends only (feature `cli`, which brings plotters).
 #[cfg(feature = "cli")]
 pub mod figures;
 mod files;
 mod findings;
+/// The bench's HTML page, filled by the front ends only (feature `cli`, which brings minijinja).
+#[cfg(feature = "cli")]
+pub mod report;
 mod runner;
 mod seal;
 mod summary;
+pub mod table;
 
 pub use files::{
     may_write, merge, read_data, write_outputs, CONFIG_FILE, DATA_FILES, SUMMARY_FILE,

@@ -7,7 +7,7 @@
 //! swarmplan bench merge shard-0 shard-1 shard-2 shard-3 --out bench-out
 //! ```
 
-use crate::bench::{self, BenchSettings, GridSize, Shard, Summary, Verdict, DATA_FILES};
+use crate::bench::{self, table, BenchSettings, GridSize, Shard, Summary, Verdict, DATA_FILES};
 use crate::compose::RouteMethod;
 use crate::eaas::exact_hop::ExactChoices;
 use crate::eaas::SharingPolicy;
@@ -289,173 +289,47 @@ fn report(summary: &Summary, out: &Path, json: bool) -> Result<i32> {
     let mut files: Vec<String> = DATA_FILES.iter().map(|f| f.to_string()).collect();
     files.push("summary.json".into());
     files.extend(summary.figures.iter().cloned());
+    if summary.config.shard == Shard::WHOLE {
+        files.push(bench::report::REPORT_FILE.into());
+    }
     eprintln!("wrote {} in {}", files.join(", "), out.display());
     Ok(0)
 }
 
 /// The joint optimum and the split table (`--joint`).
 fn print_joint(s: &Summary, j: &bench::JointSummary) -> Result<()> {
-    let round = super::human::round;
-    outln!(
-        "joint optimum (route, continuous-time sharing and pads, over the swarms of both \
-         positionings and the swarm without support drones): delivers {}/{}, mean dt {} min; \
-         proven {} ({} within a certified distance, largest {:.2e} min); arcs flown {} of {}; \
-         ms/request median {}, p90 {}, max {}",
-        j.delivered,
-        j.requests,
-        round(j.mean_dt_min, 1),
-        j.proven,
-        j.within,
-        j.max_epsilon_min,
-        j.arcs_flown,
-        j.arcs_total,
-        round(j.ms_median, 1),
-        round(j.ms_p90, 1),
-        round(j.ms_max, 1)
-    );
-    outln!(
-        "{:<36} {:>7} {:>7} {:>17} {:>17} {:>17} {:>17}",
-        "gap to the joint optimum, min (%)",
-        "split",
-        "only J",
-        "total",
-        "sharing",
-        "route",
-        "swarm"
-    );
-    let cell = |min: f64, pct: f64| format!("{} ({})", round(min, 1), percent(pct));
-    for m in &s.methods {
-        let Some(g) = &m.gap_split else { continue };
-        let o = &m.options;
-        outln!(
+    outln!("{}", table::joint_line(j));
+    let row = |c: &[String]| {
+        format!(
             "{:<36} {:>7} {:>7} {:>17} {:>17} {:>17} {:>17}",
-            format!("{}/{}/{}", o.sharing, o.positioning, o.route),
-            g.split,
-            g.joint_only,
-            cell(g.mean_total_min, g.mean_total_pct),
-            cell(g.mean_sharing_min, g.mean_sharing_pct),
-            cell(g.mean_route_min, g.mean_route_pct),
-            cell(g.mean_swarm_min, g.mean_swarm_pct)
-        );
+            c[0], c[1], c[2], c[3], c[4], c[5], c[6]
+        )
+    };
+    outln!("{}", row(&table::SPLIT_COLUMNS.map(String::from)));
+    for cells in s.methods.iter().filter_map(table::split_row) {
+        outln!("{}", row(&cells));
     }
-    outln!(
-        "split: dt - dt_joint = sharing (the plan's route flown with exact schedules and pads) + \
-         route (that against its swarm's optimum) + swarm (that against the best swarm), means \
-         over the requests split, % of dt_joint; `only J`: requests the joint optimum delivers \
-         and the combination does not. Dijkstra and Floyd-Warshall routes off the hop-path rule \
-         are not split (outside the reference): {}",
-        s.methods
-            .iter()
-            .filter_map(|m| m.gap_split.as_ref().map(|g| g.outside_reference))
-            .sum::<usize>()
-    );
+    outln!("{}", table::split_note(s));
     Ok(())
 }
 
-/// A fraction as a percentage with one decimal, without a `+` (the table's means and maxima);
-/// `0%` within [`crate::solver::ZERO_GAP_TOL`] of zero or when it rounds to zero, never `-0.0%`.
-fn percent(x: f64) -> String {
-    let text = format!("{:.1}%", 100.0 * x);
-    if x.abs() <= crate::solver::ZERO_GAP_TOL || text == "-0.0%" || text == "0.0%" {
-        "0%".to_string()
-    } else {
-        text
-    }
-}
-
 fn print_table(s: &Summary) -> Result<()> {
-    let round = super::human::round;
-    outln!(
-        "{} requests of {} on {} ({}), profile {}",
-        s.requests_planned,
-        s.config.requests,
-        s.config.network,
-        if s.config.shard == Shard::WHOLE {
-            "whole run".to_string()
-        } else {
-            format!("shard {}", s.config.shard)
-        },
-        s.config.profile
-    );
-    outln!(
-        "{:<36} {:>13} {:>9} {:>9} {:>7} {:>9} {:>9} {:>9} {:>11}",
-        "combination",
-        "delivered",
-        "dt min",
-        "nt min",
-        "stops",
-        "gap = 0",
-        "gap mean",
-        "gap max",
-        "ms/request"
-    );
-    for m in &s.methods {
-        let o = &m.options;
-        let (zero, mean, max) = match &m.route_gap {
-            Some(g) if g.compared > 0 => (
-                format!("{}/{}", g.at_zero, g.compared),
-                percent(g.mean_gap),
-                percent(g.max_gap),
-            ),
-            _ => ("-".into(), "-".into(), "-".into()),
-        };
-        outln!(
+    outln!("{}", table::heading(s));
+    let row = |c: &[String]| {
+        format!(
             "{:<36} {:>13} {:>9} {:>9} {:>7} {:>9} {:>9} {:>9} {:>11}",
-            format!("{}/{}/{}", o.sharing, o.positioning, o.route),
-            format!("{}/{}", m.delivered, m.requests),
-            round(m.mean_dt_min, 1),
-            round(m.mean_nt_min, 1),
-            round(m.mean_stops, 2),
-            zero,
-            mean,
-            max,
-            round(m.exec_ms_median, 2)
-        );
+            c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7], c[8]
+        )
+    };
+    outln!("{}", row(&table::METHOD_COLUMNS.map(String::from)));
+    for m in &s.methods {
+        outln!("{}", row(&table::method_row(m)));
     }
     if s.config.gap {
-        outln!(
-            "route gap: (dt - dt_opt) / dt_opt over the requests both deliver, against the optimal \
-             route of the same sharing and positioning (hops along the shortest path between \
-             stops; Dijkstra and Floyd-Warshall can be below it)"
-        );
+        outln!("{}", table::ROUTE_GAP_NOTE);
     }
-    for h in &s.hop_gaps {
-        outln!(
-            "hops under {} (first {} requests): {} solved again; against the optimum over \
-             continuous-time schedules: {} (attained {}, approached {}), optimal {}, mean loss {}, \
-             max loss {}, below the optimum {}; against the fluid bound {}{}",
-            h.sharing,
-            s.config.exact_limit,
-            h.hops,
-            h.against_optimal + h.against_infimum,
-            h.against_optimal,
-            h.against_infimum,
-            h.at_zero,
-            percent(h.mean_loss),
-            percent(h.max_loss),
-            h.below_optimum,
-            h.against_bound,
-            if h.different_policy > 0 {
-                format!(
-                    "; outside the re-ordering mode (no gap) {}",
-                    h.different_policy
-                )
-            } else {
-                String::new()
-            }
-        );
-    }
-    let st = &s.stop_gaps;
-    if st.stops > 0 {
-        outln!(
-            "stops (first {} requests): {}, proven {}; LPT optimal at {}, mean gap {}, max gap {}",
-            s.config.exact_limit,
-            st.stops,
-            st.proven,
-            st.lpt_optimal,
-            percent(st.mean_gap),
-            percent(st.max_gap)
-        );
+    for line in table::exact_subset_lines(s) {
+        outln!("{line}");
     }
     if let Some(j) = &s.joint {
         print_joint(s, j)?;

@@ -18,7 +18,7 @@ pub mod bench;
 pub mod check;
 pub mod eaas;
 pub mod generate;
-pub mod human;
+pub use crate::human;
 pub mod import;
 pub mod inputs;
 pub mod inspect;

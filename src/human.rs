@@ -7,7 +7,7 @@ use crate::solver::ZERO_GAP_TOL;
 ///
 /// # Example
 /// ```
-/// use swarmplan::cli::human::round;
+/// use swarmplan::human::round;
 /// assert_eq!(round(274.15999999999997, 2), "274.16");
 /// assert_eq!(round(70.0, 2), "70");
 /// assert_eq!(round(0.7751692976376183, 4), "0.7752");
@@ -33,7 +33,7 @@ pub fn round(x: f64, decimals: usize) -> String {
 ///
 /// # Example
 /// ```
-/// use swarmplan::cli::human::gap_percent;
+/// use swarmplan::human::gap_percent;
 /// assert_eq!(gap_percent(0.027178, 4), "+2.7178%");
 /// assert_eq!(gap_percent(-0.005, 1), "-0.5%");
 /// assert_eq!(gap_percent(-1e-12, 4), "0%");
