@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{stderr, swarmplan, tmp};
+use common::{bench_shards, stderr, swarmplan, tmp};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 
@@ -206,31 +206,9 @@ fn bench_writes_a_self_contained_report_the_seal_covers() {
     std::fs::write(&path, saved).unwrap();
 }
 
-/// Shards 0/2 and 1/2 of a 4-request run (exact subset: the first request), fresh in `name/`.
-fn shards(name: &str) -> (PathBuf, PathBuf) {
-    let base = tmp(name);
-    let _ = std::fs::remove_dir_all(&base);
-    let dirs = (base.join("s0"), base.join("s1"));
-    for (dir, shard) in [(&dirs.0, "0/2"), (&dirs.1, "1/2")] {
-        let out = swarmplan(&[
-            "bench",
-            "--request-limit",
-            "4",
-            "--exact-limit",
-            "1",
-            "--shard",
-            shard,
-            "--out",
-            arg(dir),
-        ]);
-        assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
-    }
-    dirs
-}
-
 #[test]
 fn shards_get_no_report_and_their_merge_writes_one() {
-    let (s0, s1) = shards("bench-report/shards");
+    let (s0, s1) = bench_shards("bench-report/shards");
     for s in [&s0, &s1] {
         assert!(!s.join("report.html").exists(), "a shard's report");
         assert!(!sealed_files(s).contains(&"report.html".to_string()));

@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{stderr, swarmplan, tmp};
+use common::{bench_shards, stderr, swarmplan, tmp};
 use std::path::{Path, PathBuf};
 use std::process::Output;
 
@@ -20,28 +20,6 @@ fn assert_exit_2_with(out: &Output, code: &str, words: &[&str]) {
 
 fn arg(p: &Path) -> &str {
     p.to_str().unwrap()
-}
-
-/// Shards 0/2 and 1/2 of a 4-request run (exact subset: the first request), fresh in `name/`.
-fn shards(name: &str) -> (PathBuf, PathBuf) {
-    let base = tmp(name);
-    let _ = std::fs::remove_dir_all(&base);
-    let dirs = (base.join("s0"), base.join("s1"));
-    for (dir, shard) in [(&dirs.0, "0/2"), (&dirs.1, "1/2")] {
-        let out = swarmplan(&[
-            "bench",
-            "--request-limit",
-            "4",
-            "--exact-limit",
-            "1",
-            "--shard",
-            shard,
-            "--out",
-            arg(dir),
-        ]);
-        assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
-    }
-    dirs
 }
 
 /// `dir/file` with the cell of `column` in data row `row` replaced by `f(cell)`.
@@ -65,7 +43,7 @@ fn merge(dirs: &[&Path], out: &Path) -> Output {
 
 #[test]
 fn bench_merge_refuses_a_shard_edited_after_its_run() {
-    let (s0, s1) = shards("seal-merge");
+    let (s0, s1) = bench_shards("seal-merge");
     let merged = s0.parent().unwrap().join("merged");
     let out = merge(&[&s0, &s1], &merged);
     assert_eq!(out.status.code(), Some(0), "untouched: {}", stderr(&out));
@@ -121,7 +99,7 @@ fn bench_merge_refuses_a_shard_edited_after_its_run() {
 
 #[test]
 fn check_bench_refuses_edited_tables_and_checks_every_table() {
-    let (s0, _) = shards("seal-check");
+    let (s0, _) = bench_shards("seal-check");
     let check = |dir: &Path| swarmplan(&["check", "--bench", arg(dir)]);
     let out = check(&s0);
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
@@ -145,7 +123,7 @@ fn check_bench_refuses_edited_tables_and_checks_every_table() {
 
 #[test]
 fn nothing_of_an_output_directory_is_touched_before_the_inputs_are_valid() {
-    let (s0, s1) = shards("seal-outputs");
+    let (s0, s1) = bench_shards("seal-outputs");
     // `bench --out D --force` with a broken --network: D's mark stays.
     let broken = tmp("seal-outputs/broken.json");
     std::fs::write(&broken, "{ not json").unwrap();

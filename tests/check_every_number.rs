@@ -30,6 +30,11 @@ fn not_checked(path: &str) -> bool {
 
 /// Every numeric leaf of `value` with its path (`plan.hops[2].legs[0].tt_min`).
 fn numeric_leaves(value: &Value, path: String, out: &mut Vec<String>) {
+    leaves_where(value, path, &|v| v.is_number(), out);
+}
+
+/// Every leaf of `value` that `keep` keeps, with its path.
+fn leaves_where(value: &Value, path: String, keep: &dyn Fn(&Value) -> bool, out: &mut Vec<String>) {
     match value {
         Value::Object(m) => {
             for (k, v) in m {
@@ -38,15 +43,15 @@ fn numeric_leaves(value: &Value, path: String, out: &mut Vec<String>) {
                 } else {
                     format!("{path}.{k}")
                 };
-                numeric_leaves(v, p, out);
+                leaves_where(v, p, keep, out);
             }
         }
         Value::Array(a) => {
             for (i, v) in a.iter().enumerate() {
-                numeric_leaves(v, format!("{path}[{i}]"), out);
+                leaves_where(v, format!("{path}[{i}]"), keep, out);
             }
         }
-        Value::Number(_) => out.push(path),
+        leaf if keep(leaf) => out.push(path),
         _ => {}
     }
 }
@@ -651,29 +656,6 @@ fn every_changed_number_of_a_bench_row_is_rejected() {
     assert_eq!(codes(&stray), ["P5705"]);
 }
 
-/// Every leaf of `value` (number, string, bool) with its path.
-fn all_leaves(value: &Value, path: String, out: &mut Vec<String>) {
-    match value {
-        Value::Object(m) => {
-            for (k, v) in m {
-                let p = if path.is_empty() {
-                    k.clone()
-                } else {
-                    format!("{path}.{k}")
-                };
-                all_leaves(v, p, out);
-            }
-        }
-        Value::Array(a) => {
-            for (i, v) in a.iter().enumerate() {
-                all_leaves(v, format!("{path}[{i}]"), out);
-            }
-        }
-        Value::Null => {}
-        _ => out.push(path),
-    }
-}
-
 /// The documents of the property below, each with its check (a parse error or a violation is
 /// "not valid") and the leaves it does not check: measurements, the settings a re-run reads,
 /// labels.
@@ -710,7 +692,7 @@ impl Documents {
         let node_time = NodeTimeReport::new(3, &times, solution);
         let leaves = |v: &Value| {
             let mut out = Vec::new();
-            all_leaves(v, String::new(), &mut out);
+            leaves_where(v, String::new(), &|l| !l.is_null(), &mut out);
             out
         };
         let docs = [

@@ -470,3 +470,26 @@ pub fn assert_checked(
         r.options
     );
 }
+
+/// Shards 0/2 and 1/2 of a 4-request bench run (exact subset: the first request), made fresh in
+/// [`tmp`]`(name)/s0` and `s1`.
+pub fn bench_shards(name: &str) -> (PathBuf, PathBuf) {
+    let base = tmp(name);
+    let _ = std::fs::remove_dir_all(&base);
+    let dirs = (base.join("s0"), base.join("s1"));
+    for (dir, shard) in [(&dirs.0, "0/2"), (&dirs.1, "1/2")] {
+        let out = swarmplan(&[
+            "bench",
+            "--request-limit",
+            "4",
+            "--exact-limit",
+            "1",
+            "--shard",
+            shard,
+            "--out",
+            dir.to_str().unwrap(),
+        ]);
+        assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    }
+    dirs
+}
