@@ -145,7 +145,10 @@ fn nothing_of_an_output_directory_is_touched_before_the_inputs_are_valid() {
     assert_exit_2_with(&out, "E7010", &["--out", "one of the shards merged"]);
     assert_eq!(std::fs::read(s1.join("complete")).unwrap(), mark);
 
-    // A merge whose input is not there: the directory is named, not "did not finish".
+    // A merge whose input is not there: named as missing, not as a run that "did not finish";
+    // a file where a directory is expected: E0008.
     let out = merge(&[&s0, Path::new("/nonexistent")], &s0.with_file_name("m"));
-    assert_exit_2_with(&out, "E0008", &["/nonexistent", "not a directory"]);
+    assert_exit_2_with(&out, "E7007", &["/nonexistent", "no such directory"]);
+    let out = merge(&[&s0, &s0.join("requests.csv")], &s0.with_file_name("m"));
+    assert_exit_2_with(&out, "E0008", &["requests.csv", "not a directory"]);
 }

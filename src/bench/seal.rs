@@ -165,6 +165,16 @@ pub fn mark_complete(dir: &Path, config: &BenchConfig, files: &[String]) -> Resu
 /// E7009 naming the first file that differs.
 pub fn verify_seal(dir: &Path) -> Result<Seal> {
     let path = dir.join(COMPLETE_FILE);
+    if !dir.exists() {
+        return Err(Error::invalid(
+            "E7007",
+            dir.display().to_string(),
+            "no such directory: the run never started (a shard killed before it ran), or the \
+             path is mistyped",
+            "check the path; run that shard (the Slurm script reruns only the shards without \
+             the mark)",
+        ));
+    }
     if !dir.is_dir() {
         return Err(Error::invalid(
             "E0008",

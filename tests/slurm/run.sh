@@ -65,7 +65,8 @@ if "$bin" bench merge "$work"/killed/shards/shard-{0,1,2,3} --out "$work/by-hand
   echo "bench merge accepted an unfinished shard" >&2
   exit 1
 fi
-grep -q "E7007" "$work/err" && grep -q "shard-2" "$work/err"
+grep -q "E7007" "$work/err" && grep -q "shard-2" "$work/err" ||
+  { echo "bench merge did not name the unfinished shard 2 with E7007: $(cat "$work/err")" >&2; exit 1; }
 echo "killed shard 2: no merge, and bench merge refuses it: $(head -c 200 "$work/err" | tr '\n' ' ')"
 
 # 3. The same submit line again: only shard 2 runs, then the merge.
