@@ -1,5 +1,6 @@
 //! The library's one error type. Outcomes of a solve (optimal, feasible, infeasible) are data, not
 //! errors: `Err` is for bad input and for a backend that broke.
+//! User guide: "Error codes" (`docs/src/errors.md`), one table of every code.
 
 use serde::Serialize;
 use std::fmt;
@@ -7,7 +8,7 @@ use std::fmt;
 /// One broken input rule: a stable code, the field it concerns, what is wrong and what to do.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Violation {
-    /// Stable rule code, such as `E1101`; listed in README.md.
+    /// Stable rule code, such as `E1101`; listed in the guide's error table, docs/src/errors.md.
     pub code: &'static str,
     /// Where the problem is, such as `edges[3].wind_speed_mps` or `--pads`.
     pub field: String,
@@ -71,7 +72,8 @@ pub enum Error {
     )]
     Output(#[source] std::io::Error),
     /// A broken invariant of the tool's own code, a bug (never bad input, never a solve
-    /// outcome): `code` names the invariant (README's error table), `context` where it broke.
+    /// outcome): `code` names the invariant (the error table, docs/src/errors.md), `context`
+    /// where it broke.
     /// Retries of a failed solve never match it.
     #[error(
         "[{code}] internal error: {context}; this is a bug: report it with the instance and the \

@@ -1,4 +1,5 @@
 //! Numbers for people: human output rounds, CSV and JSON keep every digit.
+//! User guide: "Conventions of every command" (`docs/src/commands/conventions.md`).
 
 use crate::solver::ZERO_GAP_TOL;
 

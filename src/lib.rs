@@ -18,8 +18,14 @@
 //! Layout: [`problem`] holds the input types and their validation and knows nothing of solvers;
 //! [`solver`] the backend choice and solve status shared by every exact method. Each model the code
 //! builds is written up in `models/` under the name of the module that builds it.
-// Lints are set in Cargo.toml's `[lints]` table; the library also forbids unsafe code outright.
+//!
+//! The user guide (`docs/`, an mdBook: `mdbook serve docs`) gives the concepts, every command
+//! and output, and the write-ups of `models/` in reading order; each public module's doc names
+//! its chapter.
+// Lints are set in Cargo.toml's `[lints]` table (for every target); the library also forbids
+// unsafe code outright and states its rule for the public API here.
 #![forbid(unsafe_code)]
+#![warn(missing_docs)]
 
 /// `Display` for choice enums: the value's serde name (kebab-case), which is also the name the
 /// command line's clap derive gives it (`tests/choice_names.rs` checks that the two agree), so the

@@ -17,7 +17,7 @@ pyo3::create_exception!(
     swarmplan,
     SwarmplanError,
     PyException,
-    "An error of swarmplan, with the code of README.md's error table.\n\n\
+    "An error of swarmplan, with the code of the error table (docs/src/errors.md).\n\n\
      Attributes\n\
      ----------\n\
      code : str or None\n    \

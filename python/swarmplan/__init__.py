@@ -91,12 +91,12 @@ def evaluate(hop: Hop, schedule: Schedule, **options: Any) -> HopEvaluation:
         its ``gap`` against the continuous-time optimum of the ``reorder`` mode,
         ``{"relative": loss, "reference": kind}`` as every gap of the package: the relative
         loss, positive when worse under either objective, and the kind of its reference
-        (``optimal``, ``infimum``; README.md, "What a gap is").
+        (``optimal``, ``infimum``; docs/src/exact.md, "What a gap is").
 
     Raises
     ------
     SwarmplanError
-        With the checker's code (``C3001``-``C3013``, README.md's error table) for a schedule
+        With the checker's code (``C3001``-``C3013``, docs/src/errors.md) for a schedule
         that breaks a rule of the hop model; E0026 for one that is not a list of transfers.
     """
     return hop.evaluate(schedule, **options)

@@ -46,8 +46,8 @@ reference is 0) and the kind of the reference (``optimal``, ``infimum``, ``incum
 RequestLike = Union[str, Dict[str, Any]]
 
 class SwarmplanError(Exception):
-    """An error of swarmplan, with the code of README.md's error table (``E4111``, or the
-    checker's ``C3006``), the field concerned (the Python argument, such as ``index`` or
+    """An error of swarmplan, with the code of the error table in docs/src/errors.md (``E4111``,
+    or the checker's ``C3006``), the field concerned (the Python argument, such as ``index`` or
     ``route``), the cause, what to do, and every violation as a dict with those four keys.
 
     Every integer argument (an index, a count, a limit, a seed) refuses a negative number and a

@@ -1,4 +1,4 @@
-"""The Python examples of the READMEs run as written."""
+"""The Python examples of the guide's Python page and of the package's README run as written."""
 
 import re
 
@@ -8,13 +8,13 @@ from conftest import REPO
 
 BLOCKS = [
     (name, i, block)
-    for name in ["README.md", "python/README.md"]
+    for name in ["docs/src/python.md", "python/README.md"]
     for i, block in enumerate(re.findall(r"```python\n(.*?)```", (REPO / name).read_text(), re.S))
 ]
 
 
-def test_the_readmes_have_python_examples():
-    assert {name for name, _, _ in BLOCKS} == {"README.md", "python/README.md"}
+def test_the_guide_and_the_readme_have_python_examples():
+    assert {name for name, _, _ in BLOCKS} == {"docs/src/python.md", "python/README.md"}
 
 
 @pytest.mark.parametrize("name,index,block", BLOCKS, ids=[f"{n}#{i}" for n, i, _ in BLOCKS])

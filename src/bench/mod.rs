@@ -1,6 +1,8 @@
 //! The experiments of the paper's section 6 and the optimality-gap report (`swarmplan bench`):
 //! every request of a request set planned with every method combination, written as tables
 //! (one row per request and combination, per hop and per stop), summarised, and drawn.
+//! User guide: "bench and bench merge" (`docs/src/commands/bench.md`) and "The bench report"
+//! (`docs/src/bench-report.md`).
 //!
 //! A run plans the requests of its [`Shard`]; every file but `timings.csv` and the times of
 //! `summary.json` is a function of the instance, the request set and the [`BenchConfig`] alone, so
@@ -324,7 +326,7 @@ pub struct HopRow {
     pub reference: String,
     /// The reference's value.
     pub reference_value: Option<f64>,
-    /// The heuristic's relative loss against the reference (README.md, "What a gap is"):
+    /// The heuristic's relative loss against the reference (docs/src/exact.md, "What a gap is"):
     /// positive is worse under both objectives, the node time (minimised) and the arrival
     /// battery (maximised).
     pub gap: Option<f64>,

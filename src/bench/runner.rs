@@ -176,7 +176,7 @@ pub fn run_grid(
         c.validate()?;
     }
     // The route gaps are on by default (`--no-gap` skips them), not asked for: `fair`'s empty
-    // gap cells need no refusal here, as the README's tables say.
+    // gap cells need no refusal here, as the guide's tables say.
     let notes = experiment::applicable_options(&combos, false, None)?;
     let (instance, set) = both(
         s.instance.load_or(&FINDINGS_195),

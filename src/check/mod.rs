@@ -1,5 +1,6 @@
 //! Independent checkers: re-verify a plan from the raw problem, without the planners' code paths
 //! (only the input and output types are shared).
+//! User guide: "Checking plans" (`docs/src/checking.md`), with every rule code.
 //!
 //! Codes `C3xxx` concern hop schedules ([`hop`]), codes `P5xxx` whole plans ([`plan`]) and plan
 //! documents read from a file ([`report`], read by [`plan_file`], whose errors are `E6xxx`),

@@ -53,7 +53,7 @@ pub fn parse_plan_file(text: &str, origin: &str) -> Result<RequestReport> {
             origin,
             format!("{what}: {e}"),
             "give the JSON that `swarmplan solve --json` prints, unchanged in its fields; see \
-             README.md, \"Checking a plan\"",
+             docs/src/commands/solve.md, \"The plan document\"",
         )
     };
     // The version first: another version may have other fields.

@@ -1,5 +1,7 @@
 //! Command-line interface: clap derive, one file per subcommand. Data goes to stdout (`--json` for
 //! machine-readable output), messages to stderr. Exit code 0 ok, 1 failed run, 2 bad input.
+//! User guide: one page per command under `docs/src/commands/`, from "Conventions of every command"
+//! (`docs/src/commands/conventions.md`).
 
 use clap::{Parser, Subcommand};
 use serde::Serialize;

@@ -1,6 +1,8 @@
 //! Route composition (level 2): Algorithm 1 of the paper (sequential composition) and its A*-style
 //! variant, the Dijkstra and Floyd–Warshall baselines with edge cost `tt + nt`, and the optimal
 //! route over stop sequences (Dijkstra on the stop graph). See models/compose.md.
+//! User guide: "Methods" (`docs/src/methods.md`) and the chapter "Route composition and the joint
+//! optimum" (`docs/src/models/compose.md`).
 //!
 //! Every method produces a [`Plan`]: the hops flown between stops, the in-flight sharing schedule of
 //! each hop, the node time and pad assignment at every recharging stop, and the delivery time

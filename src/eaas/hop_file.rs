@@ -155,7 +155,8 @@ fn version_violation(version: u32) -> Violation {
         format!("schema_version is {version}, this build reads {HOP_FILE_SCHEMA_VERSION}"),
         format!(
             "write the hop again with this build's `swarmplan eaas --write-hop`, or set \
-             schema_version to {HOP_FILE_SCHEMA_VERSION} after checking the file against README.md"
+             schema_version to {HOP_FILE_SCHEMA_VERSION} after checking the file against \
+             docs/src/commands/eaas.md, \"Files\""
         ),
     )
 }
@@ -188,7 +189,8 @@ pub fn parse_hop_file(text: &str, origin: &str) -> Result<HopFile> {
             "E4111",
             origin,
             format!("not a hop file: {e}"),
-            "write hop files with `swarmplan eaas --write-hop`; see README.md for the fields",
+            "write hop files with `swarmplan eaas --write-hop`; see docs/src/commands/eaas.md, \
+             \"Files\", for the fields",
         )
     };
     // The version first: another version may have other fields.

@@ -1,5 +1,7 @@
 //! In-flight energy sharing (EaaS) on one hop: the flight between two stops, see
 //! `models/eaas.md`.
+//! User guide: "In-flight sharing on a hop" (`docs/src/models/eaas.md`) and the command `eaas`
+//! (`docs/src/commands/eaas.md`).
 //!
 //! Time runs over `[0, tt]`, `tt` = the sum of the legs' durations. Drone `d` flying in formation
 //! slot `q` on leg `l` consumes `rate[l][d][q]` mAh/min (piecewise constant in time). A support drone

@@ -1,4 +1,5 @@
 //! Energy model: the consumption rate of every drone of a swarm, mAh/min. See models/energy.md.
+//! User guide: "Energy" (`docs/src/models/energy.md`).
 //!
 //! ```text
 //! rate(d, slot) = r0 * P(m_d) * W(v_air) * F(slot)

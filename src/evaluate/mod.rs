@@ -1,6 +1,8 @@
 //! Scoring schedules and routes written outside the planner (a researcher's own heuristic, in
 //! Rust or through the Python package) against the exact references, with the independent
 //! checker as the judge of what is allowed.
+//! User guide: "Evaluating outside schedules and routes" (`docs/src/models/evaluate.md`) and
+//! "Python" (`docs/src/python.md`).
 //!
 //! - [`evaluate_hop`]: a hop schedule (timed transfers) flown exactly as written; its rule
 //!   breaks (the checker's `C3001`-`C3013`) are an error, running out of battery is a result; its
@@ -201,7 +203,7 @@ pub fn evaluate_hop(
             let mut violations = violations;
             for v in &mut violations {
                 v.action = "change the schedule so that it keeps the rules of the hop model \
-                     (models/eaas.md; the codes in README.md)"
+                     (models/eaas.md; the codes in docs/src/errors.md)"
                     .into();
             }
             return Err(Error::Invalid(violations));

@@ -3,6 +3,8 @@
 //! optimal route of the same sharing policy for the route gap, the exact node time for LPT's gap
 //! at every stop, the joint optimum for the gap split), the per-combination summaries of a
 //! planned grid ([`summary`]), and tables written as CSV through serde ([`write_csv`]).
+//! User guide: the command `batch` (`docs/src/commands/batch.md`) and "The bench report"
+//! (`docs/src/bench-report.md`).
 //!
 //! It sits above [`crate::compose`], which plans the grid, and below [`crate::bench`] and the
 //! command line, which give it their arguments and print or write what it returns; it knows

@@ -1,5 +1,7 @@
 //! Seeded synthetic instances: rooftop networks ([`network`]), request sets ([`requests`]) and
 //! the classical P||Cmax benchmark classes as node-time instances ([`pcmax`]).
+//! User guide: the command `generate` (`docs/src/commands/generate.md`) and "The instance
+//! generator" (`docs/src/models/generate.md`).
 //!
 //! Every random choice comes from one `ChaCha8Rng` seeded with the user's seed. Only the generator's
 //! raw 64-bit output is used (`next_u64`); uniform reals, bounded integers, normal deviates and

@@ -1,5 +1,7 @@
 //! Node time at a recharging node: the pad-to-drone assignment, identical parallel machines
 //! P||Cmax. See `models/node_time.md`.
+//! User guide: the command `node-time` (`docs/src/commands/node-time.md`) and "Node time"
+//! (`docs/src/models/node_time.md`).
 //!
 //! Every drone `j` of the swarm (delivery and support) needs charging time `p_j` (minutes) to reach
 //! a full battery; a node has `k` identical pads, each charging one drone at a time. The node time

@@ -2,6 +2,7 @@
 //! ([`formation_select`]), the number of support drones from Eq. 2 and the redundancy table
 //! ([`support_count()`]), and the initial slot of every drone ([`positioning`]). See
 //! models/precompose.md.
+//! User guide: "Pre-composition" (`docs/src/models/precompose.md`).
 
 pub mod formation_select;
 pub mod positioning;

@@ -54,7 +54,7 @@ pub fn parse_json<T: DeserializeOwned>(text: &str, origin: &str) -> Result<T> {
                 e.error.column(),
                 e.error
             ),
-            "fix the JSON syntax or the field named; see README.md for the schema",
+            "fix the JSON syntax or the field named; see docs/src/inputs.md for the schema",
         )
     })
 }

@@ -1,6 +1,7 @@
 //! Input types: skyway network, parameter profile, delivery requests. Serde types with
 //! `deny_unknown_fields`, a `schema_version`, and units in every field name. Nothing here knows about
 //! solvers.
+//! User guide: "Input files and profiles" (`docs/src/inputs.md`).
 
 pub mod fingerprint;
 pub mod graph;

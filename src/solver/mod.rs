@@ -1,5 +1,7 @@
 //! Backend choice, options and solve outcome, shared by every exact method: the one place that
 //! builds a backend, applies its options and maps its own status to [`BackendStatus`].
+//! User guide: "HiGHS and the build without MILP" (`docs/src/highs.md`) and "Exact references and
+//! gaps" (`docs/src/exact.md`).
 //!
 //! Backends are chosen by enum, never by string: `microlp` (pure Rust, default) and, with the
 //! `highs` feature, HiGHS, both through good_lp ([`run_on`]); convex models go to clarabel
@@ -321,7 +323,7 @@ pub enum Sense {
 /// reference, `(value - reference) / |reference|` for a minimised objective and
 /// `(reference - value) / |reference|` for a maximised one, so a loss is positive under either
 /// sense. Against a proven optimum whose feasible set contains the value's schedule a negative
-/// gap is impossible (a bug); against a bound it is never negative. README.md, "What a gap is".
+/// gap is impossible (a bug); against a bound it is never negative. docs/src/exact.md, "What a gap is".
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize)]
 pub struct Gap {
     /// The relative loss; `None` when the reference is zero.

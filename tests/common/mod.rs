@@ -1,8 +1,10 @@
 //! Fixtures shared by the integration tests: the binary, paths into the repository and into a
 //! temporary folder per test binary, the shipped instances, float tolerances, the known optima of
-//! the hop models and small hop builders. Each test binary uses a subset of them.
+//! the hop models and small hop builders, the README's and the guide's command blocks (`docs`).
+//! Each test binary uses a subset of them.
 #![allow(dead_code)]
 
+pub mod docs;
 pub mod model_files;
 
 use nalgebra::Vector2;

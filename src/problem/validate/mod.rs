@@ -103,7 +103,8 @@ fn json_schema_version(code: &'static str, found: u32, out: &mut Vec<Violation>)
             "schema_version",
             format!("schema_version is {found}, this build reads {SCHEMA_VERSION}"),
             format!(
-                "set schema_version to {SCHEMA_VERSION} after checking the file against README.md"
+                "set schema_version to {SCHEMA_VERSION} after checking the file against \
+                 docs/src/inputs.md"
             ),
         ));
     }

@@ -7,7 +7,8 @@ use crate::problem::profile::{
 };
 use crate::problem::{MAX_SUPPORT_DRONES, MAX_SWARM_DRONES, SCHEMA_VERSION};
 
-/// Checks a profile's values; reports every violation at once (codes E2xxx, listed in README.md).
+/// Checks a profile's values; reports every violation at once (codes E2xxx, listed in
+/// docs/src/errors.md).
 ///
 /// # Arguments
 /// * `p` - the profile as read.
@@ -393,14 +394,16 @@ fn e2013_stated_ranges(p: &Profile, out: &mut Vec<Violation>) {
                 show(v)
             ),
             format!(
-                "set a value within [{min}, {max}]{unit} ({}); see \"Ranges\" in README.md",
+                "set a value within [{min}, {max}]{unit} ({}); see \"Ranges\" in \
+                 docs/src/inputs.md",
                 r.why
             ),
         ));
     }
 }
 
-/// One quantity of a profile with its stated range (rule E2013, the table in README.md, "Ranges").
+/// One quantity of a profile with its stated range (rule E2013, the table in docs/src/inputs.md,
+/// "Ranges").
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct StatedRange {
     /// The profile field, such as `drone.speed_kmh`.
