@@ -122,7 +122,7 @@ fn command_lines(lines: &[&str]) -> Vec<String> {
         };
         let code = code.trim();
         if let Some(head) = code.strip_suffix('\\') {
-            pending.push_str(head);
+            pending.push_str(head.trim_end());
             pending.push(' ');
             continue;
         }
