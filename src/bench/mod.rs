@@ -41,7 +41,7 @@ pub use runner::{
 pub use seal::{seal_agrees, unmark_complete, verify_seal, Seal, SealedFile, COMPLETE_FILE};
 pub use summary::{
     DistanceBucket, GapHistogram, GapSplitSummary, HopGapSummary, JointSummary, MethodSummary,
-    StopGapSummary, Summary, SUMMARY_SCHEMA_VERSION,
+    StopGapSummary, Summary, GAP_BIN_EDGES, SUMMARY_SCHEMA_VERSION,
 };
 
 use crate::compose::{lpt_gap, Context, PlanOptions, RequestReport, RouteMethod};

@@ -436,7 +436,7 @@ impl Planner {
     /// that flies.
     /// An exact or fair hop departing with full batteries is solved once per planner: a second
     /// call returns the first flight, with its solve (so a composition that counts the solves of
-    /// its flights, [`Planner::fly_counted`], counts the same whatever the planner flew before).
+    /// its flights, `Planner::fly_counted`, counts the same whatever the planner flew before).
     ///
     /// # Errors
     /// Those of [`eaas::simulate_with`] and [`exact_hop::fly_exact`].

@@ -40,7 +40,10 @@ pub use factors::{EdgeFactorCache, EdgeFactors};
 pub use flight::{Flight, IntoShared, Planner};
 pub use gaps::{lpt_gap, lpt_node_time_gaps, LptGapSummary, RouteGapSummary, RoutePair};
 pub use plan::{Hop, LegFlown, Plan, PlanOutcome, RouteOptimality, Stop};
-pub use request::{Context, PlanOptions, PlanSettings, RequestReport, RouteGap, SwarmChoice};
+pub use request::{
+    Context, PlanOptions, PlanSettings, RequestReport, RouteGap, SwarmChoice,
+    ALL_PAIRS_BYTES_PER_PAIR, FLOYD_WARSHALL_MAX_NODES,
+};
 pub use split::{GapSplit, JointOptimum, JointSplit, SplitLabel, SwarmOptimum};
 
 use crate::eaas::exact_hop::HopSolveCounts;

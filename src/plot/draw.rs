@@ -1,4 +1,4 @@
-//! The SVG of a [`Figure`], drawn with plotters in the style of the bench's figures
+//! The SVG of a [`Figure`](crate::plot::data::Figure), drawn with plotters in the style of the bench's figures
 //! ([`crate::bench::figures`]: its fonts and print colours). Panels stacked: the title, the
 //! route on the network, every drone's battery against time, then each stop's pad schedule;
 //! with a plan compared, the battery and pad panels of the two plans side by side on the same
@@ -7,7 +7,7 @@
 //!
 //! Every element the tests count has a text of its own: a legend entry `drone D (role)` per
 //! battery series, a label `dD` per pad bar, `runs dry` at a failure; transfers are the only
-//! rectangles filled with [`TRANSFER_COLOUR`].
+//! rectangles filled with [`TRANSFER_COLOUR`](crate::plot::draw::TRANSFER_COLOUR).
 
 use super::data::{BatteryUnit, Figure, PlanData, StopSchedule};
 use crate::bench::figures::PRINT_COLOURS;
