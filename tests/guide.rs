@@ -72,11 +72,8 @@ fn resolve(root: &Path, base: &Path, link: &str) -> Option<PathBuf> {
     let mut out = base.to_path_buf();
     for part in Path::new(link).components() {
         match part {
-            Component::ParentDir => {
-                if !out.pop() || !out.starts_with(root) {
-                    return None;
-                }
-            }
+            Component::ParentDir if !out.pop() || !out.starts_with(root) => return None,
+            Component::ParentDir => {}
             Component::Normal(p) => out.push(p),
             _ => {}
         }
