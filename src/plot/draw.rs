@@ -10,6 +10,7 @@
 //! rectangles filled with [`TRANSFER_COLOUR`].
 
 use super::data::{BatteryUnit, Figure, PlanData, StopSchedule};
+use super::hop::HopFigure;
 use crate::bench::figures::PRINT_COLOURS;
 use crate::problem::Role;
 use plotters::coord::combinators::WithKeyPoints;
@@ -215,6 +216,30 @@ pub fn svg(fig: &Figure) -> Drawn<String> {
             };
             draw_battery(&battery[k], fig, p, &name)?;
             draw_stops(&schedules[k], fig, p)?;
+        }
+        root.present()?;
+    }
+    Ok(text)
+}
+
+/// The SVG of a hop's figure: its title, then one battery panel per schedule, one under the
+/// other on the same axes.
+///
+/// # Errors
+/// What plotters reports when it cannot draw.
+pub fn hop_svg(h: &HopFigure) -> Drawn<String> {
+    let title_px = 20 + TITLE_LINE_PX * h.title.len() as u32;
+    let panels = h.figure.plans.len().max(1) as u32;
+    let height = title_px + BATTERY_PX * panels;
+    let mut text = String::new();
+    {
+        let root = SVGBackend::with_string(&mut text, (WIDTH_PX, height)).into_drawing_area();
+        root.fill(&WHITE)?;
+        let (title, rest) = root.split_vertically(title_px);
+        draw_title(&title, &h.title)?;
+        let rows = rest.split_evenly((panels as usize, 1));
+        for (p, area) in h.figure.plans.iter().zip(&rows) {
+            draw_battery(area, &h.figure, p, &p.combination)?;
         }
         root.present()?;
     }

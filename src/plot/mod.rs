@@ -10,3 +10,4 @@ pub mod data;
 /// Drawn by the front ends only (feature `cli`, which brings plotters).
 #[cfg(feature = "cli")]
 pub mod draw;
+pub mod hop;
