@@ -653,3 +653,40 @@ fn plot_refuses_a_hop_method_without_a_schedule_and_a_plan_beside_a_hop() {
     assert_eq!(out.status.code(), Some(2), "{out:?}");
     assert!(String::from_utf8_lossy(&out.stderr).contains("[E0007]"));
 }
+
+/// The README's figure, `docs/src/figures/plan.svg`, is what its caption's commands draw today:
+/// PB on request r00023 against the optimal route with exact sharing. Drawn again here, it must
+/// be the same bytes; `SWARMPLAN_BLESS=1 cargo test --release --test cli_plot` writes it anew
+/// after a change to the figure.
+#[test]
+fn the_readme_figure_is_what_its_commands_draw() {
+    let solve = |name: &str, extra: &[&str]| {
+        let mut args = vec!["solve", "--request-id", "r00023", "--json"];
+        args.extend_from_slice(extra);
+        let out = swarmplan(&args);
+        assert!(out.status.success(), "{out:?}");
+        write_tmp(name, &out.stdout)
+    };
+    let pb = solve("readme-pb.json", &["--sharing", "pb"]);
+    let exact = solve(
+        "readme-exact.json",
+        &["--route", "optimal", "--sharing", "exact"],
+    );
+    let out = swarmplan(&["plot", "--plan", &pb, "--compare", &exact, "-o", "-"]);
+    assert!(out.status.success(), "{out:?}");
+    let figure = repo_path("docs/src/figures/plan.svg");
+    if std::env::var_os("SWARMPLAN_BLESS").is_some() {
+        std::fs::write(&figure, &out.stdout).unwrap();
+    }
+    let committed = std::fs::read(&figure).unwrap_or_default();
+    assert!(
+        committed == out.stdout,
+        "{} is not what `plot` draws today: SWARMPLAN_BLESS=1 cargo test --release --test \
+         cli_plot writes it anew",
+        figure.display()
+    );
+    let t = texts(&String::from_utf8(out.stdout).unwrap());
+    assert!(t
+        .iter()
+        .any(|x| x.starts_with("gap of the plan against the reference")));
+}
