@@ -39,7 +39,9 @@ pub use flight::{Flight, IntoShared, Planner};
 pub use gaps::{lpt_gap, lpt_node_time_gaps, LptGapSummary, RouteGapSummary, RoutePair};
 pub use plan::{Hop, LegFlown, Plan, PlanOutcome, RouteOptimality, Stop};
 pub use request::{Context, PlanOptions, PlanSettings, RequestReport, RouteGap, SwarmChoice};
-pub use split::{GapSplit, JointOptimum, JointSplit, SplitLabel, SwarmOptimum};
+pub use split::{
+    GapSplit, JointOptimum, JointSplit, SplitLabel, SwarmDt, SwarmOptimum, SwarmsCompared,
+};
 
 use crate::eaas::exact_hop::HopSolveCounts;
 use crate::eaas::SharingPolicy;
