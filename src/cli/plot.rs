@@ -6,7 +6,8 @@ use super::check::read_plan;
 use super::inputs::InstanceArgs;
 use crate::compose::RequestReport;
 use crate::error::{Error, Result};
-use crate::plot::data::{figure_data, BatteryUnit};
+use crate::plot::data::BatteryUnit;
+use crate::plot::draw::plans_svg;
 use std::path::{Path, PathBuf};
 
 /// Draw a plan written by `solve --json` as an SVG: the route on the network, every drone's
@@ -40,7 +41,8 @@ pub struct PlotArgs {
 /// E0013 when the output exists without `--force`, E0031 when it is one of the inputs, those of
 /// reading the plans (E0008, E0009, E6001-E6003), E6004/E6005 for a plan made on another
 /// instance, E8001 for a compared plan of another request, E8002 for both plans on standard
-/// input, E8003 for a plan that does not fit the instance.
+/// input, E8003 for a plan that does not fit the instance, E8004 (a bug) when plotters cannot
+/// draw it (see [`plans_svg`]).
 pub fn run(args: PlotArgs) -> Result<i32> {
     let mut inputs: Vec<&Path> = vec![&args.plan];
     inputs.extend(args.compare.as_deref());
@@ -62,27 +64,13 @@ pub fn run(args: PlotArgs) -> Result<i32> {
     if let Some(other) = &args.compare {
         reports.push(read_plan(other)?);
     }
-    for r in &reports {
-        let mismatch =
-            crate::check::report::made_on_another_instance(&instance.network, &instance.profile, r);
-        if !mismatch.is_empty() {
-            return Err(Error::Invalid(mismatch));
-        }
-    }
-    if let [a, b] = reports.as_slice() {
-        same_request(a, b)?;
-    }
     let unit = if args.percent {
         BatteryUnit::Percent
     } else {
         BatteryUnit::Mah
     };
     let refs: Vec<&RequestReport> = reports.iter().collect();
-    let figure = figure_data(&instance.network, &instance.profile, &refs, unit)?;
-    let svg = crate::plot::draw::svg(&figure).map_err(|e| Error::Io {
-        path: super::output_name(&args.output),
-        source: std::io::Error::other(e.to_string()),
-    })?;
+    let svg = plans_svg(&instance.network, &instance.profile, &refs, unit)?;
     if args.output.as_os_str() == "-" {
         use std::io::Write as _;
         super::stdout_written(std::io::stdout().lock().write_all(svg.as_bytes()))?;
@@ -91,29 +79,4 @@ pub fn run(args: PlotArgs) -> Result<i32> {
     }
     eprintln!("wrote {}", super::output_name(&args.output));
     Ok(0)
-}
-
-/// E8001 when the compared plan answers another request (its id, ends or packages differ).
-fn same_request(a: &RequestReport, b: &RequestReport) -> Result<()> {
-    if a.request == b.request {
-        return Ok(());
-    }
-    let (x, y) = (&a.request, &b.request);
-    Err(Error::invalid(
-        "E8001",
-        "--compare",
-        format!(
-            "a plan of another request: {} {} -> {} ({:?} kg) against {} {} -> {} ({:?} kg)",
-            x.id,
-            x.source,
-            x.destination,
-            x.packages_kg,
-            y.id,
-            y.source,
-            y.destination,
-            y.packages_kg
-        ),
-        "compare two plans of the same request, such as `solve ... --sharing pb --json` and \
-         `solve ... --route optimal --sharing exact --json`",
-    ))
 }
