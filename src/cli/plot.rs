@@ -12,7 +12,8 @@ use crate::eaas::exact::Objective;
 use crate::eaas::hop_file::read_hop_file;
 use crate::eaas::PolicyOptions;
 use crate::error::{Error, Result};
-use crate::plot::data::{figure_data, BatteryUnit};
+use crate::plot::data::BatteryUnit;
+use crate::plot::draw::plans_svg;
 use crate::plot::hop::{hop_figure_data, HopSchedule};
 use crate::problem::io::json_name;
 use std::path::{Path, PathBuf};
@@ -64,7 +65,8 @@ pub struct PlotArgs {
 /// E0013 when the output exists without `--force`, E0031 when it is one of the inputs, those of
 /// reading the plans (E0008, E0009, E6001-E6003), E6004/E6005 for a plan made on another
 /// instance, E8001 for a compared plan of another request, E8002 for both plans on standard
-/// input, E8003 for a plan that does not fit the instance.
+/// input, E8003 for a plan that does not fit the instance, E8004 for a hop method without a
+/// schedule, E8005 (a bug) when plotters cannot draw the figure (see [`plans_svg`]).
 pub fn run(args: PlotArgs) -> Result<i32> {
     let mut inputs: Vec<&Path> = Vec::new();
     inputs.extend(args.plan.as_deref());
@@ -94,14 +96,6 @@ pub fn run(args: PlotArgs) -> Result<i32> {
     Ok(0)
 }
 
-/// The error of plotters drawing into the output.
-fn drawn(args: &PlotArgs, e: Box<dyn std::error::Error>) -> Error {
-    Error::Io {
-        path: super::output_name(&args.output),
-        source: std::io::Error::other(e.to_string()),
-    }
-}
-
 /// The SVG of a plan, and of the plan compared with it.
 fn plan_svg(args: &PlotArgs, plan: &Path, unit: BatteryUnit) -> Result<String> {
     let stdin = |p: &Path| p.as_os_str() == "-";
@@ -118,19 +112,8 @@ fn plan_svg(args: &PlotArgs, plan: &Path, unit: BatteryUnit) -> Result<String> {
     if let Some(other) = &args.compare {
         reports.push(read_plan(other)?);
     }
-    for r in &reports {
-        let mismatch =
-            crate::check::report::made_on_another_instance(&instance.network, &instance.profile, r);
-        if !mismatch.is_empty() {
-            return Err(Error::Invalid(mismatch));
-        }
-    }
-    if let [a, b] = reports.as_slice() {
-        same_request(a, b)?;
-    }
     let refs: Vec<&RequestReport> = reports.iter().collect();
-    let figure = figure_data(&instance.network, &instance.profile, &refs, unit)?;
-    crate::plot::draw::svg(&figure).map_err(|e| drawn(args, e))
+    plans_svg(&instance.network, &instance.profile, &refs, unit)
 }
 
 /// The SVG of the schedules `--methods` make on the hop of a hop file.
@@ -162,7 +145,8 @@ fn hop_svg(args: &PlotArgs, path: &Path, unit: BatteryUnit) -> Result<String> {
         })
         .collect();
     let figure = hop_figure_data(&file, &schedules, unit)?;
-    crate::plot::draw::hop_svg(&figure).map_err(|e| drawn(args, e))
+    crate::plot::draw::hop_svg(&figure)
+        .map_err(|e| Error::internal("E8005", format!("drawing the figure: {e}")))
 }
 
 /// One method's line in a hop figure's title: its objective, status and gap.
@@ -190,29 +174,4 @@ fn summary(row: &MethodRow, objective: &Objective) -> String {
     }
     parts.push(format!("{} transfer(s)", row.transfers.len()));
     parts.join(" | ")
-}
-
-/// E8001 when the compared plan answers another request (its id, ends or packages differ).
-fn same_request(a: &RequestReport, b: &RequestReport) -> Result<()> {
-    if a.request == b.request {
-        return Ok(());
-    }
-    let (x, y) = (&a.request, &b.request);
-    Err(Error::invalid(
-        "E8001",
-        "--compare",
-        format!(
-            "a plan of another request: {} {} -> {} ({:?} kg) against {} {} -> {} ({:?} kg)",
-            x.id,
-            x.source,
-            x.destination,
-            x.packages_kg,
-            y.id,
-            y.source,
-            y.destination,
-            y.packages_kg
-        ),
-        "compare two plans of the same request, such as `solve ... --sharing pb --json` and \
-         `solve ... --route optimal --sharing exact --json`",
-    ))
 }

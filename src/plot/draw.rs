@@ -9,10 +9,12 @@
 //! battery series, a label `dD` per pad bar, `runs dry` at a failure; transfers are the only
 //! rectangles filled with [`TRANSFER_COLOUR`].
 
-use super::data::{BatteryUnit, Figure, PlanData, StopSchedule};
+use super::data::{check_plans, figure_data, BatteryUnit, Figure, PlanData, StopSchedule};
 use super::hop::HopFigure;
 use crate::bench::figures::PRINT_COLOURS;
-use crate::problem::Role;
+use crate::compose::RequestReport;
+use crate::error::{Error, Result};
+use crate::problem::{Network, Profile, Role};
 use plotters::coord::combinators::WithKeyPoints;
 use plotters::coord::types::RangedCoordi32;
 use plotters::coord::Shift;
@@ -180,6 +182,42 @@ fn stops_px(p: &PlanData) -> u32 {
         .iter()
         .map(|s| GANTT_BASE_PX + PAD_ROW_PX * s.pads.max(1))
         .sum()
+}
+
+/// The SVG of one plan, or of two plans of the same request side by side, as `swarmplan plot`
+/// writes it and the Python package's `swarmplan.plot` returns it: the plans checked
+/// ([`check_plans`]), their figure computed ([`figure_data`]) and drawn ([`svg`]).
+///
+/// # Arguments
+/// * `network`, `profile` - the instance the plans were made on.
+/// * `reports` - the plan, then the plan compared with it, if any.
+/// * `unit` - the battery axis' unit.
+///
+/// # Errors
+/// Those of [`check_plans`] (E6004, E6005, E8001) and of [`figure_data`] (E8003);
+/// [`Error::Internal`] E8005 when plotters cannot draw the figure (a bug).
+///
+/// # Example
+/// ```no_run
+/// # fn main() -> swarmplan::error::Result<()> {
+/// use swarmplan::plot::data::BatteryUnit;
+/// use swarmplan::problem::shipped;
+/// let (network, profile) = (shipped::network("paper-195")?, shipped::profile("paper")?);
+/// let plan = swarmplan::check::plan_file::read_plan_file(std::path::Path::new("plan.json"))?;
+/// let svg = swarmplan::plot::draw::plans_svg(&network, &profile, &[&plan], BatteryUnit::Mah)?;
+/// assert!(svg.starts_with("<svg"));
+/// # Ok(())
+/// # }
+/// ```
+pub fn plans_svg(
+    network: &Network,
+    profile: &Profile,
+    reports: &[&RequestReport],
+    unit: BatteryUnit,
+) -> Result<String> {
+    check_plans(network, profile, reports)?;
+    let figure = figure_data(network, profile, reports, unit)?;
+    svg(&figure).map_err(|e| Error::internal("E8005", format!("drawing the figure: {e}")))
 }
 
 /// The figure as SVG text.
