@@ -244,6 +244,25 @@ fn cases() -> Vec<Case> {
         false,
         HopPaths::Any,
     ));
+    // `solve --swarm best`: the best swarm's optimum, every swarm's in `swarms_compared`.
+    let mut best = case(
+        "r00001",
+        PlanOptions {
+            sharing: SharingPolicy::Exact,
+            positioning: Positioning::LocationAware,
+            route: RouteMethod::Optimal,
+            support: None,
+        },
+        false,
+    );
+    let context = Context::new(&network, &graph, &profile);
+    let request = requests.iter().find(|r| r.id == "r00001").unwrap();
+    best.report = context
+        .plan_best_swarm(request, &best.report.options)
+        .unwrap();
+    best.what.push_str(" --swarm best");
+    assert!(best.report.swarms_compared.is_some());
+    out.push(best);
     // Failed plans: a dead end under Algorithm 1, a hop out of reach on a fixed route.
     for (s, route) in [
         (SharingPolicy::None, RouteMethod::Sequential),

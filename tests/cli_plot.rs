@@ -508,3 +508,195 @@ fn plot_refuses_what_it_cannot_draw_with_codes() {
     assert_eq!(std::fs::read(&exists).unwrap(), b"keep");
     expect_2(&args(&a), "E0031");
 }
+
+/// `eaas --write-hop` of hop 0 of request r00003 on the shipped instance (ten legs, five
+/// delivery drones and one support drone, PB a third below the optimum), and `eaas --json`'s
+/// report of `methods` on it.
+fn shipped_hop(name: &str, methods: &str) -> (String, serde_json::Value) {
+    let hop = tmp(name);
+    let _ = std::fs::remove_file(&hop);
+    let hop = hop.to_string_lossy().to_string();
+    let out = swarmplan(&[
+        "eaas",
+        "--request-id",
+        "r00003",
+        "--hop",
+        "0",
+        "--write-hop",
+        &hop,
+        "--methods",
+        methods,
+        "--json",
+    ]);
+    assert!(out.status.success(), "{out:?}");
+    (hop, serde_json::from_slice(&out.stdout).unwrap())
+}
+
+fn plot_hop(hop: &str, methods: &str) -> Output {
+    swarmplan(&["plot", "--hop-file", hop, "--methods", methods, "-o", "-"])
+}
+
+#[test]
+fn a_hop_file_draws_each_methods_schedule_as_eaas_reports_it() {
+    let methods = "pb,fb,continuous,milp";
+    let (hop, report) = shipped_hop("plot-hop.json", methods);
+    let out = plot_hop(&hop, methods);
+    assert!(out.status.success(), "{out:?}");
+    let svg = String::from_utf8(out.stdout).unwrap();
+    let t = texts(&svg);
+    let rows = report["rows"].as_array().unwrap();
+    let drones = report["problem"]["drones"].as_array().unwrap();
+    assert_eq!((rows.len(), drones.len()), (4, 6));
+    // One panel per method: a legend entry per drone in each, the drone's role named.
+    for (d, drone) in drones.iter().enumerate() {
+        let entry = format!("drone {d} ({})", drone["role"].as_str().unwrap());
+        assert_eq!(count(&t, |x| x == entry), rows.len(), "{entry}");
+    }
+    // One band per transfer of every schedule, as `eaas` reports the schedules.
+    let transfers: usize = rows
+        .iter()
+        .map(|r| r["transfers"].as_array().unwrap().len())
+        .sum();
+    assert!(transfers > 2, "{transfers}");
+    assert_eq!(transfer_bands(&svg), transfers);
+    // Each method's line of the title: its objective as `eaas` computes it (the lowest delivery
+    // arrival battery) and its transfers; PB's gap against the optimum, positive (a loss).
+    for r in rows {
+        let method = r["method"].as_str().unwrap();
+        let line = t
+            .iter()
+            .find(|x| x.starts_with(&format!("{method}: ")))
+            .unwrap_or_else(|| panic!("no title line of {method}: {t:?}"));
+        let objective = r["objective"].as_f64().unwrap();
+        assert!(line.contains(&format!("{objective:.2} mAh")), "{line}");
+        let n = r["transfers"].as_array().unwrap().len();
+        assert!(line.ends_with(&format!("| {n} transfer(s)")), "{line}");
+    }
+    let pb = &rows[0];
+    let (v, optimum) = (
+        pb["objective"].as_f64().unwrap(),
+        rows[2]["objective"].as_f64().unwrap(),
+    );
+    assert!(optimum > v + 1.0, "{v} {optimum}");
+    let gap = 100.0 * (optimum - v) / optimum;
+    assert!(
+        t.iter()
+            .any(|x| x.contains(&format!("gap +{gap:.2}% vs optimal"))),
+        "{t:?}"
+    );
+    assert_eq!(count(&t, |x| x.contains("runs dry")), 0);
+}
+
+#[test]
+fn a_hop_a_drone_cannot_fly_marks_where_it_runs_dry() {
+    use swarmplan::eaas::hop_file::read_hop_file;
+    use swarmplan::plot::hop::{hop_figure_data, HopSchedule};
+    let (hop, _) = shipped_hop("plot-hop-dry.json", "none");
+    let mut doc: serde_json::Value = serde_json::from_slice(&std::fs::read(&hop).unwrap()).unwrap();
+    // Drone 1 leaves with half of what the hop's legs take from it in its own slot, without
+    // sharing (`rate_mah_per_min[drone][slot]`).
+    let legs = doc["hop"]["legs"].as_array().unwrap().clone();
+    let slot = doc["hop"]["initial_slot"][1].as_u64().unwrap() as usize;
+    let rate = |l: &serde_json::Value| l["rate_mah_per_min"][1][slot].as_f64().unwrap();
+    let need: f64 = legs
+        .iter()
+        .map(|l| l["duration_min"].as_f64().unwrap() * rate(l))
+        .sum();
+    let battery = need / 2.0;
+    doc["hop"]["drones"][1]["battery_mah"] = serde_json::json!(battery);
+    doc.as_object_mut().unwrap().remove("made_on");
+    let edited = write_tmp("plot-hop-dry-edited.json", doc.to_string().as_bytes());
+    // By hand: the leg in which drone 1's cumulative consumption reaches its battery.
+    let (mut t, mut left) = (0.0, battery);
+    let mut dry_at = None;
+    for l in &legs {
+        let (dur, rate) = (l["duration_min"].as_f64().unwrap(), rate(l));
+        if dry_at.is_none() && rate * dur >= left {
+            dry_at = Some(t + left / rate);
+        }
+        left -= rate * dur;
+        t += dur;
+    }
+    let dry_at = dry_at.unwrap();
+    let file = read_hop_file(std::path::Path::new(&edited)).unwrap();
+    let none = HopSchedule {
+        method: "none".to_string(),
+        summary: String::new(),
+        transfers: Vec::new(),
+    };
+    let fig = hop_figure_data(&file, &[none], BatteryUnit::Mah).unwrap();
+    let f = fig.figure.plans[0].failure.as_ref().expect("a failure");
+    assert_eq!(f.drone, 1);
+    assert!(close(f.time_min, dry_at), "{} {dry_at}", f.time_min);
+    assert_axes_hold_every_value(&fig.figure);
+    let out = plot_hop(&edited, "none");
+    assert!(out.status.success(), "{out:?}");
+    let t = texts(&String::from_utf8(out.stdout).unwrap());
+    assert_eq!(
+        count(&t, |x| x.starts_with("drone 1 runs dry at")),
+        1,
+        "{t:?}"
+    );
+    assert!(
+        t.iter().any(|x| x.starts_with("none: does not fly")),
+        "{t:?}"
+    );
+}
+
+#[test]
+fn plot_refuses_a_hop_method_without_a_schedule_and_a_plan_beside_a_hop() {
+    let (hop, _) = shipped_hop("plot-hop-refuse.json", "pb");
+    let out = plot_hop(&hop, "pb,fluid");
+    assert_eq!(out.status.code(), Some(2), "{out:?}");
+    assert!(String::from_utf8_lossy(&out.stderr).contains("[E8004] --methods"));
+    let out = swarmplan(&["plot", "--hop-file", &hop, "--compare", &hop, "-o", "-"]);
+    assert_eq!(out.status.code(), Some(2), "{out:?}");
+    assert!(String::from_utf8_lossy(&out.stderr).contains("[E0007]"));
+}
+
+/// The README's figure, `docs/src/figures/plan.svg`, is what its caption's commands draw today:
+/// PB on request r00029 against the optimal route with exact sharing. Drawn again here, it must
+/// be the same bytes; `SWARMPLAN_BLESS=1 cargo test --release --test cli_plot` writes it anew
+/// after a change to the figure.
+#[test]
+fn the_readme_figure_is_what_its_commands_draw() {
+    let solve = |name: &str, extra: &[&str]| {
+        let mut args = vec!["solve", "--request-id", "r00029", "--json"];
+        args.extend_from_slice(extra);
+        let out = swarmplan(&args);
+        assert!(out.status.success(), "{out:?}");
+        write_tmp(name, &out.stdout)
+    };
+    let pb = solve("readme-pb.json", &["--sharing", "pb"]);
+    let exact = solve(
+        "readme-exact.json",
+        &["--route", "optimal", "--sharing", "exact"],
+    );
+    let out = swarmplan(&["plot", "--plan", &pb, "--compare", &exact, "-o", "-"]);
+    assert!(out.status.success(), "{out:?}");
+    let figure = repo_path("docs/src/figures/plan.svg");
+    if std::env::var_os("SWARMPLAN_BLESS").is_some() {
+        std::fs::write(&figure, &out.stdout).unwrap();
+    }
+    let committed = std::fs::read(&figure).unwrap_or_default();
+    assert!(
+        committed == out.stdout,
+        "{} is not what `plot` draws today: SWARMPLAN_BLESS=1 cargo test --release --test \
+         cli_plot writes it anew",
+        figure.display()
+    );
+    let t = texts(&String::from_utf8(out.stdout).unwrap());
+    assert!(t
+        .iter()
+        .any(|x| x.starts_with("gap of the plan against the reference")));
+    // The README shows this figure under the commands drawn here.
+    let readme = std::fs::read_to_string(repo_path("README.md")).unwrap();
+    for line in [
+        "](docs/src/figures/plan.svg)",
+        "solve --request-id r00029 --json > pb.json",
+        "solve --request-id r00029 --route optimal --sharing exact --json > exact.json",
+        "plot --plan pb.json --compare exact.json",
+    ] {
+        assert!(readme.contains(line), "README lacks `{line}`");
+    }
+}

@@ -596,3 +596,80 @@ fn human_output_uses_the_json_names() {
     );
     assert!(!eaas.contains("Optimal"), "{eaas}");
 }
+
+/// `--swarm best` on r00028 of paper-195, where `--sharing none` (no support drone) beats the
+/// optimum of the swarm pre-composition gives: its plan is the least of the swarms planned one
+/// by one (location-aware, energy-aware, no support drone), each listed with its optimum.
+#[test]
+fn swarm_best_is_the_least_of_the_swarms_planned_one_at_a_time() {
+    let dt = |extra: &[&str]| {
+        let mut args = vec!["solve", "--request-id", "r00028", "--json"];
+        args.extend_from_slice(extra);
+        let out = swarmplan(&args);
+        assert!(out.status.success(), "{out:?}");
+        json(&out)["plan"]["dt_min"].as_f64().unwrap()
+    };
+    let exact = ["--route", "optimal", "--sharing", "exact"];
+    let one_by_one = [
+        dt(&[&exact[..], &["--positioning", "location-aware"]].concat()),
+        dt(&[&exact[..], &["--positioning", "energy-aware"]].concat()),
+        dt(&[&exact[..], &["--support", "0"]].concat()),
+    ];
+    let none = dt(&["--route", "dijkstra", "--sharing", "none"]);
+    // The case of the issue: a plan without sharing beats this swarm's optimum...
+    assert!(none < one_by_one[0], "{none} {one_by_one:?}");
+    let out = swarmplan(
+        &[
+            &[
+                "solve",
+                "--request-id",
+                "r00028",
+                "--json",
+                "--swarm",
+                "best",
+            ][..],
+            &exact,
+        ]
+        .concat(),
+    );
+    assert!(out.status.success(), "{out:?}");
+    let doc = json(&out);
+    let best = doc["plan"]["dt_min"].as_f64().unwrap();
+    let least = one_by_one.iter().copied().fold(f64::INFINITY, f64::min);
+    // ...and not the best swarm's.
+    assert!(close(best, least), "{best} {one_by_one:?}");
+    assert!(best <= none, "{best} {none}");
+    let listed: Vec<f64> = doc["swarms_compared"]["swarms"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| s["dt_min"].as_f64().unwrap())
+        .collect();
+    assert_eq!(listed.len(), 3, "{doc}");
+    for (a, b) in listed.iter().zip(&one_by_one) {
+        assert!(close(*a, *b), "{listed:?} {one_by_one:?}");
+    }
+    let b = doc["swarms_compared"]["best"].as_u64().unwrap() as usize;
+    assert!(close(listed[b], least));
+    assert_eq!(
+        doc["support_drones"].as_u64().unwrap(),
+        doc["swarms_compared"]["swarms"][b]["support_drones"]
+            .as_u64()
+            .unwrap()
+    );
+    // The printed plan passes the checker, which runs the swarms' searches again.
+    let path = common::write_tmp("swarm-best.json", &out.stdout);
+    let out = swarmplan(&["check", "--plan", &path]);
+    assert_eq!(out.status.code(), Some(0), "{out:?}");
+    // The human output says which swarms the optimum is over.
+    let human = |extra: &[&str]| {
+        let out = swarmplan(&[&["solve", "--request-id", "r00028"][..], &exact, extra].concat());
+        String::from_utf8(out.stdout).unwrap()
+    };
+    assert!(human(&["--swarm", "best"]).contains("swarm: the best of 3 swarm(s)"));
+    assert!(human(&[]).contains("swarm: the optimum over this swarm only (location-aware"));
+    // Not an optimum: refused.
+    let out = swarmplan(&["solve", "--request-id", "r00028", "--swarm", "best"]);
+    assert_eq!(out.status.code(), Some(2), "{out:?}");
+    assert!(String::from_utf8_lossy(&out.stderr).contains("[E0033] --swarm best"));
+}

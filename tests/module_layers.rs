@@ -291,10 +291,11 @@ fn ungated_front_end_lines(text: &str) -> Vec<usize> {
 }
 
 /// The planning core is free of the front ends: outside `src/cli` (the command line),
-/// `src/bench/figures.rs` (the bench's SVG figures) and `src/plot/draw.rs` (a plan's), clap, plotters and indicatif are named only
-/// in attributes that apply with the `cli` feature, and no module uses `crate::cli`. With
-/// `--no-default-features --features microlp` the library builds without the three crates
-/// (`.ci/run` builds it so).
+/// `src/bench/figures.rs` (the bench's SVG figures) and `src/plot/draw.rs` (a plan's; both
+/// feature `plot`), clap, plotters and indicatif are named only in attributes that apply with
+/// the `cli` feature, and no module uses `crate::cli`. With `--no-default-features --features
+/// microlp` the library builds without the three crates, with `--features microlp,plot` with
+/// plotters alone (`.ci/run` builds both).
 #[test]
 fn the_core_names_no_front_end_crate() {
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");

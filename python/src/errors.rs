@@ -203,6 +203,16 @@ pub(crate) fn in_python_words(v: Violation) -> Violation {
                     use a method without a MILP (sharing=\"pb\" or \"fb\"; Hop.solve with \
                     \"pb\", \"fb\", \"fluid\" or \"fair\")"
             .to_string(),
+        "E8001" => "compare two plans of the same request, such as instance.plan(r) and \
+                    instance.plan(r, route=\"optimal\", sharing=\"exact\")"
+            .to_string(),
+        "E6004" => "draw it on the instance it was made on: swarmplan.plot(plan) takes a Plan's \
+                    own; Instance.plot needs an instance of the same network"
+            .to_string(),
+        "E6005" => "draw it on the instance it was made on: swarmplan.plot(plan) takes a Plan's \
+                    own; Instance.plot needs an instance with the same profile (and literal=True \
+                    if it was planned so)"
+            .to_string(),
         _ => in_python_text(&v.action),
     };
     Violation {

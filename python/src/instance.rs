@@ -18,7 +18,8 @@ use crate::args::{
 use crate::convert::{py_of, read};
 use crate::errors::{invalid, to_py_err, Result};
 use crate::hop::Hop;
-use crate::results::{Plan, RouteEvaluation};
+use crate::plot::svg_on;
+use crate::results::{read_plan, Plan, RouteEvaluation};
 use crate::worker::run_detached;
 
 /// A network, a profile and a request set, validated together.
@@ -33,8 +34,8 @@ pub(crate) struct InstanceData {
 /// together (the same rules and codes as the command line).
 ///
 /// Make one with `Instance.embedded`, `Instance.from_files` or `Instance.generate`; plan its
-/// requests (`plan`), check plans (`check`), take out a hop (`hop`) or fly a route of one's own
-/// (`evaluate_route`).
+/// requests (`plan`), check plans (`check`), draw them (`plot`), take out a hop (`hop`) or fly a
+/// route of one's own (`evaluate_route`).
 ///
 /// Attributes
 /// ----------
@@ -73,6 +74,13 @@ impl ExactKw {
         context.exact = choices.settings().map_err(|e| to_py_err(py, e))?;
         context.node_limit = Some(node_limit);
         Ok(context)
+    }
+}
+
+impl InstanceData {
+    /// The network, profile and requests.
+    pub(crate) fn problem(&self) -> &Problem {
+        &self.instance
     }
 }
 
@@ -565,7 +573,7 @@ impl Instance {
             },
             |_| Ok(()),
         )?;
-        Ok(Plan::of(&report))
+        Ok(Plan::of(&report, self.inner.clone()))
     }
 
     /// Re-verifies a plan with the independent checker.
@@ -585,22 +593,47 @@ impl Instance {
     /// SwarmplanError
     ///     E6001 for text that is no plan document.
     fn check(&self, py: Python<'_>, plan: &Bound<'_, PyAny>) -> PyResult<Py<PyAny>> {
-        let text = if let Ok(typed) = plan.cast::<Plan>() {
-            typed.get().document().to_string()
-        } else if let Ok(t) = plan.extract::<String>() {
-            t
-        } else {
-            py.import("json")?
-                .getattr("dumps")?
-                .call1((plan,))?
-                .extract()?
-        };
-        let report = swarmplan::check::plan_file::parse_plan_file(&text, "the plan given")
-            .map_err(|e| to_py_err(py, e))?;
+        let report = read_plan(py, plan, "the plan given")?;
         let i = &self.inner.instance;
         let violations =
             swarmplan::check::check_report(&i.network, &i.profile, &i.requests, &report);
         py_of(py, &violations)
+    }
+
+    /// The figure of a plan drawn on this instance as SVG text, the bytes ``swarmplan plot
+    /// --network N --profile P --plan F -o out.svg`` writes; ``swarmplan.plot(plan)`` draws a
+    /// ``Plan`` on the instance it was made on.
+    ///
+    /// Parameters
+    /// ----------
+    /// plan : Plan, dict or str
+    ///     A plan as `plan` returns it, its `to_dict()`, or its JSON text (`solve --json`).
+    /// compare : Plan, dict, str or None, default None
+    ///     A second plan of the same request, drawn beside it as the reference of the gap in
+    ///     the title (``--compare``).
+    /// percent : bool, default False
+    ///     Batteries in percent of each drone's capacity instead of mAh (``--percent``).
+    ///
+    /// Returns
+    /// -------
+    /// str
+    ///     The SVG document.
+    ///
+    /// Raises
+    /// ------
+    /// SwarmplanError
+    ///     E6004, E6005 for a plan made on another network, with another profile; E8001 for a
+    ///     ``compare`` plan of another request; E6001-E6003 for text or a dict that is no plan
+    ///     document; E8003 for a plan that does not fit the instance.
+    #[pyo3(signature = (plan, compare = None, percent = false))]
+    fn plot(
+        &self,
+        py: Python<'_>,
+        plan: &Bound<'_, PyAny>,
+        compare: Option<&Bound<'_, PyAny>>,
+        percent: bool,
+    ) -> PyResult<String> {
+        svg_on(py, &self.inner, plan, compare, percent)
     }
 
     /// Hop `index` of a request's plan, as `swarmplan eaas` takes it (by default the plan of PB

@@ -6,8 +6,8 @@
 //!
 //! One module per concern: [`errors`] (the exception and the core's messages in the package's
 //! words), [`args`] (arguments read as the core's values), [`convert`] (serde data <-> Python),
-//! [`worker`] (solves off the GIL), [`results`] (the typed results), [`instance`], [`hop`] and
-//! [`bench`] (the classes and functions of the package).
+//! [`worker`] (solves off the GIL), [`results`] (the typed results), [`instance`], [`hop`],
+//! [`plot`] and [`bench`] (the classes and functions of the package).
 
 mod args;
 mod bench;
@@ -15,6 +15,7 @@ mod convert;
 mod errors;
 mod hop;
 mod instance;
+mod plot;
 mod results;
 mod worker;
 
@@ -53,6 +54,7 @@ fn _swarmplan(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<HopEvaluation>()?;
     m.add_class::<RouteEvaluation>()?;
     m.add_function(wrap_pyfunction!(run_bench, m)?)?;
+    m.add_function(wrap_pyfunction!(plot::plot, m)?)?;
     m.add_function(wrap_pyfunction!(shipped_names, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     // The crate's defaults, which the keywords left as `None` take.

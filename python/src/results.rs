@@ -8,8 +8,13 @@ use pyo3::prelude::*;
 use pyo3::types::PyAny;
 use pythonize::pythonize;
 use serde::Serialize;
+use std::sync::Arc;
+use swarmplan::check::plan_file::parse_plan_file;
+use swarmplan::compose::RequestReport;
 
 use crate::convert::json;
+use crate::errors::to_py_err;
+use crate::instance::InstanceData;
 
 /// The field `name` of a document as Python data (`None` when absent).
 fn field(py: Python<'_>, value: &serde_json::Value, name: &str) -> PyResult<Py<PyAny>> {
@@ -32,24 +37,29 @@ fn shown(value: &serde_json::Value, path: &str) -> String {
 
 /// A typed result: a `#[pyclass]` over a serde document, one getter per top-level field
 /// (each with its docstring), `to_dict()`, `to_json()`, equality and a short `repr` of the
-/// fields at `repr` paths.
+/// fields at `repr` paths. After the fields, `with { name: Type }` adds fields of the Rust
+/// side (given to `of`, not attributes in Python, not compared by equality) and `methods { ... }`
+/// more Python methods.
 macro_rules! result_class {
     (
         $(#[doc = $doc:literal])*
         $rust:ident as $py:literal, repr($($path:literal),*) {
             $( $(#[doc = $fdoc:literal])* $field:ident ),* $(,)?
         }
+        $(with { $($(#[doc = $xdoc:literal])* $xname:ident: $xty:ty),* $(,)? })?
+        $(methods { $($methods:tt)* })?
     ) => {
         $(#[doc = $doc])*
         #[pyclass(frozen, module = "swarmplan", name = $py)]
         pub(crate) struct $rust {
             value: serde_json::Value,
+            $($($(#[doc = $xdoc])* $xname: $xty,)*)?
         }
 
         impl $rust {
             /// The result of the crate's serde data.
-            pub(crate) fn of<T: Serialize>(data: &T) -> $rust {
-                $rust { value: json(data) }
+            pub(crate) fn of<T: Serialize>(data: &T $($(, $xname: $xty)*)?) -> $rust {
+                $rust { value: json(data) $($(, $xname)*)? }
             }
 
             /// The document (`Instance.check` reads a `Plan`'s).
@@ -104,13 +114,16 @@ macro_rules! result_class {
                     .collect();
                 format!("{}({})", $py, fields.join(", "))
             }
+
+            $($($methods)*)?
         }
     };
 }
 
 result_class! {
     /// A planned request: the document ``swarmplan solve --json`` prints, which
-    /// ``Instance.check`` verifies.
+    /// ``Instance.check`` verifies and ``swarmplan.plot`` draws (on the instance that made it;
+    /// Jupyter shows a plan as that figure).
     ///
     /// Attributes are the document's top-level fields; nested values are dicts and lists.
     /// ``to_dict()`` is the whole document.
@@ -141,6 +154,49 @@ result_class! {
         /// The settings the plan was made with (dict).
         settings,
     }
+    with {
+        /// The instance the plan was made on, shared (its network and profile draw the figure).
+        made_by: Arc<InstanceData>,
+    }
+    methods {
+        /// The plan's figure as SVG text, so that Jupyter shows a plan as its figure: the same
+        /// as ``swarmplan.plot(plan)``.
+        ///
+        /// Returns
+        /// -------
+        /// str
+        ///     The SVG document.
+        fn _repr_svg_(slf: &Bound<'_, Self>) -> PyResult<String> {
+            crate::plot::plot(slf.py(), slf, None, false)
+        }
+    }
+}
+
+impl Plan {
+    /// The instance the plan was made on.
+    pub(crate) fn made_by(&self) -> &InstanceData {
+        &self.made_by
+    }
+}
+
+/// A plan given to a function: a `Plan`, its `to_dict()` or its JSON text, read as the command
+/// line reads a plan file (E6001-E6003 naming `origin`).
+pub(crate) fn read_plan(
+    py: Python<'_>,
+    plan: &Bound<'_, PyAny>,
+    origin: &str,
+) -> PyResult<RequestReport> {
+    let text = if let Ok(typed) = plan.cast::<Plan>() {
+        typed.get().document().to_string()
+    } else if let Ok(t) = plan.extract::<String>() {
+        t
+    } else {
+        py.import("json")?
+            .getattr("dumps")?
+            .call1((plan,))?
+            .extract()?
+    };
+    parse_plan_file(&text, origin).map_err(|e| to_py_err(py, e))
 }
 
 result_class! {

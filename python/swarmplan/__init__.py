@@ -36,6 +36,7 @@ from ._swarmplan import (
     RouteEvaluation,
     SwarmplanError,
     __version__,
+    plot,
     shipped_names,
 )
 from ._swarmplan import run_bench as _run_bench
@@ -60,6 +61,7 @@ __all__ = [
     "__version__",
     "bench",
     "evaluate",
+    "plot",
     "shipped_names",
 ]
 

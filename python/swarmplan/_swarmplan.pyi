@@ -60,12 +60,15 @@ class SwarmplanError(Exception):
     violations: List[Dict[str, str]]
 
 class Plan:
-    """A planned request: the document ``swarmplan solve --json`` prints."""
+    """A planned request: the document ``swarmplan solve --json`` prints. It keeps the instance
+    it was made on, which ``plot`` draws it on."""
 
     def to_dict(self) -> Dict[str, Any]:
         """The whole result as plain data (the command line's ``--json`` document)."""
     def to_json(self) -> str:
         """The whole result as JSON text."""
+    def _repr_svg_(self) -> str:
+        """The plan's figure, ``plot(self)``: Jupyter shows a plan as it."""
 
     @property
     def schema_version(self) -> int: ...
@@ -273,6 +276,13 @@ class Instance:
         """Plans one request; ``to_dict()`` is the document ``swarmplan solve --json`` prints."""
     def check(self, plan: Union[Plan, str, Dict[str, Any]]) -> List[Dict[str, str]]:
         """Every violation the independent checker finds in a plan (empty: it passes)."""
+    def plot(
+        self,
+        plan: Union[Plan, str, Dict[str, Any]],
+        compare: Union[None, Plan, str, Dict[str, Any]] = None,
+        percent: bool = False,
+    ) -> str:
+        """The SVG ``swarmplan plot`` writes for the plan (and ``compare``) on this instance."""
     def hop(
         self,
         request: RequestLike,
@@ -445,6 +455,15 @@ def run_bench(
     command: Optional[Sequence[str]] = None,
 ) -> Dict[str, Any]:
     """A bench run of the core into ``out`` (no figures); see :func:`swarmplan.bench`."""
+
+def plot(
+    plan: Plan,
+    compare: Union[None, Plan, str, Dict[str, Any]] = None,
+    percent: bool = False,
+) -> str:
+    """The SVG ``swarmplan plot`` writes for the plan (and ``compare``, a plan of the same
+    request), drawn on the instance the plan was made on; ``percent`` for batteries in % of
+    capacity."""
 
 def shipped_names() -> Dict[str, List[str]]:
     """The names of the shipped networks and profiles."""

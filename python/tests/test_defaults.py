@@ -85,10 +85,10 @@ def test_an_unknown_method_lists_the_methods(paper):
 DOCUMENTED = [
     swarmplan.Instance.embedded, swarmplan.Instance.from_files, swarmplan.Instance.generate,
     swarmplan.Instance.request, swarmplan.Instance.plan, swarmplan.Instance.check,
-    swarmplan.Instance.hop, swarmplan.Instance.evaluate_route,
+    swarmplan.Instance.plot, swarmplan.Instance.hop, swarmplan.Instance.evaluate_route,
     swarmplan.Hop.from_file, swarmplan.Hop.from_json, swarmplan.Hop.write, swarmplan.Hop.moves,
     swarmplan.Hop.solve, swarmplan.Hop.compare, swarmplan.Hop.evaluate,
-    swarmplan.evaluate, swarmplan.bench, swarmplan.BenchResult.frame,
+    swarmplan.evaluate, swarmplan.plot, swarmplan.bench, swarmplan.BenchResult.frame,
 ]
 
 

@@ -18,8 +18,8 @@
 //! - `summary.json` ([`Summary`]), the SVG figures of [`figures`] and the page `report.html`
 //!   that shows them all (`report`).
 
-/// Drawn by the front ends only (feature `cli`, which brings plotters).
-#[cfg(feature = "cli")]
+/// Drawn with plotters (feature `plot`; `swarmplan bench` writes them, feature `cli`).
+#[cfg(feature = "plot")]
 pub mod figures;
 mod files;
 mod findings;

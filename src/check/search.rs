@@ -16,7 +16,7 @@
 //!   This is the one check that uses the planner: nothing else can say what its search did.
 
 use super::{close, RELATIVE_TOLERANCE};
-use crate::compose::{Context, RequestReport};
+use crate::compose::{Context, RequestReport, SwarmsCompared};
 use crate::eaas::exact::ExactStatus;
 use crate::eaas::exact_hop::HopGoal;
 use crate::error::Violation;
@@ -181,6 +181,64 @@ pub fn check_consistency(report: &RequestReport) -> Vec<Violation> {
             ));
         }
     }
+    if let Some(c) = &report.swarms_compared {
+        out.extend(swarms_compared_consistency(report, c));
+    }
+    out
+}
+
+/// P5047: `swarms_compared` (`solve --swarm best`) names as best the least delivery time
+/// among its swarms, and the plan is that swarm's: its positioning, support drones and `dt`.
+fn swarms_compared_consistency(report: &RequestReport, c: &SwarmsCompared) -> Vec<Violation> {
+    let mut out = Vec::new();
+    let least = c
+        .swarms
+        .iter()
+        .enumerate()
+        .filter_map(|(i, s)| s.dt_min.map(|t| (i, t)))
+        .fold(None, |acc: Option<(usize, f64)>, (i, t)| match acc {
+            Some((_, u)) if u <= t => acc,
+            _ => Some((i, t)),
+        });
+    let best_dt = |b: usize| c.swarms.get(b).and_then(|s| s.dt_min);
+    let names_least = match (c.best, least) {
+        (Some(b), Some((_, t))) => best_dt(b).is_some_and(|u| close(u, t)),
+        (None, None) => true,
+        _ => false,
+    };
+    if !names_least {
+        out.push(consistency(
+            "swarms_compared.best",
+            format!(
+                "states {}, the least delivery time among the swarms is swarm {}",
+                json_name(&c.best),
+                json_name(&least.map(|l| l.0))
+            ),
+        ));
+        return out;
+    }
+    if let Some(s) = c.best.and_then(|b| c.swarms.get(b)) {
+        let o = report.options;
+        let same_swarm = report.support_drones == s.support_drones
+            && (s.support_drones == 0 || o.positioning == s.positioning);
+        let same_dt =
+            report.plan.delivered() && s.dt_min.is_some_and(|t| close(t, report.plan.dt_min));
+        if !same_swarm || !same_dt {
+            out.push(consistency(
+                "swarms_compared",
+                format!(
+                    "the best swarm ({}, {} support drone(s), dt {}) is not the plan's ({}, {} \
+                     support drone(s), dt {})",
+                    json_name(&s.positioning),
+                    s.support_drones,
+                    json_name(&s.dt_min),
+                    json_name(&o.positioning),
+                    report.support_drones,
+                    report.plan.dt_min
+                ),
+            ));
+        }
+    }
     out
 }
 
@@ -225,6 +283,12 @@ pub fn check_rerun(
         };
         again.route_gap = Some(gap);
     }
+    if let Some(c) = &report.swarms_compared {
+        let Ok(joint) = context.joint_optimum(request, c.support) else {
+            return Vec::new();
+        };
+        again.swarms_compared = Some(SwarmsCompared::new(&joint, c.support));
+    }
     let stated = serde_json::to_value(report).expect("plain data");
     let rerun = serde_json::to_value(&again).expect("plain data");
     let mut out = Vec::new();
@@ -234,6 +298,7 @@ pub fn check_rerun(
         &["plan", "route_optimality"],
         &["plan", "outcome"],
         &["route_gap"],
+        &["swarms_compared"],
     ] {
         compare(
             &path.join("."),

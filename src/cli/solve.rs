@@ -60,6 +60,12 @@ pub struct SolveArgs {
     /// a stop it stops keeps its incumbent, `status: feasible`.
     #[arg(long, value_name = "N", default_value_t = crate::node_time::DEFAULT_STOP_NODE_LIMIT)]
     pub node_limit: u64,
+    /// The swarms `--route optimal --sharing exact` ranges over: `this`, the swarm
+    /// pre-composition gives for `--positioning` and `--support`; `best`, the least delivery
+    /// time over both positionings (with `--support`) and the swarm without support drones,
+    /// the swarms `bench --joint` compares with (`swarms_compared` in the JSON).
+    #[arg(long, value_enum, default_value = "this")]
+    pub swarm: SwarmScope,
     /// Print the full report as JSON.
     #[arg(long)]
     pub json: bool,
@@ -71,6 +77,15 @@ pub struct SolveArgs {
     /// violations go to stderr, and the exit code is 1 when there is one.
     #[arg(long)]
     pub check: bool,
+}
+
+/// The swarms an optimum ranges over (`solve --swarm`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum SwarmScope {
+    /// The swarm pre-composition gives for `--positioning` and `--support`.
+    This,
+    /// The best of both positionings and the swarm without support drones.
+    Best,
 }
 
 /// Runs the subcommand; exit code 0 when the request is delivered, 1 when it fails.
@@ -114,6 +129,16 @@ pub fn run(args: SolveArgs) -> Result<i32> {
         support: args.support,
     };
     context.validate(&options)?;
+    if args.swarm == SwarmScope::Best
+        && (options.route != RouteMethod::Optimal || options.sharing != SharingPolicy::Exact)
+    {
+        return Err(Error::invalid(
+            "E0033",
+            "--swarm best",
+            "the best swarm is that of an optimum: it applies to --route optimal --sharing exact",
+            "add --route optimal --sharing exact, or leave --swarm out",
+        ));
+    }
     for note in crate::experiment::applicable_options(&[options], args.gap, args.support)? {
         eprintln!("{note}");
     }
@@ -122,7 +147,10 @@ pub fn run(args: SolveArgs) -> Result<i32> {
         .sharing
         .is_exact()
         .then(|| super::progress::spinner(format!("planning request {}", request.id)));
-    let mut report = context.plan(&request, &options)?;
+    let mut report = match args.swarm {
+        SwarmScope::This => context.plan(&request, &options)?,
+        SwarmScope::Best => context.plan_best_swarm(&request, &options)?,
+    };
     if args.gap {
         report.route_gap = Some(context.route_gap(&request, &report)?);
     }
@@ -269,6 +297,7 @@ fn print_human(report: &RequestReport) -> Result<()> {
             o.stops_solved,
         );
     }
+    print_swarm_scope(report)?;
     if plan.delivered() {
         outln!(
             "delivered: dt {:.2} min = tt {:.2} + nt {:.2}; {} stop(s); {:.2} ms",
@@ -299,5 +328,48 @@ fn print_human(report: &RequestReport) -> Result<()> {
             _ => outln!("route gap: n/a, the optimal route over stop sequences does not deliver either"),
         }
     }
+    Ok(())
+}
+
+/// Which swarm an optimum is over: the swarms compared (`--swarm best`), or this swarm only.
+fn print_swarm_scope(report: &RequestReport) -> Result<()> {
+    let o = report.options;
+    if o.route != RouteMethod::Optimal || o.sharing != SharingPolicy::Exact {
+        return Ok(());
+    }
+    let name = |positioning: Positioning, support: usize| match support {
+        0 => "no support drone".to_string(),
+        1 => format!("{}, 1 support drone", json_name(&positioning)),
+        n => format!("{}, {n} support drones", json_name(&positioning)),
+    };
+    let Some(c) = &report.swarms_compared else {
+        outln!(
+            "swarm: the optimum over this swarm only ({}); --swarm best ranges over both \
+             positionings and the swarm without support drones",
+            name(o.positioning, report.support_drones)
+        );
+        return Ok(());
+    };
+    let each: Vec<String> = c
+        .swarms
+        .iter()
+        .enumerate()
+        .map(|(i, s)| {
+            let dt = s
+                .dt_min
+                .map_or("does not deliver".to_string(), |t| format!("dt {t:.2} min"));
+            let best = if c.best == Some(i) { " (best)" } else { "" };
+            let proven = if s.proven { "" } else { ", unproven" };
+            format!(
+                "{}: {dt}{proven}{best}",
+                name(s.positioning, s.support_drones)
+            )
+        })
+        .collect();
+    outln!(
+        "swarm: the best of {} swarm(s): {}",
+        c.swarms.len(),
+        each.join("; ")
+    );
     Ok(())
 }

@@ -44,7 +44,9 @@ pub use request::{
     Context, PlanOptions, PlanSettings, RequestReport, RouteGap, SwarmChoice,
     ALL_PAIRS_BYTES_PER_PAIR, FLOYD_WARSHALL_MAX_NODES,
 };
-pub use split::{GapSplit, JointOptimum, JointSplit, SplitLabel, SwarmOptimum};
+pub use split::{
+    GapSplit, JointOptimum, JointSplit, SplitLabel, SwarmDt, SwarmOptimum, SwarmsCompared,
+};
 
 use crate::eaas::exact_hop::HopSolveCounts;
 use crate::eaas::SharingPolicy;

@@ -140,6 +140,10 @@ pub struct RequestReport {
     /// The settings the plan was made with (absent in plans of earlier versions).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub settings: Option<PlanSettings>,
+    /// `solve --swarm best`: the swarms the optimum ranged over, each one's optimum; the plan
+    /// is the best swarm's.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub swarms_compared: Option<super::SwarmsCompared>,
 }
 
 /// A plan's delivery time against the optimal route (`--route optimal`) of the same request,
@@ -575,6 +579,7 @@ impl Context {
                     made_on: Some(self.fingerprint.clone()),
                     route_gap: None,
                     settings: Some(self.settings()),
+                    swarms_compared: None,
                 }
             })
             .collect())

@@ -5,7 +5,7 @@
 use super::optimal::least_unsettled;
 use super::plan::{Plan, PlanOutcome, RouteOptimality};
 use super::request::{elapsed_ms, Context, RequestReport};
-use super::{Planner, RouteMethod};
+use super::{PlanOptions, Planner, RouteMethod};
 use crate::eaas::exact_hop::HopGoal;
 use crate::eaas::exact_hop::HopSolveCounts;
 use crate::eaas::milp::Reorder;
@@ -63,6 +63,58 @@ impl JointOptimum {
     /// The joint optimum's delivery time, when some swarm delivers.
     pub fn dt_min(&self) -> Option<f64> {
         self.best.and_then(|b| self.swarms[b].dt_min())
+    }
+}
+
+/// The swarms an optimum ranged over (`solve --swarm best`) and each one's optimum: the plan
+/// printed is the best one's.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SwarmsCompared {
+    /// The support drones asked (`--support`; `None`: the redundancy table's count), with which
+    /// both positionings were pre-composed.
+    pub support: Option<usize>,
+    /// Every swarm, in [`JointOptimum::swarms`]' order.
+    pub swarms: Vec<SwarmDt>,
+    /// Index in `swarms` of the least delivery time (the first among equals); `None` when no
+    /// swarm delivers.
+    pub best: Option<usize>,
+}
+
+/// One swarm's optimum under `--route optimal --sharing exact`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SwarmDt {
+    /// The support positioning the swarm was pre-composed with.
+    pub positioning: Positioning,
+    /// Support drones flown.
+    pub support_drones: usize,
+    /// The optimum's delivery time, min; `None` when the swarm does not deliver.
+    pub dt_min: Option<f64>,
+    /// Whether every solve of the swarm's search is proven.
+    pub proven: bool,
+    /// The certified distance of `dt_min` to the swarm's infimum, min (0 when attained).
+    pub epsilon_min: f64,
+}
+
+impl SwarmsCompared {
+    /// The swarms of `j`, the joint optimum of [`Context::joint_optimum`] with `support`.
+    pub fn new(j: &JointOptimum, support: Option<usize>) -> SwarmsCompared {
+        SwarmsCompared {
+            support,
+            swarms: j
+                .swarms
+                .iter()
+                .map(|s| SwarmDt {
+                    positioning: s.positioning,
+                    support_drones: s.support_drones,
+                    dt_min: s.dt_min(),
+                    proven: s.optimality().proven(),
+                    epsilon_min: s.optimality().epsilon_min,
+                })
+                .collect(),
+            best: j.best,
+        }
     }
 }
 
@@ -128,6 +180,32 @@ pub struct JointSplit {
     pub splits: Vec<Option<GapSplit>>,
 }
 
+/// Every swarm's optimum, with what made it: the swarms' choices and their planners under
+/// `exact` (which the replays of the gap split reuse).
+struct Optima {
+    choices: Vec<(Positioning, super::SwarmChoice)>,
+    planners: Vec<Planner>,
+    swarms: Vec<SwarmOptimum>,
+    best: Option<usize>,
+}
+
+impl Optima {
+    /// The joint optimum, `execution_ms` the time it took.
+    fn joint(self, execution_ms: f64) -> JointOptimum {
+        let proven = self.swarms.iter().all(|s| s.optimality().proven());
+        let epsilon_min = self
+            .best
+            .map_or(0.0, |b| self.swarms[b].optimality().epsilon_min);
+        JointOptimum {
+            swarms: self.swarms,
+            best: self.best,
+            proven,
+            epsilon_min,
+            execution_ms,
+        }
+    }
+}
+
 impl Context {
     /// The joint optimum of `request` and the gap split of every heuristic report among
     /// `reports` (plans of this request in this context).
@@ -142,10 +220,92 @@ impl Context {
     /// Those of [`Context::swarm_for`], [`Planner::compose`] and the hop solves.
     pub fn joint_split(&self, request: &Request, reports: &[RequestReport]) -> Result<JointSplit> {
         let start = Instant::now();
+        let supports: Vec<Option<usize>> = reports.iter().map(|r| r.options.support).collect();
+        let Optima {
+            choices,
+            planners,
+            swarms,
+            best,
+        } = self.swarm_optima(request, &supports)?;
+        let mut splits = Vec::with_capacity(reports.len());
+        for report in reports {
+            let o = report.options;
+            if o.route == RouteMethod::Optimal || o.sharing.is_exact() {
+                splits.push(None);
+                continue;
+            }
+            let s = choices
+                .iter()
+                .position(|(_, c)| c.swarm == report.swarm)
+                .expect("every report's swarm is among the swarms considered");
+            let best_swarm = best.map(|b| &swarms[b]);
+            splits.push(Some(self.split_one(
+                report,
+                &planners[s],
+                &swarms[s],
+                best_swarm,
+            )?));
+        }
+        let optima = Optima {
+            choices,
+            planners,
+            swarms,
+            best,
+        };
+        Ok(JointSplit {
+            joint: optima.joint(elapsed_ms(start)),
+            splits,
+        })
+    }
+
+    /// The joint optimum of `request` alone: the least delivery time over the swarms of
+    /// pre-composition under location- and energy-aware positioning with `support` support
+    /// drones (`None`: the redundancy table's count), and the swarm without support drones,
+    /// each planned with `--route optimal --sharing exact` (what `solve --swarm best` answers).
+    ///
+    /// # Errors
+    /// Those of [`Context::swarm_for`], [`Planner::compose`] and the hop solves.
+    pub fn joint_optimum(&self, request: &Request, support: Option<usize>) -> Result<JointOptimum> {
+        let start = Instant::now();
+        let optima = self.swarm_optima(request, &[support])?;
+        Ok(optima.joint(elapsed_ms(start)))
+    }
+
+    /// `solve --swarm best`: the plan of the best swarm of [`Context::joint_optimum`] with
+    /// `options.support` (the swarm of `options` when none delivers), every swarm's optimum in
+    /// `swarms_compared`. `options` are `--route optimal --sharing exact`'s; the plan's options
+    /// name the best swarm's positioning and support drones.
+    ///
+    /// # Errors
+    /// Those of [`Context::joint_optimum`] and [`Context::plan`].
+    pub fn plan_best_swarm(
+        &self,
+        request: &Request,
+        options: &PlanOptions,
+    ) -> Result<RequestReport> {
+        let joint = self.joint_optimum(request, options.support)?;
+        let chosen = match joint.best {
+            Some(b) => PlanOptions {
+                positioning: joint.swarms[b].positioning,
+                support: Some(joint.swarms[b].support_drones),
+                ..*options
+            },
+            None => *options,
+        };
+        let mut report = self.plan(request, &chosen)?;
+        report.swarms_compared = Some(SwarmsCompared::new(&joint, options.support));
+        Ok(report)
+    }
+
+    /// Every swarm's optimum under `--route optimal --sharing exact`: location- and
+    /// energy-aware positioning for each support count of `supports` (the redundancy table's
+    /// when empty), then the swarm without support drones; a swarm equal to an earlier one is
+    /// left out.
+    fn swarm_optima(&self, request: &Request, supports: &[Option<usize>]) -> Result<Optima> {
         let mut keys: Vec<(Positioning, Option<usize>)> = Vec::new();
-        for r in reports {
+        for &support in supports {
             for positioning in [Positioning::LocationAware, Positioning::EnergyAware] {
-                let key = (positioning, r.options.support);
+                let key = (positioning, support);
                 if !keys.contains(&key) {
                     keys.push(key);
                 }
@@ -185,36 +345,11 @@ impl Context {
             .map(|s| s.dt_min().unwrap_or(f64::INFINITY))
             .collect();
         let best = least_unsettled(&dts, &vec![false; dts.len()]);
-        let mut splits = Vec::with_capacity(reports.len());
-        for report in reports {
-            let o = report.options;
-            if o.route == RouteMethod::Optimal || o.sharing.is_exact() {
-                splits.push(None);
-                continue;
-            }
-            let s = choices
-                .iter()
-                .position(|(_, c)| c.swarm == report.swarm)
-                .expect("every report's swarm is among the swarms considered");
-            let best_swarm = best.map(|b| &swarms[b]);
-            splits.push(Some(self.split_one(
-                report,
-                &planners[s],
-                &swarms[s],
-                best_swarm,
-            )?));
-        }
-        let proven = swarms.iter().all(|s| s.optimality().proven());
-        let epsilon_min = best.map_or(0.0, |b| swarms[b].optimality().epsilon_min);
-        Ok(JointSplit {
-            joint: JointOptimum {
-                swarms,
-                best,
-                proven,
-                epsilon_min,
-                execution_ms: elapsed_ms(start),
-            },
-            splits,
+        Ok(Optima {
+            choices,
+            planners,
+            swarms,
+            best,
         })
     }
 

@@ -187,6 +187,52 @@ fn unfit(k: usize, what: &str) -> Error {
     )
 }
 
+/// The plans of one figure, checked before anything is computed: each made on `network` and
+/// `profile` (its `made_on` fingerprint, when it has one), and a compared plan answering the
+/// same request as the plan.
+///
+/// # Errors
+/// [`Error::Invalid`] E6004, E6005 for a plan made on another network, with another profile
+/// (the checker's [`crate::check::report::made_on_another_instance`]); E8001 (field
+/// `--compare`) for a second plan of another request (its id, ends or packages differ).
+pub fn check_plans(network: &Network, profile: &Profile, reports: &[&RequestReport]) -> Result<()> {
+    for r in reports {
+        let mismatch = crate::check::report::made_on_another_instance(network, profile, r);
+        if !mismatch.is_empty() {
+            return Err(Error::Invalid(mismatch));
+        }
+    }
+    match reports {
+        [a, b] => same_request(a, b),
+        _ => Ok(()),
+    }
+}
+
+/// E8001 when the compared plan answers another request (its id, ends or packages differ).
+fn same_request(a: &RequestReport, b: &RequestReport) -> Result<()> {
+    if a.request == b.request {
+        return Ok(());
+    }
+    let (x, y) = (&a.request, &b.request);
+    Err(Error::invalid(
+        "E8001",
+        "--compare",
+        format!(
+            "a plan of another request: {} {} -> {} ({:?} kg) against {} {} -> {} ({:?} kg)",
+            x.id,
+            x.source,
+            x.destination,
+            x.packages_kg,
+            y.id,
+            y.source,
+            y.destination,
+            y.packages_kg
+        ),
+        "compare two plans of the same request, such as `solve ... --sharing pb --json` and \
+         `solve ... --route optimal --sharing exact --json`",
+    ))
+}
+
 /// The figure of `reports` (a plan, and the plan compared with it) on the instance.
 ///
 /// # Arguments

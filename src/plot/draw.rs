@@ -9,9 +9,12 @@
 //! battery series, a label `dD` per pad bar, `runs dry` at a failure; transfers are the only
 //! rectangles filled with [`TRANSFER_COLOUR`](crate::plot::draw::TRANSFER_COLOUR).
 
-use super::data::{BatteryUnit, Figure, PlanData, StopSchedule};
+use super::data::{check_plans, figure_data, BatteryUnit, Figure, PlanData, StopSchedule};
+use super::hop::HopFigure;
 use crate::bench::figures::PRINT_COLOURS;
-use crate::problem::Role;
+use crate::compose::RequestReport;
+use crate::error::{Error, Result};
+use crate::problem::{Network, Profile, Role};
 use plotters::coord::combinators::WithKeyPoints;
 use plotters::coord::types::RangedCoordi32;
 use plotters::coord::Shift;
@@ -181,6 +184,42 @@ fn stops_px(p: &PlanData) -> u32 {
         .sum()
 }
 
+/// The SVG of one plan, or of two plans of the same request side by side, as `swarmplan plot`
+/// writes it and the Python package's `swarmplan.plot` returns it: the plans checked
+/// ([`check_plans`]), their figure computed ([`figure_data`]) and drawn ([`svg`]).
+///
+/// # Arguments
+/// * `network`, `profile` - the instance the plans were made on.
+/// * `reports` - the plan, then the plan compared with it, if any.
+/// * `unit` - the battery axis' unit.
+///
+/// # Errors
+/// Those of [`check_plans`] (E6004, E6005, E8001) and of [`figure_data`] (E8003);
+/// [`Error::Internal`] E8005 when plotters cannot draw the figure (a bug).
+///
+/// # Example
+/// ```no_run
+/// # fn main() -> swarmplan::error::Result<()> {
+/// use swarmplan::plot::data::BatteryUnit;
+/// use swarmplan::problem::shipped;
+/// let (network, profile) = (shipped::network("paper-195")?, shipped::profile("paper")?);
+/// let plan = swarmplan::check::plan_file::read_plan_file(std::path::Path::new("plan.json"))?;
+/// let svg = swarmplan::plot::draw::plans_svg(&network, &profile, &[&plan], BatteryUnit::Mah)?;
+/// assert!(svg.starts_with("<svg"));
+/// # Ok(())
+/// # }
+/// ```
+pub fn plans_svg(
+    network: &Network,
+    profile: &Profile,
+    reports: &[&RequestReport],
+    unit: BatteryUnit,
+) -> Result<String> {
+    check_plans(network, profile, reports)?;
+    let figure = figure_data(network, profile, reports, unit)?;
+    svg(&figure).map_err(|e| Error::internal("E8005", format!("drawing the figure: {e}")))
+}
+
 /// The figure as SVG text.
 ///
 /// # Errors
@@ -215,6 +254,30 @@ pub fn svg(fig: &Figure) -> Drawn<String> {
             };
             draw_battery(&battery[k], fig, p, &name)?;
             draw_stops(&schedules[k], fig, p)?;
+        }
+        root.present()?;
+    }
+    Ok(text)
+}
+
+/// The SVG of a hop's figure: its title, then one battery panel per schedule, one under the
+/// other on the same axes.
+///
+/// # Errors
+/// What plotters reports when it cannot draw.
+pub fn hop_svg(h: &HopFigure) -> Drawn<String> {
+    let title_px = 20 + TITLE_LINE_PX * h.title.len() as u32;
+    let panels = h.figure.plans.len().max(1) as u32;
+    let height = title_px + BATTERY_PX * panels;
+    let mut text = String::new();
+    {
+        let root = SVGBackend::with_string(&mut text, (WIDTH_PX, height)).into_drawing_area();
+        root.fill(&WHITE)?;
+        let (title, rest) = root.split_vertically(title_px);
+        draw_title(&title, &h.title)?;
+        let rows = rest.split_evenly((panels as usize, 1));
+        for (p, area) in h.figure.plans.iter().zip(&rows) {
+            draw_battery(area, &h.figure, p, &p.combination)?;
         }
         root.present()?;
     }

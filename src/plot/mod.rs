@@ -5,9 +5,11 @@
 //!
 //! [`data`] computes what is drawn from the plan documents and the raw instance (the planning
 //! core's types and the independent checker's re-integration, no plotting crate); [`draw`]
-//! places it in an SVG with plotters, a front end's dependency (feature `cli`).
+//! places it in an SVG with plotters (feature `plot`, which `cli` includes: the command line's
+//! `swarmplan plot` and the Python package's `swarmplan.plot` draw the same bytes).
 
 pub mod data;
-/// Drawn by the front ends only (feature `cli`, which brings plotters).
-#[cfg(feature = "cli")]
+/// Drawn with plotters (feature `plot`).
+#[cfg(feature = "plot")]
 pub mod draw;
+pub mod hop;

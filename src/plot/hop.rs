@@ -1,0 +1,204 @@
+//! The figure of one hop's sharing schedules (`swarmplan plot --hop-file`): every drone's
+//! battery against time over the hop, with the in-flight transfers, for each method's schedule,
+//! one panel under the other on the same axes. The hop is a hop file's problem
+//! ([`crate::eaas::hop_file`]); the schedules are what the methods of `swarmplan eaas` return
+//! on it.
+//!
+//! As in a plan's figure ([`super::data`]), the batteries are the independent checker's
+//! re-integration of the transfers as written ([`crate::check::hop::battery_trajectory`]), so a
+//! schedule that does not fly shows its drone running dry where the re-integration says.
+
+use super::data::{BatteryUnit, DroneSeries, FailureMark, Figure, MapData, PlanData, TransferBand};
+use crate::check::hop::battery_trajectory;
+use crate::check::INTEGRATION_TOLERANCE;
+use crate::eaas::hop_file::HopFile;
+use crate::eaas::Transfer;
+use crate::error::{Error, Result};
+
+/// One method's schedule on the hop.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HopSchedule {
+    /// The method's name (`pb`, `continuous`, ...).
+    pub method: String,
+    /// What the method reports of the schedule, one line (objective, status, gap).
+    pub summary: String,
+    /// The schedule.
+    pub transfers: Vec<Transfer>,
+}
+
+/// A hop's figure: the title's lines and one battery panel per schedule.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HopFigure {
+    /// The title: the hop, then one line per schedule.
+    pub title: Vec<String>,
+    /// The panels (one [`PlanData`] per schedule: no route, no stop) and their shared axes.
+    pub figure: Figure,
+}
+
+/// The figure of the schedules on the hop of `file`.
+///
+/// # Errors
+/// E8003 when a schedule names a drone or slot the hop lacks.
+pub fn hop_figure_data(
+    file: &HopFile,
+    schedules: &[HopSchedule],
+    unit: BatteryUnit,
+) -> Result<HopFigure> {
+    let problem = &file.hop;
+    let tt_min: f64 = problem.legs.iter().map(|l| l.duration_min).sum();
+    let scale = |d: usize, b: f64| {
+        let capacity = problem.drones[d].capacity_mah;
+        match unit {
+            BatteryUnit::Mah => b,
+            BatteryUnit::Percent if capacity > 0.0 => 100.0 * b / capacity,
+            BatteryUnit::Percent => 0.0,
+        }
+    };
+    let mut plans = Vec::new();
+    for s in schedules {
+        let trajectory = battery_trajectory(problem, &s.transfers).ok_or_else(|| {
+            Error::invalid(
+                "E8003",
+                "--hop-file",
+                format!(
+                    "the {} schedule names a drone or slot the hop lacks",
+                    s.method
+                ),
+                "give the hop file the schedule was made on",
+            )
+        })?;
+        let drones: Vec<DroneSeries> = problem
+            .drones
+            .iter()
+            .enumerate()
+            .map(|(d, drone)| DroneSeries {
+                drone: d,
+                role: drone.role,
+                capacity: scale(d, drone.capacity_mah),
+                points: trajectory
+                    .iter()
+                    .map(|(t, b)| (*t, scale(d, b[d])))
+                    .collect(),
+            })
+            .collect();
+        let transfers = s
+            .transfers
+            .iter()
+            .map(|x| {
+                let span = trajectory
+                    .iter()
+                    .filter(|(t, _)| *t >= x.start_min - 1e-9 && *t <= x.end_min + 1e-9)
+                    .flat_map(|(_, b)| {
+                        [
+                            scale(x.support, b[x.support]),
+                            scale(x.consumer, b[x.consumer]),
+                        ]
+                    })
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+                        (lo.min(v), hi.max(v))
+                    });
+                TransferBand {
+                    hop: file.hop_index,
+                    support: x.support,
+                    consumer: x.consumer,
+                    start_min: x.start_min,
+                    end_min: x.end_min,
+                    energy_mah: x.energy_mah,
+                    battery_span: if span.0 <= span.1 { span } else { (0.0, 0.0) },
+                }
+            })
+            .collect();
+        let failure = first_dry(&trajectory).map(|(drone, time_min)| FailureMark {
+            drone,
+            time_min,
+            flight: format!("flying {} -> {}", file.from, file.to),
+        });
+        plans.push(PlanData {
+            combination: s.method.clone(),
+            request_id: file.request_id.clone(),
+            source: file.from.clone(),
+            destination: file.to.clone(),
+            dt_min: tt_min,
+            delivered: failure.is_none(),
+            outcome_kind: if failure.is_none() {
+                "flies"
+            } else {
+                "runs dry"
+            }
+            .to_string(),
+            outcome: s.summary.clone(),
+            route: Vec::new(),
+            stop_marks: Vec::new(),
+            drones,
+            transfers,
+            stops: Vec::new(),
+            failure,
+            failed_at: None,
+        });
+    }
+    let values = || plans.iter().flat_map(|p| p.drones.iter());
+    let lowest = values()
+        .flat_map(|d| d.points.iter().map(|q| q.1))
+        .fold(0.0, f64::min);
+    let highest = values()
+        .flat_map(|d| d.points.iter().map(|q| q.1).chain([d.capacity]))
+        .fold(0.0, f64::max);
+    let pad = 0.04 * (highest - lowest).max(1e-9);
+    let mut title = vec![format!(
+        "request {} hop {}: {} -> {} over {} ({} leg(s), {:.2} min, {} drones)",
+        file.request_id,
+        file.hop_index,
+        file.from,
+        file.to,
+        file.path.join(" "),
+        problem.legs.len(),
+        tt_min,
+        problem.drones.len()
+    )];
+    title.extend(
+        schedules
+            .iter()
+            .map(|s| format!("{}: {}", s.method, s.summary)),
+    );
+    Ok(HopFigure {
+        title,
+        figure: Figure {
+            map: MapData {
+                nodes: Vec::new(),
+                edges: Vec::new(),
+            },
+            plans,
+            unit,
+            time_range_min: (0.0, tt_min.max(1e-9)),
+            battery_range: (lowest - if lowest < 0.0 { pad } else { 0.0 }, highest + pad),
+            stop_range_min: (0.0, 0.0),
+        },
+    })
+}
+
+/// The first drone to run dry and when, min from the hop start: where its battery first falls
+/// below zero by more than the checker's tolerance (linear between the trajectory's points).
+fn first_dry(trajectory: &[(f64, Vec<f64>)]) -> Option<(usize, f64)> {
+    let dry = |b: f64| b < -INTEGRATION_TOLERANCE * (1.0 + b.abs());
+    for pair in trajectory.windows(2) {
+        let ((t0, b0), (t1, b1)) = ((pair[0].0, &pair[0].1), (pair[1].0, &pair[1].1));
+        let crossing = b1
+            .iter()
+            .enumerate()
+            .filter(|&(_, &v)| dry(v))
+            .map(|(d, &v)| {
+                let u = b0[d];
+                let at = if u > v {
+                    t0 + (t1 - t0) * u.max(0.0) / (u - v)
+                } else {
+                    t0
+                };
+                (d, at)
+            })
+            .min_by(|a, b| a.1.total_cmp(&b.1));
+        if crossing.is_some() {
+            return crossing;
+        }
+    }
+    None
+}
