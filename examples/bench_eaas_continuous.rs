@@ -19,7 +19,7 @@ use clap::Parser;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use std::path::PathBuf;
-use swarmplan::cli::inputs::{load_requests, InstanceArgs};
+use swarmplan::cli::inputs::InstanceArgs;
 use swarmplan::compose::{Context, PlanOptions, Planner, RouteMethod};
 use swarmplan::eaas::exact::continuous::{solve_continuous, ContinuousOptions, PadMethod};
 use swarmplan::eaas::exact::milp::{solve_milp, MilpOptions};
@@ -27,6 +27,7 @@ use swarmplan::eaas::exact::EndPads;
 use swarmplan::eaas::exact::{ExactOutcome, ExactStatus, Objective, Reorder};
 use swarmplan::eaas::{HopProblem, SharingPolicy};
 use swarmplan::precompose::Positioning;
+use swarmplan::problem::inputs::load_requests;
 use swarmplan::problem::Instance;
 use swarmplan::solver::MilpBackend;
 

@@ -16,9 +16,10 @@ mod bench_hop;
 use bench_hop::hop;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
+use swarmplan::eaas::exact::fluid;
+use swarmplan::eaas::exact::milp::{solve_milp, MilpOptions};
 use swarmplan::eaas::exact::EndPads;
-use swarmplan::eaas::fluid;
-use swarmplan::eaas::milp::{solve_milp, ExactStatus, MilpOptions, Objective, Reorder};
+use swarmplan::eaas::exact::{ExactStatus, Objective, Reorder};
 use swarmplan::solver::MilpBackend;
 
 fn median(mut v: Vec<f64>) -> f64 {

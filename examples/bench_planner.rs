@@ -26,11 +26,12 @@ use petgraph::graph::{DiGraph, NodeIndex};
 use std::hint::black_box;
 use std::path::PathBuf;
 use std::time::Instant;
-use swarmplan::cli::inputs::{load_requests, InstanceArgs};
+use swarmplan::cli::inputs::InstanceArgs;
 use swarmplan::compose::{Context, PlanOptions, Planner, RouteMethod};
 use swarmplan::eaas::SharingPolicy;
 use swarmplan::network::floyd_warshall::floyd_warshall;
 use swarmplan::precompose::Positioning;
+use swarmplan::problem::inputs::load_requests;
 
 /// Floyd–Warshall and planning throughput.
 #[derive(Parser)]

@@ -20,10 +20,11 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 use swarmplan::check::{check_report, plan_file};
-use swarmplan::cli::inputs::{load_requests, InstanceArgs};
+use swarmplan::cli::inputs::InstanceArgs;
 use swarmplan::compose::{Context, PlanOptions, RouteMethod};
 use swarmplan::eaas::SharingPolicy;
 use swarmplan::precompose::Positioning;
+use swarmplan::problem::inputs::load_requests;
 use swarmplan::problem::{Instance, Request};
 
 /// Plan, write, read back and check every method combination.

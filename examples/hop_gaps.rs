@@ -35,13 +35,16 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
-use swarmplan::cli::inputs::{load_requests, InstanceArgs};
+use swarmplan::cli::inputs::InstanceArgs;
 use swarmplan::compose::{Context, PlanOptions, PlanOutcome, Planner, RouteMethod};
+use swarmplan::eaas::exact::fluid;
+use swarmplan::eaas::exact::milp::{solve_milp, MilpOptions};
 use swarmplan::eaas::exact::EndPads;
-use swarmplan::eaas::milp::{solve_milp, ExactStatus, MilpOptions, Objective, Reorder};
-use swarmplan::eaas::{fluid, simulate_with, HopProblem, PolicyOptions, SharingPolicy};
+use swarmplan::eaas::exact::{ExactStatus, Objective, Reorder};
+use swarmplan::eaas::{simulate_with, HopProblem, PolicyOptions, SharingPolicy};
 use swarmplan::error::Result;
 use swarmplan::precompose::Positioning;
+use swarmplan::problem::inputs::load_requests;
 use swarmplan::problem::Instance;
 use swarmplan::problem::Request;
 use swarmplan::solver::MilpBackend;
@@ -381,7 +384,7 @@ fn request_rows(
                 continue;
             };
             let (milp_status, milp_ms, periods, checked) = if lp.status == ExactStatus::Infeasible {
-                let periods = swarmplan::eaas::milp::Grid::new(&problem, milp.period_min)
+                let periods = swarmplan::eaas::exact::milp::Grid::new(&problem, milp.period_min)
                     .map_or(0, |g| g.periods());
                 (None, 0.0, periods, false)
             } else {

@@ -21,10 +21,11 @@
 use clap::Parser;
 use std::path::PathBuf;
 use std::time::Instant;
-use swarmplan::cli::inputs::{load_requests, InstanceArgs};
+use swarmplan::cli::inputs::InstanceArgs;
 use swarmplan::compose::{Context, HopPaths, PlanOptions, RouteMethod};
 use swarmplan::eaas::SharingPolicy;
 use swarmplan::precompose::Positioning;
+use swarmplan::problem::inputs::load_requests;
 
 /// Time per request of the optimal route.
 #[derive(Parser)]

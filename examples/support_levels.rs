@@ -13,9 +13,10 @@
 use clap::Parser;
 use std::path::PathBuf;
 use std::process::ExitCode;
-use swarmplan::cli::inputs::{load_requests, InstanceArgs};
+use swarmplan::cli::inputs::InstanceArgs;
 use swarmplan::compose::Context;
 use swarmplan::precompose::Positioning;
+use swarmplan::problem::inputs::load_requests;
 
 /// Redundancy level distribution of a request set.
 #[derive(Parser)]

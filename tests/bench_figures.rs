@@ -7,7 +7,7 @@ use swarmplan::bench::figures::write_figures;
 use swarmplan::bench::{BenchConfig, BenchData, DistanceBucket, GapHistogram, Shard, Summary};
 use swarmplan::bench::{HopGapSummary, SUMMARY_SCHEMA_VERSION};
 use swarmplan::compose::{PlanOptions, RouteMethod};
-use swarmplan::eaas::milp::MilpOptions;
+use swarmplan::eaas::exact::milp::MilpOptions;
 use swarmplan::eaas::SharingPolicy;
 use swarmplan::precompose::Positioning;
 

@@ -7,7 +7,7 @@ mod common;
 
 use common::{bench_shards, stderr, swarmplan, tmp};
 use serde_json::Value;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 fn arg(p: &Path) -> &str {
     p.to_str().unwrap()

@@ -6,7 +6,7 @@
 mod common;
 
 use common::{bench_shards, stderr, swarmplan, tmp};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Output;
 
 fn assert_exit_2_with(out: &Output, code: &str, words: &[&str]) {

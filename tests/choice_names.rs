@@ -6,7 +6,7 @@ use serde::{de::DeserializeOwned, Serialize};
 use std::fmt::Display;
 use swarmplan::compose::{FixedRoute, HopPaths, RouteMethod};
 use swarmplan::eaas::compare::HopMethod;
-use swarmplan::eaas::milp::Reorder;
+use swarmplan::eaas::exact::Reorder;
 use swarmplan::eaas::SharingPolicy;
 use swarmplan::node_time::NodeTimeMethod;
 use swarmplan::precompose::Positioning;

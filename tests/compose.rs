@@ -34,7 +34,7 @@ struct Tiny {
 
 fn tiny(file: &str) -> Tiny {
     let (network, graph, profile) = flat_instance(file);
-    assert!(swarmplan::problem::profile::validate_profile(&profile).is_empty());
+    assert!(swarmplan::problem::validate::validate_profile(&profile).is_empty());
     Tiny {
         network,
         graph,

@@ -11,9 +11,10 @@ use rand_chacha::ChaCha8Rng;
 use swarmplan::check::check_hop;
 use swarmplan::eaas::Heuristic;
 use swarmplan::eaas::{
-    battery_trace, simulate, simulate_with, HopOutcome, HopProblem, LegRates, PbRequest,
-    PolicyOptions, Readings, SharingPolicy,
+    battery_trace, simulate, simulate_with, HopOutcome, HopProblem, LegRates, PolicyOptions,
+    SharingPolicy,
 };
+use swarmplan::problem::profile::{PbRequest, Readings};
 use swarmplan::problem::Role;
 
 fn passes(p: &HopProblem, o: &HopOutcome) {

@@ -10,11 +10,12 @@ use nalgebra::Vector2;
 use proptest::prelude::*;
 use swarmplan::check::{check_free_hop, check_hop};
 use swarmplan::eaas::exact::continuous::{solve_continuous, ContinuousOptions, PadMethod};
+use swarmplan::eaas::exact::fluid;
 use swarmplan::eaas::exact::milp::{solve_milp, MilpOptions};
 use swarmplan::eaas::exact::EndPads;
 use swarmplan::eaas::exact::{ExactOutcome, ExactStatus, Objective, Reorder};
 use swarmplan::eaas::Heuristic;
-use swarmplan::eaas::{fluid, simulate, HopProblem, LegRates, SlotInterval};
+use swarmplan::eaas::{simulate, HopProblem, LegRates, SlotInterval};
 use swarmplan::problem::Role;
 use swarmplan::solver::MilpBackend;
 

@@ -8,10 +8,9 @@ use common::{close, drone, integral_hop, known_optima, uniform_leg, Known};
 use nalgebra::Vector2;
 use proptest::prelude::*;
 use swarmplan::check::check_hop;
+use swarmplan::eaas::exact::milp::{solve_milp, MilpOptions};
 use swarmplan::eaas::exact::EndPads;
-use swarmplan::eaas::milp::{
-    solve_milp, ExactOutcome, ExactStatus, MilpOptions, Objective, Reorder,
-};
+use swarmplan::eaas::exact::{ExactOutcome, ExactStatus, Objective, Reorder};
 use swarmplan::eaas::Heuristic;
 use swarmplan::eaas::{sharing_budget_mah, simulate, DroneState, HopProblem, LegRates, Transfer};
 use swarmplan::node_time;
@@ -223,7 +222,7 @@ fn grid_cuts_legs_into_equal_periods_at_most_period_min_long() {
             ..leg
         },
     ];
-    let g = swarmplan::eaas::milp::Grid::new(&p, 1.0).unwrap();
+    let g = swarmplan::eaas::exact::milp::Grid::new(&p, 1.0).unwrap();
     // 2.5 -> 3 periods of 5/6 min, 0 -> none, 1.5 -> 2 periods of 0.75 min.
     assert_eq!(g.periods(), 5);
     assert_eq!(g.leg, vec![0, 0, 0, 2, 2]);
@@ -394,7 +393,7 @@ proptest! {
 // ---------------------------------------------------------------------------------------------
 // Fluid relaxation: LP bound and fair QP.
 
-use swarmplan::eaas::fluid;
+use swarmplan::eaas::exact::fluid;
 
 #[test]
 fn fluid_bounds_of_the_known_hops_match_hand_computation() {

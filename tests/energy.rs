@@ -12,7 +12,7 @@ use swarmplan::energy::{
 };
 use swarmplan::formation::slots_m;
 
-use swarmplan::problem::profile::validate_profile;
+use swarmplan::problem::validate::validate_profile;
 use swarmplan::problem::{Drone, FormationKind, Profile, Role, Swarm, Wind};
 
 fn paper() -> Profile {

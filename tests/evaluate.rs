@@ -15,9 +15,10 @@ use common::{assert_close, drone, flat_instance, flat_stop_request, known_optima
 use common::{integral_hop, paper_195, uniform_leg, Known};
 use swarmplan::compose::{Context, PlanOptions, RouteMethod};
 use swarmplan::eaas::compare::{run_method, HopMethod};
+use swarmplan::eaas::exact::milp::MilpOptions;
 use swarmplan::eaas::exact::EndPads;
+use swarmplan::eaas::exact::{ExactStatus, Objective, Reorder};
 use swarmplan::eaas::hop_file::HopFile;
-use swarmplan::eaas::milp::{ExactStatus, MilpOptions, Objective, Reorder};
 use swarmplan::eaas::Heuristic;
 use swarmplan::eaas::{
     simulate, simulate_with, FailureReason, HopProblem, PolicyOptions, SharingPolicy, Transfer,
@@ -1313,8 +1314,5 @@ fn a_loss_reads_as_a_positive_gap_whether_the_objective_is_maximised_or_minimise
         Some(&default_reference()),
     )
     .unwrap();
-    assert_eq!(
-        swarmplan::cli::human::gap_percent(relative_gap(&e), 4),
-        "0%"
-    );
+    assert_eq!(swarmplan::human::gap_percent(relative_gap(&e), 4), "0%");
 }

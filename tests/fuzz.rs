@@ -20,7 +20,7 @@ use swarmplan::eaas::Heuristic;
 use swarmplan::eaas::{simulate, SharingPolicy};
 use swarmplan::error::{Error, Result};
 use swarmplan::problem::io::{parse_json, parse_toml};
-use swarmplan::problem::profile::validate_profile;
+use swarmplan::problem::validate::validate_profile;
 use swarmplan::problem::validate::{validate_network, validate_request_set};
 use swarmplan::problem::SkywayGraph;
 use swarmplan::problem::{Network, Profile, RequestSet};

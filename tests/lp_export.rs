@@ -1,4 +1,4 @@
-//! The hop MILP written in CPLEX LP format (`eaas::milp::write_lp`) on the hops of
+//! The hop MILP written in CPLEX LP format (`eaas::exact::milp::write_lp`) on the hops of
 //! `instances/eaas/known_optima.json`: its header, its size against the formula of
 //! `models/eaas_milp.md`, the MILP optimum's schedule as a point of the file (checked by a small LP
 //! reader here, not by the code under test), and with the `highs` feature the file read back and
@@ -9,10 +9,9 @@ mod common;
 use common::model_files::{read_lp, Lp};
 use common::{close, known_optima, tmp, Known, TOL};
 use std::collections::HashMap;
+use swarmplan::eaas::exact::milp::{lp_text, solve_milp, write_lp, MilpOptions};
 use swarmplan::eaas::exact::EndPads;
-use swarmplan::eaas::milp::{
-    lp_text, solve_milp, write_lp, ExactStatus, MilpOptions, Objective, Reorder,
-};
+use swarmplan::eaas::exact::{ExactStatus, Objective, Reorder};
 use swarmplan::eaas::HopProblem;
 use swarmplan::problem::Role;
 #[cfg(feature = "highs")]

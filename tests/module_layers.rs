@@ -325,3 +325,57 @@ fn the_front_end_scan_sees_an_ungated_name() {
                 #[derive(Debug, clap::ValueEnum)] // clap::\nuse crate::cli::inputs;\n// plotters\n";
     assert_eq!(ungated_front_end_lines(text), vec![3, 4]);
 }
+
+/// The `pub use` lines of `text` that re-export from somewhere other than a child module of the
+/// file (`crate::...`, `super::...`, `self::...`): a second public path to an item defined
+/// elsewhere. A module may gather its children's items (`pub use child::Item`), and the crate
+/// root may name its modules' items.
+fn public_aliases(text: &str) -> Vec<String> {
+    text.lines()
+        .map(str::trim_start)
+        .filter(|l| l.starts_with("pub use "))
+        .filter(|l| {
+            let path = &l["pub use ".len()..];
+            ["crate::", "super::", "self::"]
+                .iter()
+                .any(|p| path.starts_with(p))
+        })
+        .map(str::to_string)
+        .collect()
+}
+
+#[test]
+fn every_public_item_has_one_path_in_the_library() {
+    let mut files = Vec::new();
+    rust_files(
+        &Path::new(env!("CARGO_MANIFEST_DIR")).join("src"),
+        &mut files,
+    );
+    let mut found = Vec::new();
+    for f in &files {
+        if f.ends_with("src/lib.rs") {
+            continue;
+        }
+        let text = std::fs::read_to_string(f).unwrap();
+        for line in public_aliases(&text) {
+            found.push(format!("{}: {line}", f.display()));
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "re-exports of items defined elsewhere (import them from their module): {found:#?}"
+    );
+}
+
+#[test]
+fn the_alias_scan_sees_a_re_export_from_elsewhere() {
+    let text = "mod child;\npub use child::Item;\n    pub use crate::eaas::exact::Objective;\n\
+                pub use super::EndPads;\nuse crate::x::Y;\n";
+    assert_eq!(
+        public_aliases(text),
+        [
+            "pub use crate::eaas::exact::Objective;",
+            "pub use super::EndPads;"
+        ]
+    );
+}

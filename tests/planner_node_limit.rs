@@ -320,14 +320,14 @@ fn drones_at_rest(capacities: &[f64]) -> swarmplan::eaas::HopProblem {
     }
 }
 
-/// The node time a hop's schedule is scored by (`eaas::milp::objective_of`, used by the exact and
+/// The node time a hop's schedule is scored by (`eaas::exact::objective_of`, used by the exact and
 /// fair policies and `swarmplan eaas`) stops at the node limit of a stop and says so: 60
 /// real-valued charge times on 4 pads (the swarm of the test above) are left at an incumbent no
 /// worse than LPT and marked unproven; 5 drones on 2 pads are proven, at the brute-force optimum.
 #[test]
 fn a_hop_objective_the_node_time_cannot_prove_is_marked_unproven() {
     use rand::{Rng, SeedableRng};
-    use swarmplan::eaas::milp::{objective_of, Objective};
+    use swarmplan::eaas::exact::{objective_of, Objective};
     let rate = 40.0;
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(60);
     let capacities: Vec<f64> = (0..60).map(|_| rng.random_range(3000.0..6000.0)).collect();

@@ -267,7 +267,7 @@ fn set_field(t: &mut toml::Table, field: &str, value: f64) {
 
 #[test]
 fn every_profile_quantity_has_a_stated_range_and_each_bound_is_enforced_with_e2013() {
-    use swarmplan::problem::profile::{profile_ranges, validate_profile};
+    use swarmplan::problem::validate::{profile_ranges, validate_profile};
     use swarmplan::problem::Profile;
     for (name, table) in shipped_profiles() {
         let profile: Profile = toml::from_str(&toml::to_string(&table).unwrap()).unwrap();

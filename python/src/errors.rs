@@ -6,7 +6,7 @@ use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
 use pythonize::pythonize;
 use swarmplan::compose::{HopPaths, RouteMethod};
-use swarmplan::eaas::milp::Reorder;
+use swarmplan::eaas::exact::Reorder;
 use swarmplan::eaas::SharingPolicy;
 use swarmplan::error::{Error, Violation};
 use swarmplan::precompose::Positioning;

@@ -6,8 +6,9 @@ use pyo3::types::{PyDict, PyList};
 use pythonize::pythonize;
 use std::sync::Arc;
 use swarmplan::eaas::compare::{label_gaps, run_method, HopMethod, MethodRow};
+use swarmplan::eaas::exact::milp::MilpOptions;
+use swarmplan::eaas::exact::Reorder;
 use swarmplan::eaas::hop_file::{parse_hop_file, HopFile};
-use swarmplan::eaas::milp::{MilpOptions, Reorder};
 use swarmplan::eaas::PolicyOptions;
 use swarmplan::error::{Error, Violation};
 use swarmplan::evaluate;
@@ -73,7 +74,8 @@ pub(crate) fn milp_options(
             "give the time limit in seconds, or None for none",
         ));
     }
-    if let Err(Error::Invalid(list)) = swarmplan::eaas::milp::validate_period_min(period_min) {
+    if let Err(Error::Invalid(list)) = swarmplan::eaas::exact::milp::validate_period_min(period_min)
+    {
         v.extend(list);
     }
     if !v.is_empty() {

@@ -46,8 +46,9 @@ pub use summary::{
 
 use crate::compose::{lpt_gap, Context, PlanOptions, RequestReport, RouteMethod};
 use crate::eaas::compare::{label_gaps, run_method, HopMethod};
+use crate::eaas::exact::milp::MilpOptions;
 use crate::eaas::exact::EndPads;
-use crate::eaas::milp::{MilpOptions, Objective};
+use crate::eaas::exact::Objective;
 use crate::eaas::{PolicyOptions, SharingPolicy};
 use crate::error::{Error, Result};
 use crate::experiment::{lpt_gaps, Delivery, Experiment};

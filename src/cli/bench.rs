@@ -132,8 +132,8 @@ pub struct RunArgs {
     #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
     pub period_min: f64,
     /// Hop models: re-ordering allowed (`paper` or `none`).
-    #[arg(long, value_enum, default_value_t = crate::eaas::milp::Reorder::Paper)]
-    pub reorder: crate::eaas::milp::Reorder,
+    #[arg(long, value_enum, default_value_t = crate::eaas::exact::Reorder::Paper)]
+    pub reorder: crate::eaas::exact::Reorder,
     /// Node limit of the exact node time at every stop.
     #[arg(long, value_name = "N", default_value_t = crate::node_time::DEFAULT_STOP_NODE_LIMIT)]
     pub node_limit: u64,

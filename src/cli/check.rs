@@ -1,6 +1,6 @@
 //! `swarmplan check`: re-verify a plan written by `solve --json` with the independent checker.
 
-use super::inputs::{self, InstanceArgs};
+use super::inputs::InstanceArgs;
 use crate::check::{check_report, plan_file};
 use crate::compose::RequestReport;
 use crate::error::{Error, Result, Violation};
@@ -58,7 +58,7 @@ pub fn run(args: CheckArgs) -> Result<i32> {
         return check_bench(&args, dir);
     }
     let instance = args.instance.load()?;
-    let set = inputs::load_requests(args.requests.as_deref())?;
+    let set = crate::problem::inputs::load_requests(args.requests.as_deref())?;
     if let Some(path) = &args.node_time {
         return check_node_time(path, args.node_time_instance.as_deref(), args.json);
     }
@@ -167,16 +167,16 @@ fn check_bench(args: &CheckArgs, dir: &std::path::Path) -> Result<i32> {
     let seal = crate::bench::verify_seal(dir)?;
     let (config, data) = crate::bench::read_data(dir)?;
     crate::bench::seal_agrees(dir, &seal, &config)?;
-    let shipped = if config.network == inputs::FINDINGS_195.network_name
-        || config.profile == inputs::FINDINGS_195.profile_name
+    let shipped = if config.network == crate::problem::shipped::FINDINGS_195.network_name
+        || config.profile == crate::problem::shipped::FINDINGS_195.profile_name
     {
-        &inputs::FINDINGS_195
+        &crate::problem::shipped::FINDINGS_195
     } else {
-        &inputs::PAPER_195
+        &crate::problem::shipped::PAPER_195
     };
-    let (instance, set) = inputs::both(
+    let (instance, set) = crate::error::both(
         args.instance.load_or(shipped),
-        inputs::load_requests(args.requests.as_deref()),
+        crate::problem::inputs::load_requests(args.requests.as_deref()),
     )?;
     let requests = &set.requests[..config.limit.min(set.requests.len())];
     let given = crate::bench::inputs_sha256(&instance.network, &instance.profile, requests)?;

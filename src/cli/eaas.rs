@@ -19,17 +19,19 @@
 //! limit (`incumbent`), or the fluid LP bound (`bound`); a PB or FB schedule outside the
 //! re-ordering mode of the exact models is labelled `different_policy` instead.
 
-use super::inputs::{self, InstanceArgs};
+use super::inputs::InstanceArgs;
 use crate::compose::{Context, PlanOptions, RouteMethod};
 use crate::eaas::compare::{label_gaps, run_method};
-pub use crate::eaas::compare::{HopMethod, MethodRow};
+use crate::eaas::compare::{HopMethod, MethodRow};
+use crate::eaas::exact::milp::{write_lp, MilpOptions};
 use crate::eaas::exact::EndPads;
+use crate::eaas::exact::{Objective, Reorder};
 use crate::eaas::hop_file::{read_hop_file, write_hop_file, HopFile};
-use crate::eaas::milp::{write_lp, MilpOptions, ModelFormat, Objective, Reorder};
 use crate::eaas::{HopProblem, PolicyOptions, SharingPolicy};
 use crate::error::{Error, Result};
 use crate::precompose::Positioning;
 use crate::problem::io::json_name;
+use crate::solver::lp_file::ModelFormat;
 use crate::solver::MilpBackend;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -150,7 +152,8 @@ pub fn run(args: EaasArgs) -> Result<i32> {
     }
     let (hop, readings) = match &args.hop_file {
         Some(path) => {
-            let (profile, hop) = inputs::both(args.instance.load_profile(), read_hop_file(path))?;
+            let (profile, hop) =
+                crate::error::both(args.instance.load_profile(), read_hop_file(path))?;
             (hop, PolicyOptions::from(&profile.readings))
         }
         None => planned_hop(&args)?,
@@ -285,7 +288,7 @@ fn print_human(r: &EaasReport) -> Result<()> {
             pad_rate_mah_per_min,
         }) => format!(
             "node time on {pads} pad(s) at {} mAh/min",
-            super::human::round(pad_rate_mah_per_min, 2)
+            crate::human::round(pad_rate_mah_per_min, 2)
         ),
         Objective::MaxMinArrival => "lowest delivery arrival battery".to_string(),
         Objective::Feasible => "any flying schedule".to_string(),
@@ -306,7 +309,7 @@ fn print_human(r: &EaasReport) -> Result<()> {
             (Some(g), None) => match g.relative {
                 Some(x) => format!(
                     "{} vs {}",
-                    super::human::gap_percent(x, 4),
+                    crate::human::gap_percent(x, 4),
                     json_name(&g.reference)
                 ),
                 None => format!("n/a vs {}", json_name(&g.reference)),
@@ -328,7 +331,7 @@ fn print_human(r: &EaasReport) -> Result<()> {
             row.grid_step_min
                 .map_or(String::new(), |h| format!(
                     "grid {} min, ",
-                    super::human::round(h, 4)
+                    crate::human::round(h, 4)
                 )),
             row.epsilon
                 .filter(|e| *e > 0.0)

@@ -1,7 +1,7 @@
 //! `swarmplan generate network|requests|node-time`: write a seeded synthetic network, request set,
 //! or node-time instance of a classical P||Cmax benchmark class.
 
-use super::inputs::both;
+use crate::error::both;
 use crate::error::Result;
 use crate::generate::network::{DEFAULT_NODES, DEFAULT_SPACING_M, MAX_NODES, MIN_NODES};
 use crate::generate::pcmax::{generate_pcmax, PcmaxClass, PcmaxParams, MAX_JOBS, MAX_PADS};

@@ -1,7 +1,7 @@
 //! `swarmplan import`: a user's road network (nodes and edges CSV, or GeoJSON lines) as a skyway
 //! network file, with pads and winds drawn from a seed (`generate::import`).
 
-use super::inputs::both;
+use crate::error::both;
 use crate::error::{Error, Result};
 use crate::generate::import::{read_csv, read_geojson, to_skyway, Coordinates, ImportParams};
 use crate::problem::io::{read_text, write_json};

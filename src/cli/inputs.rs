@@ -1,18 +1,15 @@
 //! Loading and validating the instance files shared by several subcommands. Without a path, the
 //! shipped paper-195 instance and `paper` profile embedded in the binary are used.
 
+use crate::eaas::exact::Reorder;
 use crate::eaas::exact_hop::{ExactChoices, ExactSettings, DEFAULT_HOP_NODE_LIMIT};
-use crate::eaas::milp::Reorder;
 use crate::error::{Error, Result};
 use crate::experiment::BudgetStop;
 use crate::problem::inputs::InstanceFiles;
+use crate::problem::shipped::Shipped;
 use crate::problem::{Instance, Profile, RequestSet};
 use crate::solver::MilpBackend;
 use std::path::{Path, PathBuf};
-
-pub use crate::error::both;
-pub use crate::problem::inputs::load_requests;
-pub use crate::problem::shipped::{Shipped, FINDINGS_195, PAPER_195};
 
 /// File arguments shared by the planning subcommands.
 #[derive(Debug, Clone, clap::Args)]
@@ -99,7 +96,7 @@ impl InstanceArgs {
         self.files().load_or(shipped)
     }
 
-    /// [`InstanceArgs::load`] and [`load_requests`] together, reporting the violations of the
+    /// [`InstanceArgs::load`] and [`load_requests`](crate::problem::inputs::load_requests) together, reporting the violations of the
     /// network, the profile and the request set at once.
     pub fn load_with_requests(&self, requests: Option<&Path>) -> Result<(Instance, RequestSet)> {
         self.files().load_with_requests(requests)

@@ -20,7 +20,6 @@ pub mod bench;
 pub mod check;
 pub mod eaas;
 pub mod generate;
-pub use crate::human;
 pub mod import;
 pub mod inputs;
 pub mod inspect;

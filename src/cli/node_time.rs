@@ -9,8 +9,8 @@
 //! where `stop.json` is `{"pads": 3, "charge_times_min": [60, 50, 40, 30, 20]}` and `--instance`
 //! reads the published P||Cmax text format ([`crate::problem::pcmax_file`]).
 
-use super::human::round;
 use crate::error::{Error, Result};
+use crate::human::round;
 use crate::node_time::{self, Limits, NodeTimeMethod, NodeTimeSolution};
 use crate::problem::io::read_json;
 use crate::solver::{MilpBackend, SolveStatus};
@@ -228,7 +228,7 @@ fn print_human(s: &NodeTimeSolution, times: &[f64], backend: MilpBackend) -> Res
             "gap: {} against the lower bound ({why}; the bound is the best of the method's and \
              the bin-packing LP's)",
             g.relative.map_or("n/a (bound 0)".to_string(), |r| {
-                super::human::gap_percent(r, 4)
+                crate::human::gap_percent(r, 4)
             })
         );
     }

@@ -126,7 +126,7 @@ fn hop_svg(args: &PlotArgs, path: &Path, unit: BatteryUnit) -> Result<String> {
             "draw the schedules of none, pb, fb, continuous, milp or fair",
         ));
     }
-    let (profile, file) = super::inputs::both(args.instance.load_profile(), read_hop_file(path))?;
+    let (profile, file) = crate::error::both(args.instance.load_profile(), read_hop_file(path))?;
     let readings = PolicyOptions::from(&profile.readings);
     let objective = file.objective();
     let milp = MilpOptions::default();
@@ -168,7 +168,7 @@ fn summary(row: &MethodRow, objective: &Objective) -> String {
     if let Some(g) = row.gap.and_then(|g| g.relative.map(|x| (x, g.reference))) {
         parts.push(format!(
             "gap {} vs {}",
-            super::human::gap_percent(g.0, 2),
+            crate::human::gap_percent(g.0, 2),
             json_name(&g.1)
         ));
     }

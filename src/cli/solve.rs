@@ -94,8 +94,8 @@ pub fn run(args: SolveArgs) -> Result<i32> {
     let set = args
         .request_id
         .is_some()
-        .then(|| inputs::load_requests(args.requests.as_deref()));
-    let (instance, set) = inputs::both(args.instance.load(), set.transpose())?;
+        .then(|| crate::problem::inputs::load_requests(args.requests.as_deref()));
+    let (instance, set) = crate::error::both(args.instance.load(), set.transpose())?;
     let instance =
         match (&args.request_id, &args.from, &args.to, &args.packages) {
             (Some(id), None, None, None) => {
@@ -319,7 +319,7 @@ fn print_human(report: &RequestReport) -> Result<()> {
         match (g.gap, g.optimal_dt_min) {
             (Some(gap), Some(best)) => outln!(
                 "route gap: {} against the optimal route over stop sequences (dt {:.2} min, {proven})",
-                super::human::gap_percent(gap, 2),
+                crate::human::gap_percent(gap, 2),
                 best
             ),
             (None, Some(best)) => outln!(

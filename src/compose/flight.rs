@@ -4,9 +4,9 @@
 use super::factors::{EdgeFactorCache, EdgeFactors};
 use super::plan::{Hop, LegFlown, Plan, Stop};
 use crate::eaas::exact::EndPads;
+use crate::eaas::exact::Objective;
 use crate::eaas::exact_hop::HopGoal;
 use crate::eaas::exact_hop::{self, ExactSettings, HopSolve, HopSolveCounts};
-use crate::eaas::milp::Objective;
 use crate::eaas::{self, HopOutcome, HopPolicy, HopProblem, SharingPolicy};
 use crate::energy;
 use crate::error::{Error, Result};

@@ -3,9 +3,9 @@
 
 use super::plan::{Plan, PlanOutcome, RouteOptimality};
 use super::{Flight, Planner, Stop};
+use crate::eaas::exact::ExactStatus;
 use crate::eaas::exact_hop::HopGoal;
 use crate::eaas::exact_hop::HopSolveCounts;
-use crate::eaas::milp::ExactStatus;
 use crate::eaas::SharingPolicy;
 use crate::error::{Error, Result};
 use crate::network::Route;

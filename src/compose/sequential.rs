@@ -3,10 +3,11 @@
 use super::plan::{Plan, PlanOutcome};
 use super::{Flight, LookAhead, Planner, Stop};
 use crate::eaas::exact::EndPads;
+use crate::eaas::exact::Objective;
+use crate::eaas::exact::{fluid, ExactStatus};
 use crate::eaas::exact_hop::HopGoal;
 use crate::eaas::exact_hop::HopSolveCounts;
-use crate::eaas::milp::Objective;
-use crate::eaas::{fluid, milp::ExactStatus, SharingPolicy};
+use crate::eaas::SharingPolicy;
 use crate::error::Result;
 use crate::network::Route;
 use crate::problem::profile::Candidates;

@@ -2,8 +2,9 @@
 //! the Python package's `Instance.hop` returns.
 
 use super::{Context, PlanOptions, RequestReport, RouteMethod};
-use crate::eaas::hop_file::{EndPads, HopFile, HopPlan, HOP_FILE_SCHEMA_VERSION};
-use crate::eaas::milp::Objective;
+use crate::eaas::exact::EndPads;
+use crate::eaas::exact::Objective;
+use crate::eaas::hop_file::{HopFile, HopPlan, HOP_FILE_SCHEMA_VERSION};
 use crate::error::{Error, Result};
 use crate::problem::Request;
 

@@ -9,8 +9,9 @@
 //! subset.
 
 use super::exact::dispatch::{self, Solved};
+use super::exact::milp::MilpOptions;
+use super::exact::{objective_of, ExactOutcome, ExactStatus, Objective, Reorder};
 use super::exact::{BoundOutcome, Formulation};
-use super::milp::{objective_of, ExactOutcome, ExactStatus, MilpOptions, Objective, Reorder};
 use super::{
     simulate_with, FreeSchedule, Heuristic, HopPolicy, HopProblem, PolicyOptions, SharingPolicy,
     Transfer,

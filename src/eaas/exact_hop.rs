@@ -11,8 +11,9 @@
 //! schedule is flown and the fallback is recorded ([`HopSolve::fallback`]).
 
 use super::exact::dispatch::{self, Solved};
+use super::exact::milp::MilpOptions;
 use super::exact::EndPads;
-use super::milp::{ExactStatus, MilpOptions, Objective, Reorder};
+use super::exact::{ExactStatus, Objective, Reorder};
 use super::{
     simulate_with, ExactPolicy, Heuristic, HopOutcome, HopProblem, PolicyOptions, SharingPolicy,
 };
@@ -349,7 +350,7 @@ pub fn fly_exact(
         ));
     }
     // The grid step is the grid MILP's; a bad one is still bad input.
-    super::milp::validate_period_min(milp.period_min)?;
+    super::exact::milp::validate_period_min(milp.period_min)?;
     let goal = match objective {
         Objective::NodeTime(EndPads { .. }) => HopGoal::NodeTimeMin,
         _ => HopGoal::Feasible,
@@ -405,7 +406,7 @@ pub fn fly_exact(
         }
     };
     if goal == HopGoal::NodeTimeMin && outcome.feasible {
-        let value = super::milp::objective_of(problem, objective, &outcome.final_battery_mah)?;
+        let value = super::exact::objective_of(problem, objective, &outcome.final_battery_mah)?;
         solve.objective = Some(value.value);
         solve.objective_proven = value.proven;
     }

@@ -16,7 +16,7 @@
 //! `E4115` (path and ends disagree), and the hop's and the end's own rules (`E4001`-`E4013`,
 //! `E4103`, `E4104`) under `hop.` and `end.`.
 
-use super::milp::{validate_objective, Objective};
+use super::exact::{validate_objective, Objective};
 use super::{validate, HopProblem};
 use crate::error::{Error, Result, Violation};
 use serde::{Deserialize, Serialize};
@@ -25,7 +25,7 @@ use std::path::Path;
 /// The only schema version of hop files.
 pub const HOP_FILE_SCHEMA_VERSION: u32 = 1;
 
-pub use super::exact::EndPads;
+use super::exact::EndPads;
 
 /// One hop of a request's plan, with where it comes from.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

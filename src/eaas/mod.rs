@@ -18,7 +18,7 @@
 //! independent checker in [`crate::check`] re-verifies it from the raw [`HopProblem`].
 
 use crate::error::{show, Error, Result, Violation};
-pub use crate::problem::profile::{PbRequest, Readings};
+use crate::problem::profile::{PbRequest, Readings};
 use crate::problem::Role;
 use nalgebra::Vector2;
 use serde::{Deserialize, Serialize};
@@ -33,8 +33,6 @@ mod none;
 mod pb;
 pub mod reorder;
 mod simulate;
-
-pub use exact::{continuous, fluid, milp};
 
 /// Time tolerance, minutes: events closer than this are simultaneous.
 pub const TIME_TOL_MIN: f64 = 1e-9;

@@ -17,8 +17,10 @@
 use crate::check::fly_as_written;
 use crate::compose::{Context, PlanOptions, RouteMethod, Stop};
 use crate::eaas::compare::{reference, run_method, HopMethod};
-use crate::eaas::hop_file::{EndPads, HopFile, HOP_FILE_SCHEMA_VERSION};
-use crate::eaas::milp::{objective_of, ExactStatus, MilpOptions, Objective, Reorder};
+use crate::eaas::exact::milp::MilpOptions;
+use crate::eaas::exact::EndPads;
+use crate::eaas::exact::{objective_of, ExactStatus, Objective, Reorder};
+use crate::eaas::hop_file::{HopFile, HOP_FILE_SCHEMA_VERSION};
 use crate::eaas::{
     travel_time_min, HopOutcome, HopProblem, PolicyOptions, SharingPolicy, Transfer,
 };
@@ -193,7 +195,7 @@ pub fn evaluate_hop(
     reference: Option<&MilpOptions>,
 ) -> Result<HopEvaluation> {
     crate::eaas::validate(problem)?;
-    crate::eaas::milp::validate_objective(objective)?;
+    crate::eaas::exact::validate_objective(objective)?;
     let transfers: Vec<Transfer> = transfers.iter().map(|t| t.complete(problem)).collect();
     let (outcome, violations) = fly_as_written(problem, &transfers);
     let outcome = match outcome {

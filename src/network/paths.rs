@@ -38,8 +38,6 @@ pub struct Route {
     pub distance_m: f64,
 }
 
-pub use crate::problem::graph::heading_deg;
-
 impl SkywayGraph {
     /// The leg flying from node `from` to adjacent node `to`, `None` if no edge joins them.
     pub fn leg(&self, from: usize, to: usize) -> Option<Leg> {

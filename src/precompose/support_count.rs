@@ -113,7 +113,7 @@ pub fn failure_terms(
 ///
 /// # Returns
 /// The terms, the weighted terms, the probability, the table row and the count. A malformed table
-/// (rejected by [`crate::problem::profile::validate_profile`]) falls back to its first row, an
+/// (rejected by [`crate::problem::validate::validate_profile`]) falls back to its first row, an
 /// empty one to `N+1`.
 ///
 /// # Complexity

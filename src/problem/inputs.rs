@@ -57,7 +57,7 @@ impl InstanceFiles {
     /// The read, parse and validation errors of the profile.
     pub fn load_profile(&self) -> Result<Profile> {
         let profile = self.read_profile(&PAPER_195)?;
-        let violations = super::profile::validate_profile(&profile);
+        let violations = super::validate::validate_profile(&profile);
         if violations.is_empty() {
             Ok(profile)
         } else {

@@ -1,7 +1,7 @@
 //! A planning instance: a network with its graph, a profile and a request set, validated together
 //! once. Code that receives an [`Instance`] does not validate it again.
 
-use super::profile::validate_profile;
+use super::validate::validate_profile;
 use super::validate::{validate_network, validate_request, validate_request_set};
 use super::{Network, Profile, Request, RequestSet, SkywayGraph};
 use crate::error::{Error, Result};

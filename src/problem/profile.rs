@@ -4,8 +4,6 @@
 
 use serde::{Deserialize, Serialize};
 
-pub use super::validate::{profile_ranges, validate_profile, StatedRange, MAX_EXTRA_BATTERIES};
-
 /// A parameter profile.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]

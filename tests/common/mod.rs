@@ -11,7 +11,7 @@ use nalgebra::Vector2;
 use serde::Deserialize;
 use std::path::PathBuf;
 use std::process::{Command, Output};
-use swarmplan::eaas::milp::{Objective, Reorder};
+use swarmplan::eaas::exact::{Objective, Reorder};
 use swarmplan::eaas::{DroneState, HopProblem, LegRates};
 use swarmplan::problem::io::{read_json, read_toml};
 use swarmplan::problem::{Network, Profile, Request, RequestSet, Role, SkywayGraph};

@@ -27,15 +27,12 @@
 
 use super::EndPads;
 use super::{backend_end, moves, validate_inputs, BackendEnd, Move, PadRows};
-pub use super::{
-    objective_of, validate_objective, ExactOutcome, ExactStatus, Objective, ObjectiveValue, Reorder,
-};
+use super::{objective_of, ExactOutcome, ExactStatus, Objective, Reorder};
 use crate::eaas::simulate::evaluate;
 use crate::eaas::{reorder, sharing_budget_mah, HopProblem, Role, Transfer, TIME_TOL_MIN};
 use crate::error::{show, Error, Result};
-pub use crate::solver::lp_file::LpSize;
-pub use crate::solver::lp_file::ModelFormat;
 use crate::solver::lp_file::{write_model_file, LpCapture};
+use crate::solver::lp_file::{LpSize, ModelFormat};
 use crate::solver::{run_on, MilpBackend, MilpJob, MilpModel};
 use good_lp::{
     constraint, variable, Expression, ProblemVariables, Solution, SolverModel, Variable,
@@ -599,7 +596,8 @@ fn swaps_only(
 /// ```
 /// use swarmplan::eaas::*;
 /// use swarmplan::problem::Role;
-/// use swarmplan::eaas::milp::{solve_milp, ExactStatus, MilpOptions, Objective};
+/// use swarmplan::eaas::exact::milp::{solve_milp, MilpOptions};
+/// use swarmplan::eaas::exact::{ExactStatus, Objective};
 /// use nalgebra::Vector2;
 /// // One delivery drone (80 mAh, 10 mAh/min) next to a support drone, 10 minutes.
 /// let p = HopProblem {
@@ -791,7 +789,8 @@ pub fn model_text(
 /// ```
 /// use swarmplan::eaas::*;
 /// use swarmplan::problem::Role;
-/// use swarmplan::eaas::milp::{write_lp, MilpOptions, Objective};
+/// use swarmplan::eaas::exact::milp::{write_lp, MilpOptions};
+/// use swarmplan::eaas::exact::Objective;
 /// use nalgebra::Vector2;
 /// let p = HopProblem {
 ///     legs: vec![LegRates { duration_min: 3.0, rate_mah_per_min: vec![vec![10.0, 10.0], vec![5.0, 5.0]].into() }],
