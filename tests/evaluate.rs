@@ -29,7 +29,7 @@ use swarmplan::evaluate::{
 };
 use swarmplan::precompose::Positioning;
 use swarmplan::problem::{Request, Role};
-use swarmplan::solver::ReferenceKind;
+use swarmplan::solver::{GapLabel, ReferenceKind};
 use swarmplan::Error;
 
 // ---------------------------------------------------------------------------------------------
@@ -226,7 +226,7 @@ fn the_empty_schedule_runs_the_delivery_drone_out_at_the_hand_computed_time() {
     )
     .unwrap();
     assert_eq!(e.gap, None);
-    assert_eq!(e.gap_label, Some("infeasible"));
+    assert_eq!(e.gap_label, Some(GapLabel::Infeasible));
     // The reference is still the hop's optimum: 80 - 100 + 4 * 10 = 20 (see below).
     assert_close(e.reference.unwrap().value.unwrap(), 20.0, "reference");
 }
@@ -567,7 +567,10 @@ fn the_mode_of_a_schedule_follows_the_papers_move_rules() {
     assert!(e.outcome.feasible);
     assert_eq!(e.mode, Reorder::Free);
     // Outside the `paper` reference: no gap.
-    assert_eq!((e.gap, e.gap_label), (None, Some("outside_reference")));
+    assert_eq!(
+        (e.gap, e.gap_label),
+        (None, Some(GapLabel::OutsideReference))
+    );
     // ... but inside a `free` one.
     let e = evaluate_hop(
         &p,
@@ -625,7 +628,7 @@ fn a_swapping_schedule_is_scored_against_paper_and_left_out_of_none() {
     )
     .unwrap();
     assert_eq!(e.gap, None);
-    assert_eq!(e.gap_label, Some("outside_reference"));
+    assert_eq!(e.gap_label, Some(GapLabel::OutsideReference));
     assert_eq!(e.reference.unwrap().reorder, Reorder::None);
     assert_close(e.reference.unwrap().value.unwrap(), 50.0, "none reference");
 
@@ -709,11 +712,11 @@ fn policies_fed_back(problem: &HopProblem, objective: &Objective, what: &str) ->
         assert!(g >= -1e-6, "{what}: PB {beyond} the optimum, gap {g}");
     } else if pb.feasible {
         assert!(
-            e.gap_label == Some("no_reference") || e.gap.is_some(),
+            e.gap_label == Some(GapLabel::NoReference) || e.gap.is_some(),
             "{what}: {e:?}"
         );
     } else {
-        assert_eq!(e.gap_label, Some("infeasible"), "{what}");
+        assert_eq!(e.gap_label, Some(GapLabel::Infeasible), "{what}");
     }
 
     // The continuous model's own schedule scores its own optimum: gap 0.
@@ -929,7 +932,7 @@ fn a_route_that_runs_out_is_not_delivered_and_has_no_gap() {
     assert_eq!(f.drone, 2);
     assert_close(f.time_min, 1000.0 / 172.8, "failure time");
     assert_close(r.tt_min, 10.0, "tt of the hop flown");
-    assert_eq!((r.gap, r.gap_label), (None, Some("not_delivered")));
+    assert_eq!((r.gap, r.gap_label), (None, Some(GapLabel::NotDelivered)));
     assert_close(
         r.reference.unwrap().dt_min.unwrap(),
         FLAT_STOP_DT_MIN,
@@ -987,7 +990,7 @@ fn a_route_is_flown_up_to_its_first_hop_that_runs_out() {
     assert_close(f.time_min, 1000.0 / 133.1, "failure time");
     // No route delivers either: M2, the pad node nearest B, is 14 min away.
     assert_eq!(r.reference.unwrap().dt_min, None);
-    assert_eq!(r.gap_label, Some("not_delivered"));
+    assert_eq!(r.gap_label, Some(GapLabel::NotDelivered));
 
     // A, M2, M1, B: A -> M2 is 8 min, the drone is empty at 7.513; nothing after it is flown.
     let (r, flown) = route(&["A", "M2", "M1", "B"], false);

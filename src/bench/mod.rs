@@ -729,7 +729,10 @@ fn keep_report(
                 .unwrap_or_default(),
             reference_value: reference.map(|(v, _)| v),
             gap: heur.gap.and_then(|g| g.relative),
-            gap_label: heur.gap_label.unwrap_or_default().to_string(),
+            gap_label: heur
+                .gap_label
+                .map(|l| crate::problem::io::json_name(&l))
+                .unwrap_or_default(),
         });
     }
     Ok(kept)

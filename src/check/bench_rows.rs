@@ -33,7 +33,7 @@ use crate::problem::io::json_name;
 use crate::problem::{Network, Profile, Request, SkywayGraph};
 use crate::solver::SolveStatus;
 
-fn v(code: &'static str, field: impl Into<String>, cause: impl Into<String>) -> Violation {
+fn violation(code: &'static str, field: impl Into<String>, cause: impl Into<String>) -> Violation {
     Violation::new(
         code,
         field,
@@ -98,7 +98,7 @@ pub fn check_bench_rows(
     for (k, row) in rows.iter().enumerate() {
         let found = requests.get(row.request_index).map(|r| &r.id);
         if found != Some(&row.request_id) {
-            out.violations.push(v(
+            out.violations.push(violation(
                 "P5703",
                 format!("requests.csv[{k}].request_index"),
                 format!(
@@ -143,7 +143,7 @@ pub fn check_bench_rows(
                 })
                 .count();
             if n != 1 {
-                out.violations.push(v(
+                out.violations.push(violation(
                     "P5705",
                     format!("requests.csv[{k}..{end}]"),
                     format!(
@@ -160,7 +160,7 @@ pub fn check_bench_rows(
             let Some(j) = combos.iter().position(|c| {
                 (c.sharing, c.positioning, c.route) == (row.sharing, row.positioning, row.route)
             }) else {
-                out.violations.push(v(
+                out.violations.push(violation(
                     "P5704",
                     format!("{f}.sharing"),
                     format!(
@@ -174,7 +174,7 @@ pub fn check_bench_rows(
             };
             let report = &reports[j];
             for x in check_report(network, profile, requests, report) {
-                out.violations.push(v(
+                out.violations.push(violation(
                     "P5702",
                     format!("{f}: {}", x.field),
                     format!("the plan behind the row breaks [{}]: {}", x.code, x.cause),
@@ -220,7 +220,7 @@ pub fn check_bench_rows(
     ] {
         for (r, index) in indices.into_iter().enumerate() {
             if !planned.contains(&index) {
-                out.violations.push(v(
+                out.violations.push(violation(
                     "P5705",
                     format!("{table}[{r}].request_index"),
                     format!("request index {index} has no row in requests.csv"),
@@ -262,7 +262,7 @@ fn compare_table<T: serde::Serialize>(
         .filter(|(_, r)| request_of(r) == index)
         .collect();
     if found.len() != expected.len() {
-        out.violations.push(v(
+        out.violations.push(violation(
             "P5705",
             format!("{table}, request index {index}"),
             format!(
@@ -285,7 +285,7 @@ fn compare_table<T: serde::Serialize>(
                 _ => stated == recomputed,
             };
             if !same {
-                out.violations.push(v(
+                out.violations.push(violation(
                     "P5701",
                     format!("{table}[{r}].{column}"),
                     format!(
@@ -306,7 +306,7 @@ struct Columns<'a> {
 
 impl Columns<'_> {
     fn differs(&mut self, column: &str, stated: String, recomputed: String) {
-        self.out.push(v(
+        self.out.push(violation(
             "P5701",
             format!("{}.{column}", self.f),
             format!(

@@ -15,7 +15,7 @@ use crate::problem::{Network, Profile, Request};
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
-fn v(code: &'static str, field: impl Into<String>, cause: impl Into<String>) -> Violation {
+fn violation(code: &'static str, field: impl Into<String>, cause: impl Into<String>) -> Violation {
     Violation::new(
         code,
         field,
@@ -54,7 +54,7 @@ pub fn check_support_decision(
     let mut out = Vec::new();
     let mut number = |field: String, stated: f64, recomputed: f64| {
         if !close(stated, recomputed) {
-            out.push(v(
+            out.push(violation(
                 "P5045",
                 field,
                 format!(
@@ -93,7 +93,7 @@ pub fn check_support_decision(
     );
     if let Some(row) = profile.redundancy.rows.get(got.row) {
         if stated.level != row.level {
-            out.push(v(
+            out.push(violation(
                 "P5045",
                 "support_decision.level",
                 format!(
@@ -106,7 +106,7 @@ pub fn check_support_decision(
         }
     }
     if stated.model != profile.failure.model || stated.term_mode != profile.failure.terms {
-        out.push(v(
+        out.push(violation(
             "P5045",
             "support_decision.model",
             format!(
@@ -120,7 +120,7 @@ pub fn check_support_decision(
     }
     let flies = report.options.sharing.flies_support();
     if flies && report.options.support.is_none() && report.support_drones != got.count {
-        out.push(v(
+        out.push(violation(
             "P5046",
             "support_drones",
             format!(

@@ -11,7 +11,7 @@
 //! zero (C3026); the stated final batteries match the re-integration (C3027). Within an interval
 //! every rate is constant, so the bounds at its ends are the bounds throughout.
 
-use super::hop::{e_tol, v, T_TOL};
+use super::hop::{e_tol, violation, T_TOL};
 use crate::eaas::{HopProblem, SlotInterval};
 use crate::error::Violation;
 use crate::problem::Role;
@@ -75,7 +75,7 @@ fn c3019_intervals_cover_the_hop(problem: &HopProblem, xs: &[SlotInterval]) -> V
     for (i, x) in xs.iter().enumerate() {
         let f = format!("intervals[{i}]");
         if (x.start_min - at).abs() > T_TOL || x.end_min <= x.start_min {
-            out.push(v(
+            out.push(violation(
                 "C3019",
                 f.clone(),
                 format!(
@@ -88,7 +88,7 @@ fn c3019_intervals_cover_the_hop(problem: &HopProblem, xs: &[SlotInterval]) -> V
             .iter()
             .any(|&e| e > x.start_min + T_TOL && e < x.end_min - T_TOL)
         {
-            out.push(v(
+            out.push(violation(
                 "C3019",
                 f,
                 format!("[{}, {}) crosses a leg end", x.start_min, x.end_min),
@@ -97,7 +97,7 @@ fn c3019_intervals_cover_the_hop(problem: &HopProblem, xs: &[SlotInterval]) -> V
         at = x.end_min;
     }
     if (at - tt).abs() > T_TOL {
-        out.push(v(
+        out.push(violation(
             "C3019",
             "intervals".into(),
             format!("the intervals end at {at}, the hop at {tt}"),
@@ -123,7 +123,7 @@ fn c3020_slots_are_a_permutation(
             fresh
         });
     if !permutation {
-        return vec![v(
+        return vec![violation(
             "C3020",
             format!("{f}.slot"),
             format!("{:?} is not a permutation of the {n} slots", x.slot),
@@ -134,7 +134,7 @@ fn c3020_slots_are_a_permutation(
             problem.drones[d].role == Role::Support && x.slot[d] != problem.initial_slot[d]
         })
         .map(|d| {
-            v(
+            violation(
                 "C3020",
                 format!("{f}.slot[{d}]"),
                 format!(
@@ -158,7 +158,7 @@ fn c3021_support_gives_to_delivery(
         .enumerate()
         .filter(|(_, &(s, c))| role(s) != Some(Role::Support) || role(c) != Some(Role::Delivery))
         .map(|(k, &(s, c))| {
-            v(
+            violation(
                 "C3021",
                 format!("{f}.serves[{k}]"),
                 format!("({s}, {c}) is not a support drone giving to a delivery drone"),
@@ -173,7 +173,7 @@ fn c3022_one_partner_at_a_time(f: &str, x: &SlotInterval) -> Vec<Violation> {
     for (k, &(s, c)) in x.serves.iter().enumerate() {
         let earlier = &x.serves[..k];
         if earlier.iter().any(|&(s2, c2)| s2 == s || c2 == c) {
-            out.push(v(
+            out.push(violation(
                 "C3022",
                 format!("{f}.serves[{k}]"),
                 format!("support {s} or consumer {c} is already in a pair of this interval"),
@@ -191,7 +191,7 @@ fn c3023_consumer_within_range(problem: &HopProblem, f: &str, x: &SlotInterval) 
         .filter_map(|(k, &(s, c))| {
             let d = (problem.slots_m[x.slot[s]] - problem.slots_m[x.slot[c]]).norm();
             (d > problem.range_m + 1e-9).then(|| {
-                v(
+                violation(
                     "C3023",
                     format!("{f}.serves[{k}]"),
                     format!(
@@ -258,7 +258,7 @@ fn c3024_no_battery_above_capacity(problem: &HopProblem, run: &Run) -> Vec<Viola
             run.highest[d] > cap + e_tol(cap)
         })
         .map(|d| {
-            v(
+            violation(
                 "C3024",
                 format!("drones[{d}]"),
                 format!(
@@ -282,7 +282,7 @@ fn c3025_support_shares_only_its_spare(problem: &HopProblem, run: &Run) -> Vec<V
                 .sum();
             let spare = (problem.drones[s].battery_mah - own - problem.delta_mah).max(0.0);
             (run.given[s] > spare + e_tol(spare)).then(|| {
-                v(
+                violation(
                     "C3025",
                     format!("drones[{s}]"),
                     format!(
@@ -300,7 +300,7 @@ fn c3026_no_battery_below_zero(run: &Run) -> Vec<Violation> {
     (0..run.lowest.len())
         .filter(|&d| run.lowest[d] < -e_tol(0.0))
         .map(|d| {
-            v(
+            violation(
                 "C3026",
                 format!("drones[{d}]"),
                 format!("battery falls to {} mAh", run.lowest[d]),
@@ -319,7 +319,7 @@ fn c3027_final_batteries_match(run: &Run, stated: &[f64]) -> Vec<Violation> {
     if same {
         Vec::new()
     } else {
-        vec![v(
+        vec![violation(
             "C3027",
             "final_battery_mah".into(),
             format!("stated {stated:?}, re-integrated {:?}", run.last),

@@ -22,7 +22,7 @@ pub(super) fn e_tol(x: f64) -> f64 {
     super::INTEGRATION_TOLERANCE * (1.0 + x.abs())
 }
 
-pub(super) fn v(code: &'static str, field: String, cause: String) -> Violation {
+pub(super) fn violation(code: &'static str, field: String, cause: String) -> Violation {
     Violation::new(
         code,
         field,
@@ -113,7 +113,7 @@ pub fn fly_as_written(
         let f = format!("transfers[{i}]");
         out.extend(c3001_transfer_names_existing_drones(&hop, &f, x));
         if !(x.start_min.is_finite() && x.end_min.is_finite() && x.energy_mah.is_finite()) {
-            out.push(v(
+            out.push(violation(
                 "C3004",
                 f,
                 format!(
@@ -209,7 +209,7 @@ impl<'a> HopView<'a> {
 fn c3001_transfer_names_existing_drones(hop: &HopView, f: &str, x: &Transfer) -> Option<Violation> {
     let n = hop.n;
     (x.support >= n || x.consumer >= n || x.consumer_slot >= n).then(|| {
-        v(
+        violation(
             "C3001",
             f.to_string(),
             format!("drone or slot index out of range 0..{n}"),
@@ -220,7 +220,7 @@ fn c3001_transfer_names_existing_drones(hop: &HopView, f: &str, x: &Transfer) ->
 /// C3002: the giver is a support drone.
 fn c3002_giver_is_a_support_drone(hop: &HopView, f: &str, x: &Transfer) -> Option<Violation> {
     (hop.problem.drones[x.support].role != Role::Support).then(|| {
-        v(
+        violation(
             "C3002",
             f.to_string(),
             format!("giver {} is not a support drone", x.support),
@@ -231,7 +231,7 @@ fn c3002_giver_is_a_support_drone(hop: &HopView, f: &str, x: &Transfer) -> Optio
 /// C3003: the consumer is a delivery drone.
 fn c3003_consumer_is_a_delivery_drone(hop: &HopView, f: &str, x: &Transfer) -> Option<Violation> {
     (hop.problem.drones[x.consumer].role != Role::Delivery).then(|| {
-        v(
+        violation(
             "C3003",
             f.to_string(),
             format!("consumer {} is not a delivery drone", x.consumer),
@@ -244,7 +244,7 @@ fn c3004_transfer_lies_within_the_hop(hop: &HopView, f: &str, x: &Transfer) -> O
     let tt = hop.tt;
     let ok = x.start_min >= -T_TOL && x.end_min > x.start_min && x.end_min <= tt + T_TOL;
     (!ok).then(|| {
-        v(
+        violation(
             "C3004",
             f.to_string(),
             format!(
@@ -259,7 +259,7 @@ fn c3004_transfer_lies_within_the_hop(hop: &HopView, f: &str, x: &Transfer) -> O
 fn c3005_energy_is_rho_times_duration(hop: &HopView, f: &str, x: &Transfer) -> Option<Violation> {
     let expect = hop.rho * (x.end_min - x.start_min);
     ((x.energy_mah - expect).abs() > e_tol(expect)).then(|| {
-        v(
+        violation(
             "C3005",
             f.to_string(),
             format!(
@@ -277,7 +277,7 @@ fn c3006_consumer_within_range(hop: &HopView, f: &str, x: &Transfer) -> Option<V
     let pc = p.slots_m[x.consumer_slot];
     let dist = ((ps.x - pc.x).powi(2) + (ps.y - pc.y).powi(2)).sqrt();
     (dist > p.range_m + 1e-9).then(|| {
-        v(
+        violation(
             "C3006",
             f.to_string(),
             format!(
@@ -300,7 +300,7 @@ fn c3007_swap_only_with_a_delivery_drone(
     }
     match hop.holder(x.consumer_slot) {
         Some(q) if p.drones[q].role == Role::Delivery && q != x.consumer => None,
-        _ => Some(v(
+        _ => Some(violation(
             "C3007",
             f.to_string(),
             format!(
@@ -320,7 +320,7 @@ fn c3008_one_consumer_per_support_at_a_time(
     b: &Transfer,
 ) -> Option<Violation> {
     (a.support == b.support).then(|| {
-        v(
+        violation(
             "C3008",
             f.to_string(),
             format!("support drone {} gives to two consumers at once", a.support),
@@ -335,7 +335,7 @@ fn c3009_one_support_per_consumer_at_a_time(
     b: &Transfer,
 ) -> Option<Violation> {
     (a.consumer == b.consumer).then(|| {
-        v(
+        violation(
             "C3009",
             f.to_string(),
             format!(
@@ -361,7 +361,7 @@ fn c3010_overlapping_transfers_move_distinct_drones(
         .flatten()
         .any(|d| db.iter().flatten().any(|e| d == e));
     (clash && a.consumer != b.consumer).then(|| {
-        v(
+        violation(
             "C3010",
             f.to_string(),
             "overlapping transfers move the same drone".to_string(),
@@ -490,7 +490,7 @@ fn c3011_no_battery_above_capacity(run: &Integration) -> Vec<Violation> {
     run.above_capacity
         .iter()
         .map(|&(d, battery, capacity, t)| {
-            v(
+            violation(
                 "C3011",
                 format!("drones[{d}]"),
                 format!("battery {battery} mAh above capacity {capacity} at t = {t} min"),
@@ -504,7 +504,7 @@ fn c3012_support_shares_above_its_reserve(run: &Integration) -> Vec<Violation> {
     run.below_reserve
         .iter()
         .map(|&(s, battery, delta)| {
-            v(
+            violation(
                 "C3012",
                 format!("drones[{s}]"),
                 format!("shares at {battery} mAh, below the reserve delta = {delta}"),
@@ -529,7 +529,7 @@ fn c3013_support_shares_only_its_spare(hop: &HopView, run: &Integration) -> Vec<
             .sum();
         let spare = (problem.drones[d].battery_mah - own - problem.delta_mah).max(0.0);
         if given_d > spare + e_tol(spare) {
-            out.push(v(
+            out.push(violation(
                 "C3013",
                 format!("drones[{d}]"),
                 format!(
@@ -547,7 +547,7 @@ fn c3013_support_shares_only_its_spare(hop: &HopView, run: &Integration) -> Vec<
 /// C3014: the outcome is feasible iff no battery goes below zero.
 fn c3014_feasibility_matches(outcome: &HopOutcome, run: &Integration) -> Option<Violation> {
     (outcome.feasible == run.first_below.is_some()).then(|| {
-        v(
+        violation(
             "C3014",
             "feasible".into(),
             match run.first_below {
@@ -566,7 +566,7 @@ fn c3015_first_failure_matches(outcome: &HopOutcome, run: &Integration) -> Vec<V
     let mut out = Vec::new();
     if let (Some((d, t)), Some(f)) = (run.first_below, outcome.failure) {
         if f.drone != d || (f.time_min - t).abs() > super::INTEGRATION_TOLERANCE * (1.0 + t) {
-            out.push(v(
+            out.push(violation(
                 "C3015",
                 "failure".into(),
                 format!(
@@ -577,7 +577,7 @@ fn c3015_first_failure_matches(outcome: &HopOutcome, run: &Integration) -> Vec<V
         }
     }
     if outcome.failure.is_some() == outcome.feasible {
-        out.push(v(
+        out.push(violation(
             "C3015",
             "failure".into(),
             "failure present iff infeasible".into(),
@@ -593,7 +593,7 @@ fn same_batteries(a: &[f64], b: &[f64]) -> bool {
 /// C3016: the reported final batteries are the re-integration's.
 fn c3016_final_batteries_match(outcome: &HopOutcome, run: &Integration) -> Option<Violation> {
     (!same_batteries(&outcome.final_battery_mah, &run.battery)).then(|| {
-        v(
+        violation(
             "C3016",
             "final_battery_mah".into(),
             format!(
@@ -607,7 +607,7 @@ fn c3016_final_batteries_match(outcome: &HopOutcome, run: &Integration) -> Optio
 /// C3017: the reported lowest batteries are the re-integration's.
 fn c3017_lowest_batteries_match(outcome: &HopOutcome, run: &Integration) -> Option<Violation> {
     (!same_batteries(&outcome.min_battery_mah, &run.lowest)).then(|| {
-        v(
+        violation(
             "C3017",
             "min_battery_mah".into(),
             format!(
@@ -622,7 +622,7 @@ fn c3017_lowest_batteries_match(outcome: &HopOutcome, run: &Integration) -> Opti
 fn c3018_shared_total_matches(outcome: &HopOutcome) -> Option<Violation> {
     let total: f64 = outcome.transfers.iter().map(|x| x.energy_mah).sum();
     ((outcome.shared_mah - total).abs() > e_tol(total)).then(|| {
-        v(
+        violation(
             "C3018",
             "shared_mah".into(),
             format!(

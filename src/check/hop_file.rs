@@ -31,7 +31,7 @@ use crate::formation;
 use crate::problem::io::json_name;
 use crate::problem::{Drone, FormationKind, Network, Profile, Request, Role, Swarm};
 
-fn v(code: &'static str, field: impl Into<String>, cause: impl Into<String>) -> Violation {
+fn violation(code: &'static str, field: impl Into<String>, cause: impl Into<String>) -> Violation {
     Violation::new(
         code,
         field,
@@ -44,7 +44,7 @@ fn v(code: &'static str, field: impl Into<String>, cause: impl Into<String>) -> 
 /// Pushes a P-violation when `stated` is not `rebuilt`.
 fn compare(out: &mut Vec<Violation>, code: &'static str, field: String, stated: f64, rebuilt: f64) {
     if !close(stated, rebuilt) {
-        out.push(v(
+        out.push(violation(
             code,
             field,
             format!("states {stated}, the instance gives {rebuilt}"),
@@ -74,7 +74,7 @@ pub fn check_hop_file(
     }
     let mut out = Vec::new();
     let Some(request) = requests.iter().find(|r| r.id == file.request_id) else {
-        out.push(v(
+        out.push(violation(
             "P5601",
             "request_id",
             format!(
@@ -104,7 +104,7 @@ pub fn check_hop_file(
         s.role == want
     }) && hop.drones.len() >= n;
     if !roles_ok {
-        out.push(v(
+        out.push(violation(
             "P5605",
             "hop.drones",
             format!(
@@ -148,7 +148,7 @@ pub fn check_hop_file(
                 .all(|(a, b)| close(a.x, b.x) && close(a.y, b.y))
     });
     let Some(formation) = formation else {
-        out.push(v(
+        out.push(violation(
             "P5606",
             "hop.slots_m",
             format!("not the slots of any formation of {count} drones at {spacing_m} m spacing"),
@@ -158,7 +158,7 @@ pub fn check_hop_file(
     let mut sorted = hop.initial_slot.clone();
     sorted.sort_unstable();
     if sorted != (0..count).collect::<Vec<_>>() {
-        out.push(v(
+        out.push(violation(
             "P5606",
             "hop.initial_slot",
             format!(
@@ -191,7 +191,7 @@ pub fn check_hop_file(
     };
     let speed_m_per_min = profile.drone.speed_kmh * 1000.0 / 60.0;
     if hop.legs.len() != legs.len() {
-        out.push(v(
+        out.push(violation(
             "P5603",
             "hop.legs",
             format!("{} legs, the path has {} edges", hop.legs.len(), legs.len()),
@@ -261,7 +261,7 @@ pub fn check_hop_file(
             );
         }
         (None, _) if pads == 0 => {}
-        (stated, _) => out.push(v(
+        (stated, _) => out.push(violation(
             "P5608",
             "end",
             format!(
@@ -282,7 +282,7 @@ fn legs_of_the_path(network: &Network, path: &[String]) -> Result<Vec<RawLeg>, V
         match index.get(id.as_str()) {
             Some(&k) => nodes.push(k),
             None => {
-                return Err(v(
+                return Err(violation(
                     "P5602",
                     format!("path[{i}]"),
                     format!("`{id}` is not a node of the network"),
@@ -295,7 +295,7 @@ fn legs_of_the_path(network: &Network, path: &[String]) -> Result<Vec<RawLeg>, V
         .enumerate()
         .map(|(i, w)| {
             raw_leg(network, w[0], w[1]).ok_or_else(|| {
-                v(
+                violation(
                     "P5602",
                     format!("path[{}]", i + 1),
                     format!("no edge joins {} and {}", path[i], path[i + 1]),
@@ -315,14 +315,14 @@ fn hop_of_the_plan(
 ) -> Option<Violation> {
     let options = match crate::compose::PlanOptions::try_from(plan) {
         Ok(o) => o,
-        Err(why) => return Some(v("P5609", "plan.route", why)),
+        Err(why) => return Some(violation("P5609", "plan.route", why)),
     };
     let graph = crate::problem::SkywayGraph::new(network).ok()?;
     let context = crate::compose::Context::new(network, &graph, profile);
     let report = match context.plan(request, &options) {
         Ok(r) => r,
         Err(e) => {
-            return Some(v(
+            return Some(violation(
                 "P5609",
                 "plan",
                 format!("the request cannot be planned again with this combination: {e}"),
@@ -332,7 +332,7 @@ fn hop_of_the_plan(
     let hops = &report.plan.hops;
     match hops.get(file.hop_index) {
         Some(hop) if hop.path == file.path => None,
-        Some(hop) => Some(v(
+        Some(hop) => Some(violation(
             "P5609",
             "hop_index",
             format!(
@@ -345,7 +345,7 @@ fn hop_of_the_plan(
                 file.path.join(" - ")
             ),
         )),
-        None => Some(v(
+        None => Some(violation(
             "P5609",
             "hop_index",
             format!(

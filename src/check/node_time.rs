@@ -14,7 +14,7 @@ use crate::node_time::NodeTimeReport;
 use crate::problem::io::json_name;
 use crate::solver::{Gap, ReferenceKind, SolveStatus};
 
-fn v(code: &'static str, field: impl Into<String>, cause: impl Into<String>) -> Violation {
+fn violation(code: &'static str, field: impl Into<String>, cause: impl Into<String>) -> Violation {
     Violation::new(
         code,
         field,
@@ -42,14 +42,14 @@ pub fn check_node_time(
     let mut out = Vec::new();
     if let Some((pads, times)) = instance {
         if pads != report.pads {
-            out.push(v(
+            out.push(violation(
                 "P5506",
                 "pads",
                 format!("states {} pads, the instance has {pads}", report.pads),
             ));
         }
         if times.len() != report.charge_times_min.len() {
-            out.push(v(
+            out.push(violation(
                 "P5506",
                 "charge_times_min",
                 format!(
@@ -61,7 +61,7 @@ pub fn check_node_time(
         } else {
             for (j, (&stated, &given)) in report.charge_times_min.iter().zip(times).enumerate() {
                 if stated != given {
-                    out.push(v(
+                    out.push(violation(
                         "P5506",
                         format!("charge_times_min[{j}]"),
                         format!("states {stated} min, the instance has {given} min"),
@@ -79,7 +79,7 @@ pub fn check_node_time(
         for (i, &j) in pad.iter().enumerate() {
             match seen.get_mut(j) {
                 Some(count) => *count += 1,
-                None => out.push(v(
+                None => out.push(violation(
                     "P5501",
                     format!("assignment[{p}][{i}]"),
                     format!("drone {j}, the instance has {n} drones"),
@@ -88,7 +88,7 @@ pub fn check_node_time(
         }
     }
     if s.assignment.len() > report.pads {
-        out.push(v(
+        out.push(violation(
             "P5501",
             "assignment",
             format!(
@@ -101,7 +101,7 @@ pub fn check_node_time(
     let unassigned: Vec<usize> = (0..n).filter(|&j| seen[j] != 1).collect();
     let partition = out.iter().all(|x| x.code != "P5501") && unassigned.is_empty();
     if !unassigned.is_empty() && s.status != SolveStatus::Infeasible {
-        out.push(v(
+        out.push(violation(
             "P5501",
             "assignment",
             format!("drones {unassigned:?} are not charged exactly once"),
@@ -117,7 +117,7 @@ pub fn check_node_time(
         .map(|pad| pad.iter().map(|&j| times[j]).sum::<f64>())
         .fold(0.0, f64::max);
     if !close(s.makespan_min, makespan) {
-        out.push(v(
+        out.push(violation(
             "P5502",
             "makespan_min",
             format!(
@@ -133,7 +133,7 @@ pub fn check_node_time(
         _ => s.lower_bound_min >= 0.0 && s.lower_bound_min <= makespan + slack,
     };
     if !bound_ok {
-        out.push(v(
+        out.push(violation(
             "P5503",
             "lower_bound_min",
             format!(
@@ -150,7 +150,7 @@ pub fn check_node_time(
         let best = optimal_makespan_min(times, report.pads);
         let slack = super::INTEGRATION_TOLERANCE * (1.0 + best);
         if s.lower_bound_min > best + slack {
-            out.push(v(
+            out.push(violation(
                 "P5504",
                 "lower_bound_min",
                 format!(
@@ -160,7 +160,7 @@ pub fn check_node_time(
             ));
         }
         if s.status == SolveStatus::Optimal && makespan > best + slack {
-            out.push(v(
+            out.push(violation(
                 "P5504",
                 "makespan_min",
                 format!("optimal {makespan}, but an assignment with makespan {best} exists"),
@@ -185,7 +185,7 @@ pub fn check_node_time(
             (Some(_), Some(_)) => "gap.relative",
             _ => "gap",
         };
-        out.push(v(
+        out.push(violation(
             "P5505",
             field,
             format!(

@@ -52,7 +52,7 @@ fn close(a: f64, b: f64) -> bool {
     (a - b).abs() <= super::INTEGRATION_TOLERANCE * (1.0 + a.abs().max(b.abs()))
 }
 
-fn v(code: &'static str, field: impl Into<String>, cause: impl Into<String>) -> Violation {
+fn violation(code: &'static str, field: impl Into<String>, cause: impl Into<String>) -> Violation {
     Violation::new(
         code,
         field,
@@ -166,7 +166,7 @@ pub fn check_plan(
 fn p5001_plan_answers_the_request(raw: &Raw, plan: &Plan) -> Option<Violation> {
     let r = raw.request;
     (plan.source != r.source || plan.destination != r.destination).then(|| {
-        v(
+        violation(
             "P5001",
             "source, destination",
             format!(
@@ -181,7 +181,7 @@ fn p5001_plan_answers_the_request(raw: &Raw, plan: &Plan) -> Option<Violation> {
 fn p5034_baseline_flies_no_support_drone(raw: &Raw) -> Option<Violation> {
     let supports = raw.swarm.support_count();
     (!raw.sharing.flies_support() && supports > 0).then(|| {
-        v(
+        violation(
             "P5034",
             "swarm",
             format!(
@@ -200,14 +200,14 @@ fn p5037_swarm_is_well_formed(swarm: &Swarm) -> Vec<Violation> {
     let mut out = Vec::new();
     let n = swarm.drones.len();
     if let Some((i, d)) = swarm.drones.iter().enumerate().find(|(i, d)| d.id != *i) {
-        out.push(v(
+        out.push(violation(
             "P5037",
             format!("swarm.drones[{i}].id"),
             format!("drone {i} has id {}: ids must be the drones' indices", d.id),
         ));
     }
     if swarm.slots_m.len() != n {
-        out.push(v(
+        out.push(violation(
             "P5037",
             "swarm.slots_m",
             format!("{} slots for {n} drones", swarm.slots_m.len()),
@@ -220,7 +220,7 @@ fn p5037_swarm_is_well_formed(swarm: &Swarm) -> Vec<Violation> {
             .iter()
             .all(|&q| q < n && !std::mem::replace(&mut seen[q], true));
     if !permutation {
-        out.push(v(
+        out.push(violation(
             "P5037",
             "swarm.initial_slot",
             format!(
@@ -247,7 +247,7 @@ fn p5038_delivery_drones_carry_the_packages(raw: &Raw) -> Option<Violation> {
         .zip(packages)
         .all(|(d, &p)| close(d.payload_kg, p));
     (delivery != packages.len() || !rest_support || !carried).then(|| {
-        v(
+        violation(
             "P5038",
             "swarm.drones",
             format!(
@@ -282,7 +282,7 @@ fn p5039_drones_are_the_profiles(raw: &Raw) -> Vec<Violation> {
                 ("payload_kg", d.payload_kg, payload, "kg"),
             ] {
                 if !close(stated, expected) {
-                    out.push(v(
+                    out.push(violation(
                         "P5039",
                         format!("swarm.drones[{i}].{field}"),
                         format!(
@@ -310,7 +310,7 @@ fn p5040_slots_are_the_formations(raw: &Raw) -> Option<Violation> {
         .zip(&swarm.slots_m)
         .all(|(a, b)| close(a.x, b.x) && close(a.y, b.y));
     (!same).then(|| {
-        v(
+        violation(
             "P5040",
             "swarm.slots_m",
             format!(
@@ -328,7 +328,7 @@ fn p5040_slots_are_the_formations(raw: &Raw) -> Option<Violation> {
 /// P5004: a hop starts where the swarm is: the source, or where the previous hop ended.
 fn p5004_hop_starts_where_the_swarm_is(f: &str, hop: &Hop, at: &str) -> Option<Violation> {
     (hop.from != at).then(|| {
-        v(
+        violation(
             "P5004",
             format!("{f}.from"),
             format!("hop starts at {}, the swarm is at {at}", hop.from),
@@ -345,7 +345,7 @@ fn p5005_last_hop_ends_at_the_destination(
 ) -> Option<Violation> {
     let destination = &raw.request.destination;
     (ends_plan && hop.to != *destination).then(|| {
-        v(
+        violation(
             "P5005",
             format!("{f}.to"),
             format!(
@@ -359,7 +359,7 @@ fn p5005_last_hop_ends_at_the_destination(
 /// P5006: the swarm does not recharge at the destination.
 fn p5006_no_stop_at_the_destination(f: &str, hop: &Hop, ends_plan: bool) -> Option<Violation> {
     (ends_plan && hop.stop.is_some()).then(|| {
-        v(
+        violation(
             "P5006",
             format!("{f}.stop"),
             "the destination is not a recharging stop",
@@ -370,7 +370,7 @@ fn p5006_no_stop_at_the_destination(f: &str, hop: &Hop, ends_plan: bool) -> Opti
 /// P5007: every hop but the last of a delivered plan ends in a recharging stop.
 fn p5007_other_hops_end_in_a_stop(f: &str, hop: &Hop, ends_plan: bool) -> Option<Violation> {
     (!ends_plan && hop.stop.is_none()).then(|| {
-        v(
+        violation(
             "P5007",
             format!("{f}.stop"),
             format!("the swarm ends a hop at {} without recharging", hop.to),
@@ -382,7 +382,7 @@ fn p5007_other_hops_end_in_a_stop(f: &str, hop: &Hop, ends_plan: bool) -> Option
 fn p5008_a_delivery_flies(raw: &Raw, plan: &Plan) -> Option<Violation> {
     let r = raw.request;
     (plan.delivered() && plan.hops.is_empty() && r.source != r.destination).then(|| {
-        v(
+        violation(
             "P5008",
             "hops",
             "a successful plan between two different nodes flies no hop",
@@ -442,7 +442,7 @@ fn p5035_failure_names_where_the_swarm_is(raw: &Raw, plan: &Plan) -> Option<Viol
             )
         }
     };
-    Some(v("P5035", "outcome", cause))
+    Some(violation("P5035", "outcome", cause))
 }
 
 /// P5036: a plan fails for want of a route only between nodes no path of the network joins.
@@ -471,7 +471,7 @@ fn p5036_no_route_only_between_unconnected_nodes(raw: &Raw, plan: &Plan) -> Opti
         }
     }
     seen[b].then(|| {
-        v(
+        violation(
             "P5036",
             "outcome",
             format!("no route from {from} to {to}, but the network joins them"),
@@ -490,7 +490,7 @@ fn p5030_totals_are_the_sums(plan: &Plan) -> Vec<Violation> {
     .into_iter()
     .filter(|(_, stated, sum, _)| !close(*stated, *sum))
     .map(|(field, stated, sum, what)| {
-        v(
+        violation(
             "P5030",
             field,
             format!("reported {stated}, the {what} sum to {sum}"),
@@ -503,7 +503,7 @@ fn p5030_totals_are_the_sums(plan: &Plan) -> Vec<Violation> {
 fn p5031_dt_is_tt_plus_nt(plan: &Plan) -> Option<Violation> {
     let dt = sum_tt(plan) + sum_nt(plan);
     (!close(plan.dt_min, dt)).then(|| {
-        v(
+        violation(
             "P5031",
             "dt_min",
             format!("reported dt {}, but sum tt + sum nt = {dt}", plan.dt_min),
@@ -519,7 +519,7 @@ fn p5032_shared_is_the_transfers(plan: &Plan) -> Option<Violation> {
         .flat_map(|h| h.transfers.iter().map(|x| x.energy_mah))
         .sum();
     (!close(plan.shared_mah, shared)).then(|| {
-        v(
+        violation(
             "P5032",
             "shared_mah",
             format!(
@@ -587,7 +587,7 @@ fn p5009_path_runs_between_the_hop_ends(f: &str, hop: &Hop) -> Option<Violation>
         && hop.path.last() == Some(&hop.to)
         && hop.path.len() >= 2;
     (!ok).then(|| {
-        v(
+        violation(
             "P5009",
             format!("{f}.path"),
             format!(
@@ -605,7 +605,7 @@ fn p5010_path_nodes_exist(raw: &Raw, f: &str, hop: &Hop) -> Result<Vec<usize>, V
         .enumerate()
         .map(|(i, id)| {
             raw.index.get(id.as_str()).copied().ok_or_else(|| {
-                v(
+                violation(
                     "P5010",
                     format!("{f}.path[{i}]"),
                     format!("`{id}` is not a node of the network"),
@@ -627,7 +627,7 @@ fn p5011_path_follows_edges(
     for (i, w) in nodes.windows(2).enumerate() {
         match raw_leg(raw.network, w[0], w[1]) {
             Some(l) => legs.push(l),
-            None => missing.push(v(
+            None => missing.push(violation(
                 "P5011",
                 format!("{f}.path[{i}..={}]", i + 1),
                 format!(
@@ -673,7 +673,7 @@ pub(super) fn raw_leg(network: &Network, a: usize, b: usize) -> Option<RawLeg> {
 /// P5012: the hop's length is the sum of its edges' lengths.
 fn p5012_distance_is_the_edges(f: &str, hop: &Hop, distance_m: f64) -> Option<Violation> {
     (!close(hop.distance_m, distance_m)).then(|| {
-        v(
+        violation(
             "P5012",
             format!("{f}.distance_m"),
             format!(
@@ -694,7 +694,7 @@ fn p5013_tt_is_distance_over_speed(
     let speed = raw.speed_m_per_min;
     let tt = distance_m / speed;
     (!close(hop.tt_min, tt)).then(|| {
-        v(
+        violation(
             "P5013",
             format!("{f}.tt_min"),
             format!(
@@ -716,7 +716,7 @@ fn p5033_legs_follow_the_path(raw: &Raw, f: &str, hop: &Hop, distance_m: f64) ->
             .all(|(s, w)| s.from == w[0] && s.to == w[1]);
     let legs_tt: f64 = hop.legs.iter().map(|s| s.tt_min).sum();
     (!pairs_match || !close(legs_tt, tt)).then(|| {
-        v(
+        violation(
             "P5033",
             format!("{f}.legs"),
             format!(
@@ -777,7 +777,7 @@ fn p5044_legs_are_the_edges(raw: &Raw, f: &str, hop: &Hop, legs: &[RawLeg]) -> V
         ];
         for (name, got, want, ok) in numbers {
             if !ok {
-                out.push(v(
+                out.push(violation(
                     "P5044",
                     format!("{f}.legs[{j}].{name}"),
                     format!(
@@ -803,7 +803,7 @@ fn p5014_departs_full(raw: &Raw, f: &str, hop: &Hop) -> Option<Violation> {
             .zip(&raw.full)
             .all(|(&b, &c)| close(b, c));
     (!full).then(|| {
-        v(
+        violation(
             "P5014",
             format!("{f}.departure_battery_mah"),
             format!(
@@ -817,7 +817,7 @@ fn p5014_departs_full(raw: &Raw, f: &str, hop: &Hop) -> Option<Violation> {
 /// P5016: no transfer under a policy that does not share.
 fn p5016_no_transfer_without_sharing(raw: &Raw, f: &str, hop: &Hop) -> Option<Violation> {
     (!raw.sharing.shares() && !hop.transfers.is_empty()).then(|| {
-        v(
+        violation(
             "P5016",
             format!("{f}.transfers"),
             format!(
@@ -853,7 +853,7 @@ fn p5015_schedule_passes_the_hop_checker(
         .into_iter()
         .filter(|x| x.code != "C3017")
         .map(|x| {
-            v(
+            violation(
                 "P5015",
                 plan_field_of_hop_field(f, &x.field),
                 format!("[{}] {} (hop checker field `{}`)", x.code, x.cause, x.field),
@@ -1009,7 +1009,7 @@ fn check_stop(out: &mut Vec<Violation>, raw: &Raw, f: &str, hop: &Hop, stop: &St
 /// P5020: the stop is at the node the hop ends at.
 fn p5020_stop_is_at_the_hop_end(f: &str, hop: &Hop, stop: &Stop) -> Option<Violation> {
     (stop.node != hop.to).then(|| {
-        v(
+        violation(
             "P5020",
             format!("{f}.node"),
             format!("stop at {} but the hop ends at {}", stop.node, hop.to),
@@ -1025,7 +1025,7 @@ fn p5020_stop_node_is_in_the_network<'a>(
 ) -> Result<&'a Node, Violation> {
     match raw.index.get(stop.node.as_str()) {
         Some(&i) => Ok(&raw.network.nodes[i]),
-        None => Err(v(
+        None => Err(violation(
             "P5020",
             format!("{f}.node"),
             format!("`{}` is not a node of the network", stop.node),
@@ -1036,7 +1036,7 @@ fn p5020_stop_node_is_in_the_network<'a>(
 /// P5021: the stop's node has pads, as many as the stop says.
 fn p5021_pads_are_the_nodes(f: &str, stop: &Stop, node: &Node) -> Option<Violation> {
     (node.pads == 0 || stop.pads != node.pads).then(|| {
-        v(
+        violation(
             "P5021",
             format!("{f}.pads"),
             format!(
@@ -1082,7 +1082,7 @@ fn p5022_charge_times_follow_the_arrival(
 ) -> Option<Violation> {
     let n = raw.swarm.drones.len();
     let Some(ct) = ct else {
-        return Some(v(
+        return Some(violation(
             "P5022",
             format!("{f}.charge_times_min"),
             format!(
@@ -1098,7 +1098,7 @@ fn p5022_charge_times_follow_the_arrival(
             .zip(ct)
             .all(|(&a, &b)| close(a, b));
     (!same).then(|| {
-        v(
+        violation(
             "P5022",
             format!("{f}.charge_times_min"),
             format!(
@@ -1113,7 +1113,7 @@ fn p5022_charge_times_follow_the_arrival(
 /// P5023: the assignment uses at most the node's pads.
 fn p5023_pads_used_exist(f: &str, stop: &Stop, node: &Node) -> Option<Violation> {
     (stop.assignment.len() > node.pads as usize).then(|| {
-        v(
+        violation(
             "P5023",
             format!("{f}.assignment"),
             format!(
@@ -1132,7 +1132,7 @@ fn p5024_assigned_drones_exist(f: &str, stop: &Stop, n: usize) -> Vec<Violation>
         .flatten()
         .filter(|&&d| d >= n)
         .map(|d| {
-            v(
+            violation(
                 "P5024",
                 format!("{f}.assignment"),
                 format!("drone {d} does not exist (swarm of {n})"),
@@ -1148,7 +1148,7 @@ fn p5025_assignment_is_a_partition(f: &str, stop: &Stop, n: usize) -> Option<Vio
         seen[d] += 1;
     }
     let d = seen.iter().position(|&c| c != 1)?;
-    Some(v(
+    Some(violation(
         "P5025",
         format!("{f}.assignment"),
         format!(
@@ -1167,7 +1167,7 @@ fn p5026_nt_is_the_makespan(f: &str, stop: &Stop, ct: &[f64]) -> Option<Violatio
         .map(|pad| pad.iter().filter(|&&d| d < n).map(|&d| ct[d]).sum::<f64>())
         .fold(0.0, f64::max);
     (!close(makespan, stop.nt_min)).then(|| {
-        v(
+        violation(
             "P5026",
             format!("{f}.nt_min"),
             format!(
@@ -1183,7 +1183,7 @@ fn p5026_nt_is_the_makespan(f: &str, stop: &Stop, ct: &[f64]) -> Option<Violatio
 fn p5028_nt_is_optimal(f: &str, stop: &Stop, ct: &[f64], pads: usize) -> Option<Violation> {
     let best = optimal_makespan_min(ct, pads);
     (stop.nt_min > best + super::INTEGRATION_TOLERANCE * (1.0 + best)).then(|| {
-        v(
+        violation(
             "P5028",
             format!("{f}.nt_min"),
             format!(
@@ -1204,7 +1204,7 @@ fn p5027_nt_above_the_lower_bound(
     let max_ct = ct.iter().copied().fold(0.0, f64::max);
     let bound = max_ct.max(ct.iter().sum::<f64>() / pads as f64);
     (stop.nt_min < bound - super::INTEGRATION_TOLERANCE * (1.0 + bound)).then(|| {
-        v(
+        violation(
             "P5027",
             format!("{f}.nt_min"),
             format!(

@@ -13,7 +13,7 @@ use crate::problem::fingerprint::Fingerprint;
 use crate::problem::io::json_name;
 use crate::problem::{Network, Profile, Request};
 
-fn v(code: &'static str, field: impl Into<String>, cause: impl Into<String>) -> Violation {
+fn violation(code: &'static str, field: impl Into<String>, cause: impl Into<String>) -> Violation {
     Violation::new(
         code,
         field,
@@ -134,7 +134,7 @@ fn p5041_request_is_in_the_request_set(
     found: Option<&Request>,
 ) -> Option<Violation> {
     (found.is_none() && !report.request.is_inline()).then(|| {
-        v(
+        violation(
             "P5041",
             "request.id",
             format!(
@@ -158,7 +158,7 @@ fn p5042_request_is_the_request_sets(
     let mut out = Vec::new();
     let mut differs = |field: &str, stated: String, file: String| {
         if stated != file {
-            out.push(v(
+            out.push(violation(
                 "P5042",
                 format!("request.{field}"),
                 format!("the plan's request states {stated}, the request file's {file}"),
@@ -185,7 +185,7 @@ fn p5043_summary_matches_the_swarm(report: &RequestReport) -> Vec<Violation> {
     let mut out = Vec::new();
     let swarm = &report.swarm;
     if report.formation != swarm.formation {
-        out.push(v(
+        out.push(violation(
             "P5043",
             "formation",
             format!(
@@ -197,7 +197,7 @@ fn p5043_summary_matches_the_swarm(report: &RequestReport) -> Vec<Violation> {
     }
     let flown = swarm.support_count();
     if report.support_drones != flown {
-        out.push(v(
+        out.push(violation(
             "P5043",
             "support_drones",
             format!(
@@ -211,7 +211,7 @@ fn p5043_summary_matches_the_swarm(report: &RequestReport) -> Vec<Violation> {
         .support
         .filter(|_| report.options.sharing.flies_support());
     if given.is_some_and(|n| n != flown) {
-        out.push(v(
+        out.push(violation(
             "P5043",
             "options.support",
             format!(
@@ -222,7 +222,7 @@ fn p5043_summary_matches_the_swarm(report: &RequestReport) -> Vec<Violation> {
         ));
     }
     if !report.options.sharing.flies_support() && flown != 0 {
-        out.push(v(
+        out.push(violation(
             "P5043",
             "support_drones",
             format!(

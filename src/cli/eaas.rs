@@ -305,7 +305,7 @@ fn print_human(r: &EaasReport) -> Result<()> {
     for row in &r.rows {
         let num = |x: Option<f64>| x.map_or("-".to_string(), |v| format!("{v:.4}"));
         let gap = match (row.gap, row.gap_label) {
-            (_, Some(label)) => label.to_string(),
+            (_, Some(label)) => json_name(&label),
             (Some(g), None) => match g.relative {
                 Some(x) => format!(
                     "{} vs {}",

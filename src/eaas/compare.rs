@@ -120,7 +120,7 @@ pub struct MethodRow {
     /// `different_policy` when the row's schedule lies outside the reference's model (a
     /// swapping PB or FB schedule against a `none` reference): no gap is taken.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub gap_label: Option<&'static str>,
+    pub gap_label: Option<crate::solver::GapLabel>,
     /// `continuous`: the certified distance of the schedule to the model's optimum, in the
     /// objective's unit (0 when attained).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -298,7 +298,7 @@ pub fn label_gaps(
             .iter()
             .any(|t| t.consumer_slot != problem.initial_slot[t.consumer]);
         if reorder == Reorder::None && swaps && !r.method.is_model() {
-            r.gap_label = Some("different_policy");
+            r.gap_label = Some(crate::solver::GapLabel::DifferentPolicy);
             continue;
         }
         r.gap = r.objective.map(|h| Gap::new(h, v, kind, objective.sense()));

@@ -27,7 +27,7 @@ use crate::eaas::{
 use crate::error::{Error, Result, Violation};
 use crate::precompose::Positioning;
 use crate::problem::Request;
-use crate::solver::{Gap, ReferenceKind, Sense};
+use crate::solver::{Gap, GapLabel, ReferenceKind, Sense};
 use serde::{Deserialize, Serialize};
 
 /// One transfer of a schedule as a user writes it: `energy_mah` and `consumer_slot` may be left
@@ -139,7 +139,7 @@ pub struct HopEvaluation {
     pub gap: Option<Gap>,
     /// Why no gap is given: `infeasible` (the schedule does not fly), `outside_reference` (its
     /// mode is larger than the reference's), `no_reference` (the model gave no value).
-    pub gap_label: Option<&'static str>,
+    pub gap_label: Option<GapLabel>,
 }
 
 /// The smallest re-ordering mode containing a schedule (checked valid): `none` when every
@@ -227,11 +227,13 @@ pub fn evaluate_hop(
     };
     let (gap, gap_label) = match (&value, &reference) {
         (_, None) => (None, None),
-        (None, Some(_)) => (None, Some("infeasible")),
-        (Some(_), Some(r)) if !contains(r.reorder, mode) => (None, Some("outside_reference")),
+        (None, Some(_)) => (None, Some(GapLabel::Infeasible)),
+        (Some(_), Some(r)) if !contains(r.reorder, mode) => {
+            (None, Some(GapLabel::OutsideReference))
+        }
         (Some(v), Some(r)) => match (r.value, r.kind) {
             (Some(x), Some(kind)) => (Some(Gap::new(v.value, x, kind, objective.sense())), None),
-            _ => (None, Some("no_reference")),
+            _ => (None, Some(GapLabel::NoReference)),
         },
     };
     Ok(HopEvaluation {
@@ -331,7 +333,7 @@ pub struct RouteEvaluation {
     pub gap: Option<Gap>,
     /// Why no gap is given: `not_delivered`, `outside_reference` (a hop schedule outside the
     /// reference's re-ordering mode), `no_reference` (the reference does not deliver).
-    pub gap_label: Option<&'static str>,
+    pub gap_label: Option<GapLabel>,
 }
 
 fn stop_error(code: &'static str, field: String, cause: String, fix: &str) -> Error {
@@ -519,11 +521,11 @@ impl RouteEvaluation {
     pub fn measure_against(&mut self, reference: RouteReference) {
         self.reference = Some(reference);
         (self.gap, self.gap_label) = match (self.dt_min, reference.dt_min) {
-            (None, _) => (None, Some("not_delivered")),
+            (None, _) => (None, Some(GapLabel::NotDelivered)),
             (Some(_), _) if !contains(reference.reorder, self.mode) => {
-                (None, Some("outside_reference"))
+                (None, Some(GapLabel::OutsideReference))
             }
-            (Some(_), None) => (None, Some("no_reference")),
+            (Some(_), None) => (None, Some(GapLabel::NoReference)),
             (Some(dt), Some(best)) => (
                 Some(Gap::new(dt, best, reference.kind, Sense::Minimise)),
                 None,

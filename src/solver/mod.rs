@@ -319,6 +319,23 @@ pub enum Sense {
     Maximise,
 }
 
+/// Why a value has no gap: its schedule or route lies outside what the reference is exact over,
+/// or one of the two has no value.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum GapLabel {
+    /// A swapping PB or FB schedule against a reference of re-ordering `none` (`eaas`).
+    DifferentPolicy,
+    /// A schedule that lies outside the reference's re-ordering mode (`evaluate`).
+    OutsideReference,
+    /// The schedule does not fly.
+    Infeasible,
+    /// The route does not deliver.
+    NotDelivered,
+    /// The reference gave no value.
+    NoReference,
+}
+
 /// A relative gap with the kind of its reference: the relative **loss** of a value against the
 /// reference, `(value - reference) / |reference|` for a minimised objective and
 /// `(reference - value) / |reference|` for a maximised one, so a loss is positive under either
