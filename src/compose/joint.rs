@@ -21,7 +21,7 @@ use std::collections::HashMap;
 const FLUID_BOUND_MARGIN: f64 = 1e-5;
 
 /// A walk of an arc, built and bounded, not yet flown.
-struct Candidate {
+struct BoundedWalk {
     /// `l1` (the path's legs) or, once `fluid`, `l2` (the fluid LP too).
     bound_min: f64,
     fluid: bool,
@@ -42,7 +42,7 @@ enum Unbuilt {
 /// its cost, the cost itself when the best flown walk holds it.
 struct ArcValue {
     unbuilt: Unbuilt,
-    candidates: Vec<Candidate>,
+    candidates: Vec<BoundedWalk>,
     /// `tt + nt` at the infimum of the hop's node time, and the arc, of the best walk flown that
     /// flies.
     flown: Option<(f64, Box<BestArc>)>,
@@ -424,7 +424,7 @@ impl Planner {
             }
             .expect("a finite distance has a path");
             let candidates = match self.hop_bound_min(&path, stop)? {
-                Some(bound_min) => vec![Candidate {
+                Some(bound_min) => vec![BoundedWalk {
                     bound_min,
                     fluid: false,
                     path,
@@ -477,7 +477,7 @@ impl Planner {
                 continue;
             };
             if let Some(bound_min) = self.hop_bound_min(&path, stop)? {
-                value.candidates.push(Candidate {
+                value.candidates.push(BoundedWalk {
                     bound_min,
                     fluid: false,
                     path,

@@ -28,7 +28,7 @@
 
 use super::EndPads;
 use super::{
-    backend_end, moves, objective_of, validate_inputs, BackendEnd, ExactOutcome, ExactStatus,
+    backend_end, moves, objective_of, validate_inputs, BackendEnd, ExactOutcome, ExactStatus, Move,
     Objective, PadRows, Reorder,
 };
 use crate::eaas::simulate::evaluate;
@@ -197,19 +197,21 @@ pub fn configurations(
     };
     let mv = moves(problem, mode);
     for slot in &slots_list {
-        // Moves of this slot assignment: (support, consumer, slot, partner).
-        let here: Vec<(usize, usize, usize, Option<usize>)> = if mode == Reorder::Free {
+        // The moves of this slot assignment.
+        let here: Vec<Move> = if mode == Reorder::Free {
             mv.iter()
                 .filter(|m| {
                     reorder::slot_distance_m(problem, slot[m.support], slot[m.consumer])
                         <= problem.range_m
                 })
-                .map(|m| (m.support, m.consumer, slot[m.consumer], None))
+                .map(|m| Move {
+                    slot: slot[m.consumer],
+                    partner: None,
+                    ..*m
+                })
                 .collect()
         } else {
-            mv.iter()
-                .map(|m| (m.support, m.consumer, m.slot, m.partner))
-                .collect()
+            mv.clone()
         };
         let mut used = vec![false; n];
         let mut chosen = Vec::new();
@@ -232,7 +234,7 @@ pub fn configurations(
 struct Enumeration<'a> {
     problem: &'a HopProblem,
     supports: &'a [usize],
-    moves: &'a [(usize, usize, usize, Option<usize>)],
+    moves: &'a [Move],
     slot: &'a [usize],
     max: usize,
     out: &'a mut Vec<Configuration>,
@@ -248,12 +250,12 @@ impl Enumeration<'_> {
             let mut slot = self.slot.to_vec();
             let mut list = Vec::new();
             for &k in chosen.iter() {
-                let (s, c, q, p) = self.moves[k];
-                if let Some(p) = p {
-                    slot[p] = self.problem.initial_slot[c];
+                let m = self.moves[k];
+                if let Some(p) = m.partner {
+                    slot[p] = self.problem.initial_slot[m.consumer];
                 }
-                slot[c] = q;
-                list.push((s, c, q));
+                slot[m.consumer] = m.slot;
+                list.push((m.support, m.consumer, m.slot));
             }
             self.out.push(Configuration { moves: list, slot });
             return true;
@@ -263,7 +265,12 @@ impl Enumeration<'_> {
         }
         let s = self.supports[i];
         for k in 0..self.moves.len() {
-            let (ks, c, _, p) = self.moves[k];
+            let Move {
+                support: ks,
+                consumer: c,
+                partner: p,
+                ..
+            } = self.moves[k];
             if ks != s || used[c] || p.is_some_and(|p| used[p]) {
                 continue;
             }
@@ -1101,7 +1108,7 @@ impl Model<'_> {
         objective: &Objective,
         theta: &[Vec<f64>],
         start_min: f64,
-    ) -> Result<Option<Candidate>> {
+    ) -> Result<Option<FlyingSchedule>> {
         match self.realise(theta, start_min) {
             Some(pieces) if self.free => {
                 free_candidate(self.problem, objective, self.intervals(&pieces))
@@ -1155,7 +1162,7 @@ fn round_order(
 
 /// A schedule that flies, with its objective.
 #[derive(Debug, Clone)]
-struct Candidate {
+struct FlyingSchedule {
     value: f64,
     proven: bool,
     /// The replay by the hop evaluation (`none`, `paper`, and the heuristics' schedules).
@@ -1179,13 +1186,13 @@ fn candidate(
     problem: &HopProblem,
     objective: &Objective,
     transfers: &[Transfer],
-) -> Result<Option<Candidate>> {
+) -> Result<Option<FlyingSchedule>> {
     let outcome = evaluate(problem, transfers).into_outcome();
     if !outcome.feasible {
         return Ok(None);
     }
     let value = objective_of(problem, objective, &outcome.final_battery_mah)?;
-    Ok(Some(Candidate {
+    Ok(Some(FlyingSchedule {
         value: value.value,
         proven: value.proven,
         outcome: Some(outcome),
@@ -1200,7 +1207,7 @@ fn free_candidate(
     problem: &HopProblem,
     objective: &Objective,
     intervals: Vec<SlotInterval>,
-) -> Result<Option<Candidate>> {
+) -> Result<Option<FlyingSchedule>> {
     let rho = problem.rho_mah_per_min;
     let mut b: Vec<f64> = problem.drones.iter().map(|d| d.battery_mah).collect();
     let mut transfers = Vec::new();
@@ -1234,7 +1241,7 @@ fn free_candidate(
         }
     }
     let value = objective_of(problem, objective, &b)?;
-    Ok(Some(Candidate {
+    Ok(Some(FlyingSchedule {
         value: value.value,
         proven: value.proven,
         outcome: None,
@@ -1250,7 +1257,7 @@ fn free_candidate(
 }
 
 /// Keeps the better of `best` and `new`.
-fn keep(objective: &Objective, best: &mut Option<Candidate>, new: Option<Candidate>) {
+fn keep(objective: &Objective, best: &mut Option<FlyingSchedule>, new: Option<FlyingSchedule>) {
     if let Some(c) = new {
         if best
             .as_ref()
@@ -1332,7 +1339,7 @@ pub fn solve_continuous(
     let model = Model::of(problem, &configs, options.reorder);
     let mut out = ExactOutcome::infeasible(0.0, model.legs.len());
     // Incumbents: the empty schedule and the heuristics' schedules of the mode.
-    let mut best: Option<Candidate> = None;
+    let mut best: Option<FlyingSchedule> = None;
     keep(objective, &mut best, candidate(problem, objective, &[])?);
     if configs.len() == 1 {
         // Only the empty configuration (no support drone, or no move in the mode): the empty
@@ -1380,11 +1387,11 @@ pub fn solve_continuous(
     // The model's own value: the relaxation's, then the pad MILP's.
     let mut model_value = relaxed.value;
     let tolerance = |b: f64| OPTIMAL_ABS_TOL + OPTIMAL_REL_TOL * b.abs();
-    let distance = |c: &Candidate, b: f64| match objective {
+    let distance = |c: &FlyingSchedule, b: f64| match objective {
         Objective::MaxMinArrival => b - c.value,
         _ => c.value - b,
     };
-    let reached = |best: &Option<Candidate>, bound: Option<f64>| {
+    let reached = |best: &Option<FlyingSchedule>, bound: Option<f64>| {
         bound.is_some_and(|b| {
             best.as_ref()
                 .is_some_and(|c| distance(c, b) <= tolerance(b))
@@ -1527,7 +1534,7 @@ pub fn solve_continuous(
                 break;
             }
             realised_any |= realised.is_some();
-            let approached = realised.map(|c| Candidate {
+            let approached = realised.map(|c| FlyingSchedule {
                 approached: true,
                 ..c
             });
@@ -1568,7 +1575,7 @@ pub fn solve_continuous(
 fn finish(
     out: &mut ExactOutcome,
     objective: &Objective,
-    best: Option<Candidate>,
+    best: Option<FlyingSchedule>,
     bound: Option<f64>,
 ) -> Result<()> {
     out.bound = bound;
