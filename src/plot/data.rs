@@ -320,6 +320,31 @@ impl Figure {
     }
 }
 
+/// The lowest and highest battery of a transfer's two drones over the transfer, `scale`d:
+/// the band drawn behind it; `(0, 0)` when no point of `trajectory` falls in it.
+pub(super) fn battery_span(
+    trajectory: &[(f64, Vec<f64>)],
+    x: &crate::eaas::Transfer,
+    scale: impl Fn(usize, f64) -> f64,
+) -> (f64, f64) {
+    let span = trajectory
+        .iter()
+        .filter(|(t, _)| *t >= x.start_min - 1e-9 && *t <= x.end_min + 1e-9)
+        .flat_map(|(_, b)| {
+            [x.support, x.consumer]
+                .into_iter()
+                .filter_map(|d| b.get(d).map(|&v| scale(d, v)))
+        })
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        });
+    if span.0 <= span.1 {
+        span
+    } else {
+        (0.0, 0.0)
+    }
+}
+
 fn node_at(network: &Network) -> HashMap<&str, (f64, f64)> {
     network
         .nodes
@@ -378,18 +403,6 @@ fn plan_data(
             }
         }
         for x in &hop.transfers {
-            let inside = trajectory
-                .iter()
-                .filter(|(t, _)| *t >= x.start_min - 1e-9 && *t <= x.end_min + 1e-9);
-            let span = inside
-                .flat_map(|(_, b)| {
-                    [x.support, x.consumer]
-                        .into_iter()
-                        .filter_map(|d| b.get(d).map(|&v| scale(d, v)))
-                })
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
-                    (lo.min(v), hi.max(v))
-                });
             transfers.push(TransferBand {
                 hop: k,
                 support: x.support,
@@ -397,7 +410,7 @@ fn plan_data(
                 start_min: t0 + x.start_min,
                 end_min: t0 + x.end_min,
                 energy_mah: x.energy_mah,
-                battery_span: if span.0 <= span.1 { span } else { (0.0, 0.0) },
+                battery_span: battery_span(&trajectory, x, scale),
             });
         }
         t0 += hop.tt_min;

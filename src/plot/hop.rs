@@ -8,7 +8,9 @@
 //! re-integration of the transfers as written ([`crate::check::hop::battery_trajectory`]), so a
 //! schedule that does not fly shows its drone running dry where the re-integration says.
 
-use super::data::{BatteryUnit, DroneSeries, FailureMark, Figure, MapData, PlanData, TransferBand};
+use super::data::{
+    battery_span, BatteryUnit, DroneSeries, FailureMark, Figure, MapData, PlanData, TransferBand,
+};
 use crate::check::hop::battery_trajectory;
 use crate::check::INTEGRATION_TOLERANCE;
 use crate::eaas::hop_file::HopFile;
@@ -84,28 +86,14 @@ pub fn hop_figure_data(
         let transfers = s
             .transfers
             .iter()
-            .map(|x| {
-                let span = trajectory
-                    .iter()
-                    .filter(|(t, _)| *t >= x.start_min - 1e-9 && *t <= x.end_min + 1e-9)
-                    .flat_map(|(_, b)| {
-                        [
-                            scale(x.support, b[x.support]),
-                            scale(x.consumer, b[x.consumer]),
-                        ]
-                    })
-                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
-                        (lo.min(v), hi.max(v))
-                    });
-                TransferBand {
-                    hop: file.hop_index,
-                    support: x.support,
-                    consumer: x.consumer,
-                    start_min: x.start_min,
-                    end_min: x.end_min,
-                    energy_mah: x.energy_mah,
-                    battery_span: if span.0 <= span.1 { span } else { (0.0, 0.0) },
-                }
+            .map(|x| TransferBand {
+                hop: file.hop_index,
+                support: x.support,
+                consumer: x.consumer,
+                start_min: x.start_min,
+                end_min: x.end_min,
+                energy_mah: x.energy_mah,
+                battery_span: battery_span(&trajectory, x, scale),
             })
             .collect();
         let failure = first_dry(&trajectory).map(|(drone, time_min)| FailureMark {
