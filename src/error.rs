@@ -88,11 +88,29 @@ pub enum Error {
     /// An optimization backend failed in a way that is not a solve outcome.
     #[error("solver backend {backend} failed: {message}")]
     Backend {
+        /// What kind of failure: what a retry matches on.
+        kind: BackendFailure,
         /// The backend's name.
         backend: String,
         /// What it reported.
         message: String,
     },
+}
+
+/// The kinds of [`Error::Backend`]. Infeasibility and a limit with an incumbent are solve
+/// outcomes, never errors.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BackendFailure {
+    /// The solver failed while solving: an error of its own, a status that cannot occur for the
+    /// model (unbounded where every variable is bounded), or a solution that breaks the model.
+    /// A retry on a rescaled or reordered model may succeed.
+    Numerical,
+    /// A limit stopped the solve before it had the answer the caller needs.
+    Limit,
+    /// The backend refused the problem as built (inconsistent dimensions).
+    Refused,
+    /// A model could not be captured or written as a file.
+    LostModel,
 }
 
 fn list(violations: &[Violation]) -> String {
@@ -109,6 +127,19 @@ impl Error {
         Error::Internal {
             code,
             context: context.into(),
+        }
+    }
+
+    /// An [`Error::Backend`] of kind `kind` from `backend`, in its words `message`.
+    pub fn backend(
+        kind: BackendFailure,
+        backend: impl Into<String>,
+        message: impl Into<String>,
+    ) -> Self {
+        Error::Backend {
+            kind,
+            backend: backend.into(),
+            message: message.into(),
         }
     }
 

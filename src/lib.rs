@@ -68,4 +68,4 @@ pub mod precompose;
 pub mod problem;
 pub mod solver;
 
-pub use error::{Error, Violation};
+pub use error::{BackendFailure, Error, Violation};

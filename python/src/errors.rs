@@ -57,7 +57,9 @@ pub(crate) fn to_py_err(py: Python<'_>, e: Error) -> PyErr {
             source.to_string(),
             "check the output stream",
         )],
-        Error::Backend { backend, message } => vec![Violation::new(
+        Error::Backend {
+            backend, message, ..
+        } => vec![Violation::new(
             "E0027",
             backend.clone(),
             message.clone(),

@@ -360,7 +360,9 @@ pub fn fly_exact(
         Ok(Solved::Schedule(o)) => Ok(*o),
         // Both formulations of an exact policy give schedules; a bound alone is no flight.
         Ok(Solved::Bound(_)) => Err(format!("{formulation:?} gives no schedule")),
-        Err(Error::Backend { backend, message }) => Err(format!("{backend}: {message}")),
+        Err(Error::Backend {
+            backend, message, ..
+        }) => Err(format!("{backend}: {message}")),
         Err(e) => return Err(e),
     };
     let (status, bound, epsilon, grid_step_min, schedule, backend_error) = match solved {

@@ -17,7 +17,7 @@ use super::{
     elapsed_ms, lists_from_pad_of, lower_bound_sorted, sort_desc, validate, validate_limits,
     Limits, NodeTimeMethod, NodeTimeSolution,
 };
-use crate::error::{Error, Result};
+use crate::error::{BackendFailure, Error, Result};
 use crate::solver::lp_file::{write_model_file, LpCapture, LpSize, ModelFormat};
 use crate::solver::{
     run_on, BackendStatus, MilpBackend, MilpJob, MilpModel, MilpOutcome, SolveStatus,
@@ -94,14 +94,27 @@ where
 {
     let n = sorted_desc.len();
     let (model, x) = build(solver, pads, sorted_desc, time_limit_s);
-    let fail = |e: good_lp::ResolutionError| Error::Backend {
-        backend: backend_name.to_string(),
-        message: format!("{e}; if a time limit was set, raise it"),
+    let fail = |kind, e: good_lp::ResolutionError| {
+        Error::backend(
+            kind,
+            backend_name,
+            format!("{e}; if a time limit was set, raise it"),
+        )
     };
     // Every end without an assignment is an error, told in the backend's words.
-    let (status, solution) = match model.solve_outcome().map_err(fail)? {
+    let (status, solution) = match model
+        .solve_outcome()
+        .map_err(|e| fail(BackendFailure::Numerical, e))?
+    {
         MilpOutcome::Solved { status, solution } => (status, solution),
-        MilpOutcome::NoSolution { report, .. } => return Err(fail(report)),
+        MilpOutcome::NoSolution { status, report } => {
+            let kind = if status == BackendStatus::LimitNoSolution {
+                BackendFailure::Limit
+            } else {
+                BackendFailure::Numerical
+            };
+            return Err(fail(kind, report));
+        }
     };
     let mut pad_of = vec![0; n];
     for (j, xj) in x.iter().enumerate() {
@@ -109,10 +122,11 @@ where
             .filter(|&i| solution.value(xj[i]) > 0.5)
             .collect();
         if chosen.len() != 1 {
-            return Err(Error::Backend {
-                backend: backend_name.to_string(),
-                message: format!("returned job {j} on {} pads, not exactly one", chosen.len()),
-            });
+            return Err(Error::backend(
+                BackendFailure::Numerical,
+                backend_name,
+                format!("returned job {j} on {} pads, not exactly one", chosen.len()),
+            ));
         }
         pad_of[j] = chosen[0];
     }
@@ -257,9 +271,12 @@ pub fn model_text(
     let (order, sorted) = sort_desc(charge_times_min);
     let capture = LpCapture::new();
     let (model, x) = build(capture.solver(), m, &sorted, None);
-    let lost = |what: String| Error::Backend {
-        backend: "lp-file".into(),
-        message: format!("the model was not captured ({what})"),
+    let lost = |what: String| {
+        Error::backend(
+            BackendFailure::LostModel,
+            "lp-file",
+            format!("the model was not captured ({what})"),
+        )
     };
     model.solve().map_err(|e| lost(e.to_string()))?;
     let mut captured = capture.take().ok_or_else(|| lost("empty capture".into()))?;

@@ -11,7 +11,7 @@
 //! (a numerical error, insufficient progress) are failures: `Err`.
 
 use super::BackendStatus;
-use crate::error::{Error, Result};
+use crate::error::{BackendFailure, Error, Result};
 pub use clarabel::algebra::CscMatrix;
 use clarabel::solver::{DefaultSettings, DefaultSolver, IPSolver, SolverStatus};
 pub use clarabel::solver::{NonnegativeConeT, SupportedConeT, ZeroConeT};
@@ -86,10 +86,7 @@ pub fn solve(
     cones: &[SupportedConeT<f64>],
     settings: ConicSettings,
 ) -> Result<ConicOutcome> {
-    let fail = |message: String| Error::Backend {
-        backend: "clarabel".into(),
-        message,
-    };
+    let fail = |kind, message: String| Error::backend(kind, "clarabel", message);
     let mut clarabel_settings = DefaultSettings {
         verbose: false,
         tol_gap_abs: settings.tolerance,
@@ -101,14 +98,17 @@ pub fn solve(
         clarabel_settings.time_limit = s;
     }
     let mut solver = DefaultSolver::new(p, q, a, b, cones, clarabel_settings)
-        .map_err(|e| fail(format!("{e:?}")))?;
+        .map_err(|e| fail(BackendFailure::Refused, format!("{e:?}")))?;
     solver.solve();
     let s = &solver.solution;
     let status = status_of(s.status).ok_or_else(|| {
-        fail(format!(
-            "stopped with status {:?}; report it with the instance",
-            s.status
-        ))
+        fail(
+            BackendFailure::Numerical,
+            format!(
+                "stopped with status {:?}; report it with the instance",
+                s.status
+            ),
+        )
     })?;
     let values = (status == BackendStatus::Optimal).then(|| ConicValues {
         x: s.x.clone(),

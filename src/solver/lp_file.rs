@@ -9,7 +9,7 @@
 //! `ykt` with a counter), so the captured model is renamed from the names the model gave its
 //! variables, in the order it added them ([`CapturedModel::rename`]).
 
-use crate::error::{Error, Result};
+use crate::error::{BackendFailure, Error, Result};
 use good_lp::solvers::lp_solvers::{LpSolver, Solution, SolverTrait, Status, WithMaxSeconds};
 use lp_solvers::lp_format::{AsVariable, Constraint, LpObjective, LpProblem, WriteToLpFileFormat};
 use lp_solvers::problem::{Problem, StrExpression, Variable};
@@ -191,10 +191,7 @@ impl CapturedModel {
     /// [`Error::Backend`] when the counts differ, a name is not a valid LP name (a letter, then
     /// letters, digits or `_`), or two names are equal.
     pub fn rename(&mut self, names: &[String]) -> Result<()> {
-        let fail = |message: String| Error::Backend {
-            backend: "lp-file".into(),
-            message,
-        };
+        let fail = |message: String| Error::backend(BackendFailure::LostModel, "lp-file", message);
         if names.len() != self.variables.len() {
             return Err(fail(format!(
                 "{} names for {} variables",

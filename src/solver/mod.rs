@@ -213,21 +213,31 @@ pub trait MilpModel:
     ) -> std::result::Result<MilpOutcome<Self::Solution>, good_lp::ResolutionError>;
 }
 
-/// The creation index of a good_lp variable: its name in good_lp's debug format, `v{index}`
-/// (good_lp keeps the index itself private). The backends' columns follow it.
+/// The creation index of a good_lp variable: its position among its problem's variables, which
+/// the backends' columns follow.
+///
+/// good_lp keeps the index private, but a `Variable` is nothing more than it (a `Copy` value
+/// compared by index), so the `i`-th variable added to any problem equals the `i`-th added to a
+/// fresh one. The index is looked up among such fresh variables, a table each thread grows as
+/// far as the largest index asked for.
 #[cfg(any(feature = "microlp", feature = "highs"))]
 pub(crate) fn variable_index(variable: good_lp::Variable) -> usize {
-    use good_lp::variable::FormatWithVars;
-    struct Named(good_lp::Variable);
-    impl std::fmt::Display for Named {
-        fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-            self.0.format_debug(f)
-        }
+    use std::cell::RefCell;
+    use std::collections::HashMap;
+    thread_local! {
+        static FRESH: RefCell<(good_lp::ProblemVariables, HashMap<good_lp::Variable, usize>)> =
+            RefCell::new((good_lp::ProblemVariables::new(), HashMap::new()));
     }
-    let name = Named(variable).to_string();
-    name[1..]
-        .parse()
-        .expect("good_lp names variable i `v{i}` in its debug format")
+    FRESH.with(|fresh| {
+        let (variables, index) = &mut *fresh.borrow_mut();
+        loop {
+            if let Some(&i) = index.get(&variable) {
+                return i;
+            }
+            let next = variables.add_variable();
+            index.insert(next, index.len());
+        }
+    })
 }
 
 /// A model that can be built and solved on any of [`run_on`]'s backends: what [`run_on`] runs.
@@ -402,6 +412,28 @@ pub mod seconds_or_none {
 mod tests {
     use super::*;
     use good_lp::{constraint, variable, variables, Solution, SolverModel, WithTimeLimit};
+
+    #[test]
+    fn a_variable_index_is_its_position_in_its_problem() {
+        // Asked out of order and beyond what was asked before: the positions of creation.
+        let mut first = variables!();
+        let a: Vec<good_lp::Variable> = (0..5).map(|_| first.add(variable())).collect();
+        let mut second = variables!();
+        let b = second.add_vector(variable().min(1), 40);
+        assert_eq!(variable_index(a[3]), 3);
+        assert_eq!(variable_index(b[39]), 39);
+        assert_eq!(variable_index(a[0]), 0);
+        let all: Vec<usize> = b.iter().map(|&v| variable_index(v)).collect();
+        assert_eq!(all, (0..40).collect::<Vec<_>>());
+        // On another thread, with a table of its own.
+        let v = b[17];
+        assert_eq!(
+            std::thread::spawn(move || variable_index(v))
+                .join()
+                .unwrap(),
+            17
+        );
+    }
 
     /// A model over two variables, integers or not, for [`run_on`]: the status and, with values,
     /// `(x, y)`.

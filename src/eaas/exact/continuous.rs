@@ -37,7 +37,7 @@ use crate::eaas::{
     reorder, sharing_budget_mah, simulate_with, FreeSchedule, Heuristic, HopOutcome, HopProblem,
     PolicyOptions, Role, SlotInterval, Transfer, ENERGY_TOL_MAH, TIME_TOL_MIN,
 };
-use crate::error::{Error, Result};
+use crate::error::{BackendFailure, Error, Result};
 use crate::solver::{run_on, BackendStatus, MilpBackend, MilpJob, MilpModel, MIP_REL_GAP};
 use good_lp::{
     constraint, variable, Expression, ProblemVariables, Solution, SolverModel, Variable,
@@ -407,7 +407,13 @@ impl Model<'_> {
     ) -> Result<Solved> {
         let mut answer = self.solve_once(objective, options, attempt);
         for rescale in [4.0, 0.25] {
-            if !matches!(answer, Err(Error::Backend { .. })) {
+            if !matches!(
+                answer,
+                Err(Error::Backend {
+                    kind: BackendFailure::Numerical,
+                    ..
+                })
+            ) {
                 break;
             }
             answer = self.solve_once(objective, options, Attempt { rescale, ..attempt });
@@ -1460,7 +1466,14 @@ pub fn solve_continuous(
         // that, along the drone index.
         let by_index: Vec<usize> = (0..problem.drones.len()).collect();
         let mut answer = model.solve(objective, options, Attempt::exact(Pads::Integral(&rank)));
-        if matches!(answer, Err(Error::Backend { .. })) && rank != by_index {
+        let numerical = matches!(
+            answer,
+            Err(Error::Backend {
+                kind: BackendFailure::Numerical,
+                ..
+            })
+        );
+        if numerical && rank != by_index {
             answer = model.solve(
                 objective,
                 options,
@@ -1484,7 +1497,11 @@ pub fn solve_continuous(
                 out.solve_ms = start.elapsed().as_secs_f64() * 1e3;
                 return Ok(out);
             }
-            Ok(Solved::NoSolution) | Err(Error::Backend { .. }) => {}
+            Ok(Solved::NoSolution)
+            | Err(Error::Backend {
+                kind: BackendFailure::Numerical,
+                ..
+            }) => {}
             Err(e) => return Err(e),
         }
     }
@@ -1526,7 +1543,11 @@ pub fn solve_continuous(
             };
             let values = match model.solve(objective, options, attempt) {
                 Ok(Solved::Values(v)) => v,
-                Ok(_) | Err(Error::Backend { .. }) => continue,
+                Ok(_)
+                | Err(Error::Backend {
+                    kind: BackendFailure::Numerical,
+                    ..
+                }) => continue,
                 Err(e) => return Err(e),
             };
             let realised = model.realised(objective, &values.theta, start_min)?;

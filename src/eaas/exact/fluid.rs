@@ -29,7 +29,7 @@ use super::{
 use crate::eaas::reorder::{busy_drones, choose_consumer_slot, slot_distance_m};
 use crate::eaas::simulate::evaluate;
 use crate::eaas::{sharing_budget_mah, HopProblem, Role, Transfer, TIME_TOL_MIN};
-use crate::error::{Error, Result};
+use crate::error::{BackendFailure, Error, Result};
 use crate::solver::conic::{
     self, ConicSettings, ConicValues, CscMatrix, NonnegativeConeT, SupportedConeT, ZeroConeT,
 };
@@ -246,10 +246,11 @@ fn status_of(status: BackendStatus) -> Result<ExactStatus> {
         BackendStatus::Infeasible => Ok(ExactStatus::Infeasible),
         BackendStatus::LimitNoSolution => Ok(ExactStatus::TimeLimitNoSolution),
         BackendStatus::Unbounded | BackendStatus::OptimalWithinGap | BackendStatus::Feasible => {
-            Err(Error::Backend {
-                backend: "clarabel".into(),
-                message: format!("stopped with status {status:?}; report it with the instance"),
-            })
+            Err(Error::backend(
+                BackendFailure::Numerical,
+                "clarabel",
+                format!("stopped with status {status:?}; report it with the instance"),
+            ))
         }
     }
 }

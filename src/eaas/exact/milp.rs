@@ -30,7 +30,7 @@ use super::{backend_end, moves, validate_inputs, BackendEnd, Move, PadRows};
 use super::{objective_of, ExactOutcome, ExactStatus, Objective, Reorder};
 use crate::eaas::simulate::evaluate;
 use crate::eaas::{reorder, sharing_budget_mah, HopProblem, Role, Transfer, TIME_TOL_MIN};
-use crate::error::{show, Error, Result};
+use crate::error::{show, BackendFailure, Error, Result};
 use crate::solver::lp_file::{write_model_file, LpCapture};
 use crate::solver::lp_file::{LpSize, ModelFormat};
 use crate::solver::{run_on, MilpBackend, MilpJob, MilpModel};
@@ -759,9 +759,12 @@ pub fn model_text(
         false,
         options.time_limit_s,
     )?;
-    let lost = |what: &str| Error::Backend {
-        backend: "lp-file".into(),
-        message: format!("the model was not captured ({what})"),
+    let lost = |what: &str| {
+        Error::backend(
+            BackendFailure::LostModel,
+            "lp-file",
+            format!("the model was not captured ({what})"),
+        )
     };
     let Solved::Values(raw) = solved else {
         return Err(lost("no values"));

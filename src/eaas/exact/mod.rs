@@ -18,7 +18,7 @@
 //! types, input validation, the objective of a replayed schedule and the moves of a mode.
 
 use super::{reorder, validate, HopOutcome, HopProblem, Role, Transfer};
-use crate::error::{show, Error, Result, Violation};
+use crate::error::{show, BackendFailure, Error, Result, Violation};
 use crate::node_time;
 use crate::solver::{BackendStatus, MilpOutcome, SolveStatus};
 use serde::{Deserialize, Serialize};
@@ -443,9 +443,8 @@ pub(crate) fn backend_end<S>(
     answer: std::result::Result<MilpOutcome<S>, good_lp::ResolutionError>,
     backend_name: &str,
 ) -> Result<BackendEnd<S>> {
-    let fail = |e: good_lp::ResolutionError| Error::Backend {
-        backend: backend_name.to_string(),
-        message: e.to_string(),
+    let fail = |e: good_lp::ResolutionError| {
+        Error::backend(BackendFailure::Numerical, backend_name, e.to_string())
     };
     match answer.map_err(fail)? {
         MilpOutcome::Solved { status, solution } => Ok(BackendEnd::Solved(status, solution)),
@@ -563,7 +562,12 @@ mod tests {
         // An unbounded model is an error, in the backend's words.
         let unbounded = no_solution(BackendStatus::Unbounded, ResolutionError::Unbounded);
         match unbounded {
-            Err(Error::Backend { backend, message }) => {
+            Err(Error::Backend {
+                kind,
+                backend,
+                message,
+            }) => {
+                assert_eq!(kind, BackendFailure::Numerical);
                 assert_eq!(backend, "microlp");
                 assert_eq!(message, ResolutionError::Unbounded.to_string());
             }
