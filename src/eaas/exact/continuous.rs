@@ -496,18 +496,54 @@ impl Model<'_> {
     where
         S::Model: SolverModel + WithTimeLimit,
     {
-        let Attempt {
-            margin_mah,
-            start_min,
-            pads: pad_mode,
-            rescale,
-        } = attempt;
-        let problem = self.problem;
-        let n = problem.drones.len();
-        // Energies enter the model in a unit of `1 / scale` mAh: minutes of pad charging for the
-        // node time (so charge times, batteries and rates are of like size, which microlp's
-        // branch and bound needs), hundredths of the largest capacity otherwise.
-        let scale = rescale
+        let scale = self.energy_scale(objective, attempt.rescale);
+        let columns = self.columns(objective, attempt, scale);
+        let mut model = match (objective, columns.goal) {
+            (Objective::MaxMinArrival, Some(g)) => columns.vars.maximise(g),
+            (_, Some(g)) => columns.vars.minimise(g),
+            _ => columns.vars.minimise(Expression::from(0.0)),
+        }
+        .using(solver)
+        .with_time_limit(time_limit_s);
+        let (theta, b, goal) = (columns.theta, columns.b, columns.goal);
+        self.add_flow_rows(&mut model, &theta, &b, scale, attempt.start_min);
+        self.add_sharing_budgets(&mut model, &theta, scale);
+        let final_battery: Vec<Expression> = (0..self.problem.drones.len())
+            .map(|d| match b[d].last() {
+                Some(&v) => Expression::from(v),
+                None => Expression::from(scale * self.problem.drones[d].battery_mah),
+            })
+            .collect();
+        if let Some(g) = goal {
+            self.add_objective_rows(
+                &mut model,
+                objective,
+                g,
+                (columns.pads.as_ref(), attempt.pads),
+                &final_battery,
+                scale,
+            );
+        }
+        let charge_times = match (*objective, goal, attempt.pads) {
+            (Objective::NodeTime(end), Some(g), Pads::Aggregate) => {
+                self.add_pad_search_root(&mut model, end, g, &b, &final_battery, scale)
+            }
+            _ => Vec::new(),
+        };
+        Built {
+            model,
+            theta,
+            goal,
+            scale,
+            charge_times,
+        }
+    }
+
+    /// Energies enter the model in a unit of `1 / scale` mAh: minutes of pad charging for the
+    /// node time (so charge times, batteries and rates are of like size, which microlp's branch
+    /// and bound needs), hundredths of the largest capacity otherwise; times `rescale`.
+    fn energy_scale(&self, objective: &Objective, rescale: f64) -> f64 {
+        rescale
             * match *objective {
                 Objective::NodeTime(EndPads {
                     pad_rate_mah_per_min,
@@ -515,13 +551,21 @@ impl Model<'_> {
                 }) => 1.0 / pad_rate_mah_per_min,
                 _ => {
                     100.0
-                        / problem
+                        / self
+                            .problem
                             .drones
                             .iter()
                             .map(|d| d.capacity_mah)
                             .fold(1e-9, f64::max)
                 }
-            };
+            }
+    }
+
+    /// The variables, in this order: the time shares `θ`, the leg-end batteries `b` (within the
+    /// margin), the goal (`M` or `g`) and the pad rows as `attempt.pads` says.
+    fn columns(&self, objective: &Objective, attempt: Attempt, scale: f64) -> Columns {
+        let problem = self.problem;
+        let n = problem.drones.len();
         let mut vars = ProblemVariables::new();
         let theta: Vec<Vec<Variable>> = self
             .legs
@@ -532,6 +576,7 @@ impl Model<'_> {
                     .collect()
             })
             .collect();
+        let margin_mah = attempt.margin_mah;
         let b: Vec<Vec<Variable>> = problem
             .drones
             .iter()
@@ -550,7 +595,7 @@ impl Model<'_> {
         let (goal, pads) = match *objective {
             Objective::NodeTime(EndPads { pads, .. }) => (
                 Some(vars.add(variable().min(0.0).name("M"))),
-                match pad_mode {
+                match attempt.pads {
                     Pads::Fixed(_) | Pads::Aggregate => None,
                     Pads::Relaxed => Some(PadRows::add(&mut vars, n, pads, true, None)),
                     Pads::Integral(rank) => {
@@ -561,14 +606,26 @@ impl Model<'_> {
             Objective::MaxMinArrival => (Some(vars.add(variable().name("g"))), None),
             Objective::Feasible => (None, None),
         };
-        let mut model = match (objective, goal) {
-            (Objective::MaxMinArrival, Some(g)) => vars.maximise(g),
-            (_, Some(g)) => vars.minimise(g),
-            _ => vars.minimise(Expression::from(0.0)),
+        Columns {
+            vars,
+            theta,
+            b,
+            goal,
+            pads,
         }
-        .using(solver)
-        .with_time_limit(time_limit_s);
-        let rho = problem.rho_mah_per_min;
+    }
+
+    /// Rows 1-2 of every leg: its time shares fill it, and each battery changes by the
+    /// configurations' rates; the empty start (row 5) when `start_min > 0`.
+    fn add_flow_rows<M: SolverModel>(
+        &self,
+        model: &mut M,
+        theta: &[Vec<Variable>],
+        b: &[Vec<Variable>],
+        scale: f64,
+        start_min: f64,
+    ) {
+        let problem = self.problem;
         for (i, &l) in self.legs.iter().enumerate() {
             let tau = problem.legs[l].duration_min;
             let all: Expression = theta[i].iter().copied().sum();
@@ -589,7 +646,18 @@ impl Model<'_> {
         if start_min > 0.0 && !theta.is_empty() {
             model.add_constraint(constraint!(theta[0][0] >= start_min));
         }
-        for s in (0..n).filter(|&s| problem.drones[s].role == Role::Support) {
+    }
+
+    /// Row 3: what each support drone gives stays within its sharing budget.
+    fn add_sharing_budgets<M: SolverModel>(
+        &self,
+        model: &mut M,
+        theta: &[Vec<Variable>],
+        scale: f64,
+    ) {
+        let problem = self.problem;
+        let rho = problem.rho_mah_per_min;
+        for s in (0..problem.drones.len()).filter(|&s| problem.drones[s].role == Role::Support) {
             let given: Expression = theta
                 .iter()
                 .flat_map(|row| {
@@ -601,19 +669,27 @@ impl Model<'_> {
                 .sum();
             model.add_constraint(constraint!(given <= scale * sharing_budget_mah(problem, s)));
         }
-        let final_battery: Vec<Expression> = (0..n)
-            .map(|d| match b[d].last() {
-                Some(&v) => Expression::from(v),
-                None => Expression::from(scale * problem.drones[d].battery_mah),
-            })
-            .collect();
-        match (*objective, goal, &pads) {
+    }
+
+    /// The objective's rows on the goal `g`: the node time's pad rows (exact or relaxed
+    /// assignment, or each pad's load under a fixed one), or the least delivery battery.
+    fn add_objective_rows<M: SolverModel>(
+        &self,
+        model: &mut M,
+        objective: &Objective,
+        g: Variable,
+        (rows, pad_mode): (Option<&PadRows>, Pads<'_>),
+        final_battery: &[Expression],
+        scale: f64,
+    ) {
+        let problem = self.problem;
+        let n = problem.drones.len();
+        match (*objective, rows) {
             (
                 Objective::NodeTime(EndPads {
                     pad_rate_mah_per_min,
                     ..
                 }),
-                Some(g),
                 Some(rows),
             ) => {
                 let caps: Vec<f64> = problem
@@ -621,20 +697,13 @@ impl Model<'_> {
                     .iter()
                     .map(|d| scale * d.capacity_mah)
                     .collect();
-                rows.constrain(
-                    &mut model,
-                    &caps,
-                    &final_battery,
-                    scale * pad_rate_mah_per_min,
-                    g,
-                )
+                rows.constrain(model, &caps, final_battery, scale * pad_rate_mah_per_min, g)
             }
             (
                 Objective::NodeTime(EndPads {
                     pad_rate_mah_per_min,
                     ..
                 }),
-                Some(g),
                 None,
             ) => {
                 if let Pads::Fixed(pad_of) = pad_mode {
@@ -653,57 +722,66 @@ impl Model<'_> {
                     }
                 }
             }
-            (Objective::MaxMinArrival, Some(g), _) => {
+            (Objective::MaxMinArrival, _) => {
                 for d in (0..n).filter(|&d| problem.drones[d].role == Role::Delivery) {
                     model.add_constraint(constraint!(g <= final_battery[d].clone()));
                 }
             }
             _ => {}
         }
-        // The pad search's root (node time): every ct_d <= M and sum_d ct_d <= min(k, n) M.
-        let mut charge_times = Vec::new();
-        if let (
-            Objective::NodeTime(EndPads {
-                pads,
-                pad_rate_mah_per_min,
-            }),
-            Some(g),
-            Pads::Aggregate,
-        ) = (*objective, goal, pad_mode)
-        {
-            let per_min = 1.0 / (scale * pad_rate_mah_per_min);
-            for (d, drone) in problem.drones.iter().enumerate() {
-                let ct = (scale * drone.capacity_mah - final_battery[d].clone()) * per_min;
-                model.add_constraint(constraint!(ct <= g));
-                charge_times.push(match b[d].last() {
-                    Some(&var) => ChargeTime {
-                        battery: Some(var),
-                        per_min,
-                        constant: scale * drone.capacity_mah * per_min,
-                    },
-                    None => ChargeTime {
-                        battery: None,
-                        per_min,
-                        constant: (scale * (drone.capacity_mah - drone.battery_mah)) * per_min,
-                    },
-                });
-            }
-            let total: Expression = (0..n)
-                .map(|d| {
-                    (scale * problem.drones[d].capacity_mah - final_battery[d].clone()) * per_min
-                })
-                .sum();
-            let m = pads.min(n).max(1) as f64;
-            model.add_constraint(constraint!(total <= m * g));
-        }
-        Built {
-            model,
-            theta,
-            goal,
-            scale,
-            charge_times,
-        }
     }
+
+    /// The pad search's root (node time): every `ct_d <= M` and `sum_d ct_d <= min(k, n) M`;
+    /// returns each drone's charge time in the model's variables.
+    fn add_pad_search_root<M: SolverModel>(
+        &self,
+        model: &mut M,
+        end: EndPads,
+        g: Variable,
+        b: &[Vec<Variable>],
+        final_battery: &[Expression],
+        scale: f64,
+    ) -> Vec<ChargeTime> {
+        let problem = self.problem;
+        let n = problem.drones.len();
+        let per_min = 1.0 / (scale * end.pad_rate_mah_per_min);
+        let mut charge_times = Vec::new();
+        for (d, drone) in problem.drones.iter().enumerate() {
+            let ct = (scale * drone.capacity_mah - final_battery[d].clone()) * per_min;
+            model.add_constraint(constraint!(ct <= g));
+            charge_times.push(match b[d].last() {
+                Some(&var) => ChargeTime {
+                    battery: Some(var),
+                    per_min,
+                    constant: scale * drone.capacity_mah * per_min,
+                },
+                None => ChargeTime {
+                    battery: None,
+                    per_min,
+                    constant: (scale * (drone.capacity_mah - drone.battery_mah)) * per_min,
+                },
+            });
+        }
+        let total: Expression = (0..n)
+            .map(|d| (scale * problem.drones[d].capacity_mah - final_battery[d].clone()) * per_min)
+            .sum();
+        let m = end.pads.min(n).max(1) as f64;
+        model.add_constraint(constraint!(total <= m * g));
+        charge_times
+    }
+}
+
+/// The variables of one model, before the objective is set.
+struct Columns {
+    vars: ProblemVariables,
+    /// `θ[i][σ]`.
+    theta: Vec<Vec<Variable>>,
+    /// `b[d][i]`.
+    b: Vec<Vec<Variable>>,
+    /// `M` (node time) or `g` (least delivery battery); none for feasibility.
+    goal: Option<Variable>,
+    /// The exact or relaxed assignment rows of the node time.
+    pads: Option<PadRows>,
 }
 
 /// What the pad search found, in the model's terms.
@@ -1344,128 +1422,238 @@ pub fn solve_continuous(
     let configs = configurations(problem, options.reorder, options.max_configurations)?;
     let model = Model::of(problem, &configs, options.reorder);
     let mut out = ExactOutcome::infeasible(0.0, model.legs.len());
+    solve_in_phases(&model, objective, options, &mut out)?;
+    out.solve_ms = start.elapsed().as_secs_f64() * 1e3;
+    Ok(out)
+}
+
+/// The phases of [`solve_continuous`] (`models/eaas_continuous.md`): incumbents, the relaxation
+/// of the pad binaries, its assignment fixed, the pad search, the pad MILP, margins, and the
+/// outcome. Leaves `out` as it is (infeasible) when the model is proven infeasible.
+fn solve_in_phases(
+    model: &Model<'_>,
+    objective: &Objective,
+    options: &ContinuousOptions,
+    out: &mut ExactOutcome,
+) -> Result<()> {
+    let problem = model.problem;
     // Incumbents: the empty schedule and the heuristics' schedules of the mode.
     let mut best: Option<FlyingSchedule> = None;
     keep(objective, &mut best, candidate(problem, objective, &[])?);
-    if configs.len() == 1 {
-        // Only the empty configuration (no support drone, or no move in the mode): the empty
-        // schedule is the only schedule, and its value, with the exact node time, the optimum.
-        if best.is_some() {
-            let bound = best.as_ref().filter(|c| c.proven).map(|c| c.value);
-            finish(&mut out, objective, best, bound)?;
-            if bound.is_some() {
-                out.status = ExactStatus::Optimal;
-            }
-            out.model_objective = bound;
-        }
-        out.solve_ms = start.elapsed().as_secs_f64() * 1e3;
-        return Ok(out);
+    if model.configs.len() == 1 {
+        return only_the_empty_configuration(objective, best, out);
     }
+    keep_heuristics(problem, objective, options, &mut best)?;
+    // The relaxation of the pad binaries first: a lower bound, and often a schedule at it.
+    let relaxed = match model.solve(objective, options, Attempt::exact(Pads::Relaxed))? {
+        Solved::Infeasible => return Ok(()),
+        Solved::NoSolution => return finish(out, objective, best, None),
+        Solved::Values(v) => v,
+    };
+    let mut search = BoundedSearch::from_relaxation(model, objective, options, best, &relaxed)?;
+    search.fix_the_relaxed_assignment()?;
+    search.search_pads()?;
+    if search.pad_milp()? == Proven::Infeasible {
+        return Ok(());
+    }
+    search.margins()?;
+    search.finish(out)
+}
+
+/// Only the empty configuration (no support drone, or no move in the mode): the empty schedule
+/// is the only schedule, and its value, with the exact node time, the optimum.
+fn only_the_empty_configuration(
+    objective: &Objective,
+    best: Option<FlyingSchedule>,
+    out: &mut ExactOutcome,
+) -> Result<()> {
+    if best.is_some() {
+        let bound = best.as_ref().filter(|c| c.proven).map(|c| c.value);
+        finish(out, objective, best, bound)?;
+        if bound.is_some() {
+            out.status = ExactStatus::Optimal;
+        }
+        out.model_objective = bound;
+    }
+    Ok(())
+}
+
+/// PB's and FB's schedules as incumbents, where they fly in the mode.
+fn keep_heuristics(
+    problem: &HopProblem,
+    objective: &Objective,
+    options: &ContinuousOptions,
+    best: &mut Option<FlyingSchedule>,
+) -> Result<()> {
     for heuristic in [Heuristic::Pb, Heuristic::Fb] {
         // A heuristic refusing the hop (FB's round bound) gives no incumbent.
         if let Ok(o) = simulate_with(problem, heuristic, &options.readings) {
             if o.feasible && in_mode(problem, options.reorder, &o.transfers) {
                 keep(
                     objective,
-                    &mut best,
+                    best,
                     candidate(problem, objective, &o.transfers)?,
                 );
             }
         }
     }
-    // The relaxation of the pad binaries first: a lower bound, and often a schedule at it.
-    let has_binaries = matches!(objective, Objective::NodeTime(EndPads { .. }));
-    let relaxed = match model.solve(objective, options, Attempt::exact(Pads::Relaxed))? {
-        Solved::Infeasible => {
-            out.solve_ms = start.elapsed().as_secs_f64() * 1e3;
-            return Ok(out);
-        }
-        Solved::NoSolution => None,
-        Solved::Values(v) => Some(v),
-    };
-    let Some(relaxed) = relaxed else {
-        finish(&mut out, objective, best, None)?;
-        out.solve_ms = start.elapsed().as_secs_f64() * 1e3;
-        return Ok(out);
-    };
-    // The bound: the relaxation's value while no better one is proven.
-    let mut bound = relaxed.bound;
-    // The model's own value: the relaxation's, then the pad MILP's.
-    let mut model_value = relaxed.value;
-    let tolerance = |b: f64| OPTIMAL_ABS_TOL + OPTIMAL_REL_TOL * b.abs();
-    let distance = |c: &FlyingSchedule, b: f64| match objective {
-        Objective::MaxMinArrival => b - c.value,
-        _ => c.value - b,
-    };
-    let reached = |best: &Option<FlyingSchedule>, bound: Option<f64>| {
-        bound.is_some_and(|b| {
-            best.as_ref()
-                .is_some_and(|c| distance(c, b) <= tolerance(b))
+    Ok(())
+}
+
+/// Whether the pad MILP proved the model infeasible.
+#[derive(Debug, PartialEq)]
+enum Proven {
+    Infeasible,
+    Open,
+}
+
+/// The search after the relaxation: the best schedule against the bound.
+struct BoundedSearch<'m, 'a> {
+    model: &'m Model<'a>,
+    objective: &'m Objective,
+    options: &'m ContinuousOptions,
+    best: Option<FlyingSchedule>,
+    /// The bound: the relaxation's value while no better one is proven.
+    bound: Option<f64>,
+    /// The model's own value: the relaxation's, then the pad MILP's.
+    model_value: f64,
+    /// The pad assignment the margin attempts fix: the best one for the latest time shares.
+    assignment: Option<Vec<usize>>,
+    /// The pad MILP's symmetry breaking: the relaxation's longest charge times first.
+    rank: Vec<usize>,
+    /// The least model value of an assignment solved so far (an upper bound on the model's).
+    fixed_value: f64,
+}
+
+impl<'m, 'a> BoundedSearch<'m, 'a> {
+    /// The state after the relaxation, its realised schedule kept.
+    fn from_relaxation(
+        model: &'m Model<'a>,
+        objective: &'m Objective,
+        options: &'m ContinuousOptions,
+        mut best: Option<FlyingSchedule>,
+        relaxed: &Values,
+    ) -> Result<Self> {
+        keep(
+            objective,
+            &mut best,
+            model.realised(objective, &relaxed.theta, 0.0)?,
+        );
+        Ok(BoundedSearch {
+            model,
+            objective,
+            options,
+            best,
+            bound: relaxed.bound,
+            model_value: relaxed.value,
+            assignment: model.pad_assignment(objective, &relaxed.theta)?,
+            rank: model.rank_by_charge_time(&relaxed.theta),
+            fixed_value: f64::INFINITY,
         })
-    };
-    keep(
-        objective,
-        &mut best,
-        model.realised(objective, &relaxed.theta, 0.0)?,
-    );
-    // The pad assignment the margin attempts fix: the best one for the latest time shares.
-    let mut assignment = model.pad_assignment(objective, &relaxed.theta)?;
-    // The pad MILP's symmetry breaking: the relaxation's longest charge times first.
-    let rank = model.rank_by_charge_time(&relaxed.theta);
-    // The least model value of an assignment solved so far (an upper bound on the model's).
-    let mut fixed_value = f64::INFINITY;
-    if let Some(a) = assignment.as_deref().filter(|_| !reached(&best, bound)) {
-        // The relaxation's assignment fixed: an LP whose schedule often reaches the bound.
-        if let Solved::Values(v) =
-            model.solve(objective, options, Attempt::exact(Pads::Fixed(a)))?
-        {
-            fixed_value = v.value;
-            keep(
-                objective,
-                &mut best,
-                model.realised(objective, &v.theta, 0.0)?,
-            );
+    }
+
+    /// How close to the bound `b` a schedule is optimal.
+    fn tolerance(b: f64) -> f64 {
+        OPTIMAL_ABS_TOL + OPTIMAL_REL_TOL * b.abs()
+    }
+
+    /// How far `c` is from the bound `b`, positive when worse.
+    fn distance(&self, c: &FlyingSchedule, b: f64) -> f64 {
+        match self.objective {
+            Objective::MaxMinArrival => b - c.value,
+            _ => c.value - b,
         }
     }
-    let searched = if has_binaries && !reached(&best, bound) {
-        let incumbent = best.as_ref().map_or(f64::INFINITY, |c| c.value);
-        model.pad_search(objective, options, &rank, fixed_value.min(incumbent))?
-    } else {
-        None
-    };
-    if let Some(s) = &searched {
+
+    /// Whether the best schedule reaches the bound within the tolerance.
+    fn reached(&self) -> bool {
+        self.bound.is_some_and(|b| {
+            self.best
+                .as_ref()
+                .is_some_and(|c| self.distance(c, b) <= Self::tolerance(b))
+        })
+    }
+
+    /// Keeps the schedule realised from the time shares `theta`, if it flies and is better.
+    fn keep_realised(&mut self, theta: &[Vec<f64>]) -> Result<()> {
+        let realised = self.model.realised(self.objective, theta, 0.0)?;
+        keep(self.objective, &mut self.best, realised);
+        Ok(())
+    }
+
+    /// The relaxation's assignment fixed: an LP whose schedule often reaches the bound.
+    fn fix_the_relaxed_assignment(&mut self) -> Result<()> {
+        let Some(a) = self.assignment.clone().filter(|_| !self.reached()) else {
+            return Ok(());
+        };
+        if let Solved::Values(v) = self.model.solve(
+            self.objective,
+            self.options,
+            Attempt::exact(Pads::Fixed(&a)),
+        )? {
+            self.fixed_value = v.value;
+            self.keep_realised(&v.theta)?;
+        }
+        Ok(())
+    }
+
+    /// The pad search (node-time objective), below the best model value known.
+    fn search_pads(&mut self) -> Result<()> {
+        let has_binaries = matches!(self.objective, Objective::NodeTime(EndPads { .. }));
+        if !has_binaries || self.reached() {
+            return Ok(());
+        }
+        let incumbent = self.best.as_ref().map_or(f64::INFINITY, |c| c.value);
+        let Some(s) = self.model.pad_search(
+            self.objective,
+            self.options,
+            &self.rank,
+            self.fixed_value.min(incumbent),
+        )?
+        else {
+            return Ok(());
+        };
         if s.complete {
-            bound = Some(s.bound);
-            model_value = s.value;
+            self.bound = Some(s.bound);
+            self.model_value = s.value;
         } else {
-            bound = bound.map(|b| b.max(s.bound));
+            self.bound = self.bound.map(|b| b.max(s.bound));
         }
         if let Some((pad_of, theta)) = &s.leaf {
-            assignment = Some(pad_of.clone());
-            keep(objective, &mut best, model.realised(objective, theta, 0.0)?);
+            self.assignment = Some(pad_of.clone());
+            self.keep_realised(theta)?;
             // The leaf's LP solved again from scratch: a warm re-solve's point can sit at a
             // bound by a hair more than a cold one's, which the realisation may not play.
-            if !reached(&best, bound) {
-                if let Solved::Values(v) =
-                    model.solve(objective, options, Attempt::exact(Pads::Fixed(pad_of)))?
-                {
-                    keep(
-                        objective,
-                        &mut best,
-                        model.realised(objective, &v.theta, 0.0)?,
-                    );
+            if !self.reached() {
+                if let Solved::Values(v) = self.model.solve(
+                    self.objective,
+                    self.options,
+                    Attempt::exact(Pads::Fixed(pad_of)),
+                )? {
+                    self.keep_realised(&v.theta)?;
                 }
             }
         }
+        Ok(())
     }
-    // The pad MILP: where the search does not apply, and where the search's optimum does not
-    // realise (another optimal point of the MILP's may: its schedule is tried before margins).
-    if has_binaries && !reached(&best, bound) {
-        // The pad MILP: a microlp failure leaves the relaxation's bound, said so by epsilon.
-        // Its symmetry broken along the charge times first; when microlp fails numerically on
-        // that, along the drone index.
-        let by_index: Vec<usize> = (0..problem.drones.len()).collect();
-        let mut answer = model.solve(objective, options, Attempt::exact(Pads::Integral(&rank)));
+
+    /// The pad MILP: where the search does not apply, and where the search's optimum does not
+    /// realise (another optimal point of the MILP's may: its schedule is tried before margins).
+    /// A microlp failure leaves the relaxation's bound, said so by epsilon. Its symmetry broken
+    /// along the charge times first; when microlp fails numerically on that, along the drone
+    /// index.
+    fn pad_milp(&mut self) -> Result<Proven> {
+        let has_binaries = matches!(self.objective, Objective::NodeTime(EndPads { .. }));
+        if !has_binaries || self.reached() {
+            return Ok(Proven::Open);
+        }
+        let (model, objective, options) = (self.model, self.objective, self.options);
+        let by_index: Vec<usize> = (0..model.problem.drones.len()).collect();
+        let mut answer = model.solve(
+            objective,
+            options,
+            Attempt::exact(Pads::Integral(&self.rank)),
+        );
         let numerical = matches!(
             answer,
             Err(Error::Backend {
@@ -1473,7 +1661,7 @@ pub fn solve_continuous(
                 ..
             })
         );
-        if numerical && rank != by_index {
+        if numerical && self.rank != by_index {
             answer = model.solve(
                 objective,
                 options,
@@ -1483,20 +1671,13 @@ pub fn solve_continuous(
         match answer {
             Ok(Solved::Values(v)) => {
                 if v.bound.is_some() {
-                    bound = v.bound;
-                    model_value = v.value;
+                    self.bound = v.bound;
+                    self.model_value = v.value;
                 }
-                assignment = model.pad_assignment(objective, &v.theta)?;
-                keep(
-                    objective,
-                    &mut best,
-                    model.realised(objective, &v.theta, 0.0)?,
-                );
+                self.assignment = model.pad_assignment(objective, &v.theta)?;
+                self.keep_realised(&v.theta)?;
             }
-            Ok(Solved::Infeasible) => {
-                out.solve_ms = start.elapsed().as_secs_f64() * 1e3;
-                return Ok(out);
-            }
+            Ok(Solved::Infeasible) => return Ok(Proven::Infeasible),
             Ok(Solved::NoSolution)
             | Err(Error::Backend {
                 kind: BackendFailure::Numerical,
@@ -1504,9 +1685,17 @@ pub fn solve_continuous(
             }) => {}
             Err(e) => return Err(e),
         }
+        Ok(Proven::Open)
     }
-    if let Some(b) = bound.filter(|_| !reached(&best, bound)) {
-        // Not attained by the realisation: margins at leg ends and an empty start.
+
+    /// Where the realisation does not attain the bound: margins at leg ends and an empty start,
+    /// finer each attempt ([`MARGIN_FRACTIONS`]), their schedules approaching the infimum.
+    fn margins(&mut self) -> Result<()> {
+        let Some(b) = self.bound.filter(|_| !self.reached()) else {
+            return Ok(());
+        };
+        let (model, objective, options) = (self.model, self.objective, self.options);
+        let problem = model.problem;
         let scale = problem
             .drones
             .iter()
@@ -1535,9 +1724,9 @@ pub fn solve_continuous(
             let attempt = Attempt {
                 margin_mah,
                 start_min,
-                pads: match &assignment {
+                pads: match &self.assignment {
                     Some(a) => Pads::Fixed(a),
-                    None => Pads::Integral(&rank),
+                    None => Pads::Integral(&self.rank),
                 },
                 rescale: 1.0,
             };
@@ -1559,37 +1748,41 @@ pub fn solve_continuous(
                 approached: true,
                 ..c
             });
-            keep(objective, &mut best, approached);
+            keep(objective, &mut self.best, approached);
             // Close enough: a finer margin costs more rounds (transfers) for a smaller epsilon.
-            if best
-                .as_ref()
-                .is_some_and(|c| distance(c, b) <= tolerance(b).max(MARGIN_REL_EPSILON * b.abs()))
-            {
+            if self.best.as_ref().is_some_and(|c| {
+                self.distance(c, b) <= Self::tolerance(b).max(MARGIN_REL_EPSILON * b.abs())
+            }) {
                 break;
             }
         }
+        Ok(())
     }
-    if let (Some(c), Some(b)) = (&best, bound) {
-        if distance(c, b) < -tolerance(b) {
-            return Err(Error::internal(
-                "E4119",
-                format!(
-                    "{}: a replayed schedule ({}) beats the model's proven bound ({b})",
-                    options.backend, c.value
-                ),
-            ));
+
+    /// The outcome: the best schedule against the bound; `E4119` when a schedule beats the
+    /// proven bound. Optimal only when a schedule of the model without margin reaches the bound;
+    /// a schedule of a margin attempt approaches an infimum and says how closely
+    /// (optimal_within, epsilon).
+    fn finish(self, out: &mut ExactOutcome) -> Result<()> {
+        if let (Some(c), Some(b)) = (&self.best, self.bound) {
+            if self.distance(c, b) < -Self::tolerance(b) {
+                return Err(Error::internal(
+                    "E4119",
+                    format!(
+                        "{}: a replayed schedule ({}) beats the model's proven bound ({b})",
+                        self.options.backend, c.value
+                    ),
+                ));
+            }
         }
+        let attained = self.reached() && !self.best.as_ref().is_some_and(|c| c.approached);
+        finish(out, self.objective, self.best, self.bound)?;
+        if attained {
+            out.status = ExactStatus::Optimal;
+        }
+        out.model_objective = self.bound.map(|_| self.model_value);
+        Ok(())
     }
-    // Optimal only when a schedule of the model without margin reaches the bound; a schedule of
-    // a margin attempt approaches an infimum and says how closely (optimal_within, epsilon).
-    let attained = reached(&best, bound) && !best.as_ref().is_some_and(|c| c.approached);
-    finish(&mut out, objective, best, bound)?;
-    if attained {
-        out.status = ExactStatus::Optimal;
-    }
-    out.model_objective = bound.map(|_| model_value);
-    out.solve_ms = start.elapsed().as_secs_f64() * 1e3;
-    Ok(out)
 }
 
 /// Fills the outcome from the best schedule and the model's bound.

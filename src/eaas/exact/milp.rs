@@ -203,202 +203,26 @@ fn solve_with<S: good_lp::Solver>(
 where
     S::Model: MilpModel,
 {
-    let n = problem.drones.len();
-    let np = grid.periods();
-    let rho = problem.rho_mah_per_min;
-    let mv = moves(problem, mode);
-    let delivery: Vec<usize> = (0..n)
-        .filter(|&d| problem.drones[d].role == Role::Delivery)
-        .collect();
-    let open_slots: Vec<usize> = delivery.iter().map(|&d| problem.initial_slot[d]).collect();
-    let bin = |vars: &mut ProblemVariables, name: String| {
-        if relax {
-            vars.add(variable().min(0.0).max(1.0).name(name))
-        } else {
-            vars.add(variable().binary().name(name))
-        }
-    };
-    let mut vars = ProblemVariables::new();
-    let y: Vec<Vec<Variable>> = (0..mv.len())
-        .map(|k| {
-            (0..np)
-                .map(|t| bin(&mut vars, format!("y_k{k}_t{t}")))
-                .collect()
-        })
-        .collect();
-    // z[i][j][t]: delivery drone delivery[i] in slot open_slots[j] during t (free only).
-    let z: Vec<Vec<Vec<Variable>>> = if mode == Reorder::Free {
-        (0..delivery.len())
-            .map(|i| {
-                (0..open_slots.len())
-                    .map(|j| {
-                        let (c, q) = (delivery[i], open_slots[j]);
-                        (0..np)
-                            .map(|t| bin(&mut vars, format!("z_c{c}_q{q}_t{t}")))
-                            .collect()
-                    })
-                    .collect()
-            })
-            .collect()
-    } else {
-        Vec::new()
-    };
-    let b: Vec<Vec<Variable>> = problem
-        .drones
-        .iter()
-        .enumerate()
-        .map(|(d, drone)| {
-            // b[d][t] is the battery at grid point t + 1 (b[d][0] is the constant b_d(0)).
-            (0..np)
-                .map(|t| {
-                    let name = format!("b_d{d}_t{}", t + 1);
-                    vars.add(variable().min(0.0).max(drone.capacity_mah).name(name))
-                })
-                .collect()
-        })
-        .collect();
-    let b_at = |d: usize, t: usize| -> Expression {
-        if t == 0 {
-            Expression::from(problem.drones[d].battery_mah)
-        } else {
-            Expression::from(b[d][t - 1])
-        }
-    };
-    // Objective variables.
-    let (goal, pad_vars) = match *objective {
-        Objective::NodeTime(EndPads { pads, .. }) => {
-            let rows = PadRows::add(&mut vars, n, pads, relax, None);
-            (Some(vars.add(variable().min(0.0).name("M"))), Some(rows))
-        }
-        Objective::MaxMinArrival => (Some(vars.add(variable().name("g"))), None),
-        Objective::Feasible => (None, None),
-    };
+    let setting = GridSetting::new(problem, grid, mode);
+    let (vars, columns) = setting.columns(objective, relax);
     let names: Vec<String> = vars
         .iter_variables_with_def()
         .map(|(_, def)| def.get_name().to_string())
         .collect();
-    let mut model = match (objective, goal) {
+    let mut model = match (objective, columns.goal) {
         (Objective::MaxMinArrival, Some(g)) => vars.maximise(g),
         (_, Some(g)) => vars.minimise(g),
         _ => vars.minimise(Expression::from(0.0)),
     }
     .using(solver)
     .with_time_limit(time_limit_s);
-
-    for t in 0..np {
-        let h = grid.len_min(t);
-        let rates = &problem.legs[grid.leg[t]].rate_mah_per_min;
-        for s in (0..n).filter(|&s| problem.drones[s].role == Role::Support) {
-            let once: Expression = (0..mv.len())
-                .filter(|&k| mv[k].support == s)
-                .map(|k| y[k][t])
-                .sum();
-            model.add_constraint(constraint!(once <= 1.0));
-        }
-        for &p in &delivery {
-            let moved: Expression = (0..mv.len())
-                .filter(|&k| mv[k].consumer == p || mv[k].partner == Some(p))
-                .map(|k| y[k][t])
-                .sum();
-            model.add_constraint(constraint!(moved <= 1.0));
-        }
-        if mode == Reorder::Free {
-            for zi in &z {
-                let one: Expression = zi.iter().map(|zij| zij[t]).sum();
-                model.add_constraint(constraint!(one == 1.0));
-            }
-            for j in 0..open_slots.len() {
-                let one: Expression = z.iter().map(|zi| zi[j][t]).sum();
-                model.add_constraint(constraint!(one == 1.0));
-            }
-            for (k, m) in mv.iter().enumerate() {
-                let i = delivery.iter().position(|&d| d == m.consumer).unwrap_or(0);
-                let qs = problem.initial_slot[m.support];
-                let near: Expression = (0..open_slots.len())
-                    .filter(|&j| {
-                        reorder::slot_distance_m(problem, qs, open_slots[j]) <= problem.range_m
-                    })
-                    .map(|j| z[i][j][t])
-                    .sum();
-                model.add_constraint(constraint!(y[k][t] <= near));
-            }
-        }
-        for d in 0..n {
-            let own = problem.initial_slot[d];
-            let mut used = Expression::from(0.0);
-            if mode == Reorder::Free && problem.drones[d].role == Role::Delivery {
-                let i = delivery.iter().position(|&x| x == d).unwrap_or(0);
-                for (j, &q) in open_slots.iter().enumerate() {
-                    used += h * rates[d][q] * z[i][j][t];
-                }
-            } else {
-                used += h * rates[d][own];
-                for (k, m) in mv.iter().enumerate() {
-                    if m.consumer == d && m.slot != own {
-                        used += h * (rates[d][m.slot] - rates[d][own]) * y[k][t];
-                    }
-                    if m.partner == Some(d) {
-                        let to = problem.initial_slot[m.consumer];
-                        used += h * (rates[d][to] - rates[d][own]) * y[k][t];
-                    }
-                }
-            }
-            for (k, m) in mv.iter().enumerate() {
-                if m.consumer == d {
-                    used -= rho * h * y[k][t];
-                }
-                if m.support == d {
-                    used += rho * h * y[k][t];
-                }
-            }
-            let next = Expression::from(b[d][t]);
-            let prev = b_at(d, t);
-            model.add_constraint(constraint!(next == prev - used));
-        }
+    for t in 0..grid.periods() {
+        setting.add_period_rows(&mut model, &columns, t);
     }
-    for s in (0..n).filter(|&s| problem.drones[s].role == Role::Support) {
-        let given: Expression = (0..mv.len())
-            .filter(|&k| mv[k].support == s)
-            .flat_map(|k| (0..np).map(move |t| (k, t)))
-            .map(|(k, t)| rho * grid.len_min(t) * y[k][t])
-            .sum();
-        let budget = sharing_budget_mah(problem, s);
-        model.add_constraint(constraint!(given <= budget));
-    }
-    match (*objective, goal, &pad_vars) {
-        (
-            Objective::NodeTime(EndPads {
-                pad_rate_mah_per_min,
-                ..
-            }),
-            Some(g),
-            Some(rows),
-        ) => {
-            let finals: Vec<Expression> = (0..n).map(|d| b_at(d, np)).collect();
-            let caps: Vec<f64> = problem.drones.iter().map(|d| d.capacity_mah).collect();
-            rows.constrain(&mut model, &caps, &finals, pad_rate_mah_per_min, g);
-        }
-        (Objective::MaxMinArrival, Some(g), _) => {
-            for &d in &delivery {
-                model.add_constraint(constraint!(g <= b_at(d, np)));
-            }
-        }
-        _ => {}
-    }
-    if np == 0 {
-        // No period: the empty schedule is the only one (and HiGHS refuses an empty model).
-        let replay = evaluate(problem, &[]).into_outcome();
-        if !replay.feasible {
-            return Ok(Solved::Infeasible);
-        }
-        let value = objective_of(problem, objective, &replay.final_battery_mah)?;
-        return Ok(Solved::Values(Raw {
-            on: y.iter().map(|_| Vec::new()).collect(),
-            slots: (mode == Reorder::Free).then(Vec::new),
-            value: value.value,
-            proven: value.proven,
-            names,
-        }));
+    setting.add_sharing_budgets(&mut model, &columns);
+    setting.add_objective_rows(&mut model, &columns, objective);
+    if grid.periods() == 0 {
+        return setting.empty_grid(objective, &columns, names);
     }
     let (status, solution) = match backend_end(model.solve_outcome(), backend_name)? {
         BackendEnd::Solved(status, s) => (status, s),
@@ -406,39 +230,347 @@ where
         BackendEnd::NoSolution => return Ok(Solved::NoSolution),
     };
     // A stop at the relative gap asked for is a proof within it; a limit's stop is not.
-    let proven = status.proven();
-    let value = match goal {
-        Some(g) => solution.value(g),
-        None => 0.0,
-    };
-    let on: Vec<Vec<bool>> = y
-        .iter()
-        .map(|yk| yk.iter().map(|&v| solution.value(v) > 0.5).collect())
-        .collect();
-    let slots = (mode == Reorder::Free).then(|| {
-        (0..np)
-            .map(|t| {
-                let mut slot = problem.initial_slot.clone();
-                for (i, &d) in delivery.iter().enumerate() {
-                    if let Some(j) = (0..open_slots.len()).max_by(|&a, &b| {
-                        solution
-                            .value(z[i][a][t])
-                            .total_cmp(&solution.value(z[i][b][t]))
-                    }) {
-                        slot[d] = open_slots[j];
-                    }
-                }
-                slot
-            })
-            .collect()
-    });
-    Ok(Solved::Values(Raw {
-        on,
-        slots,
-        value,
-        proven,
+    Ok(Solved::Values(setting.read(
+        &solution,
+        &columns,
+        status.proven(),
         names,
-    }))
+    )))
+}
+
+/// What the grid MILP of a hop is built over: the moves of the mode, the delivery drones and
+/// their slots (`models/eaas_milp.md`).
+struct GridSetting<'a> {
+    problem: &'a HopProblem,
+    grid: &'a Grid,
+    mode: Reorder,
+    mv: Vec<Move>,
+    delivery: Vec<usize>,
+    /// The delivery drones' own slots, open to any of them under `free`.
+    open_slots: Vec<usize>,
+}
+
+/// The grid MILP's variables.
+struct GridColumns {
+    /// `y[k][t]`: move `k` during period `t`.
+    y: Vec<Vec<Variable>>,
+    /// `z[i][j][t]`: delivery drone `delivery[i]` in slot `open_slots[j]` during `t` (`free`
+    /// only).
+    z: Vec<Vec<Vec<Variable>>>,
+    /// `b[d][t]`: the battery at grid point `t + 1` (`b_d(0)` is a constant).
+    b: Vec<Vec<Variable>>,
+    /// `M` (node time) or `g` (least delivery battery); none for feasibility.
+    goal: Option<Variable>,
+    /// The exact (or relaxed) assignment rows of the node time.
+    pads: Option<PadRows>,
+}
+
+impl<'a> GridSetting<'a> {
+    fn new(problem: &'a HopProblem, grid: &'a Grid, mode: Reorder) -> Self {
+        let delivery: Vec<usize> = (0..problem.drones.len())
+            .filter(|&d| problem.drones[d].role == Role::Delivery)
+            .collect();
+        let open_slots = delivery.iter().map(|&d| problem.initial_slot[d]).collect();
+        GridSetting {
+            problem,
+            grid,
+            mode,
+            mv: moves(problem, mode),
+            delivery,
+            open_slots,
+        }
+    }
+
+    /// The variables, in this order: `y`, `z`, `b`, then the objective's (pad rows, goal);
+    /// binaries in `[0, 1]` when `relax`.
+    fn columns(&self, objective: &Objective, relax: bool) -> (ProblemVariables, GridColumns) {
+        let problem = self.problem;
+        let np = self.grid.periods();
+        let bin = |vars: &mut ProblemVariables, name: String| {
+            if relax {
+                vars.add(variable().min(0.0).max(1.0).name(name))
+            } else {
+                vars.add(variable().binary().name(name))
+            }
+        };
+        let mut vars = ProblemVariables::new();
+        let y: Vec<Vec<Variable>> = (0..self.mv.len())
+            .map(|k| {
+                (0..np)
+                    .map(|t| bin(&mut vars, format!("y_k{k}_t{t}")))
+                    .collect()
+            })
+            .collect();
+        let z: Vec<Vec<Vec<Variable>>> = if self.mode == Reorder::Free {
+            (0..self.delivery.len())
+                .map(|i| {
+                    (0..self.open_slots.len())
+                        .map(|j| {
+                            let (c, q) = (self.delivery[i], self.open_slots[j]);
+                            (0..np)
+                                .map(|t| bin(&mut vars, format!("z_c{c}_q{q}_t{t}")))
+                                .collect()
+                        })
+                        .collect()
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
+        let b: Vec<Vec<Variable>> = problem
+            .drones
+            .iter()
+            .enumerate()
+            .map(|(d, drone)| {
+                (0..np)
+                    .map(|t| {
+                        let name = format!("b_d{d}_t{}", t + 1);
+                        vars.add(variable().min(0.0).max(drone.capacity_mah).name(name))
+                    })
+                    .collect()
+            })
+            .collect();
+        let (goal, pads) = match *objective {
+            Objective::NodeTime(EndPads { pads, .. }) => {
+                let rows = PadRows::add(&mut vars, problem.drones.len(), pads, relax, None);
+                (Some(vars.add(variable().min(0.0).name("M"))), Some(rows))
+            }
+            Objective::MaxMinArrival => (Some(vars.add(variable().name("g"))), None),
+            Objective::Feasible => (None, None),
+        };
+        (
+            vars,
+            GridColumns {
+                y,
+                z,
+                b,
+                goal,
+                pads,
+            },
+        )
+    }
+
+    /// Drone `d`'s battery at grid point `t`: the constant `b_d(0)` at `t = 0`.
+    fn battery_at(&self, columns: &GridColumns, d: usize, t: usize) -> Expression {
+        if t == 0 {
+            Expression::from(self.problem.drones[d].battery_mah)
+        } else {
+            Expression::from(columns.b[d][t - 1])
+        }
+    }
+
+    /// The rows of period `t`: a support drone and a delivery drone in one move at most; under
+    /// `free`, one slot per delivery drone and one drone per slot, a move only within range;
+    /// every battery's change over the period.
+    fn add_period_rows<M: SolverModel>(&self, model: &mut M, columns: &GridColumns, t: usize) {
+        let problem = self.problem;
+        let (mv, y) = (&self.mv, &columns.y);
+        for s in (0..problem.drones.len()).filter(|&s| problem.drones[s].role == Role::Support) {
+            let once: Expression = (0..mv.len())
+                .filter(|&k| mv[k].support == s)
+                .map(|k| y[k][t])
+                .sum();
+            model.add_constraint(constraint!(once <= 1.0));
+        }
+        for &p in &self.delivery {
+            let moved: Expression = (0..mv.len())
+                .filter(|&k| mv[k].consumer == p || mv[k].partner == Some(p))
+                .map(|k| y[k][t])
+                .sum();
+            model.add_constraint(constraint!(moved <= 1.0));
+        }
+        if self.mode == Reorder::Free {
+            self.add_slot_rows(model, columns, t);
+        }
+        for d in 0..problem.drones.len() {
+            let used = self.energy_used(columns, d, t);
+            let next = Expression::from(columns.b[d][t]);
+            let prev = self.battery_at(columns, d, t);
+            model.add_constraint(constraint!(next == prev - used));
+        }
+    }
+
+    /// `free`, period `t`: every delivery drone in one open slot, every open slot holding one,
+    /// and a move only while its consumer is within the support drone's range.
+    fn add_slot_rows<M: SolverModel>(&self, model: &mut M, columns: &GridColumns, t: usize) {
+        let (problem, z) = (self.problem, &columns.z);
+        for zi in z {
+            let one: Expression = zi.iter().map(|zij| zij[t]).sum();
+            model.add_constraint(constraint!(one == 1.0));
+        }
+        for j in 0..self.open_slots.len() {
+            let one: Expression = z.iter().map(|zi| zi[j][t]).sum();
+            model.add_constraint(constraint!(one == 1.0));
+        }
+        for (k, m) in self.mv.iter().enumerate() {
+            let i = self
+                .delivery
+                .iter()
+                .position(|&d| d == m.consumer)
+                .unwrap_or(0);
+            let qs = problem.initial_slot[m.support];
+            let near: Expression = (0..self.open_slots.len())
+                .filter(|&j| {
+                    reorder::slot_distance_m(problem, qs, self.open_slots[j]) <= problem.range_m
+                })
+                .map(|j| z[i][j][t])
+                .sum();
+            model.add_constraint(constraint!(columns.y[k][t] <= near));
+        }
+    }
+
+    /// The energy drone `d` uses in period `t`: flight in its slot (or the slot a move puts it
+    /// in), less what it receives, plus what it gives.
+    fn energy_used(&self, columns: &GridColumns, d: usize, t: usize) -> Expression {
+        let problem = self.problem;
+        let h = self.grid.len_min(t);
+        let rho = problem.rho_mah_per_min;
+        let rates = &problem.legs[self.grid.leg[t]].rate_mah_per_min;
+        let y = &columns.y;
+        let own = problem.initial_slot[d];
+        let mut used = Expression::from(0.0);
+        if self.mode == Reorder::Free && problem.drones[d].role == Role::Delivery {
+            let i = self.delivery.iter().position(|&x| x == d).unwrap_or(0);
+            for (j, &q) in self.open_slots.iter().enumerate() {
+                used += h * rates[d][q] * columns.z[i][j][t];
+            }
+        } else {
+            used += h * rates[d][own];
+            for (k, m) in self.mv.iter().enumerate() {
+                if m.consumer == d && m.slot != own {
+                    used += h * (rates[d][m.slot] - rates[d][own]) * y[k][t];
+                }
+                if m.partner == Some(d) {
+                    let to = problem.initial_slot[m.consumer];
+                    used += h * (rates[d][to] - rates[d][own]) * y[k][t];
+                }
+            }
+        }
+        for (k, m) in self.mv.iter().enumerate() {
+            if m.consumer == d {
+                used -= rho * h * y[k][t];
+            }
+            if m.support == d {
+                used += rho * h * y[k][t];
+            }
+        }
+        used
+    }
+
+    /// What each support drone gives stays within its sharing budget.
+    fn add_sharing_budgets<M: SolverModel>(&self, model: &mut M, columns: &GridColumns) {
+        let problem = self.problem;
+        let (mv, y, grid) = (&self.mv, &columns.y, self.grid);
+        let rho = problem.rho_mah_per_min;
+        for s in (0..problem.drones.len()).filter(|&s| problem.drones[s].role == Role::Support) {
+            let given: Expression = (0..mv.len())
+                .filter(|&k| mv[k].support == s)
+                .flat_map(|k| (0..grid.periods()).map(move |t| (k, t)))
+                .map(|(k, t)| rho * grid.len_min(t) * y[k][t])
+                .sum();
+            let budget = sharing_budget_mah(problem, s);
+            model.add_constraint(constraint!(given <= budget));
+        }
+    }
+
+    /// The objective's rows: the node time's pad rows, or the least delivery battery.
+    fn add_objective_rows<M: SolverModel>(
+        &self,
+        model: &mut M,
+        columns: &GridColumns,
+        objective: &Objective,
+    ) {
+        let problem = self.problem;
+        let np = self.grid.periods();
+        match (*objective, columns.goal, &columns.pads) {
+            (
+                Objective::NodeTime(EndPads {
+                    pad_rate_mah_per_min,
+                    ..
+                }),
+                Some(g),
+                Some(rows),
+            ) => {
+                let finals: Vec<Expression> = (0..problem.drones.len())
+                    .map(|d| self.battery_at(columns, d, np))
+                    .collect();
+                let caps: Vec<f64> = problem.drones.iter().map(|d| d.capacity_mah).collect();
+                rows.constrain(model, &caps, &finals, pad_rate_mah_per_min, g);
+            }
+            (Objective::MaxMinArrival, Some(g), _) => {
+                for &d in &self.delivery {
+                    model.add_constraint(constraint!(g <= self.battery_at(columns, d, np)));
+                }
+            }
+            _ => {}
+        }
+    }
+
+    /// No period: the empty schedule is the only one (and HiGHS refuses an empty model).
+    fn empty_grid(
+        &self,
+        objective: &Objective,
+        columns: &GridColumns,
+        names: Vec<String>,
+    ) -> Result<Solved> {
+        let replay = evaluate(self.problem, &[]).into_outcome();
+        if !replay.feasible {
+            return Ok(Solved::Infeasible);
+        }
+        let value = objective_of(self.problem, objective, &replay.final_battery_mah)?;
+        Ok(Solved::Values(Raw {
+            on: columns.y.iter().map(|_| Vec::new()).collect(),
+            slots: (self.mode == Reorder::Free).then(Vec::new),
+            value: value.value,
+            proven: value.proven,
+            names,
+        }))
+    }
+
+    /// The values of a solve: the moves on, and under `free` every drone's slot in every period
+    /// (each delivery drone in its likeliest open slot).
+    fn read(
+        &self,
+        solution: &impl Solution,
+        columns: &GridColumns,
+        proven: bool,
+        names: Vec<String>,
+    ) -> Raw {
+        let value = match columns.goal {
+            Some(g) => solution.value(g),
+            None => 0.0,
+        };
+        let on: Vec<Vec<bool>> = columns
+            .y
+            .iter()
+            .map(|yk| yk.iter().map(|&v| solution.value(v) > 0.5).collect())
+            .collect();
+        let z = &columns.z;
+        let slots = (self.mode == Reorder::Free).then(|| {
+            (0..self.grid.periods())
+                .map(|t| {
+                    let mut slot = self.problem.initial_slot.clone();
+                    for (i, &d) in self.delivery.iter().enumerate() {
+                        if let Some(j) = (0..self.open_slots.len()).max_by(|&a, &b| {
+                            solution
+                                .value(z[i][a][t])
+                                .total_cmp(&solution.value(z[i][b][t]))
+                        }) {
+                            slot[d] = self.open_slots[j];
+                        }
+                    }
+                    slot
+                })
+                .collect()
+        });
+        Raw {
+            on,
+            slots,
+            value,
+            proven,
+            names,
+        }
+    }
 }
 
 /// One solve of the grid MILP (or its LP relaxation when `relax`), for [`run_on`].
