@@ -10,7 +10,7 @@ use swarmplan::compose::{Context, PlanOptions, PlanOutcome, RequestReport, Route
 use swarmplan::eaas::{FailureReason, HopFailure, SharingPolicy};
 use swarmplan::precompose::Positioning;
 use swarmplan::problem::io::read_json;
-use swarmplan::problem::profile::Candidates;
+use swarmplan::problem::Candidates;
 use swarmplan::problem::SkywayGraph;
 use swarmplan::problem::{Network, Profile, Request, RequestSet};
 

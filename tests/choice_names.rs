@@ -10,8 +10,8 @@ use swarmplan::eaas::exact::Reorder;
 use swarmplan::eaas::SharingPolicy;
 use swarmplan::node_time::NodeTimeMethod;
 use swarmplan::precompose::Positioning;
-use swarmplan::problem::profile::{Candidates, PbRequest};
 use swarmplan::problem::FormationKind;
+use swarmplan::problem::{Candidates, PbRequest};
 
 /// Every value's clap name, `Display` and serde name agree; returns the names.
 fn names<T: ValueEnum + Display + Serialize>() -> Vec<String> {

@@ -14,8 +14,8 @@ use swarmplan::eaas::{
     battery_trace, simulate, simulate_with, HopOutcome, HopProblem, LegRates, PolicyOptions,
     SharingPolicy,
 };
-use swarmplan::problem::profile::{PbRequest, Readings};
 use swarmplan::problem::Role;
+use swarmplan::problem::{PbRequest, Readings};
 
 fn passes(p: &HopProblem, o: &HopOutcome) {
     let v = check_hop(p, o);

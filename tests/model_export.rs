@@ -1,5 +1,5 @@
 //! Models written as files: the node-time MILP in CPLEX LP and free MPS
-//! (`node_time::milp::write_model`, `node-time --write-lp`) and the hop MILP in free MPS
+//! (`node_time::write_model`, `node-time --write-lp`) and the hop MILP in free MPS
 //! (`eaas::exact::milp::write_lp` with a `.mps` name). Each file is read back by the small readers of
 //! `tests/common/model_files.rs` and compared with the model of `models/node_time.md` written out
 //! by hand, its size counted by hand, and its optimum found by enumerating the file's binaries.
@@ -9,7 +9,7 @@ mod common;
 use common::model_files::{read_lp, read_mps, Lp, Terms};
 use common::{known_optima, stderr, swarmplan, tmp};
 use swarmplan::eaas::exact::milp::{write_lp, MilpOptions};
-use swarmplan::node_time::milp::write_model;
+use swarmplan::node_time::write_model;
 use swarmplan::solver::lp_file::ModelFormat;
 
 fn terms(pairs: &[(f64, &str)]) -> Terms {

@@ -344,6 +344,25 @@ fn public_aliases(text: &str) -> Vec<String> {
         .collect()
 }
 
+/// The `pub use child::...` lines of a module whose `child` is itself public: a second path to
+/// the child's items (`module::Item` beside `module::child::Item`).
+fn facades_of_public_children(text: &str) -> Vec<String> {
+    let public_children: Vec<&str> = text
+        .lines()
+        .filter_map(|l| l.strip_prefix("pub mod "))
+        .filter_map(|l| l.strip_suffix(';'))
+        .collect();
+    text.lines()
+        .filter_map(|l| l.strip_prefix("pub use "))
+        .filter(|path| {
+            public_children
+                .iter()
+                .any(|c| path.strip_prefix(c).is_some_and(|rest| rest.starts_with("::")))
+        })
+        .map(|path| format!("pub use {path}"))
+        .collect()
+}
+
 #[test]
 fn every_public_item_has_one_path_in_the_library() {
     let mut files = Vec::new();
@@ -359,6 +378,9 @@ fn every_public_item_has_one_path_in_the_library() {
         let text = std::fs::read_to_string(f).unwrap();
         for line in public_aliases(&text) {
             found.push(format!("{}: {line}", f.display()));
+        }
+        for line in facades_of_public_children(&text) {
+            found.push(format!("{}: {line} (the child module is public too)", f.display()));
         }
     }
     assert!(
@@ -378,4 +400,11 @@ fn the_alias_scan_sees_a_re_export_from_elsewhere() {
             "pub use super::EndPads;"
         ]
     );
+}
+
+#[test]
+fn the_facade_scan_sees_a_public_child_re_exported() {
+    let text = "pub mod shown;\nmod hidden;\npub mod other;\npub use shown::Item;\n\
+                pub use hidden::{A, B};\npub use shownx::C;\n";
+    assert_eq!(facades_of_public_children(text), ["pub use shown::Item;"]);
 }

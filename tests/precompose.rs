@@ -10,10 +10,10 @@ use swarmplan::precompose::{
     averaged_wind, build_swarm, select_formation, support_count, Positioning,
 };
 use swarmplan::problem::io::parse_toml;
-use swarmplan::problem::profile::{FailureModel, FailureTerms, FailureWeights, RedundancyLevel};
 use swarmplan::problem::validate::validate_profile;
 use swarmplan::problem::FormationKind;
 use swarmplan::problem::{Edge, Network, Node, Profile, RequestSet, Role, Wind};
+use swarmplan::problem::{FailureModel, FailureTerms, FailureWeights, RedundancyLevel};
 
 fn paper() -> Profile {
     shipped_profile("paper")

@@ -143,7 +143,7 @@ impl Instance {
         let r = Request {
             id: given
                 .id
-                .unwrap_or_else(|| swarmplan::problem::request::PYTHON_REQUEST_ID.into()),
+                .unwrap_or_else(|| swarmplan::problem::PYTHON_REQUEST_ID.into()),
             source: given.source,
             destination: given.destination,
             packages_kg: given.packages_kg,
@@ -179,7 +179,7 @@ pub(crate) fn load_profile(
         return Err(to_py_err(py, shipped::profile(name).unwrap_err()));
     };
     if literal {
-        p.readings = swarmplan::problem::profile::Readings::literal();
+        p.readings = swarmplan::problem::Readings::literal();
     }
     let label = if literal {
         format!("{label} (literal)")
@@ -361,10 +361,9 @@ impl Instance {
         let nodes = nodes
             .map(|n| n.index(py, "nodes", "a node count"))
             .transpose()?
-            .unwrap_or(swarmplan::generate::network::DEFAULT_NODES);
-        let spacing_m = spacing_m.unwrap_or(swarmplan::generate::network::DEFAULT_SPACING_M);
-        let max_package_kg =
-            max_package_kg.unwrap_or(swarmplan::generate::requests::DEFAULT_MAX_PACKAGE_KG);
+            .unwrap_or(swarmplan::generate::DEFAULT_NODES);
+        let spacing_m = spacing_m.unwrap_or(swarmplan::generate::DEFAULT_SPACING_M);
+        let max_package_kg = max_package_kg.unwrap_or(swarmplan::generate::DEFAULT_MAX_PACKAGE_KG);
         let requests = requests.index(py, "requests", "a request count")?;
         let requests_seed = requests_seed
             .map(|s| s.get(py, "requests_seed", "a seed from 0 to 2**64 - 1"))

@@ -75,14 +75,11 @@ fn _swarmplan(m: &Bound<'_, PyModule>) -> PyResult<()> {
         "DEFAULT_DISTANCE_BUCKET_KM",
         swarmplan::bench::DEFAULT_DISTANCE_BUCKET_KM,
     )?;
-    m.add("DEFAULT_NODES", swarmplan::generate::network::DEFAULT_NODES)?;
-    m.add(
-        "DEFAULT_SPACING_M",
-        swarmplan::generate::network::DEFAULT_SPACING_M,
-    )?;
+    m.add("DEFAULT_NODES", swarmplan::generate::DEFAULT_NODES)?;
+    m.add("DEFAULT_SPACING_M", swarmplan::generate::DEFAULT_SPACING_M)?;
     m.add(
         "DEFAULT_MAX_PACKAGE_KG",
-        swarmplan::generate::requests::DEFAULT_MAX_PACKAGE_KG,
+        swarmplan::generate::DEFAULT_MAX_PACKAGE_KG,
     )?;
     Ok(())
 }

@@ -10,7 +10,7 @@ use super::close;
 use crate::compose::RequestReport;
 use crate::error::Violation;
 use crate::problem::io::json_name;
-use crate::problem::profile::{FailureModel, FailureTerms};
+use crate::problem::{FailureModel, FailureTerms};
 use crate::problem::{Network, Profile, Request};
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;

@@ -2,26 +2,26 @@
 //! (only the input and output types are shared).
 //! User guide: "Checking plans" (`docs/src/checking.md`), with every rule code.
 //!
-//! Codes `C3xxx` concern hop schedules ([`hop`]), codes `P5xxx` whole plans ([`plan`]) and plan
-//! documents read from a file ([`report`], read by [`plan_file`], whose errors are `E6xxx`),
+//! Codes `C3xxx` concern hop schedules ([`check_hop`]), codes `P5xxx` whole plans ([`check_plan`]) and plan
+//! documents read from a file ([`check_report`], read by [`plan_file`], whose errors are `E6xxx`),
 //! `P55xx` node-time results ([`node_time`]), `P56xx` hop files ([`hop_file`]) and `P57xx` the
 //! rows of a bench run ([`bench_rows`]).
 
 pub mod bench_rows;
 pub mod decision;
-pub mod free_hop;
-pub mod hop;
+mod free_hop;
+mod hop;
 pub mod hop_file;
 pub mod node_time;
-pub mod plan;
+mod plan;
 pub mod plan_file;
-pub mod report;
+mod report;
 pub mod search;
 
 pub use free_hop::check_free_hop;
-pub use hop::{check_hop, fly_as_written};
-pub use plan::check_plan;
-pub use report::check_report;
+pub use hop::{battery_trajectory, check_hop, fly_as_written};
+pub use plan::{check_plan, optimal_makespan_min, rebuilt_hop_problem, OPTIMALITY_CHECK_DRONES};
+pub use report::{check_report, fingerprint_mismatch, made_on_another_instance};
 
 /// Relative tolerance of a number the checkers recompute and compare with the stated one (a few
 /// sums and products of the same inputs; a JSON or CSV round trip keeps every digit).

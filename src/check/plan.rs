@@ -38,7 +38,7 @@ use crate::energy;
 use crate::error::Violation;
 use crate::formation;
 use crate::problem::io::json_name;
-use crate::problem::profile::Candidates;
+use crate::problem::Candidates;
 use crate::problem::{Network, Node, Profile, Request};
 use crate::problem::{Role, Swarm, Wind};
 use crate::solver::SolveStatus;

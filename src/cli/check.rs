@@ -82,11 +82,8 @@ pub fn run(args: CheckArgs) -> Result<i32> {
             .expect("one document, by the clap group"),
     )?;
     // Another instance is the user's mix-up (exit 2), not a plan that breaks the model.
-    let mismatch = crate::check::report::made_on_another_instance(
-        &instance.network,
-        &instance.profile,
-        &report,
-    );
+    let mismatch =
+        crate::check::made_on_another_instance(&instance.network, &instance.profile, &report);
     if !mismatch.is_empty() {
         return Err(Error::Invalid(mismatch));
     }

@@ -3,10 +3,10 @@
 
 use crate::error::both;
 use crate::error::Result;
-use crate::generate::network::{DEFAULT_NODES, DEFAULT_SPACING_M, MAX_NODES, MIN_NODES};
 use crate::generate::pcmax::{generate_pcmax, PcmaxClass, PcmaxParams, MAX_JOBS, MAX_PADS};
-use crate::generate::requests::{DEFAULT_MAX_PACKAGE_KG, DEFAULT_REQUESTS, MAX_REQUESTS};
 use crate::generate::{generate_network, generate_requests, NetworkParams, RequestParams};
+use crate::generate::{DEFAULT_MAX_PACKAGE_KG, DEFAULT_REQUESTS, MAX_REQUESTS};
+use crate::generate::{DEFAULT_NODES, DEFAULT_SPACING_M, MAX_NODES, MIN_NODES};
 use crate::problem::io::write_json;
 use crate::problem::read_network;
 use std::path::PathBuf;

@@ -145,7 +145,7 @@ pub fn run(args: NodeTimeArgs) -> Result<i32> {
     };
     if let Some(path) = &args.write_lp {
         let about = format!("{} drones on {pads} pads", times.len());
-        let (size, format) = node_time::milp::write_model(pads, &times, &about, path)?;
+        let (size, format) = node_time::write_model(pads, &times, &about, path)?;
         eprintln!(
             "wrote {} file {}: {} variables ({} binary), {} constraints",
             format.name(),

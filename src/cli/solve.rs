@@ -104,7 +104,7 @@ pub fn run(args: SolveArgs) -> Result<i32> {
             }
             (None, Some(from), Some(to), Some(packages)) => instance
                 .with_requests(vec![Request {
-                    id: crate::problem::request::COMMAND_LINE_REQUEST_ID.to_string(),
+                    id: crate::problem::COMMAND_LINE_REQUEST_ID.to_string(),
                     source: from.clone(),
                     destination: to.clone(),
                     packages_kg: inputs::parse_list(packages, "--packages", "E0003")?,

@@ -8,7 +8,7 @@ use crate::eaas::exact_hop::HopGoal;
 use crate::eaas::exact_hop::HopSolveCounts;
 use crate::eaas::SharingPolicy;
 use crate::error::Result;
-use crate::problem::profile::Candidates;
+use crate::problem::Candidates;
 
 impl Planner {
     /// Algorithm 1 over adjacent nodes. From the current node: fly to the destination along the

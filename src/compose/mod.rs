@@ -50,7 +50,7 @@ pub use split::{
 
 use crate::eaas::exact_hop::HopSolveCounts;
 use crate::eaas::SharingPolicy;
-use crate::problem::profile::Candidates;
+use crate::problem::Candidates;
 use serde::{Deserialize, Serialize};
 
 /// How the route is composed.

@@ -2,7 +2,7 @@
 
 use crate::eaas::exact_hop::{HopSolve, HopSolveCounts};
 use crate::eaas::{HopFailure, Transfer};
-use crate::problem::profile::Candidates;
+use crate::problem::Candidates;
 use crate::solver::SolveStatus;
 use serde::{Deserialize, Serialize};
 use std::fmt;

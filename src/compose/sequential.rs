@@ -10,7 +10,7 @@ use crate::eaas::exact_hop::HopSolveCounts;
 use crate::eaas::SharingPolicy;
 use crate::error::Result;
 use crate::network::Route;
-use crate::problem::profile::Candidates;
+use crate::problem::Candidates;
 
 /// Relative tolerance, on minutes, of pruning a candidate by its lower bound: a bound computed
 /// in floating point may sit slightly above the true value, so a candidate is pruned only when

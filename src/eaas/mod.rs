@@ -18,8 +18,8 @@
 //! independent checker in [`crate::check`] re-verifies it from the raw [`HopProblem`].
 
 use crate::error::{show, Error, Result, Violation};
-use crate::problem::profile::{PbRequest, Readings};
 use crate::problem::Role;
+use crate::problem::{PbRequest, Readings};
 use nalgebra::Vector2;
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;

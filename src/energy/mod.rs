@@ -12,7 +12,7 @@
 //! A support drone's payload is its extra batteries. `v_air` is the air's velocity relative to the
 //! swarm: the wind's velocity minus the swarm's ground velocity (`v` along the heading).
 
-use crate::formation::wake::position_factors;
+use crate::formation::position_factors;
 use crate::problem::{Profile, Swarm, Wind};
 use nalgebra::Vector2;
 

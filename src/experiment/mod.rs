@@ -2,7 +2,7 @@
 //! combinations a run plans ([`Methods`]), what each is compared with ([`Experiment`]: the
 //! optimal route of the same sharing policy for the route gap, the exact node time for LPT's gap
 //! at every stop, the joint optimum for the gap split), the per-combination summaries of a
-//! planned grid ([`summary`]), and tables written as CSV through serde ([`write_csv`]).
+//! planned grid ([`summarise_grid`]), and tables written as CSV through serde ([`write_csv`]).
 //! User guide: the command `batch` (`docs/src/commands/batch.md`) and "The bench report"
 //! (`docs/src/bench-report.md`).
 //!
@@ -10,7 +10,7 @@
 //! command line, which give it their arguments and print or write what it returns; it knows
 //! nothing of how the arguments were read.
 
-pub mod summary;
+mod summary;
 
 pub use summary::{
     summarise_grid, write_summaries, GridSummary, Outcome, RouteGapCells, Summary, SummaryRow,

@@ -16,7 +16,7 @@
 //! `f_j = max(f_min, 1 - sum_{i != j} g(s_ij, t_ij))`. A drone with no drone upstream pays the full
 //! still-formation rate (`f = 1`), which is why a leader in a head wind pays most.
 
-use crate::problem::profile::FormationParams;
+use crate::problem::FormationParams;
 use nalgebra::Vector2;
 
 fn gauss(x: f64, sigma: f64) -> f64 {

@@ -1,4 +1,4 @@
-//! Seeded synthetic instances: rooftop networks ([`network`]), request sets ([`requests`]) and
+//! Seeded synthetic instances: rooftop networks ([`generate_network`]), request sets ([`generate_requests`]) and
 //! the classical P||Cmax benchmark classes as node-time instances ([`pcmax`]).
 //! User guide: the command `generate` (`docs/src/commands/generate.md`) and "The instance
 //! generator" (`docs/src/models/generate.md`).
@@ -12,12 +12,20 @@
 //! [`requests::generate_requests`], and in `instances/paper-195/README.md`.
 
 pub mod import;
-pub mod network;
+mod network;
 pub mod pcmax;
-pub mod requests;
+mod requests;
 
-pub use network::{generate_network, NetworkParams};
-pub use requests::{generate_requests, RequestParams};
+pub use network::{
+    check_network_params, generate_network, NetworkParams, DEFAULT_NODES, DEFAULT_SPACING_M,
+    DIAGONAL_PROBABILITY, JITTER_SHARE, MAX_NODES, MEAN_WIND_RANGE_MPS, MIN_NODES,
+    PAD_PROBABILITIES, REMOVE_PROBABILITY, WIND_DIRECTION_SD_DEG, WIND_SPEED_CAP_MPS,
+    WIND_SPEED_LOG_SD,
+};
+pub use requests::{
+    check_request_params, generate_requests, RequestParams, DEFAULT_MAX_PACKAGE_KG,
+    DEFAULT_REQUESTS, MAX_PACKAGES, MAX_REQUESTS, MIN_PACKAGES,
+};
 
 use rand::RngCore;
 use rand_chacha::ChaCha8Rng;

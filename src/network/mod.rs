@@ -8,6 +8,6 @@
 //! clockwise from north in `[0, 360)`; `wind_from_deg` is where the wind blows from (meteorological).
 
 pub mod floyd_warshall;
-pub mod paths;
+mod paths;
 
 pub use paths::{Leg, Route, ShortestPathsTo};

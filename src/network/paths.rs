@@ -85,7 +85,7 @@ impl SkywayGraph {
     ///
     /// # Complexity
     /// O((V + E) log V) the first time for each `from`, then O(V): the graph keeps the distances
-    /// (up to [`crate::problem::graph::MAX_CACHED_DISTANCE_NODES`] nodes).
+    /// (up to [`crate::problem::MAX_CACHED_DISTANCE_NODES`] nodes).
     pub fn distances_from_m(&self, from: usize) -> Vec<f64> {
         match self.distance_row(from) {
             Some(row) => row.get_or_init(|| self.dijkstra_m(from)).clone(),

@@ -59,17 +59,17 @@ use crate::solver::{MilpBackend, SolveStatus};
 use serde::{Deserialize, Serialize};
 
 mod bounds;
-pub mod brute;
-pub mod exact;
+mod brute;
+mod exact;
 mod heuristics;
-pub mod milp;
+mod milp;
 mod search;
 
 pub(crate) use bounds::lower_bound_sorted;
-pub use brute::brute;
+pub use brute::{brute, BRUTE_MAX_ASSIGNMENTS};
 pub use exact::{exact, exact_with, ExactSearch};
 pub use heuristics::lpt;
-pub use milp::milp;
+pub use milp::{milp, model_text, solve_with, write_model};
 
 /// Relative tolerance under which two makespans count as equal (`1e-9`).
 pub const REL_TOL: f64 = 1e-9;
@@ -342,7 +342,7 @@ pub fn lp_lower_bound(pads: usize, charge_times_min: &[f64], limits: &Limits) ->
     }
     let p = &sorted[..positive];
     let mut pad_of = vec![0; positive];
-    let ub = heuristics::lpt::lpt_sorted(pads, p, &mut pad_of);
+    let ub = heuristics::lpt_sorted(pads, p, &mut pad_of);
     let mut budget = search::Budget::new(limits);
     Ok(
         match bounds::lp::LpBound::new(p, integral).lift(pads, lb, ub, &mut budget) {

@@ -5,14 +5,14 @@
 //!
 //! Time runs in minutes since departure over the whole request: hops and node times back to
 //! back. Within a hop the batteries are the independent checker's re-integration of the plan's
-//! transfers as written ([`crate::check::hop::battery_trajectory`]) on the hop problem rebuilt
-//! from the instance ([`crate::check::plan::rebuilt_hop_problem`]), exact at its breakpoints
+//! transfers as written ([`crate::check::battery_trajectory`]) on the hop problem rebuilt
+//! from the instance ([`crate::check::rebuilt_hop_problem`]), exact at its breakpoints
 //! and linear between them; at a stop each drone waits at its arrival battery until its pad
 //! slot, then charges linearly to its capacity over its charge time `ct`, then waits full until
 //! the node time `nt` ends.
 
-use crate::check::hop::battery_trajectory;
-use crate::check::plan::{optimal_makespan_min, rebuilt_hop_problem, OPTIMALITY_CHECK_DRONES};
+use crate::check::battery_trajectory;
+use crate::check::{optimal_makespan_min, rebuilt_hop_problem, OPTIMALITY_CHECK_DRONES};
 use crate::compose::{PlanOutcome, RequestReport};
 use crate::eaas::HopFailure;
 use crate::error::{Error, Result};
@@ -193,11 +193,11 @@ fn unfit(k: usize, what: &str) -> Error {
 ///
 /// # Errors
 /// [`Error::Invalid`] E6004, E6005 for a plan made on another network, with another profile
-/// (the checker's [`crate::check::report::made_on_another_instance`]); E8001 (field
+/// (the checker's [`crate::check::made_on_another_instance`]); E8001 (field
 /// `--compare`) for a second plan of another request (its id, ends or packages differ).
 pub fn check_plans(network: &Network, profile: &Profile, reports: &[&RequestReport]) -> Result<()> {
     for r in reports {
-        let mismatch = crate::check::report::made_on_another_instance(network, profile, r);
+        let mismatch = crate::check::made_on_another_instance(network, profile, r);
         if !mismatch.is_empty() {
             return Err(Error::Invalid(mismatch));
         }

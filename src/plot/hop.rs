@@ -5,13 +5,13 @@
 //! on it.
 //!
 //! As in a plan's figure ([`super::data`]), the batteries are the independent checker's
-//! re-integration of the transfers as written ([`crate::check::hop::battery_trajectory`]), so a
+//! re-integration of the transfers as written ([`crate::check::battery_trajectory`]), so a
 //! schedule that does not fly shows its drone running dry where the re-integration says.
 
 use super::data::{
     battery_span, BatteryUnit, DroneSeries, FailureMark, Figure, MapData, PlanData, TransferBand,
 };
-use crate::check::hop::battery_trajectory;
+use crate::check::battery_trajectory;
 use crate::check::INTEGRATION_TOLERANCE;
 use crate::eaas::hop_file::HopFile;
 use crate::eaas::Transfer;

@@ -1,12 +1,12 @@
 //! Pre-composition (paper 5.1): choose the formation from the averaged wind
-//! ([`formation_select`]), the number of support drones from Eq. 2 and the redundancy table
-//! ([`support_count()`]), and the initial slot of every drone ([`positioning`]). See
+//! ([`select_formation`]), the number of support drones from Eq. 2 and the redundancy table
+//! ([`support_count()`]), and the initial slot of every drone ([`build_swarm`]). See
 //! models/precompose.md.
 //! User guide: "Pre-composition" (`docs/src/models/precompose.md`).
 
-pub mod formation_select;
-pub mod positioning;
-pub mod support_count;
+mod formation_select;
+mod positioning;
+mod support_count;
 
 pub use formation_select::{averaged_wind, select_formation, select_formation_for_heading};
 pub use positioning::{build_swarm, build_swarm_in_wind, slot_ranking};

@@ -21,9 +21,9 @@
 //! `P` (percent, clamped to [0, 100]) selects the last row of the redundancy table whose `from_pct`
 //! is at most `P`; the row's level (`N+k`, `2N`, `2(N+1)`) gives the count for `N` delivery drones.
 
-use crate::problem::profile::{FailureModel, FailureTerms, RedundancyLevel};
 use crate::problem::Profile;
 use crate::problem::Wind;
+use crate::problem::{FailureModel, FailureTerms, RedundancyLevel};
 use serde::{Deserialize, Serialize};
 
 /// The outcome of support drone selection.
@@ -124,7 +124,7 @@ pub fn failure_terms(
 /// ```
 /// use swarmplan::problem::Wind;
 /// use swarmplan::precompose::support_count;
-/// use swarmplan::problem::profile::{FailureModel, FailureTerms, FailureWeights};
+/// use swarmplan::problem::{FailureModel, FailureTerms, FailureWeights};
 /// # let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("instances/profiles/paper.toml");
 /// let mut profile: swarmplan::problem::Profile = swarmplan::problem::io::read_toml(&path).unwrap();
 /// profile.failure.model = FailureModel::WeightedSum;

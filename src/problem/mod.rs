@@ -4,24 +4,28 @@
 //! User guide: "Input files and profiles" (`docs/src/inputs.md`).
 
 pub mod fingerprint;
-pub mod graph;
+mod graph;
 pub mod inputs;
-pub mod instance;
+mod instance;
 pub mod io;
-pub mod network;
+mod network;
 pub mod pcmax_file;
-pub mod profile;
-pub mod request;
+mod profile;
+mod request;
 pub mod shipped;
-pub mod swarm;
+mod swarm;
 pub mod validate;
-pub mod wind;
+mod wind;
 
-pub use graph::{read_network, SkywayEdge, SkywayGraph};
+pub use graph::{heading_deg, read_network, SkywayEdge, SkywayGraph, MAX_CACHED_DISTANCE_NODES};
 pub use instance::Instance;
 pub use network::{Edge, Network, Node};
-pub use profile::Profile;
-pub use request::{Request, RequestSet};
+pub use profile::{
+    Candidates, DroneParams, EnergyParams, FailureModel, FailureParams, FailureTerms,
+    FailureWeights, FormationParams, PadParams, PbRequest, Profile, Readings, RedundancyLevel,
+    RedundancyParams, RedundancyRow, SharingParams, SupportParams,
+};
+pub use request::{Request, RequestSet, COMMAND_LINE_REQUEST_ID, PYTHON_REQUEST_ID};
 pub use swarm::{Drone, FormationKind, Role, Swarm};
 pub use wind::Wind;
 

@@ -37,7 +37,7 @@ mod repack;
 
 use super::bounds::lp::LpBound;
 use super::bounds::{bound_lift, cardinality_bound};
-use super::heuristics::lpt::lpt_sorted;
+use super::heuristics::lpt_sorted;
 use super::heuristics::{aim_at, ldm_sorted, local_search};
 use super::search::{Budget, Decision, Memo, SearchOutcome, CAP_SLACK};
 use super::{

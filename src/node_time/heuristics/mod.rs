@@ -5,12 +5,13 @@
 
 mod ldm;
 mod local_search;
-pub mod lpt;
+mod lpt;
 mod perfect;
 
 pub(crate) use ldm::ldm_sorted;
 pub(crate) use local_search::local_search;
 pub use lpt::lpt;
+pub(crate) use lpt::lpt_sorted;
 pub(crate) use perfect::aim_at;
 #[cfg(test)]
 pub(crate) use perfect::cases;
