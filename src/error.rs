@@ -45,6 +45,9 @@ impl fmt::Display for Violation {
     }
 }
 
+/// A violation alone is an error too: the command-line parsers return it to clap.
+impl std::error::Error for Violation {}
+
 /// Errors of the library.
 #[derive(Debug, thiserror::Error)]
 pub enum Error {

@@ -355,9 +355,10 @@ fn facades_of_public_children(text: &str) -> Vec<String> {
     text.lines()
         .filter_map(|l| l.strip_prefix("pub use "))
         .filter(|path| {
-            public_children
-                .iter()
-                .any(|c| path.strip_prefix(c).is_some_and(|rest| rest.starts_with("::")))
+            public_children.iter().any(|c| {
+                path.strip_prefix(c)
+                    .is_some_and(|rest| rest.starts_with("::"))
+            })
         })
         .map(|path| format!("pub use {path}"))
         .collect()
@@ -380,7 +381,10 @@ fn every_public_item_has_one_path_in_the_library() {
             found.push(format!("{}: {line}", f.display()));
         }
         for line in facades_of_public_children(&text) {
-            found.push(format!("{}: {line} (the child module is public too)", f.display()));
+            found.push(format!(
+                "{}: {line} (the child module is public too)",
+                f.display()
+            ));
         }
     }
     assert!(

@@ -2,7 +2,7 @@
 //! or node-time instance of a classical P||Cmax benchmark class.
 
 use crate::error::both;
-use crate::error::Result;
+use crate::error::{Result, Violation};
 use crate::generate::pcmax::{generate_pcmax, PcmaxClass, PcmaxParams, MAX_JOBS, MAX_PADS};
 use crate::generate::{generate_network, generate_requests, NetworkParams, RequestParams};
 use crate::generate::{DEFAULT_MAX_PACKAGE_KG, DEFAULT_REQUESTS, MAX_REQUESTS};
@@ -91,87 +91,109 @@ pub struct RequestsArgs {
     pub force: bool,
 }
 
-fn parse_nodes(s: &str) -> std::result::Result<usize, String> {
+fn parse_nodes(s: &str) -> std::result::Result<usize, Violation> {
     match s.trim().parse::<usize>() {
         Ok(n) if (MIN_NODES..=MAX_NODES).contains(&n) => Ok(n),
-        _ => Err(format!(
-            "[E1901] --nodes: '{s}' is not a whole number from {MIN_NODES} to {MAX_NODES}; give one"
+        _ => Err(Violation::new(
+            "E1901",
+            "--nodes",
+            format!("'{s}' is not a whole number from {MIN_NODES} to {MAX_NODES}"),
+            "give one",
         )),
     }
 }
 
-fn parse_spacing(s: &str) -> std::result::Result<f64, String> {
+fn parse_spacing(s: &str) -> std::result::Result<f64, Violation> {
     match s.trim().parse::<f64>() {
         Ok(v) if v.is_finite() && (1.0..=100_000.0).contains(&v) => Ok(v),
-        _ => Err(format!(
-            "[E1902] --spacing-m: '{s}' is not a number from 1 to 100000; give a spacing in metres"
+        _ => Err(Violation::new(
+            "E1902",
+            "--spacing-m",
+            format!("'{s}' is not a number from 1 to 100000"),
+            "give a spacing in metres",
         )),
     }
 }
 
-fn parse_network_seed(s: &str) -> std::result::Result<u64, String> {
+fn parse_network_seed(s: &str) -> std::result::Result<u64, Violation> {
     parse_seed(s, "E1903")
 }
 
-fn parse_requests_seed(s: &str) -> std::result::Result<u64, String> {
+fn parse_requests_seed(s: &str) -> std::result::Result<u64, Violation> {
     parse_seed(s, "E3904")
 }
 
-fn parse_seed(s: &str, code: &str) -> std::result::Result<u64, String> {
+fn parse_seed(s: &str, code: &'static str) -> std::result::Result<u64, Violation> {
     s.trim().parse::<u64>().map_err(|_| {
-        format!(
-            "[{code}] --seed: '{s}' is not a whole number from 0 to {}; give one",
-            u64::MAX
+        Violation::new(
+            code,
+            "--seed",
+            format!("'{s}' is not a whole number from 0 to {}", u64::MAX),
+            "give one",
         )
     })
 }
 
-fn parse_node_time_seed(s: &str) -> std::result::Result<u64, String> {
+fn parse_node_time_seed(s: &str) -> std::result::Result<u64, Violation> {
     parse_seed(s, "E3908")
 }
 
-fn parse_class(s: &str) -> std::result::Result<PcmaxClass, String> {
+fn parse_class(s: &str) -> std::result::Result<PcmaxClass, Violation> {
     PcmaxClass::from_name(s).ok_or_else(|| {
         let names: Vec<&str> = PcmaxClass::ALL.iter().map(|c| c.name()).collect();
-        format!(
-            "[E3905] --class: '{s}' is not a benchmark class; give one of {}",
-            names.join(", ")
+        Violation::new(
+            "E3905",
+            "--class",
+            format!("'{s}' is not a benchmark class"),
+            format!("give one of {}", names.join(", ")),
         )
     })
 }
 
-fn parse_jobs(s: &str) -> std::result::Result<usize, String> {
+fn parse_jobs(s: &str) -> std::result::Result<usize, Violation> {
     match s.trim().parse::<usize>() {
         Ok(n) if (1..=MAX_JOBS).contains(&n) => Ok(n),
-        _ => Err(format!(
-            "[E3906] --jobs: '{s}' is not a whole number from 1 to {MAX_JOBS}; give one"
+        _ => Err(Violation::new(
+            "E3906",
+            "--jobs",
+            format!("'{s}' is not a whole number from 1 to {MAX_JOBS}"),
+            "give one",
         )),
     }
 }
 
-fn parse_pads(s: &str) -> std::result::Result<usize, String> {
+fn parse_pads(s: &str) -> std::result::Result<usize, Violation> {
     match s.trim().parse::<usize>() {
         Ok(n) if (1..=MAX_PADS).contains(&n) => Ok(n),
-        _ => Err(format!(
-            "[E3907] --pads: '{s}' is not a whole number from 1 to {MAX_PADS}; give one"
+        _ => Err(Violation::new(
+            "E3907",
+            "--pads",
+            format!("'{s}' is not a whole number from 1 to {MAX_PADS}"),
+            "give one",
         )),
     }
 }
 
-fn parse_count(s: &str) -> std::result::Result<usize, String> {
+fn parse_count(s: &str) -> std::result::Result<usize, Violation> {
     match s.trim().parse::<usize>() {
         Ok(n) if (1..=MAX_REQUESTS).contains(&n) => Ok(n),
-        _ => Err(format!(
-            "[E3901] --count: '{s}' is not a whole number from 1 to {MAX_REQUESTS}; give one"
+        _ => Err(Violation::new(
+            "E3901",
+            "--count",
+            format!("'{s}' is not a whole number from 1 to {MAX_REQUESTS}"),
+            "give one",
         )),
     }
 }
 
-fn parse_max_package(s: &str) -> std::result::Result<f64, String> {
+fn parse_max_package(s: &str) -> std::result::Result<f64, Violation> {
     match s.trim().parse::<f64>() {
         Ok(v) if v.is_finite() && (0.001..=1000.0).contains(&v) => Ok(v),
-        _ => Err(format!(
-            "[E3902] --max-package-kg: '{s}' is not a mass from 0.001 to 1000 kg; give one (paper: 1.4)"
+        _ => Err(Violation::new(
+            "E3902",
+            "--max-package-kg",
+            format!("'{s}' is not a mass from 0.001 to 1000 kg"),
+            "give one (paper: 1.4)",
         )),
     }
 }

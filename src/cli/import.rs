@@ -2,7 +2,7 @@
 //! network file, with pads and winds drawn from a seed (`generate::import`).
 
 use crate::error::both;
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, Violation};
 use crate::generate::import::{read_csv, read_geojson, to_skyway, Coordinates, ImportParams};
 use crate::problem::io::{read_text, write_json};
 use std::path::PathBuf;
@@ -48,17 +48,19 @@ pub struct ImportArgs {
     pub force: bool,
 }
 
-fn parse_centre(s: &str) -> std::result::Result<(f64, f64), String> {
+fn parse_centre(s: &str) -> std::result::Result<(f64, f64), Violation> {
     let parts: Vec<&str> = s.split(',').map(str::trim).collect();
-    match parts.as_slice() {
-        [x, y] => match (x.parse::<f64>(), y.parse::<f64>()) {
-            (Ok(x), Ok(y)) if x.is_finite() && y.is_finite() => Ok((x, y)),
-            _ => Err(format!(
-                "[E1956] --centre: '{s}' is not two numbers X,Y; give them"
-            )),
-        },
-        _ => Err(format!(
-            "[E1956] --centre: '{s}' is not two numbers X,Y; give them"
+    let numbers = match parts.as_slice() {
+        [x, y] => x.parse::<f64>().ok().zip(y.parse::<f64>().ok()),
+        _ => None,
+    };
+    match numbers {
+        Some((x, y)) if x.is_finite() && y.is_finite() => Ok((x, y)),
+        _ => Err(Violation::new(
+            "E1956",
+            "--centre",
+            format!("'{s}' is not two numbers X,Y"),
+            "give them",
         )),
     }
 }

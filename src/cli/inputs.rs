@@ -172,7 +172,7 @@ pub fn backend_value_parser(
     }
     PossibleValuesParser::new(values).try_map(|name: String| {
         if let Some(message) = crate::solver::backend_not_built(&name) {
-            return Err(message);
+            return Err(message.to_string());
         }
         crate::solver::MilpBackend::from_str(&name, false)
     })

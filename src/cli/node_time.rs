@@ -9,7 +9,7 @@
 //! where `stop.json` is `{"pads": 3, "charge_times_min": [60, 50, 40, 30, 20]}` and `--instance`
 //! reads the published P||Cmax text format ([`crate::problem::pcmax_file`]).
 
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, Violation};
 use crate::human::round;
 use crate::node_time::{self, Limits, NodeTimeMethod, NodeTimeSolution};
 use crate::problem::io::read_json;
@@ -76,13 +76,17 @@ pub struct NodeTimeArgs {
 
 /// `--pads`: a whole number; a negative one is E5001 (0 pads is E5001 too, from
 /// [`node_time::validate`], with the other problems of the instance).
-fn parse_pads(s: &str) -> std::result::Result<usize, String> {
+fn parse_pads(s: &str) -> std::result::Result<usize, Box<dyn std::error::Error + Send + Sync>> {
     match s.trim().parse::<usize>() {
         Ok(n) => Ok(n),
-        Err(_) if s.trim().parse::<i64>().is_ok() => Err(format!(
-            "[E5001] --pads: {s} is negative; give the number of pads at the node, at least 1"
-        )),
-        Err(e) => Err(e.to_string()),
+        Err(_) if s.trim().parse::<i64>().is_ok() => Err(Violation::new(
+            "E5001",
+            "--pads",
+            format!("{s} is negative"),
+            "give the number of pads at the node, at least 1",
+        )
+        .into()),
+        Err(e) => Err(e.into()),
     }
 }
 

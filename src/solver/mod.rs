@@ -12,6 +12,7 @@
 //! derived from it by a match. [`lp_file`] writes a good_lp model in CPLEX LP or free MPS format
 //! instead of solving it.
 
+use crate::error::Violation;
 use serde::{Deserialize, Serialize};
 
 pub mod conic;
@@ -99,7 +100,7 @@ pub fn known_backend_names() -> impl Iterator<Item = &'static str> {
 
 /// `E0012`: `name` is a backend swarmplan knows but this build was made without; `None` for a
 /// backend of this build or a name swarmplan does not know.
-pub fn backend_not_built(name: &str) -> Option<String> {
+pub fn backend_not_built(name: &str) -> Option<Violation> {
     if MilpBackend::all().iter().any(|b| b.to_string() == name) {
         return None;
     }
@@ -107,8 +108,11 @@ pub fn backend_not_built(name: &str) -> Option<String> {
         .iter()
         .find(|(known, _)| *known == name)
         .map(|(_, how)| {
-            format!(
-                "[E0012] --backend {name}: this build of swarmplan has no {name} backend; {how}"
+            Violation::new(
+                "E0012",
+                format!("--backend {name}"),
+                format!("this build of swarmplan has no {name} backend"),
+                *how,
             )
         })
 }
