@@ -8,7 +8,7 @@ use swarmplan::compose::{Context, HopPaths, PlanOptions, RequestReport};
 use swarmplan::eaas::exact_hop::ExactChoices;
 use swarmplan::eaas::hop_file::HopFile;
 use swarmplan::eaas::PolicyOptions;
-use swarmplan::evaluate::{self, WrittenTransfer};
+use swarmplan::evaluate::{self, RouteReference, WrittenTransfer};
 use swarmplan::precompose::Positioning;
 use swarmplan::problem::{io, shipped, Instance as Problem, Request, RequestSet};
 
@@ -785,58 +785,10 @@ impl Instance {
         };
         let context = exact.context(py, &self.inner, node_limit)?;
         let readings = PolicyOptions::from(&self.inner.instance.profile.readings);
-        let callable = policy.is_callable();
-        let listed: Option<Vec<Bound<'_, PyAny>>> = if callable {
-            None
-        } else {
-            Some(
-                policy
-                    .try_iter()
-                    .and_then(|it| it.collect::<PyResult<Vec<_>>>())
-                    .map_err(|_| {
-                        to_py_err(
-                            py,
-                            invalid(
-                                "E0026",
-                                "policy",
-                                "is neither callable nor a list of schedules".into(),
-                                "give a function policy(hop) -> schedule, or one schedule per hop",
-                            ),
-                        )
-                    })?,
-            )
-        };
+        let listed = listed_schedules(py, policy)?;
         let mut py_error: Option<PyErr> = None;
         let mut schedule = |file: &HopFile| -> Result<Vec<WrittenTransfer>> {
-            let field = format!("policy (hop {})", file.hop_index);
-            let written = if let Some(list) = &listed {
-                list.get(file.hop_index).cloned().ok_or_else(|| {
-                    invalid(
-                        "E0026",
-                        "policy",
-                        format!("{} schedule(s) for a route of more hops", list.len()),
-                        "give one schedule per hop",
-                    )
-                })?
-            } else {
-                let hop = Hop {
-                    file: Arc::new(file.clone()),
-                    readings,
-                };
-                match policy.call1((hop,)) {
-                    Ok(s) => s,
-                    Err(e) => {
-                        py_error = Some(e);
-                        return Err(invalid(
-                            "E0026",
-                            &field,
-                            "raised".into(),
-                            "see the exception",
-                        ));
-                    }
-                }
-            };
-            schedule_of(&written).map_err(|cause| invalid("E0026", &field, cause, TRANSFERS_ACTION))
+            policy_schedule(file, listed.as_deref(), policy, readings, &mut py_error)
         };
         let evaluation = evaluate::evaluate_route(
             &context,
@@ -852,20 +804,13 @@ impl Instance {
         }
         let mut evaluation = evaluation.map_err(|e| to_py_err(py, e))?;
         if reference {
-            let data = self.inner.clone();
-            let settings = context.exact;
-            let node_limit = context.node_limit;
-            let request = request.clone();
-            let found = run_detached(
+            let found = route_reference_detached(
                 py,
-                move || {
-                    let i = &data.instance;
-                    let mut context = Context::new(&i.network, &i.graph, &i.profile);
-                    context.exact = settings;
-                    context.node_limit = node_limit;
-                    evaluate::route_reference(&context, &request, positioning, support)
-                },
-                |_| Ok(()),
+                self.inner.clone(),
+                &context,
+                &request,
+                positioning,
+                support,
             )?;
             evaluation.measure_against(found);
         }
@@ -881,6 +826,101 @@ impl Instance {
             self.inner.requests_name
         )
     }
+}
+
+/// `evaluate_route`'s policy given as a list: its schedules; `None` for a callable policy.
+///
+/// # Errors
+/// E0026 for a policy neither callable nor iterable.
+fn listed_schedules<'py>(
+    py: Python<'_>,
+    policy: &Bound<'py, PyAny>,
+) -> PyResult<Option<Vec<Bound<'py, PyAny>>>> {
+    if policy.is_callable() {
+        return Ok(None);
+    }
+    policy
+        .try_iter()
+        .and_then(|it| it.collect::<PyResult<Vec<_>>>())
+        .map(Some)
+        .map_err(|_| {
+            to_py_err(
+                py,
+                invalid(
+                    "E0026",
+                    "policy",
+                    "is neither callable nor a list of schedules".into(),
+                    "give a function policy(hop) -> schedule, or one schedule per hop",
+                ),
+            )
+        })
+}
+
+/// The schedule `evaluate_route`'s policy gives the hop of `file`: the list's entry for the
+/// hop (`listed`), or what the callable `policy` returns for it. An exception the policy raises
+/// is kept in `py_error`, to be raised once the evaluation returns.
+fn policy_schedule(
+    file: &HopFile,
+    listed: Option<&[Bound<'_, PyAny>]>,
+    policy: &Bound<'_, PyAny>,
+    readings: PolicyOptions,
+    py_error: &mut Option<PyErr>,
+) -> Result<Vec<WrittenTransfer>> {
+    let field = format!("policy (hop {})", file.hop_index);
+    let written = if let Some(list) = listed {
+        list.get(file.hop_index).cloned().ok_or_else(|| {
+            invalid(
+                "E0026",
+                "policy",
+                format!("{} schedule(s) for a route of more hops", list.len()),
+                "give one schedule per hop",
+            )
+        })?
+    } else {
+        let hop = Hop {
+            file: Arc::new(file.clone()),
+            readings,
+        };
+        match policy.call1((hop,)) {
+            Ok(s) => s,
+            Err(e) => {
+                *py_error = Some(e);
+                return Err(invalid(
+                    "E0026",
+                    &field,
+                    "raised".into(),
+                    "see the exception",
+                ));
+            }
+        }
+    };
+    schedule_of(&written).map_err(|cause| invalid("E0026", &field, cause, TRANSFERS_ACTION))
+}
+
+/// The joint optimum `evaluate_route` measures against, planned off the interpreter's thread
+/// with the settings of `context`.
+fn route_reference_detached(
+    py: Python<'_>,
+    data: Arc<InstanceData>,
+    context: &Context,
+    request: &Request,
+    positioning: Positioning,
+    support: Option<usize>,
+) -> PyResult<RouteReference> {
+    let settings = context.exact;
+    let node_limit = context.node_limit;
+    let request = request.clone();
+    run_detached(
+        py,
+        move || {
+            let i = &data.instance;
+            let mut context = Context::new(&i.network, &i.graph, &i.profile);
+            context.exact = settings;
+            context.node_limit = node_limit;
+            evaluate::route_reference(&context, &request, positioning, support)
+        },
+        |_| Ok(()),
+    )
 }
 
 /// Plans a request and, with `gap`, its gap against the optimal route of the same combination

@@ -10,6 +10,9 @@ use crate::eaas::SharingPolicy;
 use crate::precompose::Positioning;
 use serde::Serialize;
 use std::collections::BTreeMap;
+use Positioning::{EnergyAware as Ea, LocationAware as La};
+use RouteMethod::{Dijkstra, FloydWarshall, Sequential};
+use SharingPolicy::{Fb, None as NoSharing, Pb};
 
 /// Whether a finding holds on the run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -119,9 +122,6 @@ fn count((d, n): (usize, usize)) -> String {
 
 /// The findings of section 6 on the run: `methods` are its summaries, `data` its rows.
 pub fn findings(methods: &[MethodSummary], data: &BenchData) -> Vec<Finding> {
-    use Positioning::{EnergyAware as Ea, LocationAware as La};
-    use RouteMethod::{Dijkstra, FloydWarshall, Sequential};
-    use SharingPolicy::{Fb, None as NoSharing, Pb};
     let base = combo(NoSharing, La, Sequential);
     let sharing = [
         combo(Pb, La, Sequential),
@@ -129,15 +129,29 @@ pub fn findings(methods: &[MethodSummary], data: &BenchData) -> Vec<Finding> {
         combo(Pb, Ea, Sequential),
         combo(Fb, Ea, Sequential),
     ];
-    let names = ["PB-LA", "FB-LA", "PB-EA", "FB-EA"];
-    let mut out = Vec::new();
+    vec![
+        sharing_delivers_more(methods, &base, &sharing),
+        sharing_delivers_faster(data, &base, &sharing),
+        location_aware_delivers_more(methods, &sharing),
+        energy_aware_delivers_faster(data, &sharing),
+        pb_delivers_faster_than_fb(data, &sharing),
+        pb_plans_faster_than_fb(methods, &sharing),
+        shortest_paths_deliver_fewer(methods, &base),
+    ]
+}
 
-    // 1a: sharing delivers more requests than the baseline.
-    let b = delivered(methods, &base);
+/// 1a: sharing delivers more requests than the baseline. `sharing`: PB-LA, FB-LA, PB-EA, FB-EA.
+fn sharing_delivers_more(
+    methods: &[MethodSummary],
+    base: &PlanOptions,
+    sharing: &[PlanOptions; 4],
+) -> Finding {
+    let names = ["PB-LA", "FB-LA", "PB-EA", "FB-EA"];
+    let b = delivered(methods, base);
     let s: Vec<Option<(usize, usize)>> = sharing.iter().map(|o| delivered(methods, o)).collect();
     let measured = b.is_some() && s.iter().all(Option::is_some);
     let holds = measured && s.iter().all(|x| x.unwrap().0 > b.unwrap().0);
-    out.push(Finding {
+    Finding {
         id: "1a",
         claim: "sharing delivers more requests than the no-sharing baseline (Algorithm 1)",
         paper: "baseline 8,839 / 10,000, below each of PB and FB under both placements",
@@ -157,11 +171,17 @@ pub fn findings(methods: &[MethodSummary], data: &BenchData) -> Vec<Finding> {
         },
         verdict: verdict(measured, holds),
         figure: "figures/delivered.svg",
-    });
+    }
+}
 
-    // 1b: sharing delivers faster than the baseline (energy-aware placement).
-    let c = common(data, &base, &sharing[2]);
-    out.push(Finding {
+/// 1b: sharing delivers faster than the baseline (energy-aware placement).
+fn sharing_delivers_faster(
+    data: &BenchData,
+    base: &PlanOptions,
+    sharing: &[PlanOptions; 4],
+) -> Finding {
+    let c = common(data, base, &sharing[2]);
+    Finding {
         id: "1b",
         claim: "sharing delivers faster than the baseline (energy-aware placement)",
         paper: "figure only: PB and FB below the baseline's delivery time",
@@ -172,9 +192,11 @@ pub fn findings(methods: &[MethodSummary], data: &BenchData) -> Vec<Finding> {
         }),
         verdict: verdict(c.is_some_and(|c| c.0 > 0), c.is_some_and(|(_, a, b)| b < a)),
         figure: "figures/dt-by-distance-energy-aware.svg",
-    });
+    }
+}
 
-    // 2: location-aware delivers more requests (PB + FB).
+/// 2: location-aware delivers more requests (PB + FB).
+fn location_aware_delivers_more(methods: &[MethodSummary], sharing: &[PlanOptions; 4]) -> Finding {
     let la = [&sharing[0], &sharing[1]].map(|o| delivered(methods, o));
     let ea = [&sharing[2], &sharing[3]].map(|o| delivered(methods, o));
     let measured = la.iter().chain(&ea).all(Option::is_some);
@@ -184,7 +206,7 @@ pub fn findings(methods: &[MethodSummary], data: &BenchData) -> Vec<Finding> {
             .fold((0, 0), |acc, v| (acc.0 + v.0, acc.1 + v.1))
     };
     let (sla, sea) = (sum(la), sum(ea));
-    out.push(Finding {
+    Finding {
         id: "2",
         claim: "location-aware placement delivers more requests than energy-aware (PB + FB)",
         paper: "19,271 / 20,000 vs 18,050 / 20,000",
@@ -199,13 +221,15 @@ pub fn findings(methods: &[MethodSummary], data: &BenchData) -> Vec<Finding> {
         },
         verdict: verdict(measured, sla.0 > sea.0),
         figure: "figures/delivered.svg",
-    });
+    }
+}
 
-    // 3: energy-aware placement gives shorter delivery times (common requests).
+/// 3: energy-aware placement gives shorter delivery times (common requests).
+fn energy_aware_delivers_faster(data: &BenchData, sharing: &[PlanOptions; 4]) -> Finding {
     let cp = common(data, &sharing[0], &sharing[2]);
     let cf = common(data, &sharing[1], &sharing[3]);
     let measured = cp.is_some_and(|c| c.0 > 0) && cf.is_some_and(|c| c.0 > 0);
-    out.push(Finding {
+    Finding {
         id: "3",
         claim: "energy-aware placement gives shorter delivery times than location-aware",
         paper: "figure only",
@@ -222,13 +246,15 @@ pub fn findings(methods: &[MethodSummary], data: &BenchData) -> Vec<Finding> {
             measured && cp.unwrap().2 < cp.unwrap().1 && cf.unwrap().2 < cf.unwrap().1,
         ),
         figure: "figures/dt-by-distance-energy-aware.svg",
-    });
+    }
+}
 
-    // 4a: PB beats FB on delivery time (common requests).
+/// 4a: PB beats FB on delivery time (common requests).
+fn pb_delivers_faster_than_fb(data: &BenchData, sharing: &[PlanOptions; 4]) -> Finding {
     let c_la = common(data, &sharing[0], &sharing[1]);
     let c_ea = common(data, &sharing[2], &sharing[3]);
     let measured = c_la.is_some_and(|c| c.0 > 0) && c_ea.is_some_and(|c| c.0 > 0);
-    out.push(Finding {
+    Finding {
         id: "4a",
         claim: "PB gives shorter delivery times than FB",
         paper: "figure only",
@@ -245,13 +271,15 @@ pub fn findings(methods: &[MethodSummary], data: &BenchData) -> Vec<Finding> {
             measured && c_la.unwrap().1 < c_la.unwrap().2 && c_ea.unwrap().1 < c_ea.unwrap().2,
         ),
         figure: "figures/dt-by-distance-location-aware.svg",
-    });
+    }
+}
 
-    // 4b: PB beats FB on execution time (machine-dependent).
+/// 4b: PB beats FB on execution time (machine-dependent).
+fn pb_plans_faster_than_fb(methods: &[MethodSummary], sharing: &[PlanOptions; 4]) -> Finding {
     let t: Vec<Option<f64>> = sharing.iter().map(|o| exec_ms(methods, o)).collect();
     let measured = t.iter().all(Option::is_some);
     let t: Vec<f64> = t.into_iter().flatten().collect();
-    out.push(Finding {
+    Finding {
         id: "4b",
         claim: "PB plans faster than FB (execution time; machine-dependent)",
         paper: "figure only",
@@ -268,13 +296,16 @@ pub fn findings(methods: &[MethodSummary], data: &BenchData) -> Vec<Finding> {
         },
         verdict: verdict(measured, measured && t[0] < t[1] && t[2] < t[3]),
         figure: "figures/exec-time.svg",
-    });
+    }
+}
 
-    // 5: Dijkstra and Floyd–Warshall deliver fewer than Algorithm 1 (no sharing).
+/// 5: Dijkstra and Floyd–Warshall deliver fewer than Algorithm 1 (no sharing).
+fn shortest_paths_deliver_fewer(methods: &[MethodSummary], base: &PlanOptions) -> Finding {
+    let b = delivered(methods, base);
     let d = delivered(methods, &combo(NoSharing, La, Dijkstra));
     let f = delivered(methods, &combo(NoSharing, La, FloydWarshall));
     let measured = b.is_some() && d.is_some() && f.is_some();
-    out.push(Finding {
+    Finding {
         id: "5",
         claim: "Dijkstra and Floyd–Warshall deliver fewer requests than Algorithm 1",
         paper: "Dijkstra 6,646, Floyd–Warshall 6,691 vs Algorithm 1 8,839 / 10,000",
@@ -293,6 +324,5 @@ pub fn findings(methods: &[MethodSummary], data: &BenchData) -> Vec<Finding> {
             measured && d.unwrap().0 < b.unwrap().0 && f.unwrap().0 < b.unwrap().0,
         ),
         figure: "figures/delivered.svg",
-    });
-    out
+    }
 }

@@ -44,8 +44,8 @@ pub use summary::{
     StopGapSummary, Summary, GAP_BIN_EDGES, SUMMARY_SCHEMA_VERSION,
 };
 
-use crate::compose::{lpt_gap, Context, PlanOptions, RequestReport, RouteMethod};
-use crate::eaas::compare::{label_gaps, run_method, HopMethod};
+use crate::compose::{lpt_gap, Context, Hop, Plan, PlanOptions, RequestReport, RouteMethod};
+use crate::eaas::compare::{label_gaps, run_method, HopMethod, MethodRow};
 use crate::eaas::exact::milp::MilpOptions;
 use crate::eaas::exact::EndPads;
 use crate::eaas::exact::Objective;
@@ -590,50 +590,9 @@ fn keep_report(
 ) -> Result<Kept> {
     let plan = &report.plan;
     let o = report.options;
-    let delivered = plan.delivered();
-    let mut lpt = (0, 0, 0.0);
-    for gap in lpt_gaps(plan)?.into_iter().flatten() {
-        lpt.0 += 1;
-        lpt.1 += usize::from(gap.abs() <= crate::solver::ZERO_GAP_TOL);
-        lpt.2 += gap;
-    }
+    let lpt = lpt_counts(plan)?;
     let mut kept = Kept {
-        row: RequestRow {
-            request_index: position,
-            request_id: report.request.id.clone(),
-            source: report.request.source.clone(),
-            destination: report.request.destination.clone(),
-            packages: report.request.packages_kg.len(),
-            distance_m,
-            sharing: o.sharing,
-            positioning: o.positioning,
-            route: o.route,
-            support_drones: report.support_drones,
-            success: delivered,
-            outcome: plan.outcome.kind(),
-            dt_min: plan.dt_min,
-            tt_min: plan.tt_min,
-            nt_min: plan.nt_min,
-            stops: plan.hops.iter().filter(|h| h.stop.is_some()).count(),
-            shared_mah: plan.shared_mah,
-            lpt_stops: lpt.0,
-            lpt_optimal: lpt.1,
-            lpt_gap_sum: lpt.2,
-            route_gap_reference: String::new(),
-            optimal_dt_min: None,
-            optimal_proven: None,
-            route_gap: None,
-            joint_dt_min: None,
-            split_label: String::new(),
-            exact_schedule_dt_min: None,
-            swarm_optimum_dt_min: None,
-            gap_total_min: None,
-            gap_sharing_min: None,
-            gap_route_min: None,
-            gap_swarm_min: None,
-            split_epsilon_min: None,
-            split_proven: None,
-        },
+        row: request_row(&report, position, distance_m, lpt),
         delivery: Delivery::of(plan),
         hops: Vec::new(),
         stops: Vec::new(),
@@ -651,13 +610,90 @@ fn keep_report(
         .combos
         .iter()
         .any(|c| c.sharing == o.sharing && c.positioning == o.positioning && c.route == o.route);
-    if !delivered || position >= config.exact_limit || !reported {
+    if !plan.delivered() || position >= config.exact_limit || !reported {
         return Ok(kept);
     }
-    for (h, hop) in plan.hops.iter().enumerate() {
+    kept.stops = stop_rows(&report, position)?;
+    // Hops under a sharing heuristic (PB, FB): solved again by the continuous model and the
+    // fluid bound.
+    let heuristic = HopMethod::of_policy(o.sharing);
+    if heuristic.heuristic().is_none() || heuristic == HopMethod::None {
+        return Ok(kept);
+    }
+    study_hops(
+        context, config, readings, position, &report, heuristic, &mut kept,
+    )?;
+    Ok(kept)
+}
+
+/// LPT at the proven stops of a plan: how many, how many of them LPT meets, and the sum of
+/// LPT's gaps (`lpt_stops`, `lpt_optimal`, `lpt_gap_sum`).
+fn lpt_counts(plan: &Plan) -> Result<(usize, usize, f64)> {
+    let mut lpt = (0, 0, 0.0);
+    for gap in lpt_gaps(plan)?.into_iter().flatten() {
+        lpt.0 += 1;
+        lpt.1 += usize::from(gap.abs() <= crate::solver::ZERO_GAP_TOL);
+        lpt.2 += gap;
+    }
+    Ok(lpt)
+}
+
+/// The row of `requests.csv` of a plan, its route gap and joint columns left empty (the run
+/// fills them once every combination of the request is planned).
+fn request_row(
+    report: &RequestReport,
+    position: usize,
+    distance_m: f64,
+    lpt: (usize, usize, f64),
+) -> RequestRow {
+    let plan = &report.plan;
+    let o = report.options;
+    RequestRow {
+        request_index: position,
+        request_id: report.request.id.clone(),
+        source: report.request.source.clone(),
+        destination: report.request.destination.clone(),
+        packages: report.request.packages_kg.len(),
+        distance_m,
+        sharing: o.sharing,
+        positioning: o.positioning,
+        route: o.route,
+        support_drones: report.support_drones,
+        success: plan.delivered(),
+        outcome: plan.outcome.kind(),
+        dt_min: plan.dt_min,
+        tt_min: plan.tt_min,
+        nt_min: plan.nt_min,
+        stops: plan.hops.iter().filter(|h| h.stop.is_some()).count(),
+        shared_mah: plan.shared_mah,
+        lpt_stops: lpt.0,
+        lpt_optimal: lpt.1,
+        lpt_gap_sum: lpt.2,
+        route_gap_reference: String::new(),
+        optimal_dt_min: None,
+        optimal_proven: None,
+        route_gap: None,
+        joint_dt_min: None,
+        split_label: String::new(),
+        exact_schedule_dt_min: None,
+        swarm_optimum_dt_min: None,
+        gap_total_min: None,
+        gap_sharing_min: None,
+        gap_route_min: None,
+        gap_swarm_min: None,
+        split_epsilon_min: None,
+        split_proven: None,
+    }
+}
+
+/// The rows of `stops.csv` of a plan: every stop's node time against LPT's.
+fn stop_rows(report: &RequestReport, position: usize) -> Result<Vec<StopRow>> {
+    let o = report.options;
+    let mut rows = Vec::new();
+    for (h, hop) in report.plan.hops.iter().enumerate() {
         if let Some(stop) = &hop.stop {
             let lpt = node_time::lpt(stop.pads as usize, &stop.charge_times_min)?;
-            kept.stops.push(StopRow {
+            rows.push(StopRow {
                 request_index: position,
                 request_id: report.request.id.clone(),
                 sharing: o.sharing,
@@ -674,21 +710,30 @@ fn keep_report(
             });
         }
     }
-    // Hops under a sharing heuristic (PB, FB): solved again by the continuous model and the
-    // fluid bound.
-    let heuristic = HopMethod::of_policy(o.sharing);
-    if heuristic.heuristic().is_none() || heuristic == HopMethod::None {
-        return Ok(kept);
-    }
+    Ok(rows)
+}
+
+/// Every hop of a plan under the sharing `heuristic`, solved again by the continuous model and
+/// the fluid bound: a row of `hops.csv` per hop, and the two solve times.
+fn study_hops(
+    context: &Context,
+    config: &BenchConfig,
+    readings: &PolicyOptions,
+    position: usize,
+    report: &RequestReport,
+    heuristic: HopMethod,
+    kept: &mut Kept,
+) -> Result<()> {
+    let o = report.options;
     let planner = context.planner(&report.swarm, o.sharing);
-    for (h, hop) in plan.hops.iter().enumerate() {
+    for (h, hop) in report.plan.hops.iter().enumerate() {
         let (problem, objective) = planner.studied_hop(hop)?;
         let mut rows = [heuristic, HopMethod::Continuous, HopMethod::Fluid]
             .into_iter()
             .map(|m| run_method(&problem, &objective, m, &config.milp, readings))
             .collect::<Result<Vec<_>>>()?;
         label_gaps(&mut rows, &problem, &objective, config.milp.reorder);
-        let [heur, exact, fluid] = &rows[..] else {
+        let [_, exact, fluid] = &rows[..] else {
             unreachable!("three methods were run")
         };
         for (row, what) in [(exact, "continuous"), (fluid, "fluid")] {
@@ -702,40 +747,58 @@ fn keep_report(
                 ms: row.solve_ms,
             });
         }
-        let reference = crate::eaas::compare::reference(&rows);
-        kept.hops.push(HopRow {
-            request_index: position,
-            request_id: report.request.id.clone(),
-            sharing: o.sharing,
-            positioning: o.positioning,
-            route: o.route,
-            hop_index: h,
-            from: hop.from.clone(),
-            to: hop.to.clone(),
-            legs: hop.legs.len(),
-            objective: match objective {
-                Objective::NodeTime(EndPads { .. }) => "node-time",
-                Objective::MaxMinArrival => "max-min-arrival",
-                Objective::Feasible => "feasible",
-            }
-            .into(),
-            heuristic: heur.objective,
-            continuous_status: exact.status.map(|s| serde_name(&s)).unwrap_or_default(),
-            continuous: exact.objective,
-            epsilon: exact.epsilon,
-            fluid_bound: fluid.bound,
-            reference: reference
-                .map(|(_, k)| reference_name(k).to_string())
-                .unwrap_or_default(),
-            reference_value: reference.map(|(v, _)| v),
-            gap: heur.gap.and_then(|g| g.relative),
-            gap_label: heur
-                .gap_label
-                .map(|l| crate::problem::io::json_name(&l))
-                .unwrap_or_default(),
-        });
+        kept.hops
+            .push(hop_row(report, position, h, hop, &objective, &rows));
     }
-    Ok(kept)
+    Ok(())
+}
+
+/// The row of `hops.csv` of hop `h`: the heuristic's, the continuous model's and the fluid
+/// bound's results (`rows`, in that order) on it, and the heuristic's gap.
+fn hop_row(
+    report: &RequestReport,
+    position: usize,
+    h: usize,
+    hop: &Hop,
+    objective: &Objective,
+    rows: &[MethodRow],
+) -> HopRow {
+    let o = report.options;
+    let [heur, exact, fluid] = rows else {
+        unreachable!("three methods were run")
+    };
+    let reference = crate::eaas::compare::reference(rows);
+    HopRow {
+        request_index: position,
+        request_id: report.request.id.clone(),
+        sharing: o.sharing,
+        positioning: o.positioning,
+        route: o.route,
+        hop_index: h,
+        from: hop.from.clone(),
+        to: hop.to.clone(),
+        legs: hop.legs.len(),
+        objective: match objective {
+            Objective::NodeTime(EndPads { .. }) => "node-time",
+            Objective::MaxMinArrival => "max-min-arrival",
+            Objective::Feasible => "feasible",
+        }
+        .into(),
+        heuristic: heur.objective,
+        continuous_status: exact.status.map(|s| serde_name(&s)).unwrap_or_default(),
+        continuous: exact.objective,
+        epsilon: exact.epsilon,
+        fluid_bound: fluid.bound,
+        reference: reference
+            .map(|(_, k)| reference_name(k).to_string())
+            .unwrap_or_default(),
+        reference_value: reference.map(|(v, _)| v),
+        gap: heur.gap.and_then(|g| g.relative),
+        gap_label: heur
+            .gap_label
+            .map(|l| crate::problem::io::json_name(&l))
+            .unwrap_or_default(),
+    }
 }
 
 /// SHA-256, in hex, of the JSON of `network`, `profile` and `requests` as read: the fingerprint

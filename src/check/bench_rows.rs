@@ -27,7 +27,7 @@ use super::check_report;
 use super::close;
 use super::decision::shortest_distance_m;
 use crate::bench::{BenchConfig, BenchData, RequestRow};
-use crate::compose::{Context, HopPaths, PlanSettings, RequestReport};
+use crate::compose::{Context, HopPaths, JointSplit, PlanOptions, PlanSettings, RequestReport};
 use crate::error::{Result, Violation};
 use crate::problem::io::json_name;
 use crate::problem::{Network, Profile, Request, SkywayGraph};
@@ -87,14 +87,40 @@ pub fn check_bench_rows(
         return Ok(out);
     }
     let graph = SkywayGraph::new(network)?;
-    let context = Context::new(network, &graph, profile).with_settings(&PlanSettings {
-        hop_model: config.milp,
-        prune_candidates: true,
-        node_limit: config.node_limit,
-        hop_paths: HopPaths::Rule,
-    });
-    let combos = config.planned_combos();
-    // Every row names its request by position and id, as the request set has them.
+    let run = Rerun {
+        network,
+        profile,
+        requests,
+        config,
+        data,
+        context: Context::new(network, &graph, profile).with_settings(&PlanSettings {
+            hop_model: config.milp,
+            prune_candidates: true,
+            node_limit: config.node_limit,
+            hop_paths: HopPaths::Rule,
+        }),
+        combos: config.planned_combos(),
+    };
+    check_request_ids(rows, requests, &mut out);
+    let mut k = 0;
+    while k < rows.len() && out.requests < limit {
+        let index = rows[k].request_index;
+        let end = k + rows[k..]
+            .iter()
+            .take_while(|r| r.request_index == index)
+            .count();
+        out.requests += 1;
+        if let Some(request) = requests.get(index).filter(|r| r.id == rows[k].request_id) {
+            run.check_request(&mut out, request, index, k..end)?;
+        }
+        k = end;
+    }
+    check_rows_without_request(data, &mut out);
+    Ok(out)
+}
+
+/// P5703: every row names its request by position and id, as the request set has them.
+fn check_request_ids(rows: &[RequestRow], requests: &[Request], out: &mut BenchCheck) {
     for (k, row) in rows.iter().enumerate() {
         let found = requests.get(row.request_index).map(|r| &r.id);
         if found != Some(&row.request_id) {
@@ -110,97 +136,12 @@ pub fn check_bench_rows(
             ));
         }
     }
-    let mut k = 0;
-    while k < rows.len() && out.requests < limit {
-        let index = rows[k].request_index;
-        let end = k + rows[k..]
-            .iter()
-            .take_while(|r| r.request_index == index)
-            .count();
-        out.requests += 1;
-        let Some(request) = requests.get(index).filter(|r| r.id == rows[k].request_id) else {
-            k = end;
-            continue;
-        };
-        let reports = combos
-            .iter()
-            .map(|c| context.plan(request, c))
-            .collect::<Result<Vec<_>>>()?;
-        let tables =
-            crate::bench::tables_of_request(&context, config, index, request, reports.clone())?;
-        compare_tables(&mut out, data, index, &tables);
-        let joint = if config.joint {
-            Some(context.joint_split(request, &reports)?)
-        } else {
-            None
-        };
-        // Every combination of the run has exactly one row of the request.
-        for c in &config.combos {
-            let n = rows[k..end]
-                .iter()
-                .filter(|r| {
-                    (r.sharing, r.positioning, r.route) == (c.sharing, c.positioning, c.route)
-                })
-                .count();
-            if n != 1 {
-                out.violations.push(violation(
-                    "P5705",
-                    format!("requests.csv[{k}..{end}]"),
-                    format!(
-                        "request {} has {n} rows of combination {}/{}/{}, the run wrote one",
-                        request.id, c.sharing, c.positioning, c.route
-                    ),
-                ));
-            }
-        }
-        let distance_m = shortest_distance_m(network, &request.source, &request.destination);
-        for (r, row) in rows.iter().enumerate().take(end).skip(k) {
-            out.rows += 1;
-            let f = format!("requests.csv[{r}]");
-            let Some(j) = combos.iter().position(|c| {
-                (c.sharing, c.positioning, c.route) == (row.sharing, row.positioning, row.route)
-            }) else {
-                out.violations.push(violation(
-                    "P5704",
-                    format!("{f}.sharing"),
-                    format!(
-                        "combination {}/{}/{} is not one of the run's",
-                        json_name(&row.sharing),
-                        json_name(&row.positioning),
-                        json_name(&row.route)
-                    ),
-                ));
-                continue;
-            };
-            let report = &reports[j];
-            for x in check_report(network, profile, requests, report) {
-                out.violations.push(violation(
-                    "P5702",
-                    format!("{f}: {}", x.field),
-                    format!("the plan behind the row breaks [{}]: {}", x.code, x.cause),
-                ));
-            }
-            let reference = config
-                .reference_of(&combos[j])
-                .and_then(|c| combos.iter().position(|x| *x == c))
-                .map(|i| &reports[i]);
-            let split = joint
-                .as_ref()
-                .and_then(|s| s.splits.get(j).cloned().flatten());
-            let mut columns = Columns {
-                out: &mut out.violations,
-                f: &f,
-            };
-            columns.compare_plan(row, request, report, distance_m);
-            columns.compare_reference(row, report, reference);
-            if let Some(joint) = &joint {
-                columns.compare_split(row, joint.joint.dt_min(), split.as_ref());
-            }
-        }
-        k = end;
-    }
-    // Rows of the other tables whose request has no row in requests.csv.
-    let planned: std::collections::BTreeSet<usize> = rows.iter().map(|r| r.request_index).collect();
+}
+
+/// P5705: the rows of the other tables whose request has no row in `requests.csv`.
+fn check_rows_without_request(data: &BenchData, out: &mut BenchCheck) {
+    let planned: std::collections::BTreeSet<usize> =
+        data.requests.iter().map(|r| r.request_index).collect();
     for (table, indices) in [
         (
             "hops.csv",
@@ -228,7 +169,141 @@ pub fn check_bench_rows(
             }
         }
     }
-    Ok(out)
+}
+
+/// A run to check: its inputs, `config.json` and tables, and the context that plans its
+/// requests again with the run's settings.
+struct Rerun<'a> {
+    network: &'a Network,
+    profile: &'a Profile,
+    requests: &'a [Request],
+    config: &'a BenchConfig,
+    data: &'a BenchData,
+    context: Context,
+    /// Every combination the run planned, references included.
+    combos: Vec<PlanOptions>,
+}
+
+impl Rerun<'_> {
+    /// The rows `rows` of `requests.csv`, those of the request at `index`: the request planned
+    /// again with every combination of the run, then the other tables' rows of the request
+    /// (P5701, P5705), one row per combination (P5705), and every row (P5701, P5702, P5704).
+    fn check_request(
+        &self,
+        out: &mut BenchCheck,
+        request: &Request,
+        index: usize,
+        rows: std::ops::Range<usize>,
+    ) -> Result<()> {
+        let reports = self
+            .combos
+            .iter()
+            .map(|c| self.context.plan(request, c))
+            .collect::<Result<Vec<_>>>()?;
+        let tables = crate::bench::tables_of_request(
+            &self.context,
+            self.config,
+            index,
+            request,
+            reports.clone(),
+        )?;
+        compare_tables(out, self.data, index, &tables);
+        let joint = if self.config.joint {
+            Some(self.context.joint_split(request, &reports)?)
+        } else {
+            None
+        };
+        self.check_one_row_per_combination(out, request, rows.clone());
+        let distance_m = shortest_distance_m(self.network, &request.source, &request.destination);
+        for r in rows {
+            self.check_row(out, request, r, &reports, joint.as_ref(), distance_m);
+        }
+        Ok(())
+    }
+
+    /// P5705: every combination of the run has exactly one row of the request among `rows`.
+    fn check_one_row_per_combination(
+        &self,
+        out: &mut BenchCheck,
+        request: &Request,
+        rows: std::ops::Range<usize>,
+    ) {
+        let (k, end) = (rows.start, rows.end);
+        for c in &self.config.combos {
+            let n = self.data.requests[rows.clone()]
+                .iter()
+                .filter(|r| {
+                    (r.sharing, r.positioning, r.route) == (c.sharing, c.positioning, c.route)
+                })
+                .count();
+            if n != 1 {
+                out.violations.push(violation(
+                    "P5705",
+                    format!("requests.csv[{k}..{end}]"),
+                    format!(
+                        "request {} has {n} rows of combination {}/{}/{}, the run wrote one",
+                        request.id, c.sharing, c.positioning, c.route
+                    ),
+                ));
+            }
+        }
+    }
+
+    /// Row `r` of `requests.csv` against the plan of its combination among `reports`: the
+    /// combination is the run's (P5704), its plan passes the plan checker (P5702), and every
+    /// column is the plan's (P5701).
+    fn check_row(
+        &self,
+        out: &mut BenchCheck,
+        request: &Request,
+        r: usize,
+        reports: &[RequestReport],
+        joint: Option<&JointSplit>,
+        distance_m: f64,
+    ) {
+        let row = &self.data.requests[r];
+        let combos = &self.combos;
+        out.rows += 1;
+        let f = format!("requests.csv[{r}]");
+        let Some(j) = combos.iter().position(|c| {
+            (c.sharing, c.positioning, c.route) == (row.sharing, row.positioning, row.route)
+        }) else {
+            out.violations.push(violation(
+                "P5704",
+                format!("{f}.sharing"),
+                format!(
+                    "combination {}/{}/{} is not one of the run's",
+                    json_name(&row.sharing),
+                    json_name(&row.positioning),
+                    json_name(&row.route)
+                ),
+            ));
+            return;
+        };
+        let report = &reports[j];
+        for x in check_report(self.network, self.profile, self.requests, report) {
+            out.violations.push(violation(
+                "P5702",
+                format!("{f}: {}", x.field),
+                format!("the plan behind the row breaks [{}]: {}", x.code, x.cause),
+            ));
+        }
+        let reference = self
+            .config
+            .reference_of(&combos[j])
+            .and_then(|c| combos.iter().position(|x| *x == c))
+            .map(|i| &reports[i]);
+        let split = joint.and_then(|s| s.splits.get(j).cloned().flatten());
+        let mut columns = Columns {
+            out: &mut out.violations,
+            f: &f,
+        };
+        columns.compare_plan(row, request, report, distance_m);
+        columns.compare_reference(row, report, reference);
+        if let Some(joint) = joint {
+            columns.compare_split(row, joint.joint.dt_min(), split.as_ref());
+        }
+    }
 }
 
 /// Compares the rows of `hops.csv`, `stops.csv` and `joint.csv` of the request at `index` with

@@ -25,6 +25,7 @@
 use super::close;
 use super::plan::{raw_leg, RawLeg};
 use crate::eaas::hop_file::HopFile;
+use crate::eaas::HopProblem;
 use crate::energy;
 use crate::error::Violation;
 use crate::formation;
@@ -73,48 +74,91 @@ pub fn check_hop_file(
         }
     }
     let mut out = Vec::new();
-    let Some(request) = requests.iter().find(|r| r.id == file.request_id) else {
-        out.push(violation(
-            "P5601",
-            "request_id",
-            format!(
-                "no request with id `{}` in the request file",
-                file.request_id
-            ),
-        ));
-        return out;
-    };
-    let hop = &file.hop;
-    let legs = match legs_of_the_path(network, &file.path) {
-        Ok(legs) => legs,
-        Err(x) => {
-            out.push(x);
-            return out;
-        }
-    };
+    if let Err(x) = check_hop(network, profile, requests, file, &mut out) {
+        out.push(x);
+    }
+    out
+}
+
+/// The rules in order, each group on what the previous ones established; a violation after
+/// which the rest cannot be checked (an unknown request, a broken path, wrong roles, slots of no
+/// formation, another number of legs) is returned and ends the check.
+fn check_hop(
+    network: &Network,
+    profile: &Profile,
+    requests: &[Request],
+    file: &HopFile,
+    out: &mut Vec<Violation>,
+) -> Result<(), Violation> {
+    let request = request_of_the_file(requests, file)?;
+    let legs = legs_of_the_path(network, &file.path)?;
     if let Some(plan) = &file.plan {
         if let Some(x) = hop_of_the_plan(network, profile, request, file, plan) {
             out.push(x);
         }
     }
-    // P5605: the drones.
+    let hop = &file.hop;
+    roles_of_the_drones(request, hop)?;
+    compare_capacities(profile, hop, out);
+    let formation = formation_of_the_slots(profile, hop)?;
+    initial_slots_permutation(hop)?;
+    let swarm = swarm_of_the_hop(profile, request, hop, formation);
+    if hop.legs.len() != legs.len() {
+        return Err(violation(
+            "P5603",
+            "hop.legs",
+            format!("{} legs, the path has {} edges", hop.legs.len(), legs.len()),
+        ));
+    }
+    compare_legs(profile, &swarm, hop, &legs, out);
+    compare_sharing_constants(profile, hop, out);
+    compare_end_pads(network, profile, file, out);
+    Ok(())
+}
+
+/// P5601: the request the file names, from the request set.
+fn request_of_the_file<'a>(
+    requests: &'a [Request],
+    file: &HopFile,
+) -> Result<&'a Request, Violation> {
+    requests
+        .iter()
+        .find(|r| r.id == file.request_id)
+        .ok_or_else(|| {
+            violation(
+                "P5601",
+                "request_id",
+                format!(
+                    "no request with id `{}` in the request file",
+                    file.request_id
+                ),
+            )
+        })
+}
+
+/// P5605: one delivery drone per package of the request first, then support drones.
+fn roles_of_the_drones(request: &Request, hop: &HopProblem) -> Result<(), Violation> {
     let n = request.packages_kg.len();
     let roles_ok = hop.drones.iter().enumerate().all(|(d, s)| {
         let want = if d < n { Role::Delivery } else { Role::Support };
         s.role == want
     }) && hop.drones.len() >= n;
-    if !roles_ok {
-        out.push(violation(
-            "P5605",
-            "hop.drones",
-            format!(
-                "roles {}: the request's {n} packages need {n} delivery drones first, then \
-                 support drones",
-                json_name(&hop.drones.iter().map(|d| d.role).collect::<Vec<_>>())
-            ),
-        ));
-        return out;
+    if roles_ok {
+        return Ok(());
     }
+    Err(violation(
+        "P5605",
+        "hop.drones",
+        format!(
+            "roles {}: the request's {n} packages need {n} delivery drones first, then \
+             support drones",
+            json_name(&hop.drones.iter().map(|d| d.role).collect::<Vec<_>>())
+        ),
+    ))
+}
+
+/// P5605: every drone has the profile's capacity of its role and departs with it full.
+fn compare_capacities(profile: &Profile, hop: &HopProblem, out: &mut Vec<Violation>) {
     for (d, s) in hop.drones.iter().enumerate() {
         let capacity = match s.role {
             Role::Delivery => profile.drone.battery_mah,
@@ -122,21 +166,24 @@ pub fn check_hop_file(
         };
         let f = format!("hop.drones[{d}]");
         compare(
-            &mut out,
+            out,
             "P5605",
             format!("{f}.capacity_mah"),
             s.capacity_mah,
             capacity,
         );
         compare(
-            &mut out,
+            out,
             "P5605",
             format!("{f}.battery_mah"),
             s.battery_mah,
             capacity,
         );
     }
-    // P5606: the slots and the initial positions.
+}
+
+/// P5606: the formation whose slots at the profile's spacing are the file's.
+fn formation_of_the_slots(profile: &Profile, hop: &HopProblem) -> Result<FormationKind, Violation> {
     let spacing_m = profile.formation.spacing_m;
     let count = hop.drones.len();
     let formation = FormationKind::ALL.into_iter().find(|&kind| {
@@ -147,29 +194,43 @@ pub fn check_hop_file(
                 .zip(&hop.slots_m)
                 .all(|(a, b)| close(a.x, b.x) && close(a.y, b.y))
     });
-    let Some(formation) = formation else {
-        out.push(violation(
+    formation.ok_or_else(|| {
+        violation(
             "P5606",
             "hop.slots_m",
             format!("not the slots of any formation of {count} drones at {spacing_m} m spacing"),
-        ));
-        return out;
-    };
+        )
+    })
+}
+
+/// P5606: the initial slots are a permutation of the slots.
+fn initial_slots_permutation(hop: &HopProblem) -> Result<(), Violation> {
+    let count = hop.drones.len();
     let mut sorted = hop.initial_slot.clone();
     sorted.sort_unstable();
-    if sorted != (0..count).collect::<Vec<_>>() {
-        out.push(violation(
-            "P5606",
-            "hop.initial_slot",
-            format!(
-                "{:?} is not a permutation of the {count} slots",
-                hop.initial_slot
-            ),
-        ));
-        return out;
+    if sorted == (0..count).collect::<Vec<_>>() {
+        return Ok(());
     }
-    // P5603, P5604: every leg.
-    let swarm = Swarm {
+    Err(violation(
+        "P5606",
+        "hop.initial_slot",
+        format!(
+            "{:?} is not a permutation of the {count} slots",
+            hop.initial_slot
+        ),
+    ))
+}
+
+/// The swarm the hop flies: its drones with the request's packages (the profile's support
+/// payload for a support drone), in `formation` on the file's slots.
+fn swarm_of_the_hop(
+    profile: &Profile,
+    request: &Request,
+    hop: &HopProblem,
+    formation: FormationKind,
+) -> Swarm {
+    let n = request.packages_kg.len();
+    Swarm {
         formation,
         drones: hop
             .drones
@@ -188,26 +249,28 @@ pub fn check_hop_file(
             .collect(),
         slots_m: hop.slots_m.clone(),
         initial_slot: hop.initial_slot.clone(),
-    };
-    let speed_m_per_min = profile.drone.speed_kmh * 1000.0 / 60.0;
-    if hop.legs.len() != legs.len() {
-        out.push(violation(
-            "P5603",
-            "hop.legs",
-            format!("{} legs, the path has {} edges", hop.legs.len(), legs.len()),
-        ));
-        return out;
     }
-    for (l, (stated, raw)) in hop.legs.iter().zip(&legs).enumerate() {
+}
+
+/// P5603, P5604: every leg's duration and rate matrix against its edge's.
+fn compare_legs(
+    profile: &Profile,
+    swarm: &Swarm,
+    hop: &HopProblem,
+    legs: &[RawLeg],
+    out: &mut Vec<Violation>,
+) {
+    let speed_m_per_min = profile.drone.speed_kmh * 1000.0 / 60.0;
+    for (l, (stated, raw)) in hop.legs.iter().zip(legs).enumerate() {
         let f = format!("hop.legs[{l}]");
         compare(
-            &mut out,
+            out,
             "P5603",
             format!("{f}.duration_min"),
             stated.duration_min,
             raw.distance_m / speed_m_per_min,
         );
-        let rates = energy::rate_matrix_mah_per_min(profile, &swarm, raw.heading_deg, &raw.wind);
+        let rates = energy::rate_matrix_mah_per_min(profile, swarm, raw.heading_deg, &raw.wind);
         for (d, row) in rates.iter().enumerate() {
             for (q, &rate) in row.iter().enumerate() {
                 let got = stated
@@ -217,7 +280,7 @@ pub fn check_hop_file(
                     .copied()
                     .unwrap_or(f64::NAN);
                 compare(
-                    &mut out,
+                    out,
                     "P5604",
                     format!("{f}.rate_mah_per_min[{d}][{q}]"),
                     got,
@@ -226,7 +289,10 @@ pub fn check_hop_file(
             }
         }
     }
-    // P5607: the sharing constants.
+}
+
+/// P5607: the sharing constants are the profile's.
+fn compare_sharing_constants(profile: &Profile, hop: &HopProblem, out: &mut Vec<Violation>) {
     let s = &profile.sharing;
     for (field, stated, given) in [
         ("rho_mah_per_min", hop.rho_mah_per_min, s.rate_mah_per_min),
@@ -235,25 +301,27 @@ pub fn check_hop_file(
         ("lambda_mah", hop.lambda_mah, s.lambda_mah),
         ("delta_mah", hop.delta_mah, s.delta_mah),
     ] {
-        compare(&mut out, "P5607", format!("hop.{field}"), stated, given);
+        compare(out, "P5607", format!("hop.{field}"), stated, given);
     }
-    // P5608: the end node's pads.
+}
+
+/// P5608: `end` holds the end node's pads and pad rate, `null` when it has none.
+fn compare_end_pads(
+    network: &Network,
+    profile: &Profile,
+    file: &HopFile,
+    out: &mut Vec<Violation>,
+) {
     let end = network.nodes.iter().find(|x| x.id == file.to);
     let pads = end.map_or(0, |x| x.pads);
     match (&file.end, end) {
         (Some(e), Some(node)) if pads > 0 => {
-            compare(
-                &mut out,
-                "P5608",
-                "end.pads".into(),
-                e.pads as f64,
-                pads as f64,
-            );
+            compare(out, "P5608", "end.pads".into(), e.pads as f64, pads as f64);
             let rate = node
                 .pad_charge_rate_mah_per_min
                 .unwrap_or(profile.pads.charge_rate_mah_per_min);
             compare(
-                &mut out,
+                out,
                 "P5608",
                 "end.pad_rate_mah_per_min".into(),
                 e.pad_rate_mah_per_min,
@@ -271,7 +339,6 @@ pub fn check_hop_file(
             ),
         )),
     }
-    out
 }
 
 /// P5602: the legs of `path`, rebuilt from the network.

@@ -41,39 +41,55 @@ pub fn check_node_time(
 ) -> Vec<Violation> {
     let mut out = Vec::new();
     if let Some((pads, times)) = instance {
-        if pads != report.pads {
-            out.push(violation(
-                "P5506",
-                "pads",
-                format!("states {} pads, the instance has {pads}", report.pads),
-            ));
-        }
-        if times.len() != report.charge_times_min.len() {
-            out.push(violation(
-                "P5506",
-                "charge_times_min",
-                format!(
-                    "states {} charge times, the instance has {}",
-                    report.charge_times_min.len(),
-                    times.len()
-                ),
-            ));
-        } else {
-            for (j, (&stated, &given)) in report.charge_times_min.iter().zip(times).enumerate() {
-                if stated != given {
-                    out.push(violation(
-                        "P5506",
-                        format!("charge_times_min[{j}]"),
-                        format!("states {stated} min, the instance has {given} min"),
-                    ));
-                }
+        check_instance(report, pads, times, &mut out);
+    }
+    if !check_partition(report, &mut out) {
+        return out;
+    }
+    let makespan = check_makespan(report, &mut out);
+    check_bound(report, makespan, &mut out);
+    check_optimum(report, makespan, &mut out);
+    check_gap(report, &mut out);
+    out
+}
+
+/// P5506: the result's instance is the one given, `pads` pads and charge times `times`.
+fn check_instance(report: &NodeTimeReport, pads: usize, times: &[f64], out: &mut Vec<Violation>) {
+    if pads != report.pads {
+        out.push(violation(
+            "P5506",
+            "pads",
+            format!("states {} pads, the instance has {pads}", report.pads),
+        ));
+    }
+    if times.len() != report.charge_times_min.len() {
+        out.push(violation(
+            "P5506",
+            "charge_times_min",
+            format!(
+                "states {} charge times, the instance has {}",
+                report.charge_times_min.len(),
+                times.len()
+            ),
+        ));
+    } else {
+        for (j, (&stated, &given)) in report.charge_times_min.iter().zip(times).enumerate() {
+            if stated != given {
+                out.push(violation(
+                    "P5506",
+                    format!("charge_times_min[{j}]"),
+                    format!("states {stated} min, the instance has {given} min"),
+                ));
             }
         }
     }
+}
+
+/// P5501: the assignment is a partition of the drones over at most `k` pads. Whether it is: the
+/// other rules need one.
+fn check_partition(report: &NodeTimeReport, out: &mut Vec<Violation>) -> bool {
     let s = &report.solution;
-    let times = &report.charge_times_min;
-    let n = times.len();
-    // P5501: a partition over at most k pads.
+    let n = report.charge_times_min.len();
     let mut seen = vec![0usize; n];
     for (p, pad) in s.assignment.iter().enumerate() {
         for (i, &j) in pad.iter().enumerate() {
@@ -107,10 +123,13 @@ pub fn check_node_time(
             format!("drones {unassigned:?} are not charged exactly once"),
         ));
     }
-    if !partition {
-        return out;
-    }
-    // P5502: the makespan is the largest pad load.
+    partition
+}
+
+/// P5502: the makespan is the largest pad load; returns that load.
+fn check_makespan(report: &NodeTimeReport, out: &mut Vec<Violation>) -> f64 {
+    let s = &report.solution;
+    let times = &report.charge_times_min;
     let makespan = s
         .assignment
         .iter()
@@ -126,7 +145,12 @@ pub fn check_node_time(
             ),
         ));
     }
-    // P5503: the bound.
+    makespan
+}
+
+/// P5503: the lower bound lies in `[0, makespan]`, equal to it when `optimal`.
+fn check_bound(report: &NodeTimeReport, makespan: f64, out: &mut Vec<Violation>) {
+    let s = &report.solution;
     let slack = RELATIVE_TOLERANCE * makespan.max(1.0);
     let bound_ok = match s.status {
         SolveStatus::Optimal => close(s.lower_bound_min, makespan),
@@ -145,29 +169,40 @@ pub fn check_node_time(
             ),
         ));
     }
-    // P5504: the optimum by exhaustive search.
-    if n <= OPTIMALITY_CHECK_DRONES && report.pads > 0 {
-        let best = optimal_makespan_min(times, report.pads);
-        let slack = super::INTEGRATION_TOLERANCE * (1.0 + best);
-        if s.lower_bound_min > best + slack {
-            out.push(violation(
-                "P5504",
-                "lower_bound_min",
-                format!(
-                    "states {}, above the optimum {best} found by exhaustive search",
-                    s.lower_bound_min
-                ),
-            ));
-        }
-        if s.status == SolveStatus::Optimal && makespan > best + slack {
-            out.push(violation(
-                "P5504",
-                "makespan_min",
-                format!("optimal {makespan}, but an assignment with makespan {best} exists"),
-            ));
-        }
+}
+
+/// P5504: with few drones, the optimum found by exhaustive search bounds the lower bound from
+/// above and, when `optimal`, the makespan from below.
+fn check_optimum(report: &NodeTimeReport, makespan: f64, out: &mut Vec<Violation>) {
+    let s = &report.solution;
+    let times = &report.charge_times_min;
+    if times.len() > OPTIMALITY_CHECK_DRONES || report.pads == 0 {
+        return;
     }
-    // P5505: the gap as the status defines it.
+    let best = optimal_makespan_min(times, report.pads);
+    let slack = super::INTEGRATION_TOLERANCE * (1.0 + best);
+    if s.lower_bound_min > best + slack {
+        out.push(violation(
+            "P5504",
+            "lower_bound_min",
+            format!(
+                "states {}, above the optimum {best} found by exhaustive search",
+                s.lower_bound_min
+            ),
+        ));
+    }
+    if s.status == SolveStatus::Optimal && makespan > best + slack {
+        out.push(violation(
+            "P5504",
+            "makespan_min",
+            format!("optimal {makespan}, but an assignment with makespan {best} exists"),
+        ));
+    }
+}
+
+/// P5505: the gap is the makespan's against the optimum or the bound, as the status says.
+fn check_gap(report: &NodeTimeReport, out: &mut Vec<Violation>) {
+    let s = &report.solution;
     let expected = s.gap();
     let gap_ok = match (&report.gap, &expected) {
         (Some(a), Some(b)) => {
@@ -196,7 +231,6 @@ pub fn check_node_time(
             ),
         ));
     }
-    out
 }
 
 /// A gap in words, its relative value as the document writes it: `relative gap 0.5 against the

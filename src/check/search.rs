@@ -16,9 +16,9 @@
 //!   This is the one check that uses the planner: nothing else can say what its search did.
 
 use super::{close, RELATIVE_TOLERANCE};
-use crate::compose::{Context, RequestReport, SwarmsCompared};
+use crate::compose::{Context, Hop, Plan, RequestReport, RouteGap, SwarmsCompared};
 use crate::eaas::exact::ExactStatus;
-use crate::eaas::exact_hop::HopGoal;
+use crate::eaas::exact_hop::{HopGoal, HopSolve, HopSolveCounts};
 use crate::error::Violation;
 use crate::problem::io::json_name;
 use crate::problem::{Network, Profile, Request, SkywayGraph};
@@ -46,108 +46,13 @@ pub fn check_consistency(report: &RequestReport) -> Vec<Violation> {
             continue;
         };
         let f = format!("plan.hops[{k}].sharing_solve");
-        if solve.grid_step_min != 0.0 {
-            out.push(consistency(
-                format!("{f}.grid_step_min"),
-                format!(
-                    "states {}, both hop models of a plan are continuous in time: 0",
-                    solve.grid_step_min
-                ),
-            ));
-        }
-        if let (HopGoal::NodeTimeMin, Some(objective), Some(stop)) =
-            (solve.goal, solve.objective, &hop.stop)
-        {
-            if !close(objective, stop.nt_min) {
-                out.push(consistency(
-                    format!("{f}.objective"),
-                    format!(
-                        "states {objective}, the node time of the stop the hop flies into is {}",
-                        stop.nt_min
-                    ),
-                ));
-            }
-        }
-        if let (Some(bound), Some(objective)) = (solve.bound, solve.objective) {
-            let slack = RELATIVE_TOLERANCE * objective.abs().max(1.0);
-            let epsilon = solve.epsilon.unwrap_or(0.0);
-            let (lowest, highest) = match solve.status {
-                Some(ExactStatus::Optimal) => (objective - slack, objective + slack),
-                Some(ExactStatus::OptimalWithin) => {
-                    (objective - epsilon - slack, objective + slack)
-                }
-                _ => (f64::NEG_INFINITY, objective + slack),
-            };
-            if !(lowest..=highest).contains(&bound) {
-                out.push(consistency(
-                    format!("{f}.bound"),
-                    format!(
-                        "states {bound}, a lower bound of objective {objective} (status {}, \
-                         epsilon {epsilon}) lies in [{lowest}, {highest}]",
-                        json_name(&solve.status)
-                    ),
-                ));
-            }
-        }
-        match (solve.status, solve.epsilon) {
-            (Some(ExactStatus::OptimalWithin), Some(e)) if e >= 0.0 => epsilon_sum += e,
-            (Some(ExactStatus::OptimalWithin), e) => out.push(consistency(
-                format!("{f}.epsilon"),
-                format!(
-                    "status optimal_within states epsilon {}, a distance >= 0",
-                    json_name(&e)
-                ),
-            )),
-            (_, None) => {}
-            (status, Some(e)) => out.push(consistency(
-                format!("{f}.epsilon"),
-                format!(
-                    "states epsilon {e} with status {}: only optimal_within has one",
-                    json_name(&status)
-                ),
-            )),
+        check_hop_solve(&f, hop, solve, &mut out);
+        if let Some(e) = hop_epsilon(&f, solve, &mut out) {
+            epsilon_sum += e;
         }
     }
     if let Some(counts) = &plan.hop_solves {
-        let f = "plan.hop_solves";
-        let by_status = counts.optimal
-            + counts.optimal_within
-            + counts.time_limit_incumbent
-            + counts.infeasible
-            + counts.time_limit_no_solution
-            + counts.no_schedule_found
-            + counts.backend_errors;
-        if by_status != counts.solves {
-            out.push(consistency(
-                format!("{f}.solves"),
-                format!(
-                    "states {} solves, its counts by status add up to {by_status}",
-                    counts.solves
-                ),
-            ));
-        }
-        let flown = plan.hops.iter().filter_map(|h| h.sharing_solve.as_ref());
-        let (mut fallbacks, mut solved) = (0, 0);
-        for solve in flown {
-            solved += 1;
-            fallbacks += usize::from(solve.fallback.is_some());
-        }
-        for (name, stated, least) in [
-            ("solves", counts.solves, solved),
-            ("fallbacks", counts.fallbacks, fallbacks),
-            ("schedule_does_not_fly", counts.schedule_does_not_fly, 0),
-        ] {
-            if stated < least || stated > counts.solves {
-                out.push(consistency(
-                    format!("{f}.{name}"),
-                    format!(
-                        "states {stated}, between the {least} of the hops flown and the {} \
-                         solves",
-                        counts.solves
-                    ),
-                ));
-            }
-        }
+        check_hop_solve_counts(plan, counts, &mut out);
     }
     if let Some(route) = &plan.route_optimality {
         if !close(route.epsilon_min, epsilon_sum) {
@@ -161,30 +66,150 @@ pub fn check_consistency(report: &RequestReport) -> Vec<Violation> {
         }
     }
     if let Some(gap) = &report.route_gap {
-        let expected = match (plan.delivered(), gap.optimal_dt_min) {
-            (true, Some(best)) if best > 0.0 => Some((plan.dt_min - best) / best),
-            (true, Some(_)) => Some(0.0),
-            _ => None,
-        };
-        let agrees = match (gap.gap, expected) {
-            (Some(a), Some(b)) => close(a, b),
-            (a, b) => a.is_none() && b.is_none(),
-        };
-        if !agrees {
-            out.push(consistency(
-                "route_gap.gap",
-                format!(
-                    "states {}, (dt - optimal_dt_min) / optimal_dt_min is {}",
-                    json_name(&gap.gap),
-                    json_name(&expected)
-                ),
-            ));
-        }
+        check_route_gap(plan, gap, &mut out);
     }
     if let Some(c) = &report.swarms_compared {
         out.extend(swarms_compared_consistency(report, c));
     }
     out
+}
+
+/// A hop's solve, `f` its field: both hop models continuous in time, a node-time objective the
+/// stop's `nt_min`, the bound at most the objective (equal when `optimal`, within `epsilon`
+/// when `optimal_within`).
+fn check_hop_solve(f: &str, hop: &Hop, solve: &HopSolve, out: &mut Vec<Violation>) {
+    if solve.grid_step_min != 0.0 {
+        out.push(consistency(
+            format!("{f}.grid_step_min"),
+            format!(
+                "states {}, both hop models of a plan are continuous in time: 0",
+                solve.grid_step_min
+            ),
+        ));
+    }
+    if let (HopGoal::NodeTimeMin, Some(objective), Some(stop)) =
+        (solve.goal, solve.objective, &hop.stop)
+    {
+        if !close(objective, stop.nt_min) {
+            out.push(consistency(
+                format!("{f}.objective"),
+                format!(
+                    "states {objective}, the node time of the stop the hop flies into is {}",
+                    stop.nt_min
+                ),
+            ));
+        }
+    }
+    if let (Some(bound), Some(objective)) = (solve.bound, solve.objective) {
+        let slack = RELATIVE_TOLERANCE * objective.abs().max(1.0);
+        let epsilon = solve.epsilon.unwrap_or(0.0);
+        let (lowest, highest) = match solve.status {
+            Some(ExactStatus::Optimal) => (objective - slack, objective + slack),
+            Some(ExactStatus::OptimalWithin) => (objective - epsilon - slack, objective + slack),
+            _ => (f64::NEG_INFINITY, objective + slack),
+        };
+        if !(lowest..=highest).contains(&bound) {
+            out.push(consistency(
+                format!("{f}.bound"),
+                format!(
+                    "states {bound}, a lower bound of objective {objective} (status {}, \
+                     epsilon {epsilon}) lies in [{lowest}, {highest}]",
+                    json_name(&solve.status)
+                ),
+            ));
+        }
+    }
+}
+
+/// A hop's `epsilon`, `f` its solve's field: a distance >= 0 under `optimal_within`, absent
+/// under any other status. The epsilon the route's sum counts, if any.
+fn hop_epsilon(f: &str, solve: &HopSolve, out: &mut Vec<Violation>) -> Option<f64> {
+    match (solve.status, solve.epsilon) {
+        (Some(ExactStatus::OptimalWithin), Some(e)) if e >= 0.0 => return Some(e),
+        (Some(ExactStatus::OptimalWithin), e) => out.push(consistency(
+            format!("{f}.epsilon"),
+            format!(
+                "status optimal_within states epsilon {}, a distance >= 0",
+                json_name(&e)
+            ),
+        )),
+        (_, None) => {}
+        (status, Some(e)) => out.push(consistency(
+            format!("{f}.epsilon"),
+            format!(
+                "states epsilon {e} with status {}: only optimal_within has one",
+                json_name(&status)
+            ),
+        )),
+    }
+    None
+}
+
+/// `hop_solves`: the counts by status add up to the solves, and each count lies between the
+/// hops flown and the solves.
+fn check_hop_solve_counts(plan: &Plan, counts: &HopSolveCounts, out: &mut Vec<Violation>) {
+    let f = "plan.hop_solves";
+    let by_status = counts.optimal
+        + counts.optimal_within
+        + counts.time_limit_incumbent
+        + counts.infeasible
+        + counts.time_limit_no_solution
+        + counts.no_schedule_found
+        + counts.backend_errors;
+    if by_status != counts.solves {
+        out.push(consistency(
+            format!("{f}.solves"),
+            format!(
+                "states {} solves, its counts by status add up to {by_status}",
+                counts.solves
+            ),
+        ));
+    }
+    let flown = plan.hops.iter().filter_map(|h| h.sharing_solve.as_ref());
+    let (mut fallbacks, mut solved) = (0, 0);
+    for solve in flown {
+        solved += 1;
+        fallbacks += usize::from(solve.fallback.is_some());
+    }
+    for (name, stated, least) in [
+        ("solves", counts.solves, solved),
+        ("fallbacks", counts.fallbacks, fallbacks),
+        ("schedule_does_not_fly", counts.schedule_does_not_fly, 0),
+    ] {
+        if stated < least || stated > counts.solves {
+            out.push(consistency(
+                format!("{f}.{name}"),
+                format!(
+                    "states {stated}, between the {least} of the hops flown and the {} \
+                     solves",
+                    counts.solves
+                ),
+            ));
+        }
+    }
+}
+
+/// `route_gap.gap` is `(dt - optimal_dt) / optimal_dt` of the plan's delivery time.
+fn check_route_gap(plan: &Plan, gap: &RouteGap, out: &mut Vec<Violation>) {
+    let expected = match (plan.delivered(), gap.optimal_dt_min) {
+        (true, Some(best)) if best > 0.0 => Some((plan.dt_min - best) / best),
+        (true, Some(_)) => Some(0.0),
+        _ => None,
+    };
+    let agrees = match (gap.gap, expected) {
+        (Some(a), Some(b)) => close(a, b),
+        (a, b) => a.is_none() && b.is_none(),
+    };
+    if !agrees {
+        out.push(consistency(
+            "route_gap.gap",
+            format!(
+                "states {}, (dt - optimal_dt_min) / optimal_dt_min is {}",
+                json_name(&gap.gap),
+                json_name(&expected)
+            ),
+        ));
+    }
 }
 
 /// P5047: `swarms_compared` (`solve --swarm best`) names as best the least delivery time

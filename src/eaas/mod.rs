@@ -576,8 +576,25 @@ pub fn sharing_budget_mah(problem: &HopProblem, s: usize) -> f64 {
 /// [`Error::Invalid`] with codes `E4001`-`E4012`.
 pub fn validate(problem: &HopProblem) -> Result<()> {
     let mut v = Vec::new();
+    validate_slots(problem, &mut v);
+    validate_legs(problem, &mut v);
+    validate_drones(problem, &mut v);
+    validate_sharing_constants(problem, &mut v);
+    if v.is_empty() {
+        Ok(())
+    } else {
+        Err(Error::Invalid(v))
+    }
+}
+
+/// A finite number at least 0.
+fn finite_nonneg(x: f64) -> bool {
+    x.is_finite() && x >= 0.0
+}
+
+/// E4001-E4004: one slot per drone, the initial slots a permutation, every slot finite.
+fn validate_slots(problem: &HopProblem, v: &mut Vec<Violation>) {
     let n = problem.drones.len();
-    let finite_nonneg = |x: f64| x.is_finite() && x >= 0.0;
     if problem.slots_m.len() != n {
         v.push(Violation::new(
             "E4001",
@@ -618,6 +635,11 @@ pub fn validate(problem: &HopProblem) -> Result<()> {
             ));
         }
     }
+}
+
+/// E4005-E4007: every leg's duration, the shape of its rate matrix, then its rates.
+fn validate_legs(problem: &HopProblem, v: &mut Vec<Violation>) {
+    let n = problem.drones.len();
     for (l, leg) in problem.legs.iter().enumerate() {
         if !finite_nonneg(leg.duration_min) {
             v.push(Violation::new(
@@ -648,6 +670,10 @@ pub fn validate(problem: &HopProblem) -> Result<()> {
             ));
         }
     }
+}
+
+/// E4008, E4009: every drone's capacity, then its battery within it.
+fn validate_drones(problem: &HopProblem, v: &mut Vec<Violation>) {
     for (d, dr) in problem.drones.iter().enumerate() {
         if !(dr.capacity_mah.is_finite() && dr.capacity_mah > 0.0) {
             v.push(Violation::new(
@@ -668,6 +694,10 @@ pub fn validate(problem: &HopProblem) -> Result<()> {
             ));
         }
     }
+}
+
+/// E4010-E4012: the sharing constants `rho`, `lambda`, range, `gamma` and `delta`.
+fn validate_sharing_constants(problem: &HopProblem, v: &mut Vec<Violation>) {
     if !(problem.rho_mah_per_min.is_finite() && problem.rho_mah_per_min > 0.0) {
         v.push(Violation::new(
             "E4010",
@@ -697,11 +727,6 @@ pub fn validate(problem: &HopProblem) -> Result<()> {
                 "give a finite value >= 0",
             ));
         }
-    }
-    if v.is_empty() {
-        Ok(())
-    } else {
-        Err(Error::Invalid(v))
     }
 }
 

@@ -438,32 +438,52 @@ pub fn to_skyway(road: &RoadNetwork, params: &ImportParams) -> Result<Network> {
             "cut the road network to a smaller area, or keep the nodes nearest a centre (--nearest)",
         ));
     }
-    let mut keep = vec![true; n];
-    if let Some((count, centre)) = params.nearest {
-        if count == 0 {
-            return Err(bad(
-                "E1954",
-                "--nearest",
-                "0 nodes",
-                "give --nearest 2 or more",
-            ));
-        }
-        let centre_m = match road.projection {
-            Some(p) => p.project(centre.0, centre.1),
-            None => centre,
-        };
-        let d2 = |i: usize| {
-            let (x, y) = road.positions_m[i];
-            (x - centre_m.0).powi(2) + (y - centre_m.1).powi(2)
-        };
-        let mut order: Vec<usize> = (0..n).collect();
-        order.sort_by(|&a, &b| d2(a).total_cmp(&d2(b)).then(a.cmp(&b)));
-        keep = vec![false; n];
-        for &i in order.iter().take(count) {
-            keep[i] = true;
-        }
+    let keep = match params.nearest {
+        Some((count, centre)) => nearest_nodes(road, count, centre)?,
+        None => vec![true; n],
+    };
+    let best = shortest_roads(road, &keep);
+    let kept = largest_component(n, &keep, &best)?;
+    let network = drawn_network(road, params, &kept, &best);
+    let violations: Vec<Violation> = validate_network(&network);
+    if !violations.is_empty() {
+        return Err(Error::Invalid(violations));
     }
-    // Shortest road per pair of kept nodes.
+    Ok(network)
+}
+
+/// Which nodes are kept: the `count` nearest `centre` (in the input's coordinates; ties: file
+/// order).
+fn nearest_nodes(road: &RoadNetwork, count: usize, centre: (f64, f64)) -> Result<Vec<bool>> {
+    if count == 0 {
+        return Err(bad(
+            "E1954",
+            "--nearest",
+            "0 nodes",
+            "give --nearest 2 or more",
+        ));
+    }
+    let n = road.positions_m.len();
+    let centre_m = match road.projection {
+        Some(p) => p.project(centre.0, centre.1),
+        None => centre,
+    };
+    let d2 = |i: usize| {
+        let (x, y) = road.positions_m[i];
+        (x - centre_m.0).powi(2) + (y - centre_m.1).powi(2)
+    };
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by(|&a, &b| d2(a).total_cmp(&d2(b)).then(a.cmp(&b)));
+    let mut keep = vec![false; n];
+    for &i in order.iter().take(count) {
+        keep[i] = true;
+    }
+    Ok(keep)
+}
+
+/// The shortest road per pair of kept nodes `(a, b)`, `a < b`: its length when the input gives
+/// one (a road without one counts as the straight line). Roads from a node to itself are dropped.
+fn shortest_roads(road: &RoadNetwork, keep: &[bool]) -> HashMap<(usize, usize), Option<f64>> {
     let euclid = |a: usize, b: usize| {
         let (p, q) = (road.positions_m[a], road.positions_m[b]);
         ((p.0 - q.0).powi(2) + (p.1 - q.1).powi(2)).sqrt()
@@ -483,7 +503,19 @@ pub fn to_skyway(road: &RoadNetwork, params: &ImportParams) -> Result<Network> {
             })
             .or_insert(length);
     }
-    // Largest component.
+    best
+}
+
+/// The kept nodes of the largest connected component of the roads `best` (ties: the one with
+/// the first node in file order), in file order.
+///
+/// # Errors
+/// E1954 when fewer than 2 nodes are left.
+fn largest_component(
+    n: usize,
+    keep: &[bool],
+    best: &HashMap<(usize, usize), Option<f64>>,
+) -> Result<Vec<usize>> {
     let mut components = UnionFind::new(n);
     for &(a, b) in best.keys() {
         components.union(a, b);
@@ -511,6 +543,17 @@ pub fn to_skyway(road: &RoadNetwork, params: &ImportParams) -> Result<Network> {
             "give a road network (or a --nearest selection) with at least two joined intersections",
         ));
     }
+    Ok(kept)
+}
+
+/// The skyway network of the `kept` nodes and the roads `best` between them (edges sorted by
+/// node indices), pads then winds drawn from the seed.
+fn drawn_network(
+    road: &RoadNetwork,
+    params: &ImportParams,
+    kept: &[usize],
+    best: &HashMap<(usize, usize), Option<f64>>,
+) -> Network {
     let new_index: HashMap<usize, usize> = kept.iter().enumerate().map(|(k, &i)| (i, k)).collect();
     let mut pairs: Vec<(usize, usize, Option<f64>)> = best
         .iter()
@@ -545,15 +588,10 @@ pub fn to_skyway(road: &RoadNetwork, params: &ImportParams) -> Result<Network> {
             wind_from_deg: wind.from_deg,
         })
         .collect();
-    let network = Network {
+    Network {
         schema_version: SCHEMA_VERSION,
         name: Some(params.name.clone()),
         nodes,
         edges,
-    };
-    let violations: Vec<Violation> = validate_network(&network);
-    if !violations.is_empty() {
-        return Err(Error::Invalid(violations));
     }
-    Ok(network)
 }

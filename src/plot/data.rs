@@ -13,10 +13,10 @@
 
 use crate::check::battery_trajectory;
 use crate::check::{optimal_makespan_min, rebuilt_hop_problem, OPTIMALITY_CHECK_DRONES};
-use crate::compose::{PlanOutcome, RequestReport};
+use crate::compose::{Hop, Plan, PlanOutcome, RequestReport, Stop};
 use crate::eaas::HopFailure;
 use crate::error::{Error, Result};
-use crate::problem::{Network, Profile, Role};
+use crate::problem::{Network, Profile, Role, Swarm};
 use crate::solver::SolveStatus;
 use std::collections::HashMap;
 
@@ -361,90 +361,171 @@ fn plan_data(
     unit: BatteryUnit,
 ) -> Result<PlanData> {
     let plan = &report.plan;
-    let swarm = &report.swarm;
-    let n = swarm.drones.len();
-    let capacity: Vec<f64> = swarm.drones.iter().map(|d| d.capacity_mah).collect();
-    let scale = |d: usize, b: f64| match unit {
-        BatteryUnit::Mah => b,
-        BatteryUnit::Percent if capacity[d] > 0.0 => 100.0 * b / capacity[d],
-        BatteryUnit::Percent => 0.0,
-    };
-    let at = node_at(network);
-    let mut drones: Vec<DroneSeries> = swarm
-        .drones
-        .iter()
-        .enumerate()
-        .map(|(d, drone)| DroneSeries {
-            drone: d,
-            role: drone.role,
-            capacity: scale(d, drone.capacity_mah),
-            points: Vec::new(),
-        })
-        .collect();
-    let mut transfers = Vec::new();
-    let mut stops = Vec::new();
-    let mut route = Vec::new();
-    let mut stop_marks = Vec::new();
-    let mut t0 = 0.0;
+    let mut walk = Walk::new(network, profile, report, unit);
     for (k, hop) in plan.hops.iter().enumerate() {
+        walk.fly(k, hop)?;
+        if let Some(stop) = &hop.stop {
+            walk.stop_at(k, hop, stop)?;
+        }
+    }
+    if plan.hops.is_empty() {
+        for (d, drone) in report.swarm.drones.iter().enumerate() {
+            let full = walk.scale.of(d, drone.capacity_mah);
+            walk.drones[d].points.push((0.0, full));
+        }
+    }
+    let last = plan
+        .hops
+        .last()
+        .map_or(plan.source.as_str(), |h| h.to.as_str());
+    let failed_at = (!plan.delivered())
+        .then(|| walk.at.get(last).map(|&(x, y)| (last.to_string(), x, y)))
+        .flatten();
+    Ok(PlanData {
+        combination: combination(report),
+        request_id: report.request.id.clone(),
+        source: plan.source.clone(),
+        destination: plan.destination.clone(),
+        dt_min: plan.dt_min,
+        delivered: plan.delivered(),
+        outcome_kind: plan.outcome.kind(),
+        outcome: plan.outcome.to_string(),
+        failure: failure_mark(plan, walk.t0),
+        route: walk.route,
+        stop_marks: walk.stop_marks,
+        drones: walk.drones,
+        transfers: walk.transfers,
+        stops: walk.stops,
+        failed_at,
+    })
+}
+
+/// A battery in the figure's unit: mAh, or percent of the drone's capacity.
+struct Scale {
+    unit: BatteryUnit,
+    /// Every drone's capacity, mAh.
+    capacity: Vec<f64>,
+}
+
+impl Scale {
+    /// Battery `b` (mAh) of drone `d` in the figure's unit.
+    fn of(&self, d: usize, b: f64) -> f64 {
+        match self.unit {
+            BatteryUnit::Mah => b,
+            BatteryUnit::Percent if self.capacity[d] > 0.0 => 100.0 * b / self.capacity[d],
+            BatteryUnit::Percent => 0.0,
+        }
+    }
+}
+
+/// A plan walked hop by hop and stop by stop: what is drawn of it so far, and the time reached.
+struct Walk<'a> {
+    network: &'a Network,
+    profile: &'a Profile,
+    swarm: &'a Swarm,
+    /// Every node's coordinates, m.
+    at: HashMap<&'a str, (f64, f64)>,
+    scale: Scale,
+    /// Minutes since departure at the point reached.
+    t0: f64,
+    route: Vec<Vec<(f64, f64)>>,
+    stop_marks: Vec<(String, f64, f64, u32)>,
+    drones: Vec<DroneSeries>,
+    transfers: Vec<TransferBand>,
+    stops: Vec<StopSchedule>,
+}
+
+impl<'a> Walk<'a> {
+    /// At departure: every drone's series empty.
+    fn new(
+        network: &'a Network,
+        profile: &'a Profile,
+        report: &'a RequestReport,
+        unit: BatteryUnit,
+    ) -> Walk<'a> {
+        let swarm = &report.swarm;
+        let scale = Scale {
+            unit,
+            capacity: swarm.drones.iter().map(|d| d.capacity_mah).collect(),
+        };
+        let drones = swarm
+            .drones
+            .iter()
+            .enumerate()
+            .map(|(d, drone)| DroneSeries {
+                drone: d,
+                role: drone.role,
+                capacity: scale.of(d, drone.capacity_mah),
+                points: Vec::new(),
+            })
+            .collect();
+        Walk {
+            network,
+            profile,
+            swarm,
+            at: node_at(network),
+            scale,
+            t0: 0.0,
+            route: Vec::new(),
+            stop_marks: Vec::new(),
+            drones,
+            transfers: Vec::new(),
+            stops: Vec::new(),
+        }
+    }
+
+    /// Hop `k` flown: its path on the map, every drone's battery re-integrated over it, its
+    /// transfers.
+    fn fly(&mut self, k: usize, hop: &Hop) -> Result<()> {
+        let t0 = self.t0;
         let path: Option<Vec<(f64, f64)>> = hop
             .path
             .iter()
-            .map(|id| at.get(id.as_str()).copied())
+            .map(|id| self.at.get(id.as_str()).copied())
             .collect();
-        route.push(path.ok_or_else(|| unfit(k, "a node of its path is not in the network"))?);
-        let problem = rebuilt_hop_problem(network, profile, swarm, hop)
+        self.route
+            .push(path.ok_or_else(|| unfit(k, "a node of its path is not in the network"))?);
+        let problem = rebuilt_hop_problem(self.network, self.profile, self.swarm, hop)
             .ok_or_else(|| unfit(k, "its path, swarm or departure batteries"))?;
         let trajectory = battery_trajectory(&problem, &hop.transfers)
             .ok_or_else(|| unfit(k, "a transfer names a drone or slot the swarm lacks"))?;
+        let scale = &self.scale;
         for (t, batteries) in &trajectory {
             for (d, &b) in batteries.iter().enumerate() {
-                drones[d].points.push((t0 + t, scale(d, b)));
+                self.drones[d].points.push((t0 + t, scale.of(d, b)));
             }
         }
         for x in &hop.transfers {
-            transfers.push(TransferBand {
+            self.transfers.push(TransferBand {
                 hop: k,
                 support: x.support,
                 consumer: x.consumer,
                 start_min: t0 + x.start_min,
                 end_min: t0 + x.end_min,
                 energy_mah: x.energy_mah,
-                battery_span: battery_span(&trajectory, x, scale),
+                battery_span: battery_span(&trajectory, x, |d, b| scale.of(d, b)),
             });
         }
-        t0 += hop.tt_min;
-        let Some(stop) = &hop.stop else {
-            continue;
-        };
-        let (x, y) = at[hop.path.last().map_or("", String::as_str)];
-        stop_marks.push((stop.node.clone(), x, y, stop.pads));
+        self.t0 += hop.tt_min;
+        Ok(())
+    }
+
+    /// The stop hop `k` ends in: its mark on the map, its pad schedule, and every drone waiting,
+    /// charging, then waiting full until the node time ends.
+    fn stop_at(&mut self, k: usize, hop: &Hop, stop: &Stop) -> Result<()> {
+        let t0 = self.t0;
+        let n = self.swarm.drones.len();
+        let (x, y) = self.at[hop.path.last().map_or("", String::as_str)];
+        self.stop_marks.push((stop.node.clone(), x, y, stop.pads));
         if stop.charge_times_min.len() != n || hop.arrival_battery_mah.len() != n {
             return Err(unfit(k, "its stop charges another number of drones"));
         }
-        let mut bars = Vec::new();
-        for (pad, queue) in stop.assignment.iter().enumerate() {
-            let mut start = 0.0;
-            for &d in queue {
-                let ct = *stop
-                    .charge_times_min
-                    .get(d)
-                    .ok_or_else(|| unfit(k, "its stop charges a drone the swarm lacks"))?;
-                bars.push(PadBar {
-                    pad,
-                    drone: d,
-                    start_min: start,
-                    end_min: start + ct,
-                });
-                start += ct;
-            }
-        }
-        bars.sort_by_key(|b| b.drone);
+        let bars = pad_bars(k, stop)?;
         for bar in &bars {
             let d = bar.drone;
-            let arrival = scale(d, hop.arrival_battery_mah[d]);
-            let full = scale(d, capacity[d]);
-            let series = &mut drones[d].points;
+            let arrival = self.scale.of(d, hop.arrival_battery_mah[d]);
+            let full = self.scale.of(d, self.scale.capacity[d]);
+            let series = &mut self.drones[d].points;
             series.push((t0 + bar.start_min, arrival));
             series.push((t0 + bar.end_min, full));
             series.push((t0 + stop.nt_min, full));
@@ -457,7 +538,7 @@ fn plan_data(
             )),
             _ => None,
         };
-        stops.push(StopSchedule {
+        self.stops.push(StopSchedule {
             node: stop.node.clone(),
             pads: stop.pads,
             arrival_min: t0,
@@ -466,23 +547,44 @@ fn plan_data(
             optimum_min,
             bars,
         });
-        t0 += stop.nt_min;
+        self.t0 += stop.nt_min;
+        Ok(())
     }
-    if plan.hops.is_empty() {
-        for (d, drone) in swarm.drones.iter().enumerate() {
-            drones[d].points.push((0.0, scale(d, drone.capacity_mah)));
+}
+
+/// The pad schedule of the stop hop `k` ends in: every drone's charge on its pad, back to back
+/// in the pad's queue, by drone.
+fn pad_bars(k: usize, stop: &Stop) -> Result<Vec<PadBar>> {
+    let mut bars = Vec::new();
+    for (pad, queue) in stop.assignment.iter().enumerate() {
+        let mut start = 0.0;
+        for &d in queue {
+            let ct = *stop
+                .charge_times_min
+                .get(d)
+                .ok_or_else(|| unfit(k, "its stop charges a drone the swarm lacks"))?;
+            bars.push(PadBar {
+                pad,
+                drone: d,
+                start_min: start,
+                end_min: start + ct,
+            });
+            start += ct;
         }
     }
-    let last = plan
-        .hops
-        .last()
-        .map_or(plan.source.as_str(), |h| h.to.as_str());
+    bars.sort_by_key(|b| b.drone);
+    Ok(bars)
+}
+
+/// Where a failed plan's drone runs dry, `t0` min after departure being where its last hop or
+/// stop ended.
+fn failure_mark(plan: &Plan, t0: f64) -> Option<FailureMark> {
     let failure = |f: &HopFailure, flight: String| FailureMark {
         drone: f.drone,
         time_min: t0 + f.time_min,
         flight,
     };
-    let failure = match &plan.outcome {
+    match &plan.outcome {
         PlanOutcome::Delivered | PlanOutcome::NoRoute { .. } => None,
         PlanOutcome::DeadEnd { direct, .. } => Some(failure(
             direct,
@@ -496,25 +598,5 @@ fn plan_data(
         PlanOutcome::NoStopSequence {
             from, to, direct, ..
         } => Some(failure(direct, format!("flying straight {from} -> {to}"))),
-    };
-    let failed_at = (!plan.delivered())
-        .then(|| at.get(last).map(|&(x, y)| (last.to_string(), x, y)))
-        .flatten();
-    Ok(PlanData {
-        combination: combination(report),
-        request_id: report.request.id.clone(),
-        source: plan.source.clone(),
-        destination: plan.destination.clone(),
-        dt_min: plan.dt_min,
-        delivered: plan.delivered(),
-        outcome_kind: plan.outcome.kind(),
-        outcome: plan.outcome.to_string(),
-        route,
-        stop_marks,
-        drones,
-        transfers,
-        stops,
-        failure,
-        failed_at,
-    })
+    }
 }

@@ -16,7 +16,7 @@ use crate::compose::RequestReport;
 use crate::error::{Error, Result};
 use crate::problem::{Network, Profile, Role};
 use plotters::coord::combinators::WithKeyPoints;
-use plotters::coord::types::RangedCoordi32;
+use plotters::coord::types::{RangedCoordf64, RangedCoordi32};
 use plotters::coord::Shift;
 use plotters::element::{DashedPathElement, IntoDynElement};
 use plotters::prelude::*;
@@ -296,30 +296,23 @@ fn draw_title(area: &DrawingArea<SVGBackend<'_>, Shift>, lines: &[String]) -> Dr
     Ok(())
 }
 
+/// The map's chart: metres on both axes.
+type MapChart<'a, 'b> =
+    ChartContext<'a, SVGBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// Margin around the map, px.
+const MAP_MARGIN: u32 = 14;
+/// Width of the map's y labels, px.
+const MAP_Y_LABEL: u32 = 60;
+
 /// The network to scale (the same metres per pixel on both axes), every route over it.
 fn draw_map(area: &DrawingArea<SVGBackend<'_>, Shift>, fig: &Figure) -> Drawn<()> {
-    const MARGIN: u32 = 14;
     const X_LABEL: u32 = 40;
-    const Y_LABEL: u32 = 60;
     const CAPTION: u32 = 30;
     let (w, h) = area.dim_in_pixel();
-    let plot_w = f64::from(w.saturating_sub(2 * MARGIN + Y_LABEL).max(1));
-    let plot_h = f64::from(h.saturating_sub(2 * MARGIN + X_LABEL + CAPTION).max(1));
-    let xs = || fig.map.nodes.iter().map(|n| n.1);
-    let ys = || fig.map.nodes.iter().map(|n| n.2);
-    let (x0, x1) = (
-        xs().fold(f64::INFINITY, f64::min),
-        xs().fold(f64::NEG_INFINITY, f64::max),
-    );
-    let (y0, y1) = (
-        ys().fold(f64::INFINITY, f64::min),
-        ys().fold(f64::NEG_INFINITY, f64::max),
-    );
-    let (x0, x1, y0, y1) = if x0.is_finite() && y0.is_finite() {
-        (x0, x1, y0, y1)
-    } else {
-        (0.0, 1.0, 0.0, 1.0)
-    };
+    let plot_w = f64::from(w.saturating_sub(2 * MAP_MARGIN + MAP_Y_LABEL).max(1));
+    let plot_h = f64::from(h.saturating_sub(2 * MAP_MARGIN + X_LABEL + CAPTION).max(1));
+    let (x0, x1, y0, y1) = map_extent(fig);
     // Metres per pixel: the larger of the two axes' needs, with a margin of a twentieth.
     let scale = ((x1 - x0) / plot_w).max((y1 - y0) / plot_h).max(1e-9) * 1.1;
     let (cx, cy) = ((x0 + x1) / 2.0, (y0 + y1) / 2.0);
@@ -329,9 +322,9 @@ fn draw_map(area: &DrawingArea<SVGBackend<'_>, Shift>, fig: &Figure) -> Drawn<()
             "route on the network (to scale; grey: edges and nodes)",
             font(LABEL_PT),
         )
-        .margin(MARGIN)
+        .margin(MAP_MARGIN)
         .x_label_area_size(X_LABEL)
-        .y_label_area_size(Y_LABEL)
+        .y_label_area_size(MAP_Y_LABEL)
         .build_cartesian_2d(cx - hx..cx + hx, cy - hy..cy + hy)?;
     chart
         .configure_mesh()
@@ -356,87 +349,126 @@ fn draw_map(area: &DrawingArea<SVGBackend<'_>, Shift>, fig: &Figure) -> Drawn<()
             .map(|n| Circle::new((n.1, n.2), 2, NETWORK_GREY.filled())),
     )?;
     for (k, p) in fig.plans.iter().enumerate() {
-        let style = plan_colour(k).stroke_width(3);
-        for path in &p.route {
-            if k == 0 {
-                chart.draw_series(std::iter::once(PathElement::new(path.clone(), style)))?;
-            } else {
-                chart.draw_series(std::iter::once(DashedPathElement::new(
-                    path.clone(),
-                    10,
-                    6,
-                    style,
-                )))?;
-            }
-        }
-        for (node, x, y, pads) in &p.stop_marks {
-            chart.draw_series(std::iter::once(Circle::new(
-                (*x, *y),
-                6,
-                plan_colour(k).filled(),
-            )))?;
-            let beside = font(SMALL_PT).pos(Pos::new(HPos::Left, VPos::Bottom));
-            let dy = if k == 0 { 0.0 } else { -16.0 * scale };
-            chart.draw_series(std::iter::once(Text::new(
-                format!("{node}: {}", pads_text(*pads)),
-                (*x + 8.0 * scale, *y + 6.0 * scale + dy),
-                beside,
-            )))?;
-        }
-        if let Some((node, x, y)) = &p.failed_at {
-            chart.draw_series(std::iter::once(Cross::new(
-                (*x, *y),
-                9,
-                FAILURE_RED.stroke_width(3),
-            )))?;
-            chart.draw_series(std::iter::once(Text::new(
-                format!("{} fails at {node}", plan_name(k)),
-                (*x + 10.0 * scale, *y - 10.0 * scale),
-                font(SMALL_PT)
-                    .color(&FAILURE_RED)
-                    .pos(Pos::new(HPos::Left, VPos::Top)),
-            )))?;
-        }
+        draw_route(&mut chart, k, p, scale)?;
     }
     if let Some(p) = fig.plans.first() {
-        let at = |id: &str| fig.map.nodes.iter().find(|n| n.0 == id);
-        for (label, id, below) in [
-            ("source", &p.source, true),
-            ("destination", &p.destination, false),
-        ] {
-            if let Some(n) = at(id) {
-                chart.draw_series(std::iter::once(Circle::new((n.1, n.2), 5, BLACK.filled())))?;
-                let (dy, v) = if below {
-                    (-8.0 * scale, VPos::Top)
-                } else {
-                    (8.0 * scale, VPos::Bottom)
-                };
-                chart.draw_series(std::iter::once(Text::new(
-                    format!("{label} {id}"),
-                    (n.1 - 8.0 * scale, n.2 + dy),
-                    font(LABEL_PT).pos(Pos::new(HPos::Right, v)),
-                )))?;
-            }
+        draw_ends(&mut chart, fig, p, scale)?;
+    }
+    if fig.plans.len() > 1 {
+        draw_route_legend(area, fig)?;
+    }
+    Ok(())
+}
+
+/// The smallest and largest easting and northing of the network's nodes, m: `(x0, x1, y0, y1)`;
+/// `(0, 1, 0, 1)` for a network without nodes.
+fn map_extent(fig: &Figure) -> (f64, f64, f64, f64) {
+    let xs = || fig.map.nodes.iter().map(|n| n.1);
+    let ys = || fig.map.nodes.iter().map(|n| n.2);
+    let (x0, x1) = (
+        xs().fold(f64::INFINITY, f64::min),
+        xs().fold(f64::NEG_INFINITY, f64::max),
+    );
+    let (y0, y1) = (
+        ys().fold(f64::INFINITY, f64::min),
+        ys().fold(f64::NEG_INFINITY, f64::max),
+    );
+    if x0.is_finite() && y0.is_finite() {
+        (x0, x1, y0, y1)
+    } else {
+        (0.0, 1.0, 0.0, 1.0)
+    }
+}
+
+/// Plan `k`'s route on the map (solid for the plan, dashed for the one compared), its stops
+/// with their pads, and where it fails; `scale` in metres per pixel.
+fn draw_route(chart: &mut MapChart<'_, '_>, k: usize, p: &PlanData, scale: f64) -> Drawn<()> {
+    let style = plan_colour(k).stroke_width(3);
+    for path in &p.route {
+        if k == 0 {
+            chart.draw_series(std::iter::once(PathElement::new(path.clone(), style)))?;
+        } else {
+            chart.draw_series(std::iter::once(DashedPathElement::new(
+                path.clone(),
+                10,
+                6,
+                style,
+            )))?;
         }
     }
-    // The routes' legend, upper left of the plotting area.
-    if fig.plans.len() > 1 {
-        for (k, p) in fig.plans.iter().enumerate() {
-            let y = (24 + 20 * k) as i32;
-            let x = (MARGIN + Y_LABEL + 10) as i32;
-            let sample = vec![(x, y + 38), (x + 36, y + 38)];
-            let style = plan_colour(k).stroke_width(3);
-            if k == 0 {
-                area.draw(&PathElement::new(sample, style))?;
+    for (node, x, y, pads) in &p.stop_marks {
+        chart.draw_series(std::iter::once(Circle::new(
+            (*x, *y),
+            6,
+            plan_colour(k).filled(),
+        )))?;
+        let beside = font(SMALL_PT).pos(Pos::new(HPos::Left, VPos::Bottom));
+        let dy = if k == 0 { 0.0 } else { -16.0 * scale };
+        chart.draw_series(std::iter::once(Text::new(
+            format!("{node}: {}", pads_text(*pads)),
+            (*x + 8.0 * scale, *y + 6.0 * scale + dy),
+            beside,
+        )))?;
+    }
+    if let Some((node, x, y)) = &p.failed_at {
+        chart.draw_series(std::iter::once(Cross::new(
+            (*x, *y),
+            9,
+            FAILURE_RED.stroke_width(3),
+        )))?;
+        chart.draw_series(std::iter::once(Text::new(
+            format!("{} fails at {node}", plan_name(k)),
+            (*x + 10.0 * scale, *y - 10.0 * scale),
+            font(SMALL_PT)
+                .color(&FAILURE_RED)
+                .pos(Pos::new(HPos::Left, VPos::Top)),
+        )))?;
+    }
+    Ok(())
+}
+
+/// The request's source and destination, marked and named; `scale` in metres per pixel.
+fn draw_ends(chart: &mut MapChart<'_, '_>, fig: &Figure, p: &PlanData, scale: f64) -> Drawn<()> {
+    let at = |id: &str| fig.map.nodes.iter().find(|n| n.0 == id);
+    for (label, id, below) in [
+        ("source", &p.source, true),
+        ("destination", &p.destination, false),
+    ] {
+        if let Some(n) = at(id) {
+            chart.draw_series(std::iter::once(Circle::new((n.1, n.2), 5, BLACK.filled())))?;
+            let (dy, v) = if below {
+                (-8.0 * scale, VPos::Top)
             } else {
-                area.draw(&DashedPathElement::new(sample, 10, 6, style))?;
-            }
-            area.draw(&Text::new(
-                format!("{}: {}", plan_name(k), p.combination),
-                (x + 44, y + 38),
-                font(SMALL_PT).pos(Pos::new(HPos::Left, VPos::Center)),
-            ))?;
+                (8.0 * scale, VPos::Bottom)
+            };
+            chart.draw_series(std::iter::once(Text::new(
+                format!("{label} {id}"),
+                (n.1 - 8.0 * scale, n.2 + dy),
+                font(LABEL_PT).pos(Pos::new(HPos::Right, v)),
+            )))?;
         }
+    }
+    Ok(())
+}
+
+/// The routes' legend, upper left of the plotting area: a line sample and the combination of
+/// each plan.
+fn draw_route_legend(area: &DrawingArea<SVGBackend<'_>, Shift>, fig: &Figure) -> Drawn<()> {
+    for (k, p) in fig.plans.iter().enumerate() {
+        let y = (24 + 20 * k) as i32;
+        let x = (MAP_MARGIN + MAP_Y_LABEL + 10) as i32;
+        let sample = vec![(x, y + 38), (x + 36, y + 38)];
+        let style = plan_colour(k).stroke_width(3);
+        if k == 0 {
+            area.draw(&PathElement::new(sample, style))?;
+        } else {
+            area.draw(&DashedPathElement::new(sample, 10, 6, style))?;
+        }
+        area.draw(&Text::new(
+            format!("{}: {}", plan_name(k), p.combination),
+            (x + 44, y + 38),
+            font(SMALL_PT).pos(Pos::new(HPos::Left, VPos::Center)),
+        ))?;
     }
     Ok(())
 }

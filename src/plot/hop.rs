@@ -48,6 +48,85 @@ pub fn hop_figure_data(
 ) -> Result<HopFigure> {
     let problem = &file.hop;
     let tt_min: f64 = problem.legs.iter().map(|l| l.duration_min).sum();
+    let plans = schedules
+        .iter()
+        .map(|s| schedule_panel(file, s, unit, tt_min))
+        .collect::<Result<Vec<_>>>()?;
+    let battery_range = battery_range(&plans);
+    Ok(HopFigure {
+        title: title(file, schedules, tt_min),
+        figure: Figure {
+            map: MapData {
+                nodes: Vec::new(),
+                edges: Vec::new(),
+            },
+            plans,
+            unit,
+            time_range_min: (0.0, tt_min.max(1e-9)),
+            battery_range,
+            stop_range_min: (0.0, 0.0),
+        },
+    })
+}
+
+/// The panel of one schedule: every drone's battery re-integrated over the hop (`tt_min`
+/// long), the transfers, and the first drone to run dry.
+fn schedule_panel(
+    file: &HopFile,
+    s: &HopSchedule,
+    unit: BatteryUnit,
+    tt_min: f64,
+) -> Result<PlanData> {
+    let trajectory = battery_trajectory(&file.hop, &s.transfers).ok_or_else(|| {
+        Error::invalid(
+            "E8003",
+            "--hop-file",
+            format!(
+                "the {} schedule names a drone or slot the hop lacks",
+                s.method
+            ),
+            "give the hop file the schedule was made on",
+        )
+    })?;
+    let (drones, transfers) = schedule_series(file, s, unit, &trajectory);
+    let failure = first_dry(&trajectory).map(|(drone, time_min)| FailureMark {
+        drone,
+        time_min,
+        flight: format!("flying {} -> {}", file.from, file.to),
+    });
+    Ok(PlanData {
+        combination: s.method.clone(),
+        request_id: file.request_id.clone(),
+        source: file.from.clone(),
+        destination: file.to.clone(),
+        dt_min: tt_min,
+        delivered: failure.is_none(),
+        outcome_kind: if failure.is_none() {
+            "flies"
+        } else {
+            "runs dry"
+        }
+        .to_string(),
+        outcome: s.summary.clone(),
+        route: Vec::new(),
+        stop_marks: Vec::new(),
+        drones,
+        transfers,
+        stops: Vec::new(),
+        failure,
+        failed_at: None,
+    })
+}
+
+/// Every drone's battery along `trajectory`, the re-integration of schedule `s`, and the
+/// schedule's transfers with their battery bands, in `unit`.
+fn schedule_series(
+    file: &HopFile,
+    s: &HopSchedule,
+    unit: BatteryUnit,
+    trajectory: &[(f64, Vec<f64>)],
+) -> (Vec<DroneSeries>, Vec<TransferBand>) {
+    let problem = &file.hop;
     let scale = |d: usize, b: f64| {
         let capacity = problem.drones[d].capacity_mah;
         match unit {
@@ -56,74 +135,39 @@ pub fn hop_figure_data(
             BatteryUnit::Percent => 0.0,
         }
     };
-    let mut plans = Vec::new();
-    for s in schedules {
-        let trajectory = battery_trajectory(problem, &s.transfers).ok_or_else(|| {
-            Error::invalid(
-                "E8003",
-                "--hop-file",
-                format!(
-                    "the {} schedule names a drone or slot the hop lacks",
-                    s.method
-                ),
-                "give the hop file the schedule was made on",
-            )
-        })?;
-        let drones: Vec<DroneSeries> = problem
-            .drones
-            .iter()
-            .enumerate()
-            .map(|(d, drone)| DroneSeries {
-                drone: d,
-                role: drone.role,
-                capacity: scale(d, drone.capacity_mah),
-                points: trajectory
-                    .iter()
-                    .map(|(t, b)| (*t, scale(d, b[d])))
-                    .collect(),
-            })
-            .collect();
-        let transfers = s
-            .transfers
-            .iter()
-            .map(|x| TransferBand {
-                hop: file.hop_index,
-                support: x.support,
-                consumer: x.consumer,
-                start_min: x.start_min,
-                end_min: x.end_min,
-                energy_mah: x.energy_mah,
-                battery_span: battery_span(&trajectory, x, scale),
-            })
-            .collect();
-        let failure = first_dry(&trajectory).map(|(drone, time_min)| FailureMark {
-            drone,
-            time_min,
-            flight: format!("flying {} -> {}", file.from, file.to),
-        });
-        plans.push(PlanData {
-            combination: s.method.clone(),
-            request_id: file.request_id.clone(),
-            source: file.from.clone(),
-            destination: file.to.clone(),
-            dt_min: tt_min,
-            delivered: failure.is_none(),
-            outcome_kind: if failure.is_none() {
-                "flies"
-            } else {
-                "runs dry"
-            }
-            .to_string(),
-            outcome: s.summary.clone(),
-            route: Vec::new(),
-            stop_marks: Vec::new(),
-            drones,
-            transfers,
-            stops: Vec::new(),
-            failure,
-            failed_at: None,
-        });
-    }
+    let drones = problem
+        .drones
+        .iter()
+        .enumerate()
+        .map(|(d, drone)| DroneSeries {
+            drone: d,
+            role: drone.role,
+            capacity: scale(d, drone.capacity_mah),
+            points: trajectory
+                .iter()
+                .map(|(t, b)| (*t, scale(d, b[d])))
+                .collect(),
+        })
+        .collect();
+    let transfers = s
+        .transfers
+        .iter()
+        .map(|x| TransferBand {
+            hop: file.hop_index,
+            support: x.support,
+            consumer: x.consumer,
+            start_min: x.start_min,
+            end_min: x.end_min,
+            energy_mah: x.energy_mah,
+            battery_span: battery_span(trajectory, x, scale),
+        })
+        .collect();
+    (drones, transfers)
+}
+
+/// The battery axis shared by the panels: every point and capacity, 0, and a margin of 4% of
+/// the span above (and below, when a battery falls under 0).
+fn battery_range(plans: &[PlanData]) -> (f64, f64) {
     let values = || plans.iter().flat_map(|p| p.drones.iter());
     let lowest = values()
         .flat_map(|d| d.points.iter().map(|q| q.1))
@@ -132,6 +176,12 @@ pub fn hop_figure_data(
         .flat_map(|d| d.points.iter().map(|q| q.1).chain([d.capacity]))
         .fold(0.0, f64::max);
     let pad = 0.04 * (highest - lowest).max(1e-9);
+    (lowest - if lowest < 0.0 { pad } else { 0.0 }, highest + pad)
+}
+
+/// The title: the hop (`tt_min` long), then each schedule's method and summary.
+fn title(file: &HopFile, schedules: &[HopSchedule], tt_min: f64) -> Vec<String> {
+    let problem = &file.hop;
     let mut title = vec![format!(
         "request {} hop {}: {} -> {} over {} ({} leg(s), {:.2} min, {} drones)",
         file.request_id,
@@ -148,20 +198,7 @@ pub fn hop_figure_data(
             .iter()
             .map(|s| format!("{}: {}", s.method, s.summary)),
     );
-    Ok(HopFigure {
-        title,
-        figure: Figure {
-            map: MapData {
-                nodes: Vec::new(),
-                edges: Vec::new(),
-            },
-            plans,
-            unit,
-            time_range_min: (0.0, tt_min.max(1e-9)),
-            battery_range: (lowest - if lowest < 0.0 { pad } else { 0.0 }, highest + pad),
-            stop_range_min: (0.0, 0.0),
-        },
-    })
+    title
 }
 
 /// The first drone to run dry and when, min from the hop start: where its battery first falls

@@ -423,231 +423,283 @@ pub struct StatedRange {
 /// Largest number of extra batteries a support drone may carry (E2013).
 pub const MAX_EXTRA_BATTERIES: u32 = 64;
 
+/// Reads a quantity from a profile.
+type Reading = fn(&Profile) -> f64;
+
+/// A quantity of a profile with its own stated range: a row of [`PROFILE_RANGES`].
+struct RangeRow {
+    /// The profile field.
+    field: &'static str,
+    /// Reads the field's value from a profile.
+    value: Reading,
+    /// Smallest value allowed (inclusive).
+    min: f64,
+    /// Largest value allowed (inclusive).
+    max: f64,
+    /// Unit of the quantity.
+    unit: &'static str,
+    /// Why the range is what it is.
+    why: &'static str,
+}
+
+/// Every quantity of a profile with a range of its own, in the order E2013 reports them.
+const PROFILE_RANGES: [RangeRow; 21] = [
+    RangeRow {
+        field: "drone.battery_mah",
+        value: |p| p.drone.battery_mah,
+        min: 1.0,
+        max: 1e6,
+        unit: "mAh",
+        why: "1 mAh to 1,000 Ah: beyond any drone battery",
+    },
+    RangeRow {
+        field: "drone.voltage_v",
+        value: |p| p.drone.voltage_v,
+        min: 1.0,
+        max: 1e3,
+        unit: "V",
+        why: "one cell to a 1 kV pack",
+    },
+    RangeRow {
+        field: "drone.speed_kmh",
+        value: |p| p.drone.speed_kmh,
+        min: 1.0,
+        max: 500.0,
+        unit: "km/h",
+        why: "walking pace to beyond the fastest multirotor",
+    },
+    RangeRow {
+        field: "drone.empty_mass_kg",
+        value: |p| p.drone.empty_mass_kg,
+        min: 0.01,
+        max: 1e3,
+        unit: "kg",
+        why: "a 10 g micro drone to a 1 t cargo drone",
+    },
+    RangeRow {
+        field: "drone.battery_mass_kg",
+        value: |p| p.drone.battery_mass_kg,
+        min: 0.001,
+        max: 1e3,
+        unit: "kg",
+        why: "1 g to 1 t",
+    },
+    RangeRow {
+        field: "drone.max_payload_kg",
+        value: |p| p.drone.max_payload_kg,
+        min: 0.001,
+        max: 1e3,
+        unit: "kg",
+        why: "1 g to 1 t",
+    },
+    RangeRow {
+        field: "support.extra_batteries",
+        value: |p| f64::from(p.support.extra_batteries),
+        min: 0.0,
+        max: MAX_EXTRA_BATTERIES as f64,
+        unit: "batteries",
+        why: "the paper carries 3; 64 bounds a support drone's capacity",
+    },
+    RangeRow {
+        field: "sharing.rate_mah_per_min",
+        value: |p| p.sharing.rate_mah_per_min,
+        min: 0.01,
+        max: 1e6,
+        unit: "mAh/min",
+        why: "a trickle to a full battery in well under a second",
+    },
+    RangeRow {
+        field: "sharing.range_m",
+        value: |p| p.sharing.range_m,
+        min: 0.01,
+        max: 1e3,
+        unit: "m",
+        why: "1 cm to 1 km of wireless transfer",
+    },
+    RangeRow {
+        field: "sharing.lambda_mah",
+        value: |p| p.sharing.lambda_mah,
+        min: 1.0,
+        max: 1e6,
+        unit: "mAh",
+        why: "at least 1 mAh per FB round, at most a whole battery of the largest size",
+    },
+    RangeRow {
+        field: "pads.charge_rate_mah_per_min",
+        value: |p| p.pads.charge_rate_mah_per_min,
+        min: 0.1,
+        max: 1e6,
+        unit: "mAh/min",
+        why: "a full 4480 mAh charge in 31 days to well under a second",
+    },
+    RangeRow {
+        field: "energy.endurance_min",
+        value: |p| p.energy.endurance_min,
+        min: 1.0,
+        max: 1e4,
+        unit: "min",
+        why: "1 min to a week aloft",
+    },
+    RangeRow {
+        field: "energy.payload_exponent",
+        value: |p| p.energy.payload_exponent,
+        min: 0.1,
+        max: 5.0,
+        unit: "",
+        why: "momentum theory gives 1.5",
+    },
+    RangeRow {
+        field: "energy.wind_limit_mps",
+        value: |p| p.energy.wind_limit_mps,
+        min: 0.1,
+        max: 100.0,
+        unit: "m/s",
+        why: "100 m/s is beyond any storm a drone flies in",
+    },
+    RangeRow {
+        field: "formation.spacing_m",
+        value: |p| p.formation.spacing_m,
+        min: 0.01,
+        max: 100.0,
+        unit: "m",
+        why: "1 cm to 100 m between neighbours",
+    },
+    RangeRow {
+        field: "formation.shield_gain",
+        value: |p| p.formation.shield_gain,
+        min: 0.0,
+        max: 1.0,
+        unit: "",
+        why: "a fraction of a drone's consumption",
+    },
+    RangeRow {
+        field: "formation.downwash_gain",
+        value: |p| p.formation.downwash_gain,
+        min: 0.0,
+        max: 1.0,
+        unit: "",
+        why: "a fraction of a drone's consumption",
+    },
+    RangeRow {
+        field: "formation.upwash_gain",
+        value: |p| p.formation.upwash_gain,
+        min: 0.0,
+        max: 1.0,
+        unit: "",
+        why: "a fraction of a drone's consumption",
+    },
+    RangeRow {
+        field: "formation.abreast_gain",
+        value: |p| p.formation.abreast_gain,
+        min: 0.0,
+        max: 1.0,
+        unit: "",
+        why: "a fraction of a drone's consumption",
+    },
+    RangeRow {
+        field: "failure.payload_norm_kg",
+        value: |p| p.failure.payload_norm_kg,
+        min: 0.001,
+        max: 1e3,
+        unit: "kg",
+        why: "1 g to 1 t",
+    },
+    RangeRow {
+        field: "failure.distance_norm_m",
+        value: |p| p.failure.distance_norm_m,
+        min: 1.0,
+        max: 1e7,
+        unit: "m",
+        why: "1 m to a quarter of the Earth's circumference",
+    },
+];
+
+/// The lengths of the formation's wake model (m) with their smallest values: an offset or an
+/// onset may be 0, a width or a decay is at least 1 mm. Each at most 1 km.
+const WAKE_LENGTHS: [(&str, Reading, f64); 10] = [
+    (
+        "formation.shield_width_m",
+        |p| p.formation.shield_width_m,
+        0.001,
+    ),
+    (
+        "formation.shield_decay_m",
+        |p| p.formation.shield_decay_m,
+        0.001,
+    ),
+    (
+        "formation.downwash_width_m",
+        |p| p.formation.downwash_width_m,
+        0.001,
+    ),
+    (
+        "formation.upwash_offset_m",
+        |p| p.formation.upwash_offset_m,
+        0.0,
+    ),
+    (
+        "formation.upwash_width_m",
+        |p| p.formation.upwash_width_m,
+        0.001,
+    ),
+    (
+        "formation.wake_decay_m",
+        |p| p.formation.wake_decay_m,
+        0.001,
+    ),
+    ("formation.wake_onset_m", |p| p.formation.wake_onset_m, 0.0),
+    (
+        "formation.abreast_offset_m",
+        |p| p.formation.abreast_offset_m,
+        0.0,
+    ),
+    (
+        "formation.abreast_width_m",
+        |p| p.formation.abreast_width_m,
+        0.001,
+    ),
+    (
+        "formation.abreast_band_m",
+        |p| p.formation.abreast_band_m,
+        0.001,
+    ),
+];
+
 /// Every quantity of a profile with its stated range. With every value in range, an edge of at
 /// most 1e6 m flown at 1 km/h lasts at most 6e4 min, a drone consumes at most about 1e39 mAh/min
 /// (base rate 1e6, payload factor (1 + 1000 / 0.011)^5, wind factor (100.3 / 0.278)^3), and a
 /// charge of at most 65 x 1e6 mAh at 0.1 mAh/min lasts at most 6.5e8 min: every derived number
 /// stays finite.
+///
+/// In order: the quantities with a range of their own, the wake lengths, then, with per-unit
+/// failure terms, the four weights of Eq. 2.
 pub fn profile_ranges(p: &Profile) -> Vec<StatedRange> {
-    let r = |field, value, min, max, unit, why| StatedRange {
+    let own = PROFILE_RANGES.iter().map(|r| StatedRange {
+        field: r.field,
+        value: (r.value)(p),
+        min: r.min,
+        max: r.max,
+        unit: r.unit,
+        why: r.why,
+    });
+    let wakes = WAKE_LENGTHS.iter().map(|&(field, value, min)| StatedRange {
         field,
-        value,
+        value: value(p),
         min,
-        max,
-        unit,
-        why,
-    };
-    let f = &p.formation;
-    let mut out = vec![
-        r(
-            "drone.battery_mah",
-            p.drone.battery_mah,
-            1.0,
-            1e6,
-            "mAh",
-            "1 mAh to 1,000 Ah: beyond any drone battery",
-        ),
-        r(
-            "drone.voltage_v",
-            p.drone.voltage_v,
-            1.0,
-            1e3,
-            "V",
-            "one cell to a 1 kV pack",
-        ),
-        r(
-            "drone.speed_kmh",
-            p.drone.speed_kmh,
-            1.0,
-            500.0,
-            "km/h",
-            "walking pace to beyond the fastest multirotor",
-        ),
-        r(
-            "drone.empty_mass_kg",
-            p.drone.empty_mass_kg,
-            0.01,
-            1e3,
-            "kg",
-            "a 10 g micro drone to a 1 t cargo drone",
-        ),
-        r(
-            "drone.battery_mass_kg",
-            p.drone.battery_mass_kg,
-            0.001,
-            1e3,
-            "kg",
-            "1 g to 1 t",
-        ),
-        r(
-            "drone.max_payload_kg",
-            p.drone.max_payload_kg,
-            0.001,
-            1e3,
-            "kg",
-            "1 g to 1 t",
-        ),
-        r(
-            "support.extra_batteries",
-            f64::from(p.support.extra_batteries),
-            0.0,
-            f64::from(MAX_EXTRA_BATTERIES),
-            "batteries",
-            "the paper carries 3; 64 bounds a support drone's capacity",
-        ),
-        r(
-            "sharing.rate_mah_per_min",
-            p.sharing.rate_mah_per_min,
-            0.01,
-            1e6,
-            "mAh/min",
-            "a trickle to a full battery in well under a second",
-        ),
-        r(
-            "sharing.range_m",
-            p.sharing.range_m,
-            0.01,
-            1e3,
-            "m",
-            "1 cm to 1 km of wireless transfer",
-        ),
-        r(
-            "sharing.lambda_mah",
-            p.sharing.lambda_mah,
-            1.0,
-            1e6,
-            "mAh",
-            "at least 1 mAh per FB round, at most a whole battery of the largest size",
-        ),
-        r(
-            "pads.charge_rate_mah_per_min",
-            p.pads.charge_rate_mah_per_min,
-            0.1,
-            1e6,
-            "mAh/min",
-            "a full 4480 mAh charge in 31 days to well under a second",
-        ),
-        r(
-            "energy.endurance_min",
-            p.energy.endurance_min,
-            1.0,
-            1e4,
-            "min",
-            "1 min to a week aloft",
-        ),
-        r(
-            "energy.payload_exponent",
-            p.energy.payload_exponent,
-            0.1,
-            5.0,
-            "",
-            "momentum theory gives 1.5",
-        ),
-        r(
-            "energy.wind_limit_mps",
-            p.energy.wind_limit_mps,
-            0.1,
-            100.0,
-            "m/s",
-            "100 m/s is beyond any storm a drone flies in",
-        ),
-        r(
-            "formation.spacing_m",
-            f.spacing_m,
-            0.01,
-            100.0,
-            "m",
-            "1 cm to 100 m between neighbours",
-        ),
-        r(
-            "formation.shield_gain",
-            f.shield_gain,
-            0.0,
-            1.0,
-            "",
-            "a fraction of a drone's consumption",
-        ),
-        r(
-            "formation.downwash_gain",
-            f.downwash_gain,
-            0.0,
-            1.0,
-            "",
-            "a fraction of a drone's consumption",
-        ),
-        r(
-            "formation.upwash_gain",
-            f.upwash_gain,
-            0.0,
-            1.0,
-            "",
-            "a fraction of a drone's consumption",
-        ),
-        r(
-            "formation.abreast_gain",
-            f.abreast_gain,
-            0.0,
-            1.0,
-            "",
-            "a fraction of a drone's consumption",
-        ),
-        r(
-            "failure.payload_norm_kg",
-            p.failure.payload_norm_kg,
-            0.001,
-            1e3,
-            "kg",
-            "1 g to 1 t",
-        ),
-        r(
-            "failure.distance_norm_m",
-            p.failure.distance_norm_m,
-            1.0,
-            1e7,
-            "m",
-            "1 m to a quarter of the Earth's circumference",
-        ),
-    ];
-    for (field, value) in [
-        ("formation.shield_width_m", f.shield_width_m),
-        ("formation.shield_decay_m", f.shield_decay_m),
-        ("formation.downwash_width_m", f.downwash_width_m),
-        ("formation.upwash_offset_m", f.upwash_offset_m),
-        ("formation.upwash_width_m", f.upwash_width_m),
-        ("formation.wake_decay_m", f.wake_decay_m),
-        ("formation.wake_onset_m", f.wake_onset_m),
-        ("formation.abreast_offset_m", f.abreast_offset_m),
-        ("formation.abreast_width_m", f.abreast_width_m),
-        ("formation.abreast_band_m", f.abreast_band_m),
-    ] {
-        let min = if field == "formation.upwash_offset_m"
-            || field == "formation.wake_onset_m"
-            || field == "formation.abreast_offset_m"
-        {
-            0.0
-        } else {
-            0.001
-        };
-        out.push(r(
+        max: 1e3,
+        unit: "m",
+        why: "1 mm to 1 km: wakes of a drone",
+    });
+    let mut out: Vec<StatedRange> = own.chain(wakes).collect();
+    if p.failure.terms == FailureTerms::PerUnit {
+        out.extend(failure_weights(p).map(|(field, value)| StatedRange {
             field,
             value,
-            min,
-            1e3,
-            "m",
-            "1 mm to 1 km: wakes of a drone",
-        ));
-    }
-    if p.failure.terms == FailureTerms::PerUnit {
-        for (field, value) in failure_weights(p) {
-            out.push(r(
-                field,
-                value,
-                0.0,
-                100.0,
-                "",
-                "100 batteries per unit of the factor",
-            ));
-        }
+            min: 0.0,
+            max: 100.0,
+            unit: "",
+            why: "100 batteries per unit of the factor",
+        }));
     }
     out
 }
