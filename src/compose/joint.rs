@@ -231,18 +231,7 @@ impl Planner {
         // stop but the source and itself.
         let m = search.stops.len();
         optimality.arcs_total = (m - 1) + (m - 2) * (m - 2);
-        // Every arc of the sequence is exact and flies.
-        let mut best: Vec<Option<BestArc>> = (0..graph.node_count()).map(|_| None).collect();
-        for (u, v) in sequence {
-            let Some(ArcValue {
-                flown: Some((_, arc)),
-                ..
-            }) = search.arcs.remove(&(u, v))
-            else {
-                unreachable!("the sequence's arcs are exact and fly");
-            };
-            best[v] = Some(*arc);
-        }
+        let best = best_flown(&mut search, sequence, graph.node_count());
         Ok(self.route_of(plan, best, source, destination, optimality))
     }
 
@@ -333,12 +322,7 @@ impl Planner {
         request: &JointRequest,
     ) -> Option<Vec<(usize, usize)>> {
         let graph = self.graph();
-        let speed = self.speed_m_per_min();
         let (source, destination) = (request.source, request.destination);
-        let (min_swarm_rate, endurance_min) = (
-            request.bounds.min_swarm_rate_mah_per_min,
-            request.bounds.endurance_min,
-        );
         let n = graph.node_count();
         let mut label = vec![f64::INFINITY; n];
         let mut tail: Vec<Option<usize>> = vec![None; n];
@@ -359,18 +343,7 @@ impl Planner {
                 }
                 let cost = match search.arcs.get(&(u, v)) {
                     Some(known) => known.cost_min(),
-                    None => {
-                        let distance_m = tree.distance_m[v];
-                        if !distance_m.is_finite() {
-                            f64::INFINITY
-                        } else if v == destination {
-                            distance_m / speed
-                        } else if distance_m / speed > endurance_min * (1.0 + 1e-9) {
-                            f64::INFINITY
-                        } else {
-                            self.distance_bound_min(v, distance_m, 0.0, min_swarm_rate)
-                        }
-                    }
+                    None => self.distance_value_min(tree.distance_m[v], v, request),
                 };
                 let through_u = label[u] + cost;
                 if through_u < label[v] {
@@ -382,15 +355,24 @@ impl Planner {
         if !label[destination].is_finite() {
             return None;
         }
-        let mut sequence = Vec::new();
-        let mut at = destination;
-        while at != source {
-            let u = tail[at].expect("a labelled node other than the source has a tail");
-            sequence.push((u, at));
-            at = u;
+        Some(sequence_to(&tail, source, destination))
+    }
+
+    /// The value `l0` of an arc into `v` not yet built, from the shortest distance `distance_m`
+    /// alone: `tt` into the destination, the energy bound into a stop; infinite out of reach or
+    /// beyond the endurance bound.
+    fn distance_value_min(&self, distance_m: f64, v: usize, request: &JointRequest) -> f64 {
+        let speed = self.speed_m_per_min();
+        let bounds = &request.bounds;
+        if !distance_m.is_finite() {
+            f64::INFINITY
+        } else if v == request.destination {
+            distance_m / speed
+        } else if distance_m / speed > bounds.endurance_min * (1.0 + 1e-9) {
+            f64::INFINITY
+        } else {
+            self.distance_bound_min(v, distance_m, 0.0, bounds.min_swarm_rate_mah_per_min)
         }
-        sequence.reverse();
-        Some(sequence)
     }
 
     /// Raises every arc of `steps` still at `l0` to `l1`: its walks built and bounded
@@ -591,4 +573,39 @@ impl Planner {
         }
         Ok(())
     }
+}
+
+/// The arcs of the sequence the Dijkstra tails `tail` give from `source` to `destination`, from
+/// the source.
+fn sequence_to(tail: &[Option<usize>], source: usize, destination: usize) -> Vec<(usize, usize)> {
+    let mut sequence = Vec::new();
+    let mut at = destination;
+    while at != source {
+        let u = tail[at].expect("a labelled node other than the source has a tail");
+        sequence.push((u, at));
+        at = u;
+    }
+    sequence.reverse();
+    sequence
+}
+
+/// The best arc into each of the `n` nodes, taken out of `search`: the flown walk of each arc of
+/// `sequence`, every one exact and flying.
+fn best_flown(
+    search: &mut Search<'_>,
+    sequence: Vec<(usize, usize)>,
+    n: usize,
+) -> Vec<Option<BestArc>> {
+    let mut best: Vec<Option<BestArc>> = (0..n).map(|_| None).collect();
+    for (u, v) in sequence {
+        let Some(ArcValue {
+            flown: Some((_, arc)),
+            ..
+        }) = search.arcs.remove(&(u, v))
+        else {
+            unreachable!("the sequence's arcs are exact and fly");
+        };
+        best[v] = Some(*arc);
+    }
+    best
 }

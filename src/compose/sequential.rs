@@ -25,6 +25,10 @@ const BOUND_MARGIN: f64 = 1e-9;
 /// A candidate stop: node, hop path, A* look-ahead (min), lower bound on its cost (min).
 type Candidate = (usize, Route, f64, f64);
 
+/// A candidate stop whose hop path is built only when its turn comes under the simulated
+/// policies: node, hop path (when built), A* look-ahead (min), lower bound on its cost (min).
+type LazyCandidate = (usize, Option<Route>, f64, f64);
+
 /// Algorithm 1's request: its destination, the look-ahead, every node's distance to the
 /// destination, and the nodes stopped at so far (the source among them).
 struct SequentialRequest {
@@ -254,7 +258,7 @@ impl Planner {
         towards_current: &ShortestPathsTo<'_>,
         battery: &[f64],
         min_rates: &[f64],
-    ) -> Result<Vec<(usize, Option<Route>, f64, f64)>> {
+    ) -> Result<Vec<LazyCandidate>> {
         if self.sharing().is_exact() {
             let mut with_paths = Vec::new();
             for (v, look_ahead_min) in reachable {
@@ -289,7 +293,7 @@ impl Planner {
     /// least node index) does not depend on the order.
     fn least_candidate(
         &self,
-        candidates: Vec<(usize, Option<Route>, f64, f64)>,
+        candidates: Vec<LazyCandidate>,
         towards_current: &ShortestPathsTo<'_>,
         battery: &[f64],
         solves: &mut HopSolveCounts,
