@@ -67,6 +67,31 @@ impl HopPathSearch {
     }
 }
 
+/// Dijkstra on the stop graph from `source` to `destination`: each node's least cost found, the
+/// best arc into it, and whether it is settled.
+struct StopDijkstra {
+    source: usize,
+    destination: usize,
+    cost_min: Vec<f64>,
+    best: Vec<Option<BestArc>>,
+    settled: Vec<bool>,
+}
+
+impl StopDijkstra {
+    /// Nothing settled on `n` nodes, the source at cost 0.
+    fn new(n: usize, source: usize, destination: usize) -> Self {
+        let mut cost_min = vec![f64::INFINITY; n];
+        cost_min[source] = 0.0;
+        StopDijkstra {
+            source,
+            destination,
+            cost_min,
+            best: (0..n).map(|_| None).collect(),
+            settled: vec![false; n],
+        }
+    }
+}
+
 /// A label waiting in the search's queue, the earliest first, then the lowest index.
 #[derive(PartialEq)]
 struct Queued {
@@ -162,8 +187,6 @@ impl Planner {
             return Err(any_path_with_sharing(self.sharing()));
         }
         let graph = self.graph();
-        let speed = self.speed_m_per_min();
-        let n = graph.node_count();
         let mut optimality = RouteOptimality {
             hop_paths: HopPaths::Any,
             ..RouteOptimality::default()
@@ -174,118 +197,176 @@ impl Planner {
                 Start::Search { plan, direct, .. } => (plan, direct),
             };
         let full = self.full_battery_mah();
+        let mut dijkstra = StopDijkstra::new(graph.node_count(), source, destination);
+        let Some(best) = self.settle_any_path(&mut dijkstra, &full, &mut optimality, solves)?
+        else {
+            // The shortest path does not fly (else the search would have reached the
+            // destination): its first failure.
+            let flight = self.fly_counted(
+                &direct,
+                &full,
+                SharingPolicy::None,
+                HopGoal::Feasible,
+                solves,
+            )?;
+            plan.route_optimality = Some(optimality);
+            return Ok(plan.fail(PlanOutcome::NoStopSequence {
+                from: graph.id_of(source).to_string(),
+                to: graph.id_of(destination).to_string(),
+                stops_reached: dijkstra.settled.iter().filter(|&&s| s).count() - 1,
+                direct: flight
+                    .outcome
+                    .failure
+                    .expect("the shortest path to the destination does not fly"),
+            }));
+        };
+        Ok(self.route_of(plan, best, source, destination, optimality))
+    }
+
+    /// Dijkstra on the stop graph, the arcs out of each stop settled given by one search of hop
+    /// paths from it: the best arc into every node when the destination is settled; `None` when
+    /// it is out of reach.
+    fn settle_any_path(
+        &self,
+        dijkstra: &mut StopDijkstra,
+        full: &[f64],
+        optimality: &mut RouteOptimality,
+        solves: &mut HopSolveCounts,
+    ) -> Result<Option<Vec<Option<BestArc>>>> {
+        let graph = self.graph();
+        let (source, destination) = (dijkstra.source, dijkstra.destination);
         let mut uses: Vec<Option<Vec<f64>>> = vec![None; 2 * graph.edge_count()];
-        let mut cost_min = vec![f64::INFINITY; n];
-        let mut best: Vec<Option<BestArc>> = (0..n).map(|_| None).collect();
-        let mut settled = vec![false; n];
-        cost_min[source] = 0.0;
         loop {
-            let Some(u) = least_unsettled(&cost_min, &settled) else {
-                // The shortest path does not fly (else the search would have reached the
-                // destination): its first failure.
-                let flight = self.fly_counted(
-                    &direct,
-                    &full,
-                    SharingPolicy::None,
-                    HopGoal::Feasible,
-                    solves,
-                )?;
-                plan.route_optimality = Some(optimality);
-                return Ok(plan.fail(PlanOutcome::NoStopSequence {
-                    from: graph.id_of(source).to_string(),
-                    to: graph.id_of(destination).to_string(),
-                    stops_reached: settled.iter().filter(|&&s| s).count() - 1,
-                    direct: flight
-                        .outcome
-                        .failure
-                        .expect("the shortest path to the destination does not fly"),
-                }));
+            let Some(u) = least_unsettled(&dijkstra.cost_min, &dijkstra.settled) else {
+                return Ok(None);
             };
-            settled[u] = true;
+            dijkstra.settled[u] = true;
             if u == destination {
-                break;
+                return Ok(Some(std::mem::take(&mut dijkstra.best)));
             }
             optimality.stops_settled += usize::from(u != source);
             // No label slower than the destination's cost improves anything (nt >= 0).
-            let horizon_min = (cost_min[destination] - cost_min[u]) * (1.0 + BOUND_MARGIN);
-            let search = self.search_hop_paths(u, &full, horizon_min, &mut uses)?;
+            let horizon_min =
+                (dijkstra.cost_min[destination] - dijkstra.cost_min[u]) * (1.0 + BOUND_MARGIN);
+            let search = self.search_hop_paths(u, full, horizon_min, &mut uses)?;
             optimality.hop_path_labels += search.labels.len();
-            // Into the destination: the fastest label.
-            let fastest = search.front[destination].iter().copied().min_by(|&a, &b| {
-                let (la, lb) = (&search.labels[a], &search.labels[b]);
-                la.time_min.total_cmp(&lb.time_min).then(a.cmp(&b))
-            });
-            if let Some(l) = fastest {
-                let path = graph
-                    .path_from_nodes(&search.nodes(l))
-                    .expect("labels follow network edges");
-                let cost = cost_min[u] + path.distance_m / speed;
-                if improves(cost, u, cost_min[destination], &best[destination]) {
-                    let flight = self.fly_counted(
-                        &path,
-                        &full,
-                        SharingPolicy::None,
-                        HopGoal::Feasible,
-                        solves,
-                    )?;
-                    optimality.arcs_flown += 1;
-                    if flight.outcome.feasible {
-                        cost_min[destination] = cost;
-                        best[destination] = Some(BestArc {
-                            from: u,
-                            path,
-                            flight,
-                            stop: None,
-                            epsilon_min: 0.0,
-                        });
-                    }
-                }
-            }
-            // Into every unsettled node with pads: the label of least tt + nt.
-            for v in 0..n {
-                if settled[v] || v == destination || graph.pads(v) == 0 {
+            self.fastest_into_destination(dijkstra, &search, u, full, optimality, solves)?;
+            for v in 0..graph.node_count() {
+                if dijkstra.settled[v] || v == destination || graph.pads(v) == 0 {
                     continue;
                 }
-                let mut front = search.front[v].clone();
-                front.sort_by(|&a, &b| {
-                    let (la, lb) = (&search.labels[a], &search.labels[b]);
-                    la.time_min.total_cmp(&lb.time_min).then(a.cmp(&b))
-                });
-                let mut chosen: Option<(f64, usize)> = None;
-                for l in front {
-                    let label = &search.labels[l];
-                    let limit = cost_min[v]
-                        .min(cost_min[destination])
-                        .min(chosen.map_or(f64::INFINITY, |c| c.0));
-                    let bound =
-                        cost_min[u] + label.time_min + self.nt_bound_min(v, &label.battery_mah);
-                    if bound * (1.0 - BOUND_MARGIN) > limit {
-                        continue;
-                    }
-                    let stop = self
-                        .stop_at(v, &label.battery_mah)?
-                        .expect("the node has pads");
-                    optimality.stops_solved += 1;
-                    if stop.status != SolveStatus::Optimal {
-                        optimality.stops_unproven += 1;
-                    }
-                    let cost = cost_min[u] + label.time_min + stop.nt_min;
-                    if chosen.is_none_or(|c| cost < c.0) {
-                        chosen = Some((cost, l));
-                    }
-                }
-                let Some((_, l)) = chosen else {
-                    continue;
-                };
-                let path = graph
-                    .path_from_nodes(&search.nodes(l))
-                    .expect("labels follow network edges");
-                let arc = self.arc_into_stop(u, v, path, &full, &mut optimality, solves)?;
-                let tail_cost_min = cost_min[u];
-                relax(&mut cost_min, &mut best, v, tail_cost_min, speed, arc);
+                self.least_label_into_stop(dijkstra, &search, (u, v), full, optimality, solves)?;
             }
         }
-        Ok(self.route_of(plan, best, source, destination, optimality))
+    }
+
+    /// The arc from the settled stop `u` into the destination: the fastest label of `search`
+    /// there, flown without sharing, kept when it flies and improves the destination's cost.
+    fn fastest_into_destination(
+        &self,
+        dijkstra: &mut StopDijkstra,
+        search: &HopPathSearch,
+        u: usize,
+        full: &[f64],
+        optimality: &mut RouteOptimality,
+        solves: &mut HopSolveCounts,
+    ) -> Result<()> {
+        let destination = dijkstra.destination;
+        let fastest = search.front[destination].iter().copied().min_by(|&a, &b| {
+            let (la, lb) = (&search.labels[a], &search.labels[b]);
+            la.time_min.total_cmp(&lb.time_min).then(a.cmp(&b))
+        });
+        let Some(l) = fastest else {
+            return Ok(());
+        };
+        let path = self
+            .graph()
+            .path_from_nodes(&search.nodes(l))
+            .expect("labels follow network edges");
+        let cost = dijkstra.cost_min[u] + path.distance_m / self.speed_m_per_min();
+        if improves(
+            cost,
+            u,
+            dijkstra.cost_min[destination],
+            &dijkstra.best[destination],
+        ) {
+            let flight =
+                self.fly_counted(&path, full, SharingPolicy::None, HopGoal::Feasible, solves)?;
+            optimality.arcs_flown += 1;
+            if flight.outcome.feasible {
+                dijkstra.cost_min[destination] = cost;
+                dijkstra.best[destination] = Some(BestArc {
+                    from: u,
+                    path,
+                    flight,
+                    stop: None,
+                    epsilon_min: 0.0,
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// The arc from the settled stop `u` into the unsettled node `v` with pads: the label of
+    /// `search` at `v` of least `tt + nt` (each label in order of time, skipped when its energy
+    /// bound cannot improve `v`, the destination or the labels before it), flown and relaxed.
+    fn least_label_into_stop(
+        &self,
+        dijkstra: &mut StopDijkstra,
+        search: &HopPathSearch,
+        (u, v): (usize, usize),
+        full: &[f64],
+        optimality: &mut RouteOptimality,
+        solves: &mut HopSolveCounts,
+    ) -> Result<()> {
+        let cost_min = &dijkstra.cost_min;
+        let destination = dijkstra.destination;
+        let mut front = search.front[v].clone();
+        front.sort_by(|&a, &b| {
+            let (la, lb) = (&search.labels[a], &search.labels[b]);
+            la.time_min.total_cmp(&lb.time_min).then(a.cmp(&b))
+        });
+        let mut chosen: Option<(f64, usize)> = None;
+        for l in front {
+            let label = &search.labels[l];
+            let limit = cost_min[v]
+                .min(cost_min[destination])
+                .min(chosen.map_or(f64::INFINITY, |c| c.0));
+            let bound = cost_min[u] + label.time_min + self.nt_bound_min(v, &label.battery_mah);
+            if bound * (1.0 - BOUND_MARGIN) > limit {
+                continue;
+            }
+            let stop = self
+                .stop_at(v, &label.battery_mah)?
+                .expect("the node has pads");
+            optimality.stops_solved += 1;
+            if stop.status != SolveStatus::Optimal {
+                optimality.stops_unproven += 1;
+            }
+            let cost = cost_min[u] + label.time_min + stop.nt_min;
+            if chosen.is_none_or(|c| cost < c.0) {
+                chosen = Some((cost, l));
+            }
+        }
+        let Some((_, l)) = chosen else {
+            return Ok(());
+        };
+        let path = self
+            .graph()
+            .path_from_nodes(&search.nodes(l))
+            .expect("labels follow network edges");
+        let arc = self.arc_into_stop(u, v, path, full, optimality, solves)?;
+        let tail_cost_min = dijkstra.cost_min[u];
+        let speed = self.speed_m_per_min();
+        relax(
+            &mut dijkstra.cost_min,
+            &mut dijkstra.best,
+            v,
+            tail_cost_min,
+            speed,
+            arc,
+        );
+        Ok(())
     }
 
     /// A lower bound on the node time at `v` (with pads) of a swarm arriving with

@@ -3,7 +3,7 @@
 //! path on the stop graph whose arc costs are refined from cheap lower bounds to exact hop
 //! solves only where the search needs them. See models/compose.md, "Joint optimum".
 
-use super::optimal::{BestArc, Start};
+use super::optimal::{BestArc, SearchBounds, Start};
 use super::plan::{Plan, PlanOutcome, RouteOptimality};
 use super::walks::{HeadPotentials, WalkBounds, WalkSearch};
 use super::{HopPaths, Planner};
@@ -109,6 +109,16 @@ impl ArcValue {
     }
 }
 
+/// The request of a joint search: its ends, full batteries, the bounds of a search from them
+/// and, under `any`, the walks' bounds.
+struct JointRequest {
+    source: usize,
+    destination: usize,
+    full: Vec<f64>,
+    bounds: SearchBounds,
+    walk_bounds: Option<WalkBounds>,
+}
+
 /// The search's state: the stop graph's nodes, the shortest-path trees of the nodes expanded so
 /// far, the heads' potentials (`any`), and the arcs bounded or flown.
 struct Search<'g> {
@@ -176,7 +186,6 @@ impl Planner {
         solves: &mut HopSolveCounts,
     ) -> Result<Plan> {
         let graph = self.graph();
-        let speed = self.speed_m_per_min();
         let mut optimality = RouteOptimality {
             hop_paths,
             ..RouteOptimality::default()
@@ -192,15 +201,45 @@ impl Planner {
                 } => (plan, direct_failure, bounds),
             };
         let full = self.full_battery_mah();
-        let (min_swarm_rate, endurance_min) =
-            (bounds.min_swarm_rate_mah_per_min, bounds.endurance_min);
         let walk_bounds = match hop_paths {
             HopPaths::Rule => None,
             HopPaths::Any => Some(WalkBounds {
                 min_rate_mah_per_min: self.min_rates_mah_per_min()?,
-                endurance_min,
+                endurance_min: bounds.endurance_min,
             }),
         };
+        let request = JointRequest {
+            source,
+            destination,
+            full,
+            bounds,
+            walk_bounds,
+        };
+        let mut search = self.joint_search(&request, hop_paths);
+        let sequence = self.lazy_search(&mut search, &request, &mut optimality, solves)?;
+        optimality.stops_settled = search.trees.len() - 1;
+        let Some(sequence) = sequence else {
+            plan.route_optimality = Some(optimality);
+            return Ok(plan.fail(PlanOutcome::NoStopSequence {
+                from: graph.id_of(source).to_string(),
+                to: graph.id_of(destination).to_string(),
+                stops_reached: search.trees.len() - 1,
+                direct: direct_failure.expect("an infeasible hop reports its first failure"),
+            }));
+        };
+        // Arcs from the source to every other stop, and from each stop with pads to every
+        // stop but the source and itself.
+        let m = search.stops.len();
+        optimality.arcs_total = (m - 1) + (m - 2) * (m - 2);
+        let best = best_flown(&mut search, sequence, graph.node_count());
+        Ok(self.route_of(plan, best, source, destination, optimality))
+    }
+
+    /// The joint search's start: the stop graph's nodes (the source, every node with pads, the
+    /// destination), no arc known yet but, under `rule`, the direct one, flown already.
+    fn joint_search(&self, request: &JointRequest, hop_paths: HopPaths) -> Search<'_> {
+        let graph = self.graph();
+        let (source, destination) = (request.source, request.destination);
         let mut stops = vec![source];
         stops.extend(
             (0..graph.node_count())
@@ -225,68 +264,26 @@ impl Planner {
                 },
             );
         }
-        let sequence = loop {
+        search
+    }
+
+    /// The rounds of the lazy search ("Lazy search"): each one takes the least sequence on the
+    /// current values and raises its arcs, all still at `l0` to `l1`, else all into a stop at
+    /// `l1` to `l2`, else flies the first not yet flown. The sequence whose arcs are all exact;
+    /// `None` when no sequence reaches the destination.
+    fn lazy_search<'g>(
+        &'g self,
+        search: &mut Search<'g>,
+        request: &JointRequest,
+        optimality: &mut RouteOptimality,
+        solves: &mut HopSolveCounts,
+    ) -> Result<Option<Vec<(usize, usize)>>> {
+        let destination = request.destination;
+        loop {
             optimality.rounds += 1;
-            // Dijkstra on the current values, arcs from the lowest tail among equal labels.
-            let n = graph.node_count();
-            let mut label = vec![f64::INFINITY; n];
-            let mut tail: Vec<Option<usize>> = vec![None; n];
-            let mut settled = vec![false; n];
-            label[source] = 0.0;
-            while let Some(u) = super::optimal::least_unsettled(&label, &settled) {
-                settled[u] = true;
-                if u == destination {
-                    break;
-                }
-                let tree = search
-                    .trees
-                    .entry(u)
-                    .or_insert_with(|| graph.shortest_paths_to(u));
-                for &v in &search.stops {
-                    if settled[v] || v == source {
-                        continue;
-                    }
-                    let cost = match search.arcs.get(&(u, v)) {
-                        Some(known) => known.cost_min(),
-                        None => {
-                            let distance_m = tree.distance_m[v];
-                            if !distance_m.is_finite() {
-                                f64::INFINITY
-                            } else if v == destination {
-                                distance_m / speed
-                            } else if distance_m / speed > endurance_min * (1.0 + 1e-9) {
-                                f64::INFINITY
-                            } else {
-                                self.distance_bound_min(v, distance_m, 0.0, min_swarm_rate)
-                            }
-                        }
-                    };
-                    let through_u = label[u] + cost;
-                    if through_u < label[v] {
-                        label[v] = through_u;
-                        tail[v] = Some(u);
-                    }
-                }
-            }
-            if !label[destination].is_finite() {
-                optimality.stops_settled = search.trees.len() - 1;
-                plan.route_optimality = Some(optimality);
-                return Ok(plan.fail(PlanOutcome::NoStopSequence {
-                    from: graph.id_of(source).to_string(),
-                    to: graph.id_of(destination).to_string(),
-                    stops_reached: search.trees.len() - 1,
-                    direct: direct_failure.expect("an infeasible hop reports its first failure"),
-                }));
-            }
-            // The sequence's arcs, from the source.
-            let mut sequence = Vec::new();
-            let mut at = destination;
-            while at != source {
-                let u = tail[at].expect("a labelled node other than the source has a tail");
-                sequence.push((u, at));
-                at = u;
-            }
-            sequence.reverse();
+            let Some(sequence) = self.least_sequence(search, request) else {
+                return Ok(None);
+            };
             let steps: Vec<((usize, usize), Step)> = sequence
                 .iter()
                 .map(|&(u, v)| {
@@ -298,101 +295,187 @@ impl Planner {
                 })
                 .collect();
             // Walks not yet built hold some arcs' least values: build them.
-            let mut raised = false;
-            for &((u, v), ref step) in &steps {
-                if matches!(step, Step::Build) {
-                    self.build_walks(
-                        &mut search,
-                        (u, v),
-                        destination,
-                        walk_bounds.as_ref(),
-                        &mut optimality,
-                    )?;
-                    raised = true;
-                }
-            }
-            if raised {
+            if self.build_steps(search, &steps, request, optimality)? {
                 continue;
             }
             // Walks into a stop bounded from their legs: the fluid bound.
-            for &((u, v), ref step) in &steps {
-                if let Step::Fluid(i) = *step {
-                    let arc = search
-                        .arcs
-                        .get_mut(&(u, v))
-                        .expect("a stepped arc is known");
-                    let candidate = &mut arc.candidates[i];
-                    candidate.bound_min = self
-                        .fluid_bound_min(&candidate.path, v)?
-                        .max(candidate.bound_min);
-                    candidate.fluid = true;
-                    optimality.arcs_fluid_bounded += 1;
-                    raised = true;
-                }
-            }
-            if raised {
+            if self.fluid_steps(search, &steps, optimality)? {
                 continue;
             }
             let next = steps.iter().find_map(|&(arc, ref step)| match *step {
                 Step::Fly(i) => Some((arc, i)),
                 _ => None,
             });
-            let Some(((u, v), i)) = next else {
-                break sequence;
+            let Some((arc, i)) = next else {
+                return Ok(Some(sequence));
             };
-            let value = search
-                .arcs
-                .get_mut(&(u, v))
-                .expect("a stepped arc is known");
-            let path = value.candidates.remove(i).path;
-            let arc = if v == destination {
-                let (flight, _) = self.fly_to_destination(&path, &full, &mut optimality, solves)?;
-                flight.map(|flight| {
-                    let cost = path.distance_m / speed;
-                    let arc = BestArc {
-                        from: u,
-                        path,
-                        flight,
-                        stop: None,
-                        epsilon_min: 0.0,
-                    };
-                    (cost, Box::new(arc))
-                })
-            } else {
-                self.arc_into_stop(u, v, path, &full, &mut optimality, solves)?
-                    .map(|arc| {
-                        let nt_min = arc.stop.as_ref().map_or(0.0, |s| s.nt_min);
-                        (
-                            arc.path.distance_m / speed + nt_min - arc.epsilon_min,
-                            Box::new(arc),
-                        )
-                    })
-            };
-            optimality.arcs_flown += usize::from(v == destination);
-            if let Some((cost, arc)) = arc {
-                if value.flown.as_ref().is_none_or(|(best, _)| cost < *best) {
-                    value.flown = Some((cost, arc));
+            self.fly_walk(search, arc, i, request, optimality, solves)?;
+        }
+    }
+
+    /// Dijkstra on the current values, arcs from the lowest tail among equal labels (an arc not
+    /// yet known at `l0`, from its tail's shortest-path tree): the least sequence's arcs, from
+    /// the source; `None` when the destination is out of reach.
+    fn least_sequence<'g>(
+        &'g self,
+        search: &mut Search<'g>,
+        request: &JointRequest,
+    ) -> Option<Vec<(usize, usize)>> {
+        let graph = self.graph();
+        let (source, destination) = (request.source, request.destination);
+        let n = graph.node_count();
+        let mut label = vec![f64::INFINITY; n];
+        let mut tail: Vec<Option<usize>> = vec![None; n];
+        let mut settled = vec![false; n];
+        label[source] = 0.0;
+        while let Some(u) = super::optimal::least_unsettled(&label, &settled) {
+            settled[u] = true;
+            if u == destination {
+                break;
+            }
+            let tree = search
+                .trees
+                .entry(u)
+                .or_insert_with(|| graph.shortest_paths_to(u));
+            for &v in &search.stops {
+                if settled[v] || v == source {
+                    continue;
+                }
+                let cost = match search.arcs.get(&(u, v)) {
+                    Some(known) => known.cost_min(),
+                    None => self.distance_value_min(tree.distance_m[v], v, request),
+                };
+                let through_u = label[u] + cost;
+                if through_u < label[v] {
+                    label[v] = through_u;
+                    tail[v] = Some(u);
                 }
             }
-        };
-        optimality.stops_settled = search.trees.len() - 1;
-        // Arcs from the source to every other stop, and from each stop with pads to every
-        // stop but the source and itself.
-        let m = search.stops.len();
-        optimality.arcs_total = (m - 1) + (m - 2) * (m - 2);
-        // Every arc of the sequence is exact and flies.
-        let mut best: Vec<Option<BestArc>> = (0..graph.node_count()).map(|_| None).collect();
-        for (u, v) in sequence {
-            let Some(ArcValue {
-                flown: Some((_, arc)),
-                ..
-            }) = search.arcs.remove(&(u, v))
-            else {
-                unreachable!("the sequence's arcs are exact and fly");
-            };
-            best[v] = Some(*arc);
         }
-        Ok(self.route_of(plan, best, source, destination, optimality))
+        if !label[destination].is_finite() {
+            return None;
+        }
+        Some(sequence_to(&tail, source, destination))
+    }
+
+    /// The value `l0` of an arc into `v` not yet built, from the shortest distance `distance_m`
+    /// alone: `tt` into the destination, the energy bound into a stop; infinite out of reach or
+    /// beyond the endurance bound.
+    fn distance_value_min(&self, distance_m: f64, v: usize, request: &JointRequest) -> f64 {
+        let speed = self.speed_m_per_min();
+        let bounds = &request.bounds;
+        if !distance_m.is_finite() {
+            f64::INFINITY
+        } else if v == request.destination {
+            distance_m / speed
+        } else if distance_m / speed > bounds.endurance_min * (1.0 + 1e-9) {
+            f64::INFINITY
+        } else {
+            self.distance_bound_min(v, distance_m, 0.0, bounds.min_swarm_rate_mah_per_min)
+        }
+    }
+
+    /// Raises every arc of `steps` still at `l0` to `l1`: its walks built and bounded
+    /// ([`Planner::build_walks`]). Whether any was.
+    fn build_steps(
+        &self,
+        search: &mut Search<'_>,
+        steps: &[((usize, usize), Step)],
+        request: &JointRequest,
+        optimality: &mut RouteOptimality,
+    ) -> Result<bool> {
+        let mut raised = false;
+        for &((u, v), ref step) in steps {
+            if matches!(step, Step::Build) {
+                self.build_walks(
+                    search,
+                    (u, v),
+                    request.destination,
+                    request.walk_bounds.as_ref(),
+                    optimality,
+                )?;
+                raised = true;
+            }
+        }
+        Ok(raised)
+    }
+
+    /// Raises every arc into a stop of `steps` at `l1` to `l2`: its candidate bounded by the
+    /// fluid LP too. Whether any was.
+    fn fluid_steps(
+        &self,
+        search: &mut Search<'_>,
+        steps: &[((usize, usize), Step)],
+        optimality: &mut RouteOptimality,
+    ) -> Result<bool> {
+        let mut raised = false;
+        for &((u, v), ref step) in steps {
+            if let Step::Fluid(i) = *step {
+                let arc = search
+                    .arcs
+                    .get_mut(&(u, v))
+                    .expect("a stepped arc is known");
+                let candidate = &mut arc.candidates[i];
+                candidate.bound_min = self
+                    .fluid_bound_min(&candidate.path, v)?
+                    .max(candidate.bound_min);
+                candidate.fluid = true;
+                optimality.arcs_fluid_bounded += 1;
+                raised = true;
+            }
+        }
+        Ok(raised)
+    }
+
+    /// Flies candidate `i` of arc `(u, v)` from full batteries (into the destination as
+    /// Algorithm 1's lines 5–10, into a stop with its node time); the arc's best flown walk when
+    /// it flies cheaper than the one kept.
+    fn fly_walk(
+        &self,
+        search: &mut Search<'_>,
+        (u, v): (usize, usize),
+        i: usize,
+        request: &JointRequest,
+        optimality: &mut RouteOptimality,
+        solves: &mut HopSolveCounts,
+    ) -> Result<()> {
+        let speed = self.speed_m_per_min();
+        let (destination, full) = (request.destination, &request.full);
+        let value = search
+            .arcs
+            .get_mut(&(u, v))
+            .expect("a stepped arc is known");
+        let path = value.candidates.remove(i).path;
+        let arc = if v == destination {
+            let (flight, _) = self.fly_to_destination(&path, full, optimality, solves)?;
+            flight.map(|flight| {
+                let cost = path.distance_m / speed;
+                let arc = BestArc {
+                    from: u,
+                    path,
+                    flight,
+                    stop: None,
+                    epsilon_min: 0.0,
+                };
+                (cost, Box::new(arc))
+            })
+        } else {
+            self.arc_into_stop(u, v, path, full, optimality, solves)?
+                .map(|arc| {
+                    let nt_min = arc.stop.as_ref().map_or(0.0, |s| s.nt_min);
+                    (
+                        arc.path.distance_m / speed + nt_min - arc.epsilon_min,
+                        Box::new(arc),
+                    )
+                })
+        };
+        optimality.arcs_flown += usize::from(v == destination);
+        if let Some((cost, arc)) = arc {
+            if value.flown.as_ref().is_none_or(|(best, _)| cost < *best) {
+                value.flown = Some((cost, arc));
+            }
+        }
+        Ok(())
     }
 
     /// Builds the walks of arc `(u, v)` that hold its least value: under `rule` (`walk_bounds`
@@ -490,4 +573,39 @@ impl Planner {
         }
         Ok(())
     }
+}
+
+/// The arcs of the sequence the Dijkstra tails `tail` give from `source` to `destination`, from
+/// the source.
+fn sequence_to(tail: &[Option<usize>], source: usize, destination: usize) -> Vec<(usize, usize)> {
+    let mut sequence = Vec::new();
+    let mut at = destination;
+    while at != source {
+        let u = tail[at].expect("a labelled node other than the source has a tail");
+        sequence.push((u, at));
+        at = u;
+    }
+    sequence.reverse();
+    sequence
+}
+
+/// The best arc into each of the `n` nodes, taken out of `search`: the flown walk of each arc of
+/// `sequence`, every one exact and flying.
+fn best_flown(
+    search: &mut Search<'_>,
+    sequence: Vec<(usize, usize)>,
+    n: usize,
+) -> Vec<Option<BestArc>> {
+    let mut best: Vec<Option<BestArc>> = (0..n).map(|_| None).collect();
+    for (u, v) in sequence {
+        let Some(ArcValue {
+            flown: Some((_, arc)),
+            ..
+        }) = search.arcs.remove(&(u, v))
+        else {
+            unreachable!("the sequence's arcs are exact and fly");
+        };
+        best[v] = Some(*arc);
+    }
+    best
 }

@@ -423,149 +423,20 @@ impl Context {
         request: &Request,
         options: &[PlanOptions],
     ) -> Result<Vec<RequestReport>> {
-        /// Work shared by several combinations: its time, ms, and the combinations using it.
-        #[derive(Default)]
-        struct Shared {
-            ms: f64,
-            users: Vec<usize>,
-        }
-        /// A distinct swarm's baseline costs, computed by its first fixed-route combination.
-        struct SwarmCosts {
-            choice: usize,
-            costs: Option<BaselineCosts>,
-            edges: Shared,
-            all_pairs: Shared,
-            all_pairs_done: bool,
-        }
         for o in options {
             self.validate(o)?;
         }
-        let mut own_ms = vec![0.0; options.len()];
-        // Pre-composition, once per (positioning, support drones).
-        let mut choice_keys: Vec<(Positioning, Option<usize>)> = Vec::new();
-        let mut choices: Vec<SwarmChoice> = Vec::new();
-        let mut choice_work: Vec<Shared> = Vec::new();
-        let mut choice_of = Vec::with_capacity(options.len());
-        for (i, o) in options.iter().enumerate() {
-            // The paper's baseline (`none`) is the swarm without support drones.
-            let key = (
-                o.positioning,
-                if o.sharing.flies_support() {
-                    o.support
-                } else {
-                    Some(0)
-                },
-            );
-            let c = match choice_keys.iter().position(|k| *k == key) {
-                Some(c) => c,
-                None => {
-                    let start = Instant::now();
-                    choices.push(self.swarm_for(request, key.0, key.1)?);
-                    choice_work.push(Shared {
-                        ms: elapsed_ms(start),
-                        users: Vec::new(),
-                    });
-                    choice_keys.push(key);
-                    choices.len() - 1
-                }
-            };
-            choice_work[c].users.push(i);
-            choice_of.push(c);
-        }
-        // Baseline costs, once per distinct swarm among the fixed-route combinations.
-        let mut swarm_costs: Vec<SwarmCosts> = Vec::new();
-        let mut costs_of = vec![None; options.len()];
-        for (i, o) in options.iter().enumerate() {
-            let fixed = match o.route {
-                RouteMethod::Dijkstra | RouteMethod::FloydWarshall => true,
-                RouteMethod::Sequential | RouteMethod::Astar | RouteMethod::Optimal => false,
-            };
-            if !fixed {
-                continue;
-            }
-            let swarm = &choices[choice_of[i]].swarm;
-            let e = match swarm_costs
-                .iter()
-                .position(|e| choices[e.choice].swarm == *swarm)
-            {
-                Some(e) => e,
-                None => {
-                    swarm_costs.push(SwarmCosts {
-                        choice: choice_of[i],
-                        costs: None,
-                        edges: Shared::default(),
-                        all_pairs: Shared::default(),
-                        all_pairs_done: false,
-                    });
-                    swarm_costs.len() - 1
-                }
-            };
-            swarm_costs[e].edges.users.push(i);
-            if o.route == RouteMethod::FloydWarshall {
-                swarm_costs[e].all_pairs.users.push(i);
-            }
-            costs_of[i] = Some(e);
-        }
-        let mut plans = Vec::with_capacity(options.len());
-        let mut planners: Vec<((usize, SharingPolicy), Planner)> = Vec::new();
-        for (i, o) in options.iter().enumerate() {
-            let start = Instant::now();
-            let mut shared_ms = 0.0;
-            let choice = &choices[choice_of[i]];
-            let key = (choice_of[i], o.sharing);
-            let p = match planners.iter().position(|(k, _)| *k == key) {
-                Some(p) => p,
-                None => {
-                    planners.push((key, self.planner(&choice.swarm, o.sharing)));
-                    planners.len() - 1
-                }
-            };
-            let planner = &planners[p].1;
-            let plan = match costs_of[i] {
-                Some(e) => {
-                    let entry = &mut swarm_costs[e];
-                    if entry.costs.is_none() {
-                        let at = Instant::now();
-                        entry.costs = Some(planner.baseline_costs()?);
-                        entry.edges.ms = elapsed_ms(at);
-                        shared_ms += entry.edges.ms;
-                    }
-                    let costs = entry.costs.as_ref().expect("computed above");
-                    if o.route == RouteMethod::FloydWarshall && !entry.all_pairs_done {
-                        let at = Instant::now();
-                        costs.all_pairs();
-                        entry.all_pairs.ms = elapsed_ms(at);
-                        entry.all_pairs_done = true;
-                        shared_ms += entry.all_pairs.ms;
-                    }
-                    planner.compose_with_baseline_costs(
-                        choice.source,
-                        choice.destination,
-                        o.route,
-                        costs,
-                    )?
-                }
-                None => planner.compose(choice.source, choice.destination, o.route)?,
-            };
-            own_ms[i] = elapsed_ms(start) - shared_ms;
-            plans.push(plan);
-        }
-        let mut execution_ms = own_ms;
-        let shared = choice_work
-            .iter()
-            .chain(swarm_costs.iter().flat_map(|e| [&e.edges, &e.all_pairs]));
-        for work in shared {
-            for &i in &work.users {
-                execution_ms[i] += work.ms / work.users.len() as f64;
-            }
-        }
+        let swarms = self.precompose_each(request, options)?;
+        let mut baselines = Baselines::of(options, &swarms);
+        let (plans, own_ms) = self.compose_each(options, &swarms, &mut baselines)?;
+        let execution_ms = shared_out(own_ms, &swarms, &baselines);
         Ok(options
             .iter()
             .zip(plans)
             .zip(execution_ms)
             .enumerate()
             .map(|(i, ((o, plan), execution_ms))| {
-                let choice = &choices[choice_of[i]];
+                let choice = &swarms.choices[swarms.choice_of[i]];
                 RequestReport {
                     schema_version: SCHEMA_VERSION,
                     request: request.clone(),
@@ -584,6 +455,205 @@ impl Context {
             })
             .collect())
     }
+
+    /// Pre-composition of [`Context::plan_each`]'s combinations, once per (positioning, support
+    /// drones); the paper's baseline (`none`) is the swarm without support drones.
+    fn precompose_each(&self, request: &Request, options: &[PlanOptions]) -> Result<Precomposed> {
+        let mut keys: Vec<(Positioning, Option<usize>)> = Vec::new();
+        let mut swarms = Precomposed {
+            choices: Vec::new(),
+            work: Vec::new(),
+            choice_of: Vec::with_capacity(options.len()),
+        };
+        for (i, o) in options.iter().enumerate() {
+            let key = (
+                o.positioning,
+                if o.sharing.flies_support() {
+                    o.support
+                } else {
+                    Some(0)
+                },
+            );
+            let c = match keys.iter().position(|k| *k == key) {
+                Some(c) => c,
+                None => {
+                    let start = Instant::now();
+                    swarms.choices.push(self.swarm_for(request, key.0, key.1)?);
+                    swarms.work.push(Shared {
+                        ms: elapsed_ms(start),
+                        users: Vec::new(),
+                    });
+                    keys.push(key);
+                    swarms.choices.len() - 1
+                }
+            };
+            swarms.work[c].users.push(i);
+            swarms.choice_of.push(c);
+        }
+        Ok(swarms)
+    }
+
+    /// Route composition of each of [`Context::plan_each`]'s combinations, with one planner per
+    /// swarm and sharing policy, and each swarm's baseline costs computed by its first
+    /// fixed-route combination: the plans, and each one's own time, ms (without the shared work
+    /// it did).
+    fn compose_each(
+        &self,
+        options: &[PlanOptions],
+        swarms: &Precomposed,
+        baselines: &mut Baselines,
+    ) -> Result<(Vec<Plan>, Vec<f64>)> {
+        let mut own_ms = vec![0.0; options.len()];
+        let mut plans = Vec::with_capacity(options.len());
+        let mut planners: Vec<((usize, SharingPolicy), Planner)> = Vec::new();
+        for (i, o) in options.iter().enumerate() {
+            let start = Instant::now();
+            let choice = &swarms.choices[swarms.choice_of[i]];
+            let key = (swarms.choice_of[i], o.sharing);
+            let p = match planners.iter().position(|(k, _)| *k == key) {
+                Some(p) => p,
+                None => {
+                    planners.push((key, self.planner(&choice.swarm, o.sharing)));
+                    planners.len() - 1
+                }
+            };
+            let planner = &planners[p].1;
+            let (plan, shared_ms) = match baselines.of[i] {
+                Some(e) => compose_fixed(planner, &mut baselines.swarms[e], o, choice)?,
+                None => (
+                    planner.compose(choice.source, choice.destination, o.route)?,
+                    0.0,
+                ),
+            };
+            own_ms[i] = elapsed_ms(start) - shared_ms;
+            plans.push(plan);
+        }
+        Ok((plans, own_ms))
+    }
+}
+
+/// Work shared by several combinations of [`Context::plan_each`]: its time, ms, and the
+/// combinations using it.
+#[derive(Default)]
+struct Shared {
+    ms: f64,
+    users: Vec<usize>,
+}
+
+/// A distinct swarm's baseline costs, computed by its first fixed-route combination.
+struct SwarmCosts {
+    choice: usize,
+    costs: Option<BaselineCosts>,
+    edges: Shared,
+    all_pairs: Shared,
+    all_pairs_done: bool,
+}
+
+/// The swarms of [`Context::plan_each`]'s combinations: each distinct one, pre-composed once,
+/// with its work; the swarm of each combination.
+struct Precomposed {
+    choices: Vec<SwarmChoice>,
+    work: Vec<Shared>,
+    choice_of: Vec<usize>,
+}
+
+/// The baseline costs of [`Context::plan_each`]'s fixed-route combinations (Dijkstra,
+/// Floyd–Warshall): one entry per distinct swarm among them, and each combination's entry.
+struct Baselines {
+    swarms: Vec<SwarmCosts>,
+    of: Vec<Option<usize>>,
+}
+
+impl Baselines {
+    /// The entries of `options`' fixed-route combinations, once per distinct swarm, no cost
+    /// computed yet.
+    fn of(options: &[PlanOptions], swarms: &Precomposed) -> Baselines {
+        let choices = &swarms.choices;
+        let mut baselines = Baselines {
+            swarms: Vec::new(),
+            of: vec![None; options.len()],
+        };
+        for (i, o) in options.iter().enumerate() {
+            let fixed = match o.route {
+                RouteMethod::Dijkstra | RouteMethod::FloydWarshall => true,
+                RouteMethod::Sequential | RouteMethod::Astar | RouteMethod::Optimal => false,
+            };
+            if !fixed {
+                continue;
+            }
+            let swarm = &choices[swarms.choice_of[i]].swarm;
+            let e = match baselines
+                .swarms
+                .iter()
+                .position(|e| choices[e.choice].swarm == *swarm)
+            {
+                Some(e) => e,
+                None => {
+                    baselines.swarms.push(SwarmCosts {
+                        choice: swarms.choice_of[i],
+                        costs: None,
+                        edges: Shared::default(),
+                        all_pairs: Shared::default(),
+                        all_pairs_done: false,
+                    });
+                    baselines.swarms.len() - 1
+                }
+            };
+            baselines.swarms[e].edges.users.push(i);
+            if o.route == RouteMethod::FloydWarshall {
+                baselines.swarms[e].all_pairs.users.push(i);
+            }
+            baselines.of[i] = Some(e);
+        }
+        baselines
+    }
+}
+
+/// A fixed-route combination `o` composed on its swarm's baseline costs `entry`, computing them
+/// (and Floyd–Warshall's all-pairs result) first when no combination did: the plan, and the
+/// time of that shared work, ms.
+fn compose_fixed(
+    planner: &Planner,
+    entry: &mut SwarmCosts,
+    o: &PlanOptions,
+    choice: &SwarmChoice,
+) -> Result<(Plan, f64)> {
+    let mut shared_ms = 0.0;
+    if entry.costs.is_none() {
+        let at = Instant::now();
+        entry.costs = Some(planner.baseline_costs()?);
+        entry.edges.ms = elapsed_ms(at);
+        shared_ms += entry.edges.ms;
+    }
+    let costs = entry.costs.as_ref().expect("computed above");
+    if o.route == RouteMethod::FloydWarshall && !entry.all_pairs_done {
+        let at = Instant::now();
+        costs.all_pairs();
+        entry.all_pairs.ms = elapsed_ms(at);
+        entry.all_pairs_done = true;
+        shared_ms += entry.all_pairs.ms;
+    }
+    let plan =
+        planner.compose_with_baseline_costs(choice.source, choice.destination, o.route, costs)?;
+    Ok((plan, shared_ms))
+}
+
+/// Each combination's `execution_ms`: its own time `own_ms` plus an equal share of each piece of
+/// shared work it used (its swarm's pre-composition, baseline costs and all-pairs result).
+fn shared_out(own_ms: Vec<f64>, swarms: &Precomposed, baselines: &Baselines) -> Vec<f64> {
+    let mut execution_ms = own_ms;
+    let shared = swarms.work.iter().chain(
+        baselines
+            .swarms
+            .iter()
+            .flat_map(|e| [&e.edges, &e.all_pairs]),
+    );
+    for work in shared {
+        for &i in &work.users {
+            execution_ms[i] += work.ms / work.users.len() as f64;
+        }
+    }
+    execution_ms
 }
 
 /// Milliseconds since `start`.

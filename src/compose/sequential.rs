@@ -7,9 +7,9 @@ use crate::eaas::exact::Objective;
 use crate::eaas::exact::{fluid, ExactStatus};
 use crate::eaas::exact_hop::HopGoal;
 use crate::eaas::exact_hop::HopSolveCounts;
-use crate::eaas::SharingPolicy;
+use crate::eaas::{HopFailure, SharingPolicy};
 use crate::error::Result;
-use crate::network::Route;
+use crate::network::{Route, ShortestPathsTo};
 use crate::problem::Candidates;
 
 /// Relative tolerance, on minutes, of pruning a candidate by its lower bound: a bound computed
@@ -24,6 +24,19 @@ const BOUND_MARGIN: f64 = 1e-9;
 
 /// A candidate stop: node, hop path, A* look-ahead (min), lower bound on its cost (min).
 type Candidate = (usize, Route, f64, f64);
+
+/// A candidate stop whose hop path is built only when its turn comes under the simulated
+/// policies: node, hop path (when built), A* look-ahead (min), lower bound on its cost (min).
+type LazyCandidate = (usize, Option<Route>, f64, f64);
+
+/// Algorithm 1's request: its destination, the look-ahead, every node's distance to the
+/// destination, and the nodes stopped at so far (the source among them).
+struct SequentialRequest {
+    destination: usize,
+    look_ahead: LookAhead,
+    to_destination_m: Vec<f64>,
+    stopped: Vec<bool>,
+}
 
 impl Planner {
     /// Exact and fair policies: every candidate with a lower bound on its cost `tt + nt + look-
@@ -118,14 +131,17 @@ impl Planner {
         solves: &mut HopSolveCounts,
     ) -> Result<Plan> {
         let graph = self.graph();
-        let speed = self.speed_m_per_min();
         let mut plan = self.empty_plan(source, destination);
         if source == destination {
             return Ok(plan.finish());
         }
-        let to_destination_m = graph.distances_from_m(destination);
-        let mut stopped = vec![false; graph.node_count()];
-        stopped[source] = true;
+        let mut request = SequentialRequest {
+            destination,
+            look_ahead,
+            to_destination_m: graph.distances_from_m(destination),
+            stopped: vec![false; graph.node_count()],
+        };
+        request.stopped[source] = true;
         let mut min_rates: Option<Vec<f64>> = None;
         let mut current = source;
         let mut battery = self.full_battery_mah();
@@ -136,132 +152,16 @@ impl Planner {
                     to: graph.id_of(destination).to_string(),
                 }));
             };
-            // Lines 5-7: every drone reaches the destination on its own battery.
-            let flight = self.fly_counted(
-                &direct,
-                &battery,
-                SharingPolicy::None,
-                HopGoal::Feasible,
-                solves,
-            )?;
-            if flight.outcome.feasible {
+            let (flight, direct_failure) = self.fly_straight(&direct, &battery, solves)?;
+            if let Some(flight) = flight {
                 plan.push(self.hop(&direct, &battery, flight, None));
                 return Ok(plan.finish());
             }
-            let mut direct_failure = flight.outcome.failure;
-            // Lines 8-10: in-flight sharing makes the direct flight possible.
-            if self.sharing().shares() {
-                let flight =
-                    self.fly_counted(&direct, &battery, self.sharing(), HopGoal::Feasible, solves)?;
-                if flight.outcome.feasible {
-                    plan.push(self.hop(&direct, &battery, flight, None));
-                    return Ok(plan.finish());
-                }
-                direct_failure = flight.outcome.failure;
-            }
-            // Lines 12-16: the best recharging node reachable without stopping.
             let min_rates = match &mut min_rates {
                 Some(rates) => rates,
                 None => min_rates.insert(self.min_rates_mah_per_min()?),
             };
-            let endurance_min = self.endurance_bound_min(&battery, min_rates);
-            // Shortest paths v -> current, flown reversed: one Dijkstra for all candidates.
-            let towards_current = graph.shortest_paths_to(current);
-            let mut reachable = Vec::new();
-            for v in 0..graph.node_count() {
-                if stopped[v] || graph.pads(v) == 0 || v == destination {
-                    continue;
-                }
-                // A NaN or infinite distance (unreachable) is skipped too.
-                if towards_current.distance_m[v] / speed > endurance_min
-                    || !towards_current.distance_m[v].is_finite()
-                {
-                    continue;
-                }
-                let look_ahead_min = if look_ahead == LookAhead::RemainingTravelTime {
-                    to_destination_m[v] / speed
-                } else {
-                    0.0
-                };
-                reachable.push((v, look_ahead_min));
-            }
-            // Candidates with a lower bound on their cost, the most promising first; a candidate
-            // whose bound exceeds the best cost found is never flown. The choice (least cost,
-            // then least node index) does not depend on the order.
-            let candidates: Vec<(usize, Option<Route>, f64, f64)> = if self.sharing().is_exact() {
-                let mut with_paths = Vec::new();
-                for (v, look_ahead_min) in reachable {
-                    if let Some(path) = towards_current.reversed_path_from(v) {
-                        with_paths.push((v, path, look_ahead_min, 0.0));
-                    }
-                }
-                if self.exact_settings().prune_candidates {
-                    // The fluid LP bounds `nt`.
-                    with_paths = self.bounded_candidates(with_paths, &battery)?;
-                }
-                with_paths
-                    .into_iter()
-                    .map(|(v, path, look_ahead_min, bound)| (v, Some(path), look_ahead_min, bound))
-                    .collect()
-            } else {
-                // The energy bound, first from the distance alone; each path is built, and its
-                // own bound checked, only when the candidate's turn comes.
-                let min_swarm_rate: f64 = min_rates.iter().sum();
-                let mut bounded: Vec<_> = reachable
-                    .into_iter()
-                    .map(|(v, look_ahead_min)| {
-                        let d = towards_current.distance_m[v];
-                        let bound = self.distance_bound_min(v, d, look_ahead_min, min_swarm_rate);
-                        (v, None, look_ahead_min, bound)
-                    })
-                    .collect();
-                bounded.sort_by(|a, b| a.3.total_cmp(&b.3).then(a.0.cmp(&b.0)));
-                bounded
-            };
-            let mut best: Option<(usize, Route, Flight, Stop)> = None;
-            let mut best_cost = f64::INFINITY;
-            let beyond =
-                |bound: f64, best_cost: f64| bound > best_cost + PRUNE_TOL_MIN * (1.0 + best_cost);
-            for (v, path, look_ahead_min, bound_min) in candidates {
-                if beyond(bound_min, best_cost) {
-                    break;
-                }
-                let path = match path {
-                    Some(path) => path,
-                    None => {
-                        let Some(path) = towards_current.reversed_path_from(v) else {
-                            continue;
-                        };
-                        if beyond(self.energy_bound_min(&path, v, look_ahead_min)?, best_cost) {
-                            continue;
-                        }
-                        path
-                    }
-                };
-                let flight = self.fly_counted(
-                    &path,
-                    &battery,
-                    self.sharing(),
-                    HopGoal::NodeTimeMin,
-                    solves,
-                )?;
-                if !flight.outcome.feasible {
-                    continue;
-                }
-                let stop = self
-                    .stop_at(v, &flight.outcome.final_battery_mah)?
-                    .expect("candidates have pads");
-                let cost = path.distance_m / speed + stop.nt_min + look_ahead_min;
-                // The lowest node index among equal costs.
-                let better = match &best {
-                    None => true,
-                    Some((b, ..)) => cost < best_cost || (cost == best_cost && v < *b),
-                };
-                if better {
-                    best_cost = cost;
-                    best = Some((v, path, flight, stop));
-                }
-            }
+            let best = self.best_recharging_node(&request, current, &battery, min_rates, solves)?;
             let Some((v, path, flight, stop)) = best else {
                 return Ok(plan.fail(PlanOutcome::DeadEnd {
                     node: graph.id_of(current).to_string(),
@@ -270,9 +170,174 @@ impl Planner {
                 }));
             };
             plan.push(self.hop(&path, &battery, flight, Some(stop)));
-            stopped[v] = true;
+            request.stopped[v] = true;
             current = v;
             battery = self.full_battery_mah();
         }
+    }
+
+    /// Lines 5-10: the direct hop from `battery`, flown without sharing when every drone reaches
+    /// the destination on its own battery, else with the policy's sharing when it shares and
+    /// that makes it. The flight, or `None` with the first failure (of the flight with sharing,
+    /// when the policy shares).
+    fn fly_straight(
+        &self,
+        direct: &Route,
+        battery: &[f64],
+        solves: &mut HopSolveCounts,
+    ) -> Result<(Option<Flight>, Option<HopFailure>)> {
+        let flight = self.fly_counted(
+            direct,
+            battery,
+            SharingPolicy::None,
+            HopGoal::Feasible,
+            solves,
+        )?;
+        if flight.outcome.feasible {
+            return Ok((Some(flight), None));
+        }
+        let mut direct_failure = flight.outcome.failure;
+        if self.sharing().shares() {
+            let flight =
+                self.fly_counted(direct, battery, self.sharing(), HopGoal::Feasible, solves)?;
+            if flight.outcome.feasible {
+                return Ok((Some(flight), None));
+            }
+            direct_failure = flight.outcome.failure;
+        }
+        Ok((None, direct_failure))
+    }
+
+    /// Lines 12-16: the recharging node reachable from `current` without stopping (its shortest
+    /// path, flown reversed, within the endurance bound of `battery`), not yet stopped at, of
+    /// least `tt + nt` (plus the look-ahead), the lowest index among equals: the node, the hop,
+    /// its flight and the stop there; `None` when none flies.
+    fn best_recharging_node(
+        &self,
+        request: &SequentialRequest,
+        current: usize,
+        battery: &[f64],
+        min_rates: &[f64],
+        solves: &mut HopSolveCounts,
+    ) -> Result<Option<(usize, Route, Flight, Stop)>> {
+        let graph = self.graph();
+        let speed = self.speed_m_per_min();
+        let endurance_min = self.endurance_bound_min(battery, min_rates);
+        // Shortest paths v -> current, flown reversed: one Dijkstra for all candidates.
+        let towards_current = graph.shortest_paths_to(current);
+        let mut reachable = Vec::new();
+        for v in 0..graph.node_count() {
+            if request.stopped[v] || graph.pads(v) == 0 || v == request.destination {
+                continue;
+            }
+            // A NaN or infinite distance (unreachable) is skipped too.
+            if towards_current.distance_m[v] / speed > endurance_min
+                || !towards_current.distance_m[v].is_finite()
+            {
+                continue;
+            }
+            let look_ahead_min = if request.look_ahead == LookAhead::RemainingTravelTime {
+                request.to_destination_m[v] / speed
+            } else {
+                0.0
+            };
+            reachable.push((v, look_ahead_min));
+        }
+        let candidates =
+            self.ordered_candidates(reachable, &towards_current, battery, min_rates)?;
+        self.least_candidate(candidates, &towards_current, battery, solves)
+    }
+
+    /// The candidates `reachable` (node, look-ahead) with a lower bound on their cost, the most
+    /// promising first: under `exact` with their paths and, when candidates are pruned, the
+    /// fluid LP's bound; else the energy bound from the distance alone, each path built, and its
+    /// own bound checked, only when the candidate's turn comes.
+    fn ordered_candidates(
+        &self,
+        reachable: Vec<(usize, f64)>,
+        towards_current: &ShortestPathsTo<'_>,
+        battery: &[f64],
+        min_rates: &[f64],
+    ) -> Result<Vec<LazyCandidate>> {
+        if self.sharing().is_exact() {
+            let mut with_paths = Vec::new();
+            for (v, look_ahead_min) in reachable {
+                if let Some(path) = towards_current.reversed_path_from(v) {
+                    with_paths.push((v, path, look_ahead_min, 0.0));
+                }
+            }
+            if self.exact_settings().prune_candidates {
+                // The fluid LP bounds `nt`.
+                with_paths = self.bounded_candidates(with_paths, battery)?;
+            }
+            return Ok(with_paths
+                .into_iter()
+                .map(|(v, path, look_ahead_min, bound)| (v, Some(path), look_ahead_min, bound))
+                .collect());
+        }
+        let min_swarm_rate: f64 = min_rates.iter().sum();
+        let mut bounded: Vec<_> = reachable
+            .into_iter()
+            .map(|(v, look_ahead_min)| {
+                let d = towards_current.distance_m[v];
+                let bound = self.distance_bound_min(v, d, look_ahead_min, min_swarm_rate);
+                (v, None, look_ahead_min, bound)
+            })
+            .collect();
+        bounded.sort_by(|a, b| a.3.total_cmp(&b.3).then(a.0.cmp(&b.0)));
+        Ok(bounded)
+    }
+
+    /// The candidate of least cost `tt + nt + look-ahead`, each flown from `battery` in turn;
+    /// one whose bound exceeds the best cost found is never flown. The choice (least cost, then
+    /// least node index) does not depend on the order.
+    fn least_candidate(
+        &self,
+        candidates: Vec<LazyCandidate>,
+        towards_current: &ShortestPathsTo<'_>,
+        battery: &[f64],
+        solves: &mut HopSolveCounts,
+    ) -> Result<Option<(usize, Route, Flight, Stop)>> {
+        let speed = self.speed_m_per_min();
+        let mut best: Option<(usize, Route, Flight, Stop)> = None;
+        let mut best_cost = f64::INFINITY;
+        let beyond =
+            |bound: f64, best_cost: f64| bound > best_cost + PRUNE_TOL_MIN * (1.0 + best_cost);
+        for (v, path, look_ahead_min, bound_min) in candidates {
+            if beyond(bound_min, best_cost) {
+                break;
+            }
+            let path = match path {
+                Some(path) => path,
+                None => {
+                    let Some(path) = towards_current.reversed_path_from(v) else {
+                        continue;
+                    };
+                    if beyond(self.energy_bound_min(&path, v, look_ahead_min)?, best_cost) {
+                        continue;
+                    }
+                    path
+                }
+            };
+            let flight =
+                self.fly_counted(&path, battery, self.sharing(), HopGoal::NodeTimeMin, solves)?;
+            if !flight.outcome.feasible {
+                continue;
+            }
+            let stop = self
+                .stop_at(v, &flight.outcome.final_battery_mah)?
+                .expect("candidates have pads");
+            let cost = path.distance_m / speed + stop.nt_min + look_ahead_min;
+            // The lowest node index among equal costs.
+            let better = match &best {
+                None => true,
+                Some((b, ..)) => cost < best_cost || (cost == best_cost && v < *b),
+            };
+            if better {
+                best_cost = cost;
+                best = Some((v, path, flight, stop));
+            }
+        }
+        Ok(best)
     }
 }

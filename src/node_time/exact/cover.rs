@@ -433,7 +433,7 @@ impl Cover {
         left: u128,
         slack: u64,
         depth: usize,
-        mut f: usize,
+        f: usize,
         budget: &mut Budget,
         limit: u64,
     ) -> Option<bool> {
@@ -449,12 +449,33 @@ impl Cover {
         if self.failed.get(&(left, depth)).is_some_and(|&s| s >= slack) {
             return Some(false);
         }
-        // Open patterns with more idle minutes than the slack are closed for good below.
+        let (f, top) = self.open_within(slack, depth, f);
+        let (fewest, branch) = self.fewest_open(left, depth, f, top);
+        if fewest > 0 {
+            for k in self.options(branch, fewest, depth, f, top) {
+                let (mask, idle) = self.take(k, depth, f, top);
+                match self.search(left & !mask, slack - idle, depth + 1, f, budget, limit) {
+                    Some(true) => return Some(true),
+                    None => return None,
+                    Some(false) => {}
+                }
+                self.chosen.pop();
+            }
+        }
+        let best = self.failed.entry((left, depth)).or_insert(0);
+        *best = (*best).max(slack);
+        Some(false)
+    }
+
+    /// Closes for good the patterns open at `depth` (over frame `f`) with more idle minutes
+    /// than `slack`, and gives the node's subtree a frame of its own when few are left open: the
+    /// node's frame and the words of its open set.
+    fn open_within(&mut self, slack: u64, depth: usize, f: usize) -> (usize, usize) {
         let patterns = &self.patterns;
-        let mut fit = self.frames[f]
+        let fit = self.frames[f]
             .ids
             .partition_point(|&id| patterns[id].1 <= slack);
-        let mut top = fit.div_ceil(64);
+        let top = fit.div_ceil(64);
         {
             let open = &mut self.open[depth];
             open[top..].fill(0);
@@ -467,35 +488,46 @@ impl Cover {
             .map(|x| x.count_ones() as usize)
             .sum();
         if top > self.compact_min_words && count * self.compact_density < top * 64 {
-            // A new frame of the open patterns, for this node's subtree.
-            if self.frames.len() == f + 1 {
-                self.frames.push(Frame::default());
-            }
-            let (below, above) = self.frames.split_at_mut(f + 1);
-            let (frame, next) = (&below[f], &mut above[0]);
-            let open = &self.open[depth];
-            let ids = (0..top).flat_map(|w| {
-                let mut bits = open[w];
-                std::iter::from_fn(move || {
-                    (bits != 0).then(|| {
-                        let b = bits.trailing_zeros() as usize;
-                        bits &= bits - 1;
-                        frame.ids[w * 64 + b]
-                    })
-                })
-            });
-            next.fill(&self.patterns, self.drones, ids);
-            f += 1;
-            (fit, top) = (count, self.frames[f].words);
-            let open = &mut self.open[depth];
-            open.clear();
-            open.resize(top, u64::MAX);
-            if fit % 64 != 0 {
-                open[top - 1] = (1u64 << (fit % 64)) - 1;
-            }
+            return self.compact(depth, f, top, count);
         }
+        (f, top)
+    }
+
+    /// A new frame `f + 1` of the `count` patterns open at `depth` (in the first `top` words
+    /// over frame `f`), for this node's subtree, every one open in it: the frame and its words.
+    fn compact(&mut self, depth: usize, f: usize, top: usize, count: usize) -> (usize, usize) {
+        if self.frames.len() == f + 1 {
+            self.frames.push(Frame::default());
+        }
+        let (below, above) = self.frames.split_at_mut(f + 1);
+        let (frame, next) = (&below[f], &mut above[0]);
+        let open = &self.open[depth];
+        let ids = (0..top).flat_map(|w| {
+            let mut bits = open[w];
+            std::iter::from_fn(move || {
+                (bits != 0).then(|| {
+                    let b = bits.trailing_zeros() as usize;
+                    bits &= bits - 1;
+                    frame.ids[w * 64 + b]
+                })
+            })
+        });
+        next.fill(&self.patterns, self.drones, ids);
+        let f = f + 1;
+        let (fit, top) = (count, self.frames[f].words);
+        let open = &mut self.open[depth];
+        open.clear();
+        open.resize(top, u64::MAX);
+        if fit % 64 != 0 {
+            open[top - 1] = (1u64 << (fit % 64)) - 1;
+        }
+        (f, top)
+    }
+
+    /// The drone of `left` in the fewest patterns open at `depth` (frame `f`, `top` words), the
+    /// lowest among equals, and that count (0 stops the scan).
+    fn fewest_open(&self, left: u128, depth: usize, f: usize, top: usize) -> (u32, usize) {
         let frame = &self.frames[f];
-        // The drone in the fewest open patterns.
         let (mut fewest, mut branch) = (u32::MAX, 0);
         let mut rest = left;
         while rest != 0 {
@@ -513,47 +545,55 @@ impl Cover {
                 }
             }
         }
-        if fewest > 0 {
-            let mut options = Vec::with_capacity(fewest as usize);
-            for (w, (&a, &b)) in self.open[depth][..top]
-                .iter()
-                .zip(frame.holding(branch))
-                .enumerate()
-            {
-                let mut bits = a & b;
-                while bits != 0 {
-                    options.push(w * 64 + bits.trailing_zeros() as usize);
-                    bits &= bits - 1;
-                }
-            }
-            for k in options {
-                let frame = &self.frames[f];
-                let id = frame.ids[k];
-                let (mask, idle) = self.patterns[id];
-                let (upper, lower) = self.open.split_at_mut(depth + 1);
-                let (open, next) = (&upper[depth], &mut lower[0]);
-                next.clear();
-                next.extend_from_slice(&open[..top]);
-                let mut drones = mask;
-                while drones != 0 {
-                    let i = drones.trailing_zeros() as usize;
-                    drones &= drones - 1;
-                    for (x, h) in next.iter_mut().zip(frame.holding(i)) {
-                        *x &= !h;
-                    }
-                }
-                self.chosen.push(id);
-                match self.search(left & !mask, slack - idle, depth + 1, f, budget, limit) {
-                    Some(true) => return Some(true),
-                    None => return None,
-                    Some(false) => {}
-                }
-                self.chosen.pop();
+        (fewest, branch)
+    }
+
+    /// The frame positions of the `fewest` patterns open at `depth` (frame `f`, `top` words)
+    /// that hold drone `branch`, increasing.
+    fn options(
+        &self,
+        branch: usize,
+        fewest: u32,
+        depth: usize,
+        f: usize,
+        top: usize,
+    ) -> Vec<usize> {
+        let mut options = Vec::with_capacity(fewest as usize);
+        for (w, (&a, &b)) in self.open[depth][..top]
+            .iter()
+            .zip(self.frames[f].holding(branch))
+            .enumerate()
+        {
+            let mut bits = a & b;
+            while bits != 0 {
+                options.push(w * 64 + bits.trailing_zeros() as usize);
+                bits &= bits - 1;
             }
         }
-        let best = self.failed.entry((left, depth)).or_insert(0);
-        *best = (*best).max(slack);
-        Some(false)
+        options
+    }
+
+    /// Chooses the pattern at position `k` of frame `f` at `depth`: the patterns open at `depth`
+    /// (`top` words) that share no drone with it stay open at `depth + 1`. Its drones and idle
+    /// minutes.
+    fn take(&mut self, k: usize, depth: usize, f: usize, top: usize) -> (u128, u64) {
+        let frame = &self.frames[f];
+        let id = frame.ids[k];
+        let (mask, idle) = self.patterns[id];
+        let (upper, lower) = self.open.split_at_mut(depth + 1);
+        let (open, next) = (&upper[depth], &mut lower[0]);
+        next.clear();
+        next.extend_from_slice(&open[..top]);
+        let mut drones = mask;
+        while drones != 0 {
+            let i = drones.trailing_zeros() as usize;
+            drones &= drones - 1;
+            for (x, h) in next.iter_mut().zip(frame.holding(i)) {
+                *x &= !h;
+            }
+        }
+        self.chosen.push(id);
+        (mask, idle)
     }
 }
 

@@ -77,15 +77,8 @@ fn complete_dive(
             return Some(pad_of);
         }
         let sub_p: Vec<f64> = rest.iter().map(|&j| p[j]).collect();
-        let limits = budget.limits_for(DIVE_COMPLETION_NODES);
-        let mut sub = Budget {
-            nodes: budget.nodes,
-            start: budget.start,
-            limits: &limits,
-        };
         let mut search = BinCompletion::new(&sub_p, m - kept, cap, true, Memo::default());
-        let decision = search.decide(&mut sub);
-        budget.nodes = sub.nodes;
+        let decision = budget.within(DIVE_COMPLETION_NODES, |sub| search.decide(sub));
         if decision == Decision::Fits {
             for (a, &j) in rest.iter().enumerate() {
                 pad_of[j] = kept + search.pad_of[a];

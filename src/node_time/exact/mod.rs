@@ -159,6 +159,25 @@ fn makespan_sorted(m: usize, p: &[f64], pad_of: &[usize]) -> f64 {
     loads.iter().copied().fold(0.0, f64::max)
 }
 
+/// Whether the incumbent `ub` meets the bound `lb`: exactly for whole minutes, within
+/// [`REL_TOL`] otherwise.
+fn proven(integral: bool, ub: f64, lb: f64) -> bool {
+    if integral {
+        ub <= lb
+    } else {
+        le_tol(ub, lb)
+    }
+}
+
+/// A search's outcome: whether it proved the incumbent `ub`, and the bound `lb` it reached.
+fn outcome(proven: bool, lb: f64, ub: f64) -> SearchOutcome {
+    SearchOutcome {
+        proven,
+        lower_bound_min: lb,
+        incumbent_min: ub,
+    }
+}
+
 /// Phase 2: local search on the incumbent, the `L2` and count bounds, then the decision version
 /// from the lower bound up (whole minutes) or by bisection (real minutes); `pad_of` holds the
 /// incumbent.
@@ -171,12 +190,6 @@ fn phase2(
     pad_of: &mut [usize],
     budget: &mut Budget,
 ) -> SearchOutcome {
-    let proven = |ub: f64, lb: f64| if integral { ub <= lb } else { le_tol(ub, lb) };
-    let outcome = |proven: bool, lb: f64, ub: f64| SearchOutcome {
-        proven,
-        lower_bound_min: lb,
-        incumbent_min: ub,
-    };
     let mut trial = pad_of.to_vec();
     let improved = local_search(m, p, &mut trial);
     if improved < ub {
@@ -186,209 +199,338 @@ fn phase2(
     if let Some(fail) = bound_lift(p, m, lb, ub, integral) {
         lb = lb.max(if integral { fail + 1.0 } else { fail });
     }
-    if proven(ub, lb) {
+    if proven(integral, ub, lb) {
         return outcome(true, lb, ub);
     }
     if p.len() + 2 * m > DECISION_MAX_DEPTH {
         let found = run_assignment_search(m, p, integral, lb, ub, pad_of, budget);
         return outcome(found.proven, lb, found.incumbent_min);
     }
-    let mut first = true;
-    let mut try_proof = false;
-    let mut guess = first_guess(m, p, integral, lb, ub);
-    let mut memo = Memo::default();
-    let mut memo_cap = f64::INFINITY;
-    // The LP, built at its first use (small swarms never stall, so never pay for it); the
-    // smallest capacity at which it did not refute (it cannot refute any larger one), and the
-    // largest it refuted.
-    let mut lp: Option<LpBound> = None;
-    let mut lp_failed_at = f64::INFINITY;
-    let mut lp_refuted: Option<f64> = None;
-    let volume = p.iter().sum::<f64>() / m as f64;
-    let volume = if integral {
-        (volume - 1e-9).ceil()
-    } else {
-        volume
-    };
-    let perfect_expected = integral && expected_excess(p, m, 1.0) < PERFECT_EXCESS_MAX_MIN;
-    for _ in 0..10_000 {
-        if proven(ub, lb) {
-            return outcome(true, lb, ub);
-        }
-        // First the bound itself; after a new incumbent, just below it (the proof that ends the
-        // search); else the midpoint of the gap (whole minutes: of the makespans not excluded).
-        let c = if let Some(g) = guess.take() {
-            first = false;
-            g
-        } else if first {
-            lb
-        } else if try_proof {
-            if integral {
-                ub - 1.0
-            } else {
-                ub * (1.0 - 0.5 * REL_TOL)
-            }
-        } else if integral {
-            (0.5 * (lb + ub - 1.0)).floor()
+    CapacitySearch::new(m, p, integral, lb, ub, pad_of).run(budget)
+}
+
+/// Phase 2's search over the capacity `C` (`models/node_time.md`, "Search over `C`"): the bound,
+/// the incumbent, bin completion's memo and the LP bound, kept from one decision to the next.
+struct CapacitySearch<'a> {
+    m: usize,
+    p: &'a [f64],
+    integral: bool,
+    lb: f64,
+    ub: f64,
+    /// The incumbent's pad of every drone.
+    pad_of: &'a mut [usize],
+    /// Bin completion's failed states, valid at capacities up to `memo_cap`.
+    memo: Memo,
+    memo_cap: f64,
+    /// The LP, built at its first use (small swarms never stall, so never pay for it), and the
+    /// smallest capacity at which it did not refute (it cannot refute any larger one).
+    lp: Option<LpBound>,
+    lp_failed_at: f64,
+    /// The volume bound `sum/k` (whole minutes: rounded up).
+    volume: f64,
+    /// Whole minutes with a perfect assignment expected ([`PERFECT_EXCESS_MAX_MIN`]).
+    perfect_expected: bool,
+}
+
+/// How one decision at a capacity `C` ended.
+enum AtCapacity {
+    /// The first real-valued trial at the bound stopped on its own budget: dropped.
+    Dropped,
+    /// An assignment with every load within `C`.
+    Fits(Vec<usize>),
+    /// No assignment within `refuted` (`C`, or the larger capacity the LP refuted).
+    DoesNotFit { refuted: f64 },
+    /// A limit stopped it.
+    Stopped,
+}
+
+/// Where a stalled decision is in its slices (`models/node_time.md`, "Stalled decisions").
+struct Slices {
+    /// Nodes of the current slice.
+    nodes: u64,
+    /// The current slice, counted from 0.
+    round: u64,
+    /// The slice after which the LP bound is tried.
+    lp_round: u64,
+    /// The LP is skipped at the volume bound (a large table, a perfect assignment expected).
+    lp_skipped_at_volume: bool,
+    /// LP dives run to their end so far.
+    dives: u64,
+}
+
+impl<'a> CapacitySearch<'a> {
+    /// The search from the bound `lb` and the incumbent `ub` (`pad_of`).
+    fn new(
+        m: usize,
+        p: &'a [f64],
+        integral: bool,
+        lb: f64,
+        ub: f64,
+        pad_of: &'a mut [usize],
+    ) -> Self {
+        let volume = p.iter().sum::<f64>() / m as f64;
+        let volume = if integral {
+            (volume - 1e-9).ceil()
         } else {
-            0.5 * (lb + ub)
+            volume
         };
-        let capped = !integral && first;
-        first = false;
-        try_proof = false;
-        let c_run = if integral { c } else { c * (1.0 + CAP_SLACK) };
-        if c_run > memo_cap {
-            memo.clear();
+        CapacitySearch {
+            m,
+            p,
+            integral,
+            lb,
+            ub,
+            pad_of,
+            memo: Memo::default(),
+            memo_cap: f64::INFINITY,
+            lp: None,
+            lp_failed_at: f64::INFINITY,
+            volume,
+            perfect_expected: integral && expected_excess(p, m, 1.0) < PERFECT_EXCESS_MAX_MIN,
         }
-        memo_cap = c_run;
-        let mut search = BinCompletion::new(p, m, c_run, integral, std::mem::take(&mut memo));
-        let mut aimed: Option<Vec<usize>> = None;
-        // Real minutes: the trial at the bound itself only pays off when the bound is the node
-        // time (a perfect split, or the longest drone / pair bound); a failure there proves
-        // nothing new, so that trial gets a small node budget and is dropped when it stops.
-        let decision = if capped {
-            let trial_limits = budget.limits_for(FIRST_TRIAL_NODES);
-            let mut trial = Budget {
-                nodes: budget.nodes,
-                start: budget.start,
-                limits: &trial_limits,
-            };
-            let d = search.decide(&mut trial);
-            budget.nodes = trial.nodes;
-            if d == Decision::Stopped && !budget.spent() {
-                memo = search.into_memo();
-                continue;
-            }
-            d
-        } else {
-            // Bin completion in slices, from STALL_NODES nodes, doubling. After the first slice
-            // (the sixth for a large knapsack table, LP_EARLY_MAX_CELLS) the LP bound is tried
-            // at `c` once (not above a capacity where it failed, nor on a large table at
-            // `ceil(sum/k)` when a perfect assignment is expected); after every slice, with
-            // whole minutes, the perfect-partition search aims at `c` with as many nodes as the
-            // slice, then the repacking of pad groups with as many again, then the exact front and
-            // covered tail (`cover.rs`) with as many again (COVER_SLICE_FACTOR times as many
-            // where the LP is skipped at the volume bound), then, once the LP has failed to
-            // refute `c`, an LP dive (`dive.rs`). Bin completion resumes with its memo.
-            let mut slice_nodes = STALL_NODES;
-            let mut round = 0u64;
-            let lp_round = if integral && (c + 1.0) * p.len() as f64 > LP_EARLY_MAX_CELLS {
-                LP_LATE_SLICE
-            } else {
-                0
-            };
-            let lp_skipped_at_volume = perfect_expected && c <= volume && lp_round == LP_LATE_SLICE;
-            let mut dives = 0u64;
-            loop {
-                let slice_limits = budget.limits_for(slice_nodes);
-                let mut slice = Budget {
-                    nodes: budget.nodes,
-                    start: budget.start,
-                    limits: &slice_limits,
-                };
-                let d = search.decide(&mut slice);
-                budget.nodes = slice.nodes;
-                if d != Decision::Stopped || budget.spent() {
-                    break d;
-                }
-                if round == lp_round && c_run < lp_failed_at && !lp_skipped_at_volume {
-                    // Refuted at `c`: the bisection up to the incumbent lifts the bound at once
-                    // (and proves the incumbent when it refutes just below it).
-                    let lp = lp.get_or_insert_with(|| LpBound::new(p, integral));
-                    if let Some(fail) = lp.lift(m, c, ub, budget) {
-                        lp_refuted = Some(fail);
-                        break Decision::DoesNotFit;
-                    }
-                    if !budget.spent() {
-                        lp_failed_at = c_run;
-                    }
-                }
-                if integral {
-                    // It starts from the incumbent, so each slice goes on from the best
-                    // assignment the earlier ones met.
-                    let mut trial = pad_of.to_vec();
-                    let aimed_at = aim_at(m, p, c, &mut trial, slice_nodes, round, budget);
-                    let repacked = aimed_at.is_none_or(|x| x > c)
-                        && p.len() <= REPACK_MAX_DRONES_PER_PAD * m
-                        && repack(m, p, c, &mut trial, slice_nodes, round, budget).is_some();
-                    if aimed_at.is_some() || repacked {
-                        let found = makespan_sorted(m, p, &trial);
-                        if found <= c {
-                            aimed = Some(trial);
-                            break Decision::Fits;
-                        }
-                        if found < ub {
-                            ub = found;
-                            pad_of.copy_from_slice(&trial);
-                        }
-                    }
-                    if p.len() <= COVER_MAX_DRONES_PER_PAD * m {
-                        let factor = if lp_skipped_at_volume {
-                            COVER_SLICE_FACTOR
-                        } else {
-                            1
-                        };
-                        let work = slice_nodes.saturating_mul(factor);
-                        let covered = cover_at(m, p, c, work, round, budget);
-                        if let Some(trial) = covered.filter(|t| makespan_sorted(m, p, t) <= c) {
-                            aimed = Some(trial);
-                            break Decision::Fits;
-                        }
-                    }
-                }
-                // Not refuted at `c` by the LP: a dive guided by its patterns, with
-                // DIVE_SLICE_FACTOR times the slice's nodes; one cut short by them is run again
-                // (same seed) in the next slice.
-                if let Some(lp) = lp.as_ref().filter(|_| integral && c_run >= lp_failed_at) {
-                    let limits = budget.limits_for(slice_nodes.saturating_mul(DIVE_SLICE_FACTOR));
-                    let mut sub = Budget {
-                        nodes: budget.nodes,
-                        start: budget.start,
-                        limits: &limits,
-                    };
-                    let dived = lp_dive(m, p, c, dives, lp, &mut sub);
-                    if !sub.spent() {
-                        dives += 1;
-                    }
-                    budget.nodes = sub.nodes;
-                    if let Some(trial) = dived.filter(|t| makespan_sorted(m, p, t) <= c) {
-                        aimed = Some(trial);
-                        break Decision::Fits;
-                    }
-                }
-                if budget.spent() {
-                    break Decision::Stopped;
-                }
-                round += 1;
-                slice_nodes = slice_nodes.saturating_mul(2);
-                search = BinCompletion::new(p, m, c_run, integral, search.into_memo());
-            }
-        };
-        match decision {
-            Decision::Fits => {
-                // The perfect-partition search's assignment, or bin completion's; the makespan is
-                // recomputed from it either way.
-                let found_pads = aimed.take().unwrap_or_else(|| search.pad_of.clone());
-                let found = makespan_sorted(m, p, &found_pads);
-                if found < ub {
-                    ub = found;
-                    pad_of.copy_from_slice(&found_pads);
-                    try_proof = true;
-                }
-            }
-            Decision::DoesNotFit => {
-                let refuted = lp_refuted.take().map_or(c, |f| f.max(c));
-                lb = if integral {
-                    lb.max(refuted + 1.0)
-                } else {
-                    lb.max(refuted)
-                };
-            }
-            Decision::Stopped => return outcome(false, lb, ub),
-        }
-        memo = search.into_memo();
     }
-    outcome(proven(ub, lb), lb, ub)
+
+    /// Decisions at capacities between the bound and the incumbent until they meet or a limit
+    /// stops the search.
+    fn run(mut self, budget: &mut Budget) -> SearchOutcome {
+        let integral = self.integral;
+        let mut first = true;
+        let mut try_proof = false;
+        let mut guess = first_guess(self.m, self.p, integral, self.lb, self.ub);
+        for _ in 0..10_000 {
+            if proven(integral, self.ub, self.lb) {
+                return outcome(true, self.lb, self.ub);
+            }
+            // First the bound itself; after a new incumbent, just below it (the proof that ends
+            // the search); else the midpoint of the gap (whole minutes: of the makespans not
+            // excluded).
+            let c = if let Some(g) = guess.take() {
+                first = false;
+                g
+            } else if first {
+                self.lb
+            } else if try_proof {
+                if integral {
+                    self.ub - 1.0
+                } else {
+                    self.ub * (1.0 - 0.5 * REL_TOL)
+                }
+            } else if integral {
+                (0.5 * (self.lb + self.ub - 1.0)).floor()
+            } else {
+                0.5 * (self.lb + self.ub)
+            };
+            let capped = !integral && first;
+            first = false;
+            try_proof = false;
+            match self.decide_at(c, capped, budget) {
+                AtCapacity::Dropped => {}
+                AtCapacity::Fits(found_pads) => {
+                    // The makespan is recomputed from the assignment, whichever search found it.
+                    let found = makespan_sorted(self.m, self.p, &found_pads);
+                    if found < self.ub {
+                        self.ub = found;
+                        self.pad_of.copy_from_slice(&found_pads);
+                        try_proof = true;
+                    }
+                }
+                AtCapacity::DoesNotFit { refuted } => {
+                    self.lb = if integral {
+                        self.lb.max(refuted + 1.0)
+                    } else {
+                        self.lb.max(refuted)
+                    };
+                }
+                AtCapacity::Stopped => return outcome(false, self.lb, self.ub),
+            }
+        }
+        outcome(proven(integral, self.ub, self.lb), self.lb, self.ub)
+    }
+
+    /// One decision at capacity `c`: with `capped`, the real-valued trial at the bound itself,
+    /// else bin completion in slices. Bin completion keeps its memo for the next decision.
+    fn decide_at(&mut self, c: f64, capped: bool, budget: &mut Budget) -> AtCapacity {
+        let c_run = if self.integral {
+            c
+        } else {
+            c * (1.0 + CAP_SLACK)
+        };
+        if c_run > self.memo_cap {
+            self.memo.clear();
+        }
+        self.memo_cap = c_run;
+        let memo = std::mem::take(&mut self.memo);
+        let search = BinCompletion::new(self.p, self.m, c_run, self.integral, memo);
+        let (at, memo) = if capped {
+            first_trial(c, search, budget)
+        } else {
+            self.in_slices(c, c_run, search, budget)
+        };
+        self.memo = memo;
+        at
+    }
+
+    /// Bin completion at `c` in slices, from [`STALL_NODES`] nodes, doubling; between two
+    /// slices the bounds and searches of [`CapacitySearch::after_slice`]. Bin completion
+    /// resumes with its memo, which it hands back.
+    fn in_slices(
+        &mut self,
+        c: f64,
+        c_run: f64,
+        mut search: BinCompletion<'a>,
+        budget: &mut Budget,
+    ) -> (AtCapacity, Memo) {
+        let lp_round = if self.integral && (c + 1.0) * self.p.len() as f64 > LP_EARLY_MAX_CELLS {
+            LP_LATE_SLICE
+        } else {
+            0
+        };
+        let mut slices = Slices {
+            nodes: STALL_NODES,
+            round: 0,
+            lp_round,
+            lp_skipped_at_volume: self.perfect_expected
+                && c <= self.volume
+                && lp_round == LP_LATE_SLICE,
+            dives: 0,
+        };
+        loop {
+            let d = budget.within(slices.nodes, |slice| search.decide(slice));
+            if d != Decision::Stopped || budget.spent() {
+                return decided(d, c, search);
+            }
+            if let Some(at) = self.after_slice(c, c_run, &mut slices, budget) {
+                return (at, search.into_memo());
+            }
+            if budget.spent() {
+                return (AtCapacity::Stopped, search.into_memo());
+            }
+            slices.round += 1;
+            slices.nodes = slices.nodes.saturating_mul(2);
+            search = BinCompletion::new(self.p, self.m, c_run, self.integral, search.into_memo());
+        }
+    }
+
+    /// Between two slices of a stalled decision at `c`: after slice `lp_round` the LP bound
+    /// at `c` once (not above a capacity where it failed, nor where it is skipped at the volume
+    /// bound); with whole minutes the upper bounds aimed at `c`
+    /// ([`CapacitySearch::aim_at_capacity`]); once the LP has failed to refute `c`, an LP dive.
+    /// The decision, when one of them settles it.
+    fn after_slice(
+        &mut self,
+        c: f64,
+        c_run: f64,
+        slices: &mut Slices,
+        budget: &mut Budget,
+    ) -> Option<AtCapacity> {
+        let (m, p, integral) = (self.m, self.p, self.integral);
+        if slices.round == slices.lp_round
+            && c_run < self.lp_failed_at
+            && !slices.lp_skipped_at_volume
+        {
+            // Refuted at `c`: the bisection up to the incumbent lifts the bound at once (and
+            // proves the incumbent when it refutes just below it).
+            let lp = self.lp.get_or_insert_with(|| LpBound::new(p, integral));
+            if let Some(fail) = lp.lift(m, c, self.ub, budget) {
+                return Some(AtCapacity::DoesNotFit {
+                    refuted: fail.max(c),
+                });
+            }
+            if !budget.spent() {
+                self.lp_failed_at = c_run;
+            }
+        }
+        if integral {
+            if let Some(trial) = self.aim_at_capacity(c, slices, budget) {
+                return Some(AtCapacity::Fits(trial));
+            }
+        }
+        // Not refuted at `c` by the LP: a dive guided by its patterns, with DIVE_SLICE_FACTOR
+        // times the slice's nodes; one cut short by them is run again (same seed) in the next
+        // slice.
+        if let Some(lp) = self
+            .lp
+            .as_ref()
+            .filter(|_| integral && c_run >= self.lp_failed_at)
+        {
+            let share = slices.nodes.saturating_mul(DIVE_SLICE_FACTOR);
+            let (dived, ended) = budget.within(share, |sub| {
+                let dived = lp_dive(m, p, c, slices.dives, lp, sub);
+                (dived, !sub.spent())
+            });
+            if ended {
+                slices.dives += 1;
+            }
+            if let Some(trial) = dived.filter(|t| makespan_sorted(m, p, t) <= c) {
+                return Some(AtCapacity::Fits(trial));
+            }
+        }
+        None
+    }
+
+    /// Whole minutes, after a slice: the perfect-partition search aimed at `c` from the
+    /// incumbent with as many nodes as the slice, then the repacking of pad groups with as many
+    /// again, then the exact front and covered tail (`cover.rs`) with as many again
+    /// ([`COVER_SLICE_FACTOR`] times as many where the LP is skipped at the volume bound). An
+    /// assignment within `c` when one of them finds it; a better one becomes the incumbent.
+    fn aim_at_capacity(
+        &mut self,
+        c: f64,
+        slices: &Slices,
+        budget: &mut Budget,
+    ) -> Option<Vec<usize>> {
+        let (m, p) = (self.m, self.p);
+        // It starts from the incumbent, so each slice goes on from the best assignment the
+        // earlier ones met.
+        let mut trial = self.pad_of.to_vec();
+        let aimed_at = aim_at(m, p, c, &mut trial, slices.nodes, slices.round, budget);
+        let repacked = aimed_at.is_none_or(|x| x > c)
+            && p.len() <= REPACK_MAX_DRONES_PER_PAD * m
+            && repack(m, p, c, &mut trial, slices.nodes, slices.round, budget).is_some();
+        if aimed_at.is_some() || repacked {
+            let found = makespan_sorted(m, p, &trial);
+            if found <= c {
+                return Some(trial);
+            }
+            if found < self.ub {
+                self.ub = found;
+                self.pad_of.copy_from_slice(&trial);
+            }
+        }
+        if p.len() <= COVER_MAX_DRONES_PER_PAD * m {
+            let factor = if slices.lp_skipped_at_volume {
+                COVER_SLICE_FACTOR
+            } else {
+                1
+            };
+            let work = slices.nodes.saturating_mul(factor);
+            let covered = cover_at(m, p, c, work, slices.round, budget);
+            return covered.filter(|t| makespan_sorted(m, p, t) <= c);
+        }
+        None
+    }
+}
+
+/// Real minutes: the trial at the bound `c` itself only pays off when the bound is the node
+/// time (a perfect split, or the longest drone / pair bound); a failure there proves nothing
+/// new, so that trial gets [`FIRST_TRIAL_NODES`] nodes and is dropped when it stops on them.
+/// Bin completion hands back its memo.
+fn first_trial(c: f64, mut search: BinCompletion<'_>, budget: &mut Budget) -> (AtCapacity, Memo) {
+    let d = budget.within(FIRST_TRIAL_NODES, |trial| search.decide(trial));
+    if d == Decision::Stopped && !budget.spent() {
+        return (AtCapacity::Dropped, search.into_memo());
+    }
+    decided(d, c, search)
+}
+
+/// Bin completion's decision `d` at `c`, with its assignment when it fits, and its memo.
+fn decided(d: Decision, c: f64, mut search: BinCompletion<'_>) -> (AtCapacity, Memo) {
+    let at = match d {
+        Decision::Fits => AtCapacity::Fits(std::mem::take(&mut search.pad_of)),
+        Decision::DoesNotFit => AtCapacity::DoesNotFit { refuted: c },
+        Decision::Stopped => AtCapacity::Stopped,
+    };
+    (at, search.into_memo())
 }
 
 /// The first capacity bin completion tries when the bound `lb` is `sum/k` itself (not lifted by
@@ -599,133 +741,73 @@ pub(crate) fn exact_phased(
     validate(pads, charge_times_min)?;
     validate_limits(limits)?;
     let start = Instant::now();
-    let n = charge_times_min.len();
-    if pads >= n {
-        let makespan = charge_times_min.iter().copied().fold(0.0, f64::max);
-        return Ok(NodeTimeSolution {
-            method: NodeTimeMethod::Exact,
-            makespan_min: makespan,
-            lower_bound_min: makespan,
-            status: SolveStatus::Optimal,
-            assignment: one_per_pad(n),
-            solve_ms: elapsed_ms(start),
-        });
-    }
-    let m = pads;
-    let (order, sorted) = sort_desc(charge_times_min);
-    let integral = all_integral(charge_times_min);
-    let mut lb = lower_bound_sorted(m, &sorted, integral);
-    // Zero-time drones (at the end of `sorted`) change no load: they join pad 0 at the end.
-    let positive = sorted.iter().take_while(|&&p| p > 0.0).count();
-    let mut pad_sorted = vec![0; n];
-    let mut ub = lpt_sorted(m, &sorted[..positive], &mut pad_sorted[..positive]);
-    let proven = |ub: f64, lb: f64| if integral { ub <= lb } else { le_tol(ub, lb) };
-    let mut finished = true;
-    if !proven(ub, lb) {
-        let p = &sorted[..positive];
-        let mut budget = Budget {
+    let mut solution = if pads >= charge_times_min.len() {
+        one_drone_per_pad(charge_times_min)
+    } else {
+        let budget = Budget {
             nodes: 0,
             start,
             limits,
         };
-        // Phase 1: the assignment branch and bound, briefly (small swarms end here).
-        let phase1 = Limits {
-            time_limit_s: limits.time_limit_s,
-            node_limit: Some(
-                limits
-                    .node_limit
-                    .map_or(phase1_nodes, |l| l.min(phase1_nodes)),
-            ),
-        };
-        if phase1_nodes > 0 {
-            let mut phase1_budget = Budget {
-                nodes: 0,
-                start,
-                limits: &phase1,
-            };
-            let found = run_assignment_search(
-                m,
-                p,
-                integral,
-                lb,
-                ub,
-                &mut pad_sorted[..positive],
-                &mut phase1_budget,
-            );
-            ub = found.incumbent_min;
-            budget.nodes = phase1_budget.nodes;
-            finished = found.proven;
-        } else {
-            finished = false;
-        }
-        if !finished {
-            // The cardinality bound, `O(n k)`: after phase 1, so that the small swarms it
-            // proves never pay for it.
-            lb = lb.max(cardinality_bound(m, p, integral));
-            finished = proven(ub, lb);
-        }
-        if !finished
-            && !integral
-            && positive > PARTITION_MAX_DRONES
-            && positive >= LDM_DRONES_PER_PAD * m
-        {
-            // Real-valued times beyond partitioning's reach with many drones per pad, where a
-            // limit may well stop the proof: largest differencing balances better than LPT.
-            let mut alt = vec![0; positive];
-            let found = ldm_sorted(m, p, &mut alt);
-            if found < ub {
-                ub = found;
-                pad_sorted[..positive].copy_from_slice(&alt);
-            }
-        }
+        solve_sorted(pads, charge_times_min, budget, phase1_nodes, next)
+    };
+    solution.solve_ms = elapsed_ms(start);
+    Ok(solution)
+}
 
-        let out_of_budget = limits.node_limit.is_some_and(|l| budget.nodes >= l)
-            || limits
-                .time_limit_s
-                .is_some_and(|t| start.elapsed().as_secs_f64() >= t);
-        if !finished && !out_of_budget && next != Next::BinCompletion {
-            // With few drones per pad, a search that runs long hands over to bin completion,
-            // which keeps the bound reached (the load of the set tried last).
-            let switch = next == Next::PartitionThenBinCompletion
-                && positive <= PARTITION_SWITCH_DRONES_PER_PAD * m;
-            let part_limits = budget.limits_for(if switch {
-                PARTITION_SWITCH_NODES
-            } else {
-                u64::MAX
-            });
-            let mut part_budget = Budget {
-                nodes: budget.nodes,
-                start,
-                limits: &part_limits,
-            };
-            let pad = &mut pad_sorted[..positive];
-            let found = partition(m, p, lb, ub, pad, &mut part_budget);
-            (finished, lb) = (found.proven, found.lower_bound_min);
-            budget.nodes = part_budget.nodes;
-            if !finished && switch && !budget.spent() {
-                let found = phase2(m, p, integral, lb, ub, pad, &mut budget);
-                (finished, lb) = (found.proven, found.lower_bound_min);
-            }
-        } else if !finished && !out_of_budget {
-            let found = phase2(
-                m,
-                p,
-                integral,
-                lb,
-                ub,
-                &mut pad_sorted[..positive],
-                &mut budget,
-            );
-            (finished, lb) = (found.proven, found.lower_bound_min);
-        }
+/// At least as many pads as drones: one drone per pad, the longest charge time proven optimal
+/// ([`exact_phased`] stamps the time).
+fn one_drone_per_pad(charge_times_min: &[f64]) -> NodeTimeSolution {
+    let makespan = charge_times_min.iter().copied().fold(0.0, f64::max);
+    NodeTimeSolution {
+        method: NodeTimeMethod::Exact,
+        makespan_min: makespan,
+        lower_bound_min: makespan,
+        status: SolveStatus::Optimal,
+        assignment: one_per_pad(charge_times_min.len()),
+        solve_ms: 0.0,
     }
+}
+
+/// Fewer pads than drones: the drones sorted by decreasing charge time, the root bound and LPT's
+/// incumbent, then the phases ([`Phases::run`]) unless LPT meets the bound ([`exact_phased`]
+/// stamps the time).
+fn solve_sorted(
+    m: usize,
+    charge_times_min: &[f64],
+    mut budget: Budget,
+    phase1_nodes: u64,
+    next: Next,
+) -> NodeTimeSolution {
+    let n = charge_times_min.len();
+    let (order, sorted) = sort_desc(charge_times_min);
+    let integral = all_integral(charge_times_min);
+    let lb = lower_bound_sorted(m, &sorted, integral);
+    // Zero-time drones (at the end of `sorted`) change no load: they join pad 0 at the end.
+    let positive = sorted.iter().take_while(|&&p| p > 0.0).count();
+    let mut pad_sorted = vec![0; n];
+    let ub = lpt_sorted(m, &sorted[..positive], &mut pad_sorted[..positive]);
+    let (finished, lb) = if proven(integral, ub, lb) {
+        (true, lb)
+    } else {
+        let mut phases = Phases {
+            m,
+            p: &sorted[..positive],
+            integral,
+            lb,
+            ub,
+            pad_of: &mut pad_sorted[..positive],
+        };
+        let finished = phases.run(phase1_nodes, next, &mut budget);
+        (finished, phases.lb)
+    };
     let mut pad_of = vec![0; n];
     for (pos, &j) in order.iter().enumerate() {
         pad_of[j] = pad_sorted[pos];
     }
     let assignment = lists_from_pad_of(&pad_of, m);
     let makespan = super::makespan_of(charge_times_min, &assignment);
-    Ok(NodeTimeSolution {
+    NodeTimeSolution {
         method: NodeTimeMethod::Exact,
         makespan_min: makespan,
         lower_bound_min: if finished { makespan } else { lb.min(makespan) },
@@ -735,8 +817,113 @@ pub(crate) fn exact_phased(
             SolveStatus::Feasible
         },
         assignment,
-        solve_ms: elapsed_ms(start),
-    })
+        solve_ms: 0.0,
+    }
+}
+
+/// The phases of one exact solve (`models/node_time.md`, "Exact method") on the drones of
+/// positive charge time, sorted decreasingly: the bound and the incumbent they pass on.
+struct Phases<'a> {
+    m: usize,
+    p: &'a [f64],
+    integral: bool,
+    lb: f64,
+    ub: f64,
+    /// The incumbent's pad of every drone.
+    pad_of: &'a mut [usize],
+}
+
+impl Phases<'_> {
+    /// Phase 1, the cardinality bound and largest differencing's start, then phase 2 by `next`,
+    /// while the incumbent is not proven and the budget lasts: whether it is proven.
+    fn run(&mut self, phase1_nodes: u64, next: Next, budget: &mut Budget) -> bool {
+        // Phase 1: the assignment branch and bound, briefly (small swarms end here).
+        if phase1_nodes > 0 && self.assignment_search(phase1_nodes, budget) {
+            return true;
+        }
+        // The cardinality bound, `O(n k)`: after phase 1, so that the small swarms it proves
+        // never pay for it.
+        self.lb = self
+            .lb
+            .max(cardinality_bound(self.m, self.p, self.integral));
+        if proven(self.integral, self.ub, self.lb) {
+            return true;
+        }
+        let positive = self.p.len();
+        if !self.integral
+            && positive > PARTITION_MAX_DRONES
+            && positive >= LDM_DRONES_PER_PAD * self.m
+        {
+            self.ldm_start();
+        }
+        if budget.spent() {
+            return false;
+        }
+        match next {
+            Next::BinCompletion => self.phase2(budget),
+            Next::Partition | Next::PartitionThenBinCompletion => self.partition(next, budget),
+        }
+    }
+
+    /// Phase 1 within `phase1_nodes` nodes: whether it proved its incumbent.
+    fn assignment_search(&mut self, phase1_nodes: u64, budget: &mut Budget) -> bool {
+        let (m, p, integral, lb, ub) = (self.m, self.p, self.integral, self.lb, self.ub);
+        let pad_of = &mut *self.pad_of;
+        let found = budget.within(phase1_nodes, |phase1| {
+            run_assignment_search(m, p, integral, lb, ub, pad_of, phase1)
+        });
+        self.ub = found.incumbent_min;
+        found.proven
+    }
+
+    /// Real-valued times beyond partitioning's reach with many drones per pad, where a limit
+    /// may well stop the proof: largest differencing balances better than LPT.
+    fn ldm_start(&mut self) {
+        let mut alt = vec![0; self.p.len()];
+        let found = ldm_sorted(self.m, self.p, &mut alt);
+        if found < self.ub {
+            self.ub = found;
+            self.pad_of.copy_from_slice(&alt);
+        }
+    }
+
+    /// Phase 2 by sequential partitioning; with few drones per pad and `next`
+    /// [`Next::PartitionThenBinCompletion`], a search that runs long hands over to bin
+    /// completion, which keeps the bound reached (the load of the set tried last). Whether the
+    /// incumbent is proven.
+    fn partition(&mut self, next: Next, budget: &mut Budget) -> bool {
+        let (m, p, lb, ub) = (self.m, self.p, self.lb, self.ub);
+        let switch = next == Next::PartitionThenBinCompletion
+            && p.len() <= PARTITION_SWITCH_DRONES_PER_PAD * m;
+        let share = if switch {
+            PARTITION_SWITCH_NODES
+        } else {
+            u64::MAX
+        };
+        let pad_of = &mut *self.pad_of;
+        let found = budget.within(share, |part| partition(m, p, lb, ub, pad_of, part));
+        self.lb = found.lower_bound_min;
+        if !found.proven && switch && !budget.spent() {
+            return self.phase2(budget);
+        }
+        found.proven
+    }
+
+    /// Phase 2 by local search, bounds and bin completion ([`phase2`]): whether the incumbent
+    /// is proven.
+    fn phase2(&mut self, budget: &mut Budget) -> bool {
+        let found = phase2(
+            self.m,
+            self.p,
+            self.integral,
+            self.lb,
+            self.ub,
+            self.pad_of,
+            budget,
+        );
+        self.lb = found.lower_bound_min;
+        found.proven
+    }
 }
 
 #[cfg(test)]

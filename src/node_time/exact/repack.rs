@@ -90,15 +90,8 @@ pub(crate) fn repack(
         items.extend((0..p.len()).filter(|&j| group.contains(&pad_of[j])));
         sub_p.clear();
         sub_p.extend(items.iter().map(|&j| p[j]));
-        let limits = budget.limits_for(REPACK_NODES);
-        let mut sub = Budget {
-            nodes: budget.nodes,
-            start: budget.start,
-            limits: &limits,
-        };
         let mut search = BinCompletion::new(&sub_p, size, target, true, Memo::default());
-        let decision = search.decide(&mut sub);
-        budget.nodes = sub.nodes;
+        let decision = budget.within(REPACK_NODES, |sub| search.decide(sub));
         if decision == Decision::Fits {
             for &i in &group {
                 loads[i] = 0.0;

@@ -40,6 +40,20 @@ impl<'l> Budget<'l> {
         }
     }
 
+    /// Runs `search` on a share of this budget: at most `share` nodes beyond those spent so far
+    /// ([`Budget::limits_for`]), under the same clock; the nodes it spends count here too.
+    pub(crate) fn within<T>(&mut self, share: u64, search: impl FnOnce(&mut Budget<'_>) -> T) -> T {
+        let limits = self.limits_for(share);
+        let mut sub = Budget {
+            nodes: self.nodes,
+            start: self.start,
+            limits: &limits,
+        };
+        let found = search(&mut sub);
+        self.nodes = sub.nodes;
+        found
+    }
+
     /// Whether the caller's node or time limit is reached (the clock read every time).
     pub(crate) fn spent(&self) -> bool {
         self.limits.node_limit.is_some_and(|max| self.nodes >= max)
