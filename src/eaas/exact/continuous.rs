@@ -61,6 +61,13 @@ pub const MIN_ROUND_FRACTION: f64 = 1e-9;
 pub const OPTIMAL_REL_TOL: f64 = 1e-9;
 /// Absolute part of that tolerance (minutes or mAh).
 pub const OPTIMAL_ABS_TOL: f64 = 1e-7;
+/// How far, relative to `max(1, |V|)`, a replayed schedule may beat the model's value `V`
+/// before that is a bug (`E4119`): `V` is a simplex value, exact only up to the solver's
+/// round-off, which the pad search's chains of warm re-solves accumulate. Measured: r00338 of
+/// findings-195 (`solve --route optimal --sharing exact`, paper-findings profile), a leaf's
+/// value 67.97234731853423 min against its replayed schedule's 67.97234707591778 (3.6e-9
+/// relative); 1e-8 leaves a margin of about three.
+pub const SOLVER_ROUNDOFF_REL: f64 = 1e-8;
 /// Energy tolerance of the realisation's bound checks, mAh.
 const REALISE_TOL_MAH: f64 = 1e-7;
 /// Margins tried, in this order, when the optimum is not attained: fractions of the smallest
@@ -1760,12 +1767,13 @@ impl<'m, 'a> BoundedSearch<'m, 'a> {
     }
 
     /// The outcome: the best schedule against the bound; `E4119` when a schedule beats the
-    /// proven bound. Optimal only when a schedule of the model without margin reaches the bound;
+    /// proven bound by more than the solver's round-off ([`SOLVER_ROUNDOFF_REL`]). Optimal only when a schedule of the model without margin reaches the bound;
     /// a schedule of a margin attempt approaches an infimum and says how closely
     /// (optimal_within, epsilon).
-    fn finish(self, out: &mut ExactOutcome) -> Result<()> {
+    fn finish(mut self, out: &mut ExactOutcome) -> Result<()> {
         if let (Some(c), Some(b)) = (&self.best, self.bound) {
-            if self.distance(c, b) < -Self::tolerance(b) {
+            let roundoff = Self::tolerance(b).max(SOLVER_ROUNDOFF_REL * b.abs().max(1.0));
+            if self.distance(c, b) < -roundoff {
                 return Err(Error::internal(
                     "E4119",
                     format!(
@@ -1773,6 +1781,10 @@ impl<'m, 'a> BoundedSearch<'m, 'a> {
                         self.options.backend, c.value
                     ),
                 ));
+            }
+            // Beaten within the round-off: the schedule's value is the bound, as proven as `V`.
+            if self.distance(c, b) < -Self::tolerance(b) {
+                self.bound = Some(c.value);
             }
         }
         let attained = self.reached() && !self.best.as_ref().is_some_and(|c| c.approached);
