@@ -703,7 +703,7 @@ fn write_csv(path: &std::path::Path, all: &Rows) -> Result<()> {
             status_name(d.fluid_status),
         );
     }
-    std::fs::write(path, out).map_err(|source| swarmplan::Error::Io {
+    std::fs::write(path, out).map_err(|source| swarmplan::error::Error::Io {
         path: path.display().to_string(),
         source,
     })

@@ -67,5 +67,3 @@ pub mod plot;
 pub mod precompose;
 pub mod problem;
 pub mod solver;
-
-pub use error::{BackendFailure, Error, Violation};

@@ -18,10 +18,10 @@ use swarmplan::check::plan_file::parse_plan_file;
 use swarmplan::compose::{Context, HopPaths, PlanOptions, RequestReport, RouteMethod};
 use swarmplan::eaas::hop_file::{HopFile, HOP_FILE_SCHEMA_VERSION};
 use swarmplan::eaas::SharingPolicy;
+use swarmplan::error::Violation;
 use swarmplan::precompose::Positioning;
 use swarmplan::problem::io::{read_json, read_toml};
 use swarmplan::problem::{Network, Profile, Request, RequestSet, SkywayGraph};
-use swarmplan::Violation;
 
 /// Fields not checked: a measurement, and the settings the re-run uses.
 fn not_checked(path: &str) -> bool {

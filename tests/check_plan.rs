@@ -14,7 +14,7 @@ use swarmplan::problem::Candidates;
 use swarmplan::problem::SkywayGraph;
 use swarmplan::problem::{Network, Profile, Request, RequestSet};
 
-fn codes(v: &[swarmplan::Violation]) -> Vec<&'static str> {
+fn codes(v: &[swarmplan::error::Violation]) -> Vec<&'static str> {
     v.iter().map(|x| x.code).collect()
 }
 

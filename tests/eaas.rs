@@ -363,7 +363,7 @@ fn malformed_problems_are_invalid_input() {
     std::sync::Arc::make_mut(&mut p.legs[0].rate_mah_per_min)[0].pop();
     let err = simulate(&p, Heuristic::Pb).unwrap_err();
     assert_eq!(err.exit_code(), 2);
-    let swarmplan::Error::Invalid(v) = err else {
+    let swarmplan::error::Error::Invalid(v) = err else {
         panic!("expected Invalid")
     };
     let codes: Vec<&str> = v.iter().map(|x| x.code).collect();

@@ -162,7 +162,7 @@ fn bad_grid_objective_and_time_limit_are_coded_errors() {
     let p = known("needy_pair_max_min").problem;
     let codes = |r: swarmplan::error::Result<ExactOutcome>| -> Vec<&'static str> {
         match r {
-            Err(swarmplan::Error::Invalid(v)) => v.iter().map(|x| x.code).collect(),
+            Err(swarmplan::error::Error::Invalid(v)) => v.iter().map(|x| x.code).collect(),
             other => panic!("expected invalid input, got {other:?}"),
         }
     };

@@ -23,6 +23,7 @@ use swarmplan::eaas::Heuristic;
 use swarmplan::eaas::{
     simulate, simulate_with, FailureReason, HopProblem, PolicyOptions, SharingPolicy, Transfer,
 };
+use swarmplan::error::Error;
 use swarmplan::evaluate::{
     default_reference, evaluate_hop, evaluate_route, smallest_mode, HopEvaluation, RouteEvaluation,
     WrittenTransfer,
@@ -30,7 +31,6 @@ use swarmplan::evaluate::{
 use swarmplan::precompose::Positioning;
 use swarmplan::problem::{Request, Role};
 use swarmplan::solver::{GapLabel, ReferenceKind};
-use swarmplan::Error;
 
 // ---------------------------------------------------------------------------------------------
 // Helpers.
@@ -82,7 +82,7 @@ fn reference_in(reorder: Reorder) -> MilpOptions {
 }
 
 /// The violations of an [`Error::Invalid`], panicking on anything else.
-fn violations(result: swarmplan::error::Result<HopEvaluation>) -> Vec<swarmplan::Violation> {
+fn violations(result: swarmplan::error::Result<HopEvaluation>) -> Vec<swarmplan::error::Violation> {
     match result {
         Err(Error::Invalid(v)) => v,
         Err(other) => panic!("expected Error::Invalid, got {other}"),

@@ -114,7 +114,7 @@ fn coded<T>(what: &str, r: &Result<T>) -> std::result::Result<(), TestCaseError>
     }
 }
 
-fn invalid_if_any(vs: Vec<swarmplan::Violation>) -> Result<()> {
+fn invalid_if_any(vs: Vec<swarmplan::error::Violation>) -> Result<()> {
     if vs.is_empty() {
         Ok(())
     } else {

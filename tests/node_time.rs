@@ -7,11 +7,11 @@ use common::repo_path;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::Deserialize;
+use swarmplan::error::Error;
 use swarmplan::node_time::{
     brute, exact, lpt, milp, solve, validate, Limits, NodeTimeMethod, NodeTimeSolution,
 };
 use swarmplan::solver::{MilpBackend, SolveStatus};
-use swarmplan::Error;
 
 const PAPER_TIMES: [f64; 5] = [60.0, 50.0, 40.0, 30.0, 20.0];
 

@@ -15,7 +15,7 @@ fn tiny(name: &str) -> PathBuf {
     repo_path("instances/tiny").join(name)
 }
 
-fn codes_and_fields(v: &[swarmplan::Violation]) -> Vec<(&'static str, String)> {
+fn codes_and_fields(v: &[swarmplan::error::Violation]) -> Vec<(&'static str, String)> {
     v.iter().map(|x| (x.code, x.field.clone())).collect()
 }
 

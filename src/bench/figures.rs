@@ -161,7 +161,7 @@ impl Time {
 /// figures whose data exist are written.
 ///
 /// # Errors
-/// [`crate::Error::Io`] when a file cannot be written or plotters fails to draw it.
+/// [`crate::error::Error::Io`] when a file cannot be written or plotters fails to draw it.
 ///
 /// # Example
 /// ```no_run

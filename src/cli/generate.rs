@@ -201,9 +201,9 @@ fn parse_max_package(s: &str) -> std::result::Result<f64, Violation> {
 /// Runs the subcommand: writes the file and reports what it wrote on stderr.
 ///
 /// # Errors
-/// [`crate::Error::Invalid`] for parameters out of range or an invalid network file (exit code 2);
+/// [`crate::error::Error::Invalid`] for parameters out of range or an invalid network file (exit code 2);
 /// E0008, E0009 when a file cannot be read; E0013 when the output file exists and `--force` is not
-/// given; [`crate::Error::Io`] (E0010) when one cannot be written.
+/// given; [`crate::error::Error::Io`] (E0010) when one cannot be written.
 pub fn run(cmd: GenerateCommand) -> Result<i32> {
     match cmd {
         GenerateCommand::Network(a) => {

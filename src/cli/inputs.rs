@@ -69,7 +69,7 @@ impl ExactArgs {
     /// The settings, checked ([`ExactChoices::settings`]).
     ///
     /// # Errors
-    /// [`crate::Error::Invalid`] with every violation.
+    /// [`crate::error::Error::Invalid`] with every violation.
     pub fn settings(&self) -> Result<ExactSettings> {
         self.choices().settings()
     }
@@ -120,7 +120,7 @@ pub fn parse_list(text: &str, field: &str, code: &'static str) -> Result<Vec<f64
     for (i, part) in text.split(',').enumerate() {
         match part.trim().parse::<f64>() {
             Ok(v) => values.push(v),
-            Err(_) => violations.push(crate::Violation::new(
+            Err(_) => violations.push(crate::error::Violation::new(
                 code,
                 format!("{field}[{i}]"),
                 format!("`{}` is not a number", part.trim()),

@@ -6,7 +6,7 @@
 use clap::{Parser, Subcommand};
 use serde::Serialize;
 
-/// `println!` to stdout that returns [`crate::Error::Output`] from the calling function instead
+/// `println!` to stdout that returns [`crate::error::Error::Output`] from the calling function instead
 /// of panicking when stdout cannot be written (a closed pipe, a full disk).
 macro_rules! outln {
     ($($arg:tt)*) => {{
@@ -197,7 +197,7 @@ fn has_code(text: &str) -> bool {
 /// Prints `value` as pretty JSON to stdout.
 ///
 /// # Errors
-/// [`crate::Error::Output`] when stdout cannot be written.
+/// [`crate::error::Error::Output`] when stdout cannot be written.
 pub fn print_json<T: Serialize>(value: &T) -> crate::error::Result<()> {
     outln!(
         "{}",
@@ -214,7 +214,7 @@ static STDOUT_GONE: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBoo
 /// request, a broken rule); later writes are skipped. Any other failure is an output error.
 ///
 /// # Errors
-/// [`crate::Error::Output`] for a failure other than a closed pipe.
+/// [`crate::error::Error::Output`] for a failure other than a closed pipe.
 pub fn stdout_written(result: std::io::Result<()>) -> crate::error::Result<()> {
     use std::sync::atomic::Ordering;
     match result {
@@ -222,7 +222,7 @@ pub fn stdout_written(result: std::io::Result<()>) -> crate::error::Result<()> {
             STDOUT_GONE.store(true, Ordering::Relaxed);
             Ok(())
         }
-        Err(e) if !STDOUT_GONE.load(Ordering::Relaxed) => Err(crate::Error::from_output(e)),
+        Err(e) if !STDOUT_GONE.load(Ordering::Relaxed) => Err(crate::error::Error::from_output(e)),
         _ => Ok(()),
     }
 }

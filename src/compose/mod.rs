@@ -140,7 +140,7 @@ impl Planner {
     /// A [`Plan`]; `plan.outcome` says why when the swarm cannot deliver ([`PlanOutcome`]).
     ///
     /// # Errors
-    /// [`crate::Error::Invalid`] E0015 for [`RouteMethod::Optimal`] with the fair policy; else
+    /// [`crate::error::Error::Invalid`] E0015 for [`RouteMethod::Optimal`] with the fair policy; else
     /// only for malformed internal problems (a bug or inconsistent input that escaped
     /// validation).
     ///

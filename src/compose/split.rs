@@ -470,7 +470,7 @@ impl Planner {
     /// each stop; into the destination without sharing when that flies, as Algorithm 1 does.
     ///
     /// # Errors
-    /// E0019 ([`crate::Error::Internal`]) when a hop path of `plan` is not a network path; those of
+    /// E0019 ([`crate::error::Error::Internal`]) when a hop path of `plan` is not a network path; those of
     /// [`Planner::fly`] and [`Planner::stop_at`].
     pub(crate) fn replay_exact(&self, plan: &Plan) -> Result<Replay> {
         // The replay's solves are not a composition's: counted here and dropped.

@@ -55,10 +55,10 @@ impl Default for NetworkParams {
 }
 
 /// Checks generator parameters (codes E1901, E1902).
-pub fn check_network_params(p: &NetworkParams) -> Vec<crate::Violation> {
+pub fn check_network_params(p: &NetworkParams) -> Vec<crate::error::Violation> {
     let mut out = Vec::new();
     if !(MIN_NODES..=MAX_NODES).contains(&p.nodes) {
-        out.push(crate::Violation::new(
+        out.push(crate::error::Violation::new(
             "E1901",
             "--nodes",
             format!("node count is {}", p.nodes),
@@ -66,7 +66,7 @@ pub fn check_network_params(p: &NetworkParams) -> Vec<crate::Violation> {
         ));
     }
     if !(p.spacing_m.is_finite() && (1.0..=100_000.0).contains(&p.spacing_m)) {
-        out.push(crate::Violation::new(
+        out.push(crate::error::Violation::new(
             "E1902",
             "--spacing-m",
             format!("grid spacing is {}", p.spacing_m),

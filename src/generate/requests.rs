@@ -1,11 +1,11 @@
 //! Seeded synthetic request sets over a network.
 
 use super::{below, unit};
+use crate::error::Violation;
 use crate::error::{Error, Result};
 use crate::problem::validate::validate_request_set;
 use crate::problem::SkywayGraph;
 use crate::problem::{Request, RequestSet, SCHEMA_VERSION};
-use crate::Violation;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 

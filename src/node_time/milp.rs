@@ -252,7 +252,7 @@ pub fn milp(
 ///
 /// # Example
 /// ```
-/// use swarmplan::node_time::milp::model_text;
+/// use swarmplan::node_time::model_text;
 /// use swarmplan::solver::lp_file::ModelFormat;
 /// let (mps, size) = model_text(2, &[3.0, 5.0, 4.0], ModelFormat::Mps, "example").unwrap();
 /// // C, x_j0_i0, x_j1_i0, x_j1_i1, x_j2_i0, x_j2_i1; 3 jobs placed once, 2 pad loads.

@@ -1,4 +1,4 @@
-//! Reading and writing input files. A malformed file is a [`crate::Error::Invalid`] naming the file,
+//! Reading and writing input files. A malformed file is a [`crate::error::Error::Invalid`] naming the file,
 //! the line and column, never a panic.
 
 use crate::error::{Error, Result};

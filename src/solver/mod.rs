@@ -54,8 +54,8 @@ impl Default for MilpBackend {
 }
 
 /// `E0011`: this build has no MILP backend (made without the `microlp` and `highs` features).
-pub fn no_milp_backend(field: &str) -> crate::Error {
-    crate::Error::invalid(
+pub fn no_milp_backend(field: &str) -> crate::error::Error {
+    crate::error::Error::invalid(
         "E0011",
         field,
         "this build of swarmplan has no MILP backend (built without the microlp and highs features)",

@@ -100,7 +100,7 @@ fn set_rules(
 /// The request set.
 ///
 /// # Errors
-/// [`crate::Error::Invalid`] with E0008 or E0009 if the file cannot be read or is not UTF-8, with E0001 for
+/// [`crate::error::Error::Invalid`] with E0008 or E0009 if the file cannot be read or is not UTF-8, with E0001 for
 /// malformed JSON or with every E3xxx violation, each field prefixed by the file name.
 pub fn read_request_set(
     path: &std::path::Path,
@@ -113,7 +113,7 @@ pub fn read_request_set(
         Ok(set)
     } else {
         Err(crate::problem::graph::prefix_fields(
-            crate::Error::Invalid(violations),
+            crate::error::Error::Invalid(violations),
             path,
         ))
     }
