@@ -30,9 +30,15 @@ fn tmp(name: &str) -> String {
     dir.join(name).to_str().unwrap().to_string()
 }
 
+/// Writes `text` to [`tmp`]`(name)`: aside, then renamed, since the tests run in parallel and
+/// several write the same file (a reader must never see it truncated, half written).
 fn write(name: &str, text: &str) -> String {
+    static WRITES: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
     let path = tmp(name);
-    std::fs::write(&path, text).unwrap();
+    let n = WRITES.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let aside = format!("{path}.{}-{n}.part", std::process::id());
+    std::fs::write(&aside, text).unwrap();
+    std::fs::rename(&aside, &path).unwrap();
     path
 }
 

@@ -65,10 +65,17 @@ pub fn tmp(name: &str) -> PathBuf {
     dir.join(name)
 }
 
-/// Writes `bytes` to [`tmp`]`(name)` and returns its path as a command-line argument.
+/// Writes `bytes` to [`tmp`]`(name)` and returns its path as a command-line argument. Written
+/// aside, then renamed: the tests of a binary run in parallel and may write the same file, and
+/// a reader must never see it truncated or half written.
 pub fn write_tmp(name: &str, bytes: &[u8]) -> String {
+    static WRITES: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
     let path = tmp(name);
-    std::fs::write(&path, bytes).unwrap();
+    let n = WRITES.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let file = path.file_name().unwrap().to_string_lossy().into_owned();
+    let aside = path.with_file_name(format!("{file}.{}-{n}.part", std::process::id()));
+    std::fs::write(&aside, bytes).unwrap();
+    std::fs::rename(&aside, &path).unwrap();
     path.to_str().unwrap().to_string()
 }
 
