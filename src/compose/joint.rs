@@ -127,6 +127,36 @@ struct Search<'g> {
     trees: HashMap<usize, ShortestPathsTo<'g>>,
     heads: HashMap<usize, HeadPotentials>,
     arcs: HashMap<(usize, usize), ArcValue>,
+    /// The rounds' Dijkstra over the stops, its arc values kept between rounds.
+    values: ArcValues,
+}
+
+/// Every arc's current value (`l0` until the arc is known, then [`ArcValue::cost_min`]) in a
+/// matrix over the stops, for the Dijkstra of every round: a row is filled when its tail is
+/// first settled, an entry refreshed when its arc changes.
+struct ArcValues {
+    /// The stop graph's node of every network node, `usize::MAX` for a node without one.
+    index_of: Vec<usize>,
+    /// The stop graph's nodes in increasing network index (the order ties are settled in).
+    by_node: Vec<usize>,
+    /// `m x m`, row-major by tail; `None` for a row not filled yet.
+    rows: Vec<Option<Vec<f64>>>,
+}
+
+impl ArcValues {
+    fn new(stops: &[usize], n: usize) -> ArcValues {
+        let mut index_of = vec![usize::MAX; n];
+        for (i, &v) in stops.iter().enumerate() {
+            index_of[v] = i;
+        }
+        let mut by_node: Vec<usize> = (0..stops.len()).collect();
+        by_node.sort_by_key(|&i| stops[i]);
+        ArcValues {
+            index_of,
+            by_node,
+            rows: vec![None; stops.len()],
+        }
+    }
 }
 
 impl Planner {
@@ -246,11 +276,13 @@ impl Planner {
                 .filter(|&v| v != source && v != destination && graph.pads(v) > 0),
         );
         stops.push(destination);
+        let values = ArcValues::new(&stops, graph.node_count());
         let mut search = Search {
             stops,
             trees: HashMap::new(),
             heads: HashMap::new(),
             arcs: HashMap::new(),
+            values,
         };
         if hop_paths == HopPaths::Rule {
             // The direct arc's one walk is flown and does not fly. Under `any` its other walks
@@ -296,10 +328,12 @@ impl Planner {
                 .collect();
             // Walks not yet built hold some arcs' least values: build them.
             if self.build_steps(search, &steps, request, optimality)? {
+                refresh(search, &steps);
                 continue;
             }
             // Walks into a stop bounded from their legs: the fluid bound.
             if self.fluid_steps(search, &steps, optimality)? {
+                refresh(search, &steps);
                 continue;
             }
             let next = steps.iter().find_map(|&(arc, ref step)| match *step {
@@ -310,6 +344,7 @@ impl Planner {
                 return Ok(Some(sequence));
             };
             self.fly_walk(search, arc, i, request, optimality, solves)?;
+            refresh(search, &steps);
         }
     }
 
@@ -323,39 +358,63 @@ impl Planner {
     ) -> Option<Vec<(usize, usize)>> {
         let graph = self.graph();
         let (source, destination) = (request.source, request.destination);
-        let n = graph.node_count();
-        let mut label = vec![f64::INFINITY; n];
-        let mut tail: Vec<Option<usize>> = vec![None; n];
-        let mut settled = vec![false; n];
-        label[source] = 0.0;
-        while let Some(u) = super::optimal::least_unsettled(&label, &settled) {
-            settled[u] = true;
-            if u == destination {
+        let m = search.stops.len();
+        let at = |v: usize| search.values.index_of[v];
+        let (s, t) = (at(source), at(destination));
+        let mut label = vec![f64::INFINITY; m];
+        let mut tail: Vec<Option<usize>> = vec![None; m];
+        let mut settled = vec![false; m];
+        label[s] = 0.0;
+        // The least label, the lowest network index among equals (as over the network's nodes).
+        while let Some(i) = search
+            .values
+            .by_node
+            .iter()
+            .copied()
+            .filter(|&i| !settled[i] && label[i].is_finite())
+            .reduce(|a, b| if label[b] < label[a] { b } else { a })
+        {
+            settled[i] = true;
+            if i == t {
                 break;
             }
-            let tree = search
-                .trees
-                .entry(u)
-                .or_insert_with(|| graph.shortest_paths_to(u));
-            for &v in &search.stops {
-                if settled[v] || v == source {
+            if search.values.rows[i].is_none() {
+                let u = search.stops[i];
+                let tree = search
+                    .trees
+                    .entry(u)
+                    .or_insert_with(|| graph.shortest_paths_to(u));
+                let row = search
+                    .stops
+                    .iter()
+                    .map(|&v| match search.arcs.get(&(u, v)) {
+                        Some(known) => known.cost_min(),
+                        None => self.distance_value_min(tree.distance_m[v], v, request),
+                    })
+                    .collect();
+                search.values.rows[i] = Some(row);
+            }
+            let row = search.values.rows[i].as_ref().expect("filled above");
+            for j in 0..m {
+                if settled[j] || j == s {
                     continue;
                 }
-                let cost = match search.arcs.get(&(u, v)) {
-                    Some(known) => known.cost_min(),
-                    None => self.distance_value_min(tree.distance_m[v], v, request),
-                };
-                let through_u = label[u] + cost;
-                if through_u < label[v] {
-                    label[v] = through_u;
-                    tail[v] = Some(u);
+                let through_u = label[i] + row[j];
+                if through_u < label[j] {
+                    label[j] = through_u;
+                    tail[j] = Some(i);
                 }
             }
         }
-        if !label[destination].is_finite() {
+        if !label[t].is_finite() {
             return None;
         }
-        Some(sequence_to(&tail, source, destination))
+        let tail: Vec<Option<usize>> = tail.iter().map(|u| u.map(|u| search.stops[u])).collect();
+        let mut by_network = vec![None; graph.node_count()];
+        for (i, &v) in search.stops.iter().enumerate() {
+            by_network[v] = tail[i];
+        }
+        Some(sequence_to(&by_network, source, destination))
     }
 
     /// The value `l0` of an arc into `v` not yet built, from the shortest distance `distance_m`
@@ -572,6 +631,18 @@ impl Planner {
             optimality.hop_path_labels += walks.len() - before;
         }
         Ok(())
+    }
+}
+
+/// The values of the arcs of `steps` again, after a round raised them (rows not filled yet are
+/// filled when their tail is settled).
+fn refresh(search: &mut Search<'_>, steps: &[((usize, usize), Step)]) {
+    for &((u, v), _) in steps {
+        let (i, j) = (search.values.index_of[u], search.values.index_of[v]);
+        if let (Some(row), Some(known)) = (search.values.rows[i].as_mut(), search.arcs.get(&(u, v)))
+        {
+            row[j] = known.cost_min();
+        }
     }
 }
 
