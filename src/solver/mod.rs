@@ -16,6 +16,7 @@ use crate::error::Violation;
 use serde::{Deserialize, Serialize};
 
 pub mod conic;
+pub mod dense;
 #[cfg(feature = "highs")]
 pub mod highs;
 #[cfg(feature = "microlp")]

@@ -38,6 +38,8 @@ use crate::eaas::{
     PolicyOptions, Role, SlotInterval, Transfer, ENERGY_TOL_MAH, TIME_TOL_MIN,
 };
 use crate::error::{BackendFailure, Error, Result};
+#[cfg(feature = "microlp")]
+use crate::solver::dense::{DenseLp, Sense};
 use crate::solver::{run_on, BackendStatus, MilpBackend, MilpJob, MilpModel, MIP_REL_GAP};
 use good_lp::{
     constraint, variable, Expression, ProblemVariables, Solution, SolverModel, Variable,
@@ -47,6 +49,41 @@ use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
 mod pad_search;
+
+/// Where a model's rows go: a good_lp model, or the pad search's dense LP ([`DenseRows`]).
+trait Rows {
+    fn row(&mut self, c: good_lp::Constraint);
+}
+
+impl<M: SolverModel> Rows for M {
+    fn row(&mut self, c: good_lp::Constraint) {
+        self.add_constraint(c);
+    }
+}
+
+/// The rows of a model written into a [`DenseLp`] whose columns are good_lp's variables in
+/// their order (column `i` is variable `i`).
+#[cfg(feature = "microlp")]
+struct DenseRows(DenseLp);
+
+#[cfg(feature = "microlp")]
+impl Rows for DenseRows {
+    fn row(&mut self, c: good_lp::Constraint) {
+        use good_lp::IntoAffineExpression;
+        let e = c.expression();
+        let terms: Vec<(usize, f64)> = e
+            .linear_coefficients()
+            .map(|(v, a)| (crate::solver::variable_index(v), a))
+            .collect();
+        // good_lp keeps `expression <= 0` (or `= 0`).
+        let sense = if c.is_equality() {
+            Sense::Eq
+        } else {
+            Sense::Le
+        };
+        self.0.add_row(terms, sense, -e.constant());
+    }
+}
 
 /// Default largest number of configurations a hop may have (E4117 above it).
 pub const DEFAULT_MAX_CONFIGURATIONS: usize = 20_000;
@@ -459,7 +496,6 @@ impl Model<'_> {
             theta,
             goal,
             scale,
-            ..
         } = self.build(solver, objective, attempt, time_limit_s);
         let (status, solution) = match backend_end(model.solve_outcome(), backend_name)? {
             BackendEnd::Solved(status, s) => (status, s),
@@ -515,12 +551,7 @@ impl Model<'_> {
         let (theta, b, goal) = (columns.theta, columns.b, columns.goal);
         self.add_flow_rows(&mut model, &theta, &b, scale, attempt.start_min);
         self.add_sharing_budgets(&mut model, &theta, scale);
-        let final_battery: Vec<Expression> = (0..self.problem.drones.len())
-            .map(|d| match b[d].last() {
-                Some(&v) => Expression::from(v),
-                None => Expression::from(scale * self.problem.drones[d].battery_mah),
-            })
-            .collect();
+        let final_battery = self.final_battery_expressions(&b, scale);
         if let Some(g) = goal {
             self.add_objective_rows(
                 &mut model,
@@ -531,18 +562,16 @@ impl Model<'_> {
                 scale,
             );
         }
-        let charge_times = match (*objective, goal, attempt.pads) {
-            (Objective::NodeTime(end), Some(g), Pads::Aggregate) => {
-                self.add_pad_search_root(&mut model, end, g, &b, &final_battery, scale)
-            }
-            _ => Vec::new(),
-        };
+        if let (Objective::NodeTime(end), Some(g), Pads::Aggregate) =
+            (*objective, goal, attempt.pads)
+        {
+            self.add_pad_search_root(&mut model, end, g, &b, &final_battery, scale);
+        }
         Built {
             model,
             theta,
             goal,
             scale,
-            charge_times,
         }
     }
 
@@ -624,9 +653,9 @@ impl Model<'_> {
 
     /// Rows 1-2 of every leg: its time shares fill it, and each battery changes by the
     /// configurations' rates; the empty start (row 5) when `start_min > 0`.
-    fn add_flow_rows<M: SolverModel>(
+    fn add_flow_rows<R: Rows>(
         &self,
-        model: &mut M,
+        model: &mut R,
         theta: &[Vec<Variable>],
         b: &[Vec<Variable>],
         scale: f64,
@@ -636,7 +665,7 @@ impl Model<'_> {
         for (i, &l) in self.legs.iter().enumerate() {
             let tau = problem.legs[l].duration_min;
             let all: Expression = theta[i].iter().copied().sum();
-            model.add_constraint(constraint!(all == tau));
+            model.row(constraint!(all == tau));
             for (d, bd) in b.iter().enumerate() {
                 let prev = if i == 0 {
                     Expression::from(scale * problem.drones[d].battery_mah)
@@ -647,21 +676,16 @@ impl Model<'_> {
                     .filter(|&k| self.v[i][k][d] != 0.0)
                     .map(|k| scale * self.v[i][k][d] * theta[i][k])
                     .sum();
-                model.add_constraint(constraint!(bd[i] == prev + change));
+                model.row(constraint!(bd[i] == prev + change));
             }
         }
         if start_min > 0.0 && !theta.is_empty() {
-            model.add_constraint(constraint!(theta[0][0] >= start_min));
+            model.row(constraint!(theta[0][0] >= start_min));
         }
     }
 
     /// Row 3: what each support drone gives stays within its sharing budget.
-    fn add_sharing_budgets<M: SolverModel>(
-        &self,
-        model: &mut M,
-        theta: &[Vec<Variable>],
-        scale: f64,
-    ) {
+    fn add_sharing_budgets<R: Rows>(&self, model: &mut R, theta: &[Vec<Variable>], scale: f64) {
         let problem = self.problem;
         let rho = problem.rho_mah_per_min;
         for s in (0..problem.drones.len()).filter(|&s| problem.drones[s].role == Role::Support) {
@@ -674,7 +698,7 @@ impl Model<'_> {
                         .map(|(_, &t)| scale * rho * t)
                 })
                 .sum();
-            model.add_constraint(constraint!(given <= scale * sharing_budget_mah(problem, s)));
+            model.row(constraint!(given <= scale * sharing_budget_mah(problem, s)));
         }
     }
 
@@ -740,9 +764,9 @@ impl Model<'_> {
 
     /// The pad search's root (node time): every `ct_d <= M` and `sum_d ct_d <= min(k, n) M`;
     /// returns each drone's charge time in the model's variables.
-    fn add_pad_search_root<M: SolverModel>(
+    fn add_pad_search_root<R: Rows>(
         &self,
-        model: &mut M,
+        model: &mut R,
         end: EndPads,
         g: Variable,
         b: &[Vec<Variable>],
@@ -755,7 +779,7 @@ impl Model<'_> {
         let mut charge_times = Vec::new();
         for (d, drone) in problem.drones.iter().enumerate() {
             let ct = (scale * drone.capacity_mah - final_battery[d].clone()) * per_min;
-            model.add_constraint(constraint!(ct <= g));
+            model.row(constraint!(ct <= g));
             charge_times.push(match b[d].last() {
                 Some(&var) => ChargeTime {
                     battery: Some(var),
@@ -773,7 +797,7 @@ impl Model<'_> {
             .map(|d| (scale * problem.drones[d].capacity_mah - final_battery[d].clone()) * per_min)
             .sum();
         let m = end.pads.min(n).max(1) as f64;
-        model.add_constraint(constraint!(total <= m * g));
+        model.row(constraint!(total <= m * g));
         charge_times
     }
 }
@@ -822,35 +846,25 @@ impl Model<'_> {
             if options.pad_method != PadMethod::Search || options.backend != MilpBackend::Microlp {
                 return Ok(None);
             }
-            let built = self.build(
-                good_lp::solvers::microlp::microlp,
-                objective,
-                Attempt::exact(Pads::Aggregate),
-                options.time_limit_s,
-            );
-            let Some(goal) = built.goal else {
+            let Some(root) = self.dense_root(objective) else {
                 return Ok(None);
             };
-            let Ok(root) = built.model.as_inner().solve() else {
+            let Ok(tableau) = root.lp.solve() else {
                 return Ok(None);
             };
-            let Ok(root) = root.into_solution() else {
-                return Ok(None);
-            };
-            let columns: Vec<microlp::Variable> = root.iter().map(|(v, _)| v).collect();
-            let charges: Vec<pad_search::Charge> = built
+            let charges: Vec<pad_search::Charge> = root
                 .charge_times
                 .iter()
-                .map(|c| pad_search::Charge::of(c, &columns))
+                .map(pad_search::Charge::of)
                 .collect();
             let mut order: Vec<usize> = (0..rank.len()).collect();
             order.sort_by_key(|&d| rank[d]);
             let deadline = (options.time_limit_s.is_finite() && options.time_limit_s > 0.0)
                 .then(|| Instant::now() + std::time::Duration::from_secs_f64(options.time_limit_s));
             let Ok(end) = pad_search::search(
-                root,
+                tableau,
                 &charges,
-                columns[crate::solver::variable_index(goal)],
+                crate::solver::variable_index(root.goal),
                 &order,
                 pads,
                 incumbent,
@@ -859,17 +873,13 @@ impl Model<'_> {
             ) else {
                 return Ok(None);
             };
-            let leaf = end.leaf.map(|(pad_of, solution)| {
-                let theta = built
+            let leaf = end.leaf.map(|(pad_of, node)| {
+                let theta = root
                     .theta
                     .iter()
                     .map(|row| {
                         row.iter()
-                            .map(|&t| {
-                                solution
-                                    .var_value(columns[crate::solver::variable_index(t)])
-                                    .max(0.0)
-                            })
+                            .map(|&t| node.value(crate::solver::variable_index(t)).max(0.0))
                             .collect()
                     })
                     .collect();
@@ -890,6 +900,65 @@ impl Model<'_> {
     }
 }
 
+/// The pad search's root as a dense LP, and its handles.
+#[cfg(feature = "microlp")]
+struct DenseRoot {
+    lp: DenseLp,
+    theta: Vec<Vec<Variable>>,
+    goal: Variable,
+    charge_times: Vec<ChargeTime>,
+}
+
+impl Model<'_> {
+    /// The model of [`Pads::Aggregate`] (no margin, no empty start) as a [`DenseLp`]: the same
+    /// columns and rows [`Model::build`] gives microlp, column `i` good_lp's variable `i`;
+    /// `None` for another objective than the node time.
+    #[cfg(feature = "microlp")]
+    fn dense_root(&self, objective: &Objective) -> Option<DenseRoot> {
+        let Objective::NodeTime(end) = *objective else {
+            return None;
+        };
+        let attempt = Attempt::exact(Pads::Aggregate);
+        let scale = self.energy_scale(objective, attempt.rescale);
+        let columns = self.columns(objective, attempt, scale);
+        let goal = columns.goal?;
+        let mut rows = DenseRows(DenseLp::new());
+        for (i, (v, def)) in columns.vars.iter_variables_with_def().enumerate() {
+            debug_assert_eq!(crate::solver::variable_index(v), i);
+            let cost = if v == goal { 1.0 } else { 0.0 };
+            rows.0.add_column(cost, def.get_min(), def.get_max());
+        }
+        self.add_flow_rows(
+            &mut rows,
+            &columns.theta,
+            &columns.b,
+            scale,
+            attempt.start_min,
+        );
+        self.add_sharing_budgets(&mut rows, &columns.theta, scale);
+        let final_battery = self.final_battery_expressions(&columns.b, scale);
+        let charge_times =
+            self.add_pad_search_root(&mut rows, end, goal, &columns.b, &final_battery, scale);
+        Some(DenseRoot {
+            lp: rows.0,
+            theta: columns.theta,
+            goal,
+            charge_times,
+        })
+    }
+
+    /// Every drone's battery at the hop's end in the model's unit: its last leg-end variable,
+    /// or its battery now when the hop has no leg.
+    fn final_battery_expressions(&self, b: &[Vec<Variable>], scale: f64) -> Vec<Expression> {
+        (0..self.problem.drones.len())
+            .map(|d| match b[d].last() {
+                Some(&v) => Expression::from(v),
+                None => Expression::from(scale * self.problem.drones[d].battery_mah),
+            })
+            .collect()
+    }
+}
+
 /// A built model and its handles.
 struct Built<M> {
     model: M,
@@ -899,8 +968,6 @@ struct Built<M> {
     goal: Option<Variable>,
     /// The model's energy unit is `1 / scale` mAh.
     scale: f64,
-    /// [`Pads::Aggregate`]: every drone's charge time as a function of its final battery.
-    charge_times: Vec<ChargeTime>,
 }
 
 /// A drone's charge time in the model, minutes: `constant - per_min * b_d(tt)` with `b_d(tt)`

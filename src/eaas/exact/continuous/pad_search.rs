@@ -1,5 +1,6 @@
-//! The pad assignment of the node-time objective by a branch and bound of its own, on microlp's
-//! warm re-solves (`models/eaas_config.md`, "The pad search").
+//! The pad assignment of the node-time objective by a branch and bound of its own, on the warm
+//! re-solves of a dense dual simplex ([`crate::solver::dense`]; `models/eaas_config.md`, "The
+//! pad search").
 //!
 //! The model's optimum is `V = min_A LP(A)` over the assignments `A` of drones to the `k`
 //! identical pads, `LP(A)` the configuration LP with each pad's load row `sum_{d on p} ct_d <= M`.
@@ -8,7 +9,7 @@
 //! or to the first empty one (the pads are identical: any other empty pad gives the same
 //! subtree); its LP is the parent's with the pad's new load row, added only when the parent's
 //! point violates it (otherwise that point is the child's optimum too) and then re-solved by
-//! microlp's dual simplex from the parent's basis, until the point keeps every pad's row. A leaf
+//! the dual simplex from the parent's basis, until the point keeps every pad's row. A leaf
 //! is `LP(A)` itself. Children are tried least-loaded pad first (at the parent's point), so the
 //! first dive is LPT's assignment; a node whose LP value reaches the least upper bound known
 //! (within [`PRUNE_REL`]) is pruned. When the search ends,
@@ -17,7 +18,7 @@
 //! node limit, `V >=` also the least value of a node left with children unexplored.
 
 use super::ChargeTime;
-use microlp::{ComparisonOp, LinearExpr, Solution};
+use crate::solver::dense::{DenseFailure, Sense, Tableau};
 use std::borrow::Cow;
 use std::time::Instant;
 
@@ -26,13 +27,13 @@ use std::time::Instant;
 pub(super) const PRUNE_REL: f64 = 1e-9;
 
 /// A pad's load row counts as kept at a point when it exceeds `M` by at most this, relative to
-/// `max(1, M)` (microlp's own feasibility tolerance is of this order).
+/// `max(1, M)` (the simplex's own feasibility tolerance is of this order).
 pub(super) const SETTLE_REL: f64 = 1e-9;
 
 /// How a search ended.
 pub(super) struct PadSearchEnd {
-    /// The best leaf below the incumbent: the pad of every drone and the LP's solution.
-    pub leaf: Option<(Vec<usize>, Solution)>,
+    /// The best leaf below the incumbent: the pad of every drone and the LP's optimum.
+    pub leaf: Option<(Vec<usize>, Tableau)>,
     /// The least upper bound on `V`: the best leaf's value, or the incumbent's.
     pub value: f64,
     /// A proven lower bound on `V`.
@@ -41,36 +42,33 @@ pub(super) struct PadSearchEnd {
     pub complete: bool,
 }
 
-/// A drone's charge time in microlp's variables: `constant - per_min * battery`.
+/// A drone's charge time in the LP's columns: `constant - per_min * battery`.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Charge {
-    pub battery: Option<microlp::Variable>,
+    pub battery: Option<usize>,
     pub per_min: f64,
     pub constant: f64,
 }
 
 impl Charge {
-    /// In microlp's columns, `columns[i]` the column of good_lp's variable `i`.
-    pub fn of(c: &ChargeTime, columns: &[microlp::Variable]) -> Charge {
+    /// In the columns of the dense LP, column `i` good_lp's variable `i`.
+    pub fn of(c: &ChargeTime) -> Charge {
         Charge {
-            battery: c.battery.map(|v| columns[crate::solver::variable_index(v)]),
+            battery: c.battery.map(crate::solver::variable_index),
             per_min: c.per_min,
             constant: c.constant,
         }
     }
 
-    fn at(&self, solution: &Solution) -> f64 {
-        self.constant
-            - self
-                .battery
-                .map_or(0.0, |b| self.per_min * solution.var_value(b))
+    fn at(&self, node: &Tableau) -> f64 {
+        self.constant - self.battery.map_or(0.0, |b| self.per_min * node.value(b))
     }
 }
 
 /// The search's settings and state.
 struct Search<'a> {
     charges: &'a [Charge],
-    makespan: microlp::Variable,
+    makespan: usize,
     order: &'a [usize],
     pads: usize,
     node_limit: Option<u64>,
@@ -78,7 +76,7 @@ struct Search<'a> {
     nodes: u64,
     /// The least upper bound on `V`.
     ub: f64,
-    leaf: Option<(Vec<usize>, Solution)>,
+    leaf: Option<(Vec<usize>, Tableau)>,
     /// The least LP value of a node left with children unexplored by a limit, or pruned.
     open: f64,
     stopped: bool,
@@ -89,21 +87,23 @@ struct Search<'a> {
 /// `incumbent` (`f64::INFINITY`: none), with the node-time variable `makespan`.
 ///
 /// # Errors
-/// microlp's, but infeasibility (a node whose LP is infeasible is pruned).
+/// The simplex's failures, infeasibility among them: every node LP is feasible when the root is
+/// (`M` has no upper bound), so an infeasible one is a numerical failure, and the caller then
+/// solves the pad MILP.
 ///
 /// # Complexity
 /// At most `sum_{j < n} k^j` LPs, each a warm re-solve; in practice a few per drone.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn search(
-    root: Solution,
+    root: Tableau,
     charges: &[Charge],
-    makespan: microlp::Variable,
+    makespan: usize,
     order: &[usize],
     pads: usize,
     incumbent: f64,
     node_limit: Option<u64>,
     deadline: Option<Instant>,
-) -> Result<PadSearchEnd, microlp::Error> {
+) -> Result<PadSearchEnd, DenseFailure> {
     let mut s = Search {
         charges,
         makespan,
@@ -143,35 +143,35 @@ impl Search<'_> {
     }
 
     /// The load row of `drones` on one pad: `sum ct_d - M <= 0`.
-    fn load_row(&self, drones: &[usize]) -> (LinearExpr, f64) {
-        let mut expr = LinearExpr::empty();
+    fn load_row(&self, drones: &[usize]) -> (Vec<(usize, f64)>, f64) {
+        let mut terms = Vec::with_capacity(drones.len() + 1);
         let mut rhs = 0.0;
         for &d in drones {
             let c = &self.charges[d];
             rhs -= c.constant;
             if let Some(b) = c.battery {
-                expr.add(b, -c.per_min);
+                terms.push((b, -c.per_min));
             }
         }
-        expr.add(self.makespan, -1.0);
-        (expr, rhs)
+        terms.push((self.makespan, -1.0));
+        (terms, rhs)
     }
 
-    /// The pad's load at `solution`'s point less `M`: positive when its row is violated.
-    fn excess(&self, drones: &[usize], solution: &Solution) -> f64 {
-        let load: f64 = drones.iter().map(|&d| self.charges[d].at(solution)).sum();
-        load - solution.var_value(self.makespan)
+    /// The pad's load at `node`'s point less `M`: positive when its row is violated.
+    fn excess(&self, drones: &[usize], node: &Tableau) -> f64 {
+        let load: f64 = drones.iter().map(|&d| self.charges[d].at(node)).sum();
+        load - node.value(self.makespan)
     }
 
     /// The node LP of the assignment `on_pad`, from its parent's optimum `parent`: the pads' load
     /// rows are added lazily, each only while the point violates it (the parent's rows hold), so
     /// a child whose new row the parent's point already keeps is the parent's optimum itself, no
-    /// re-solve. `None`: the node's LP is infeasible.
+    /// re-solve.
     fn settle<'n>(
         &self,
-        parent: &'n Solution,
+        parent: &'n Tableau,
         on_pad: &[Vec<usize>],
-    ) -> Result<Option<Cow<'n, Solution>>, microlp::Error> {
+    ) -> Result<Cow<'n, Tableau>, DenseFailure> {
         let mut node = Cow::Borrowed(parent);
         loop {
             let tolerance = SETTLE_REL * node.objective().abs().max(1.0);
@@ -181,29 +181,21 @@ impl Search<'_> {
                 .filter(|(e, drones)| !drones.is_empty() && *e > tolerance)
                 .max_by(|a, b| a.0.total_cmp(&b.0));
             let Some((_, drones)) = worst else {
-                return Ok(Some(node));
+                return Ok(node);
             };
-            let (expr, rhs) = self.load_row(drones);
-            node = match node
-                .into_owned()
-                .add_constraint(expr, ComparisonOp::Le, rhs)
-            {
-                Ok(outcome) => match outcome.into_solution() {
-                    Ok(child) => Cow::Owned(child),
-                    Err(_) => return Err(microlp::Error::InternalError("interrupted".into())),
-                },
-                Err(microlp::Error::Infeasible) => return Ok(None),
-                Err(e) => return Err(e),
-            };
+            let (terms, rhs) = self.load_row(drones);
+            let mut child = node.into_owned();
+            child.add_row(&terms, Sense::Le, rhs)?;
+            node = Cow::Owned(child);
         }
     }
 
     fn dive(
         &mut self,
-        node: &Solution,
+        node: &Tableau,
         depth: usize,
         on_pad: &mut Vec<Vec<usize>>,
-    ) -> Result<(), microlp::Error> {
+    ) -> Result<(), DenseFailure> {
         let lp = node.objective();
         if depth == self.order.len() {
             if lp < self.ub {
@@ -239,10 +231,9 @@ impl Search<'_> {
             }
             self.nodes += 1;
             on_pad[p].push(d);
-            if let Some(child) = self.settle(node, on_pad)? {
-                if !self.prunes(child.objective()) {
-                    self.dive(&child, depth + 1, on_pad)?;
-                }
+            let child = self.settle(node, on_pad)?;
+            if !self.prunes(child.objective()) {
+                self.dive(&child, depth + 1, on_pad)?;
             }
             on_pad[p].pop();
             if self.stopped {
