@@ -48,6 +48,7 @@ use good_lp::{
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
+#[cfg(feature = "microlp")]
 mod pad_search;
 
 /// Where a model's rows go: a good_lp model, or the pad search's dense LP ([`DenseRows`]).
@@ -395,6 +396,7 @@ enum Pads<'a> {
     Fixed(&'a [usize]),
     /// No assignment yet: every `ct_d <= M` and `sum_d ct_d <= min(k, n) M`, the root of the
     /// pad search ([`pad_search`]), which adds each pad's load rows as it assigns drones.
+    #[cfg_attr(not(feature = "microlp"), allow(dead_code))]
     Aggregate,
 }
 
@@ -973,6 +975,7 @@ struct Built<M> {
 /// A drone's charge time in the model, minutes: `constant - per_min * b_d(tt)` with `b_d(tt)`
 /// the model's variable `battery`, or `constant` alone when the hop has no leg to fly.
 #[derive(Debug, Clone, Copy)]
+#[cfg_attr(not(feature = "microlp"), allow(dead_code))]
 pub(super) struct ChargeTime {
     battery: Option<Variable>,
     per_min: f64,
