@@ -7,6 +7,8 @@ use super::optimal::{BestArc, SearchBounds, Start};
 use super::plan::{Plan, PlanOutcome, RouteOptimality};
 use super::walks::{HeadPotentials, WalkBounds, WalkSearch};
 use super::{HopPaths, Planner};
+#[cfg(feature = "microlp")]
+use crate::eaas::exact::continuous;
 use crate::eaas::exact::fluid;
 use crate::eaas::exact::EndPads;
 use crate::eaas::exact::{ExactStatus, Objective};
@@ -15,14 +17,15 @@ use crate::error::Result;
 use crate::network::{Route, ShortestPathsTo};
 use std::collections::HashMap;
 
-/// Relative margin by which the fluid LP's bound is lowered: clarabel's answers are accurate to
-/// about its tolerances (1e-8 relative when solved, looser when only almost solved), far below
-/// this, and far below the gap between the bound and the arc's cost.
+/// Relative margin by which the `l2` bound is lowered: clarabel's answers (the fluid LP) are
+/// accurate to about its tolerances (1e-8 relative when solved, looser when only almost solved),
+/// the simplex's (the relaxed configuration LP) to its `1e-9`, both far below this, and far below
+/// the gap between the bound and the arc's cost.
 const FLUID_BOUND_MARGIN: f64 = 1e-5;
 
 /// A walk of an arc, built and bounded, not yet flown.
 struct BoundedWalk {
-    /// `l1` (the path's legs) or, once `fluid`, `l2` (the fluid LP too).
+    /// `l1` (the path's legs) or, once `fluid`, `l2` (an LP's bound too).
     bound_min: f64,
     fluid: bool,
     path: Route,
@@ -160,11 +163,12 @@ impl ArcValues {
 }
 
 impl Planner {
-    /// `tt` plus the fluid LP's bound on the node time at `v` of flying `path` from full
-    /// batteries, lowered by a relative [`FLUID_BOUND_MARGIN`]. An interior-point answer is
-    /// trusted as a bound only: an infeasible (or nearly infeasible) LP, or a failed one, bounds
-    /// nothing (`tt`), and the arc is then flown, whose exact solve proves what it proves.
-    fn fluid_bound_min(&self, path: &crate::network::Route, v: usize) -> Result<f64> {
+    /// `tt` plus a lower bound on the node time at `v` of flying `path` from full batteries
+    /// (`l2`): the configuration LP with the pads relaxed to their aggregate (the pad search's
+    /// root, [`continuous::relaxed_node_time`]), or where that tells nothing the fluid LP's
+    /// bound; lowered by a relative [`FLUID_BOUND_MARGIN`]. An infeasible LP, or a failed one,
+    /// bounds nothing (`tt`), and the arc is then flown, whose exact solve proves what it proves.
+    fn l2_bound_min(&self, path: &crate::network::Route, v: usize) -> Result<f64> {
         let tt_min = path.distance_m / self.speed_m_per_min();
         let problem = self.hop_problem(path, &self.full_battery_mah())?;
         let objective = Objective::NodeTime(EndPads {
@@ -172,6 +176,16 @@ impl Planner {
             pad_rate_mah_per_min: self.pad_rate_mah_per_min(v),
         });
         let settings = self.exact_settings();
+        #[cfg(feature = "microlp")]
+        if let Some(nt_min) = continuous::relaxed_node_time(
+            &problem,
+            &objective,
+            settings.milp.reorder,
+            continuous::DEFAULT_MAX_CONFIGURATIONS,
+        ) {
+            return Ok((tt_min + nt_min.max(0.0)) * (1.0 - FLUID_BOUND_MARGIN));
+        }
+        // The configuration LP infeasible too, or past its size: the fluid LP (clarabel).
         let nt_min = match fluid::bound(
             &problem,
             &objective,
@@ -192,7 +206,7 @@ impl Planner {
     /// starts at a lower bound on its cost, `tt` plus the energy bound from the distance alone;
     /// Dijkstra on the current values gives a stop sequence; its arcs whose least value is a
     /// walk not yet built get that walk built and bounded from its legs, then those whose least
-    /// value is a walk bounded from its legs get the fluid LP's bound, and when none is left the
+    /// value is a walk bounded from its legs get the relaxed configuration LP's bound, and when none is left the
     /// first arc whose least value is a walk not yet flown flies it (a configuration LP, the exact
     /// node time at its stop). The search ends when the sequence found has every arc exact (its
     /// best flown walk no dearer than any bound of its other walks): its cost is then no more
@@ -476,7 +490,7 @@ impl Planner {
                     .expect("a stepped arc is known");
                 let candidate = &mut arc.candidates[i];
                 candidate.bound_min = self
-                    .fluid_bound_min(&candidate.path, v)?
+                    .l2_bound_min(&candidate.path, v)?
                     .max(candidate.bound_min);
                 candidate.fluid = true;
                 optimality.arcs_fluid_bounded += 1;

@@ -67,7 +67,9 @@ pub struct RouteOptimality {
     /// `--sharing exact`: arcs whose lower bound was taken from their path's legs.
     #[serde(default, skip_serializing_if = "is_zero")]
     pub arcs_bounded: usize,
-    /// `--sharing exact`: arcs into a stop whose lower bound was then taken from the fluid LP.
+    /// `--sharing exact`: arcs into a stop whose lower bound was then taken from an LP (`l2`:
+    /// the configuration LP with its pads relaxed, or the fluid LP where that tells nothing; the
+    /// name is the field's first meaning).
     #[serde(default, skip_serializing_if = "is_zero")]
     pub arcs_fluid_bounded: usize,
     /// `--sharing exact`: arcs of the stop graph (`arcs_flown` of them were flown).

@@ -1504,6 +1504,28 @@ pub fn solve_continuous(
     Ok(out)
 }
 
+/// A lower bound on the node time of every continuous-time schedule of `problem` in mode
+/// `reorder`: the value of the pad search's root (the configuration LP with every `ct_d <= M` and
+/// `sum_d ct_d <= min(k, n) M`, valid under every pad assignment), by the dense simplex. `None`
+/// when it tells nothing: another objective than the node time, more configurations than
+/// `max_configurations`, a simplex failure, or an infeasible model (no schedule flies, which the
+/// hop's exact solve then proves).
+///
+/// The configuration LP's feasible set lies within the fluid LP's (`models/eaas_fluid.md`), so
+/// this bound is at least [`super::fluid::bound`]'s.
+#[cfg(feature = "microlp")]
+pub fn relaxed_node_time(
+    problem: &HopProblem,
+    objective: &Objective,
+    reorder: Reorder,
+    max_configurations: usize,
+) -> Option<f64> {
+    let configs = configurations(problem, reorder, max_configurations).ok()?;
+    let model = Model::of(problem, &configs, reorder);
+    let root = model.dense_root(objective)?;
+    root.lp.solve().ok().map(|t| t.objective())
+}
+
 /// The phases of [`solve_continuous`] (`models/eaas_continuous.md`): incumbents, the relaxation
 /// of the pad binaries, its assignment fixed, the pad search, the pad MILP, margins, and the
 /// outcome. Leaves `out` as it is (infeasible) when the model is proven infeasible.
