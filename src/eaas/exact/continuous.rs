@@ -826,78 +826,146 @@ struct Searched {
     complete: bool,
 }
 
-impl Model<'_> {
+/// The pad search's root solved (node time, microlp's build, [`PadMethod::Search`]): the
+/// relaxation of the pad assignment, whose basis the fixed assignment and the search start from.
+#[cfg(feature = "microlp")]
+struct SearchRoot {
+    theta: Vec<Vec<Variable>>,
+    /// The column of `M`.
+    makespan: usize,
+    charges: Vec<pad_search::Charge>,
+    pads: usize,
+    tableau: crate::solver::dense::Tableau,
+}
+
+/// No pad search in a build without microlp: never built.
+#[cfg(not(feature = "microlp"))]
+enum SearchRoot {}
+
+#[cfg(feature = "microlp")]
+impl SearchRoot {
+    /// The time shares `θ` at the optimum of `node`, minutes.
+    fn theta_of(&self, node: &crate::solver::dense::Tableau) -> Vec<Vec<f64>> {
+        self.theta
+            .iter()
+            .map(|row| {
+                row.iter()
+                    .map(|&t| node.value(crate::solver::variable_index(t)).max(0.0))
+                    .collect()
+            })
+            .collect()
+    }
+
+    /// The relaxation's values: an LP optimum, so its value is a proven bound.
+    fn values(&self) -> Values {
+        let value = self.tableau.objective();
+        Values {
+            theta: self.theta_of(&self.tableau),
+            value,
+            bound: Some(value),
+        }
+    }
+
+    /// The LP of the assignment `pad_of` (every pad's load row added to the root): its value and
+    /// time shares; `None` when the simplex fails on it.
+    fn fixed(&self, pad_of: &[usize]) -> Option<(f64, Vec<Vec<f64>>)> {
+        let mut node = self.tableau.clone();
+        let pads_used = pad_of.iter().copied().max().map_or(0, |p| p + 1);
+        for pad in 0..pads_used {
+            let drones: Vec<usize> = (0..pad_of.len()).filter(|&d| pad_of[d] == pad).collect();
+            let (terms, rhs) = pad_search::load_row(&self.charges, self.makespan, &drones);
+            node.add_row(&terms, crate::solver::dense::Sense::Le, rhs)
+                .ok()?;
+        }
+        Some((node.objective(), self.theta_of(&node)))
+    }
+
     /// The pad search ([`pad_search`]) below the upper bound `incumbent`, drones in the order of
-    /// `rank`; `None` when it does not apply (another backend, [`PadMethod::Milp`]) or microlp
-    /// fails on one of its LPs: the caller then solves the pad MILP.
-    ///
-    /// # Errors
-    /// None today; kept for the backends' failures a later search may report.
-    fn pad_search(
+    /// `rank`; `None` when the simplex fails on one of its LPs: the caller then solves the pad
+    /// MILP.
+    fn search(
         &self,
-        objective: &Objective,
         options: &ContinuousOptions,
         rank: &[usize],
         incumbent: f64,
-    ) -> Result<Option<Searched>> {
+    ) -> Option<Searched> {
+        let mut order: Vec<usize> = (0..rank.len()).collect();
+        order.sort_by_key(|&d| rank[d]);
+        let deadline = (options.time_limit_s.is_finite() && options.time_limit_s > 0.0)
+            .then(|| Instant::now() + std::time::Duration::from_secs_f64(options.time_limit_s));
+        let end = pad_search::search(
+            self.tableau.clone(),
+            &self.charges,
+            self.makespan,
+            &order,
+            self.pads,
+            incumbent,
+            options.node_limit,
+            deadline,
+        )
+        .ok()?;
+        let leaf = end
+            .leaf
+            .map(|(pad_of, node)| (pad_of, self.theta_of(&node)));
+        Some(Searched {
+            leaf,
+            value: end.value,
+            bound: end.bound,
+            complete: end.complete,
+        })
+    }
+}
+
+#[cfg(not(feature = "microlp"))]
+impl SearchRoot {
+    fn values(&self) -> Values {
+        match *self {}
+    }
+
+    fn fixed(&self, _: &[usize]) -> Option<(f64, Vec<Vec<f64>>)> {
+        match *self {}
+    }
+
+    fn search(&self, _: &ContinuousOptions, _: &[usize], _: f64) -> Option<Searched> {
+        match *self {}
+    }
+}
+
+impl Model<'_> {
+    /// The pad search's root, solved: where the search applies (node time, microlp,
+    /// [`PadMethod::Search`]) and the dense simplex solves it; else `None`, and the backend
+    /// solves the relaxation with the pad binaries in `[0, 1]`.
+    fn search_root(
+        &self,
+        objective: &Objective,
+        options: &ContinuousOptions,
+    ) -> Option<SearchRoot> {
         #[cfg(feature = "microlp")]
         {
             let Objective::NodeTime(EndPads { pads, .. }) = *objective else {
-                return Ok(None);
+                return None;
             };
             if options.pad_method != PadMethod::Search || options.backend != MilpBackend::Microlp {
-                return Ok(None);
+                return None;
             }
-            let Some(root) = self.dense_root(objective) else {
-                return Ok(None);
-            };
-            let Ok(tableau) = root.lp.solve() else {
-                return Ok(None);
-            };
-            let charges: Vec<pad_search::Charge> = root
-                .charge_times
-                .iter()
-                .map(pad_search::Charge::of)
-                .collect();
-            let mut order: Vec<usize> = (0..rank.len()).collect();
-            order.sort_by_key(|&d| rank[d]);
-            let deadline = (options.time_limit_s.is_finite() && options.time_limit_s > 0.0)
-                .then(|| Instant::now() + std::time::Duration::from_secs_f64(options.time_limit_s));
-            let Ok(end) = pad_search::search(
-                tableau,
-                &charges,
-                crate::solver::variable_index(root.goal),
-                &order,
-                pads,
-                incumbent,
-                options.node_limit,
-                deadline,
-            ) else {
-                return Ok(None);
-            };
-            let leaf = end.leaf.map(|(pad_of, node)| {
-                let theta = root
-                    .theta
+            let root = self.dense_root(objective)?;
+            let tableau = root.lp.solve().ok()?;
+            Some(SearchRoot {
+                charges: root
+                    .charge_times
                     .iter()
-                    .map(|row| {
-                        row.iter()
-                            .map(|&t| node.value(crate::solver::variable_index(t)).max(0.0))
-                            .collect()
-                    })
-                    .collect();
-                (pad_of, theta)
-            });
-            Ok(Some(Searched {
-                leaf,
-                value: end.value,
-                bound: end.bound,
-                complete: end.complete,
-            }))
+                    .map(pad_search::Charge::of)
+                    .collect(),
+                makespan: crate::solver::variable_index(root.goal),
+                theta: root.theta,
+                pads,
+                tableau,
+            })
         }
         #[cfg(not(feature = "microlp"))]
         {
-            let _ = (objective, options, rank, incumbent);
-            Ok(None)
+            let _ = (objective, options);
+            None
         }
     }
 }
@@ -1543,13 +1611,19 @@ fn solve_in_phases(
         return only_the_empty_configuration(objective, best, out);
     }
     keep_heuristics(problem, objective, options, &mut best)?;
-    // The relaxation of the pad binaries first: a lower bound, and often a schedule at it.
-    let relaxed = match model.solve(objective, options, Attempt::exact(Pads::Relaxed))? {
-        Solved::Infeasible => return Ok(()),
-        Solved::NoSolution => return finish(out, objective, best, None),
-        Solved::Values(v) => v,
+    // The relaxation of the pad assignment first: a lower bound, and often a schedule at it.
+    // Under the pad search its root; else the pad binaries in [0, 1].
+    let root = model.search_root(objective, options);
+    let relaxed = match &root {
+        Some(root) => root.values(),
+        None => match model.solve(objective, options, Attempt::exact(Pads::Relaxed))? {
+            Solved::Infeasible => return Ok(()),
+            Solved::NoSolution => return finish(out, objective, best, None),
+            Solved::Values(v) => v,
+        },
     };
     let mut search = BoundedSearch::from_relaxation(model, objective, options, best, &relaxed)?;
+    search.root = root;
     search.fix_the_relaxed_assignment()?;
     search.search_pads()?;
     if search.pad_milp()? == Proven::Infeasible {
@@ -1622,6 +1696,8 @@ struct BoundedSearch<'m, 'a> {
     rank: Vec<usize>,
     /// The least model value of an assignment solved so far (an upper bound on the model's).
     fixed_value: f64,
+    /// The pad search's root, where the search applies.
+    root: Option<SearchRoot>,
 }
 
 impl<'m, 'a> BoundedSearch<'m, 'a> {
@@ -1648,6 +1724,7 @@ impl<'m, 'a> BoundedSearch<'m, 'a> {
             assignment: model.pad_assignment(objective, &relaxed.theta)?,
             rank: model.rank_by_charge_time(&relaxed.theta),
             fixed_value: f64::INFINITY,
+            root: None,
         })
     }
 
@@ -1685,6 +1762,11 @@ impl<'m, 'a> BoundedSearch<'m, 'a> {
         let Some(a) = self.assignment.clone().filter(|_| !self.reached()) else {
             return Ok(());
         };
+        // From the search's root: the assignment's pad rows added, re-solved warm.
+        if let Some((value, theta)) = self.root.as_ref().and_then(|r| r.fixed(&a)) {
+            self.fixed_value = value;
+            return self.keep_realised(&theta);
+        }
         if let Solved::Values(v) = self.model.solve(
             self.objective,
             self.options,
@@ -1703,12 +1785,10 @@ impl<'m, 'a> BoundedSearch<'m, 'a> {
             return Ok(());
         }
         let incumbent = self.best.as_ref().map_or(f64::INFINITY, |c| c.value);
-        let Some(s) = self.model.pad_search(
-            self.objective,
-            self.options,
-            &self.rank,
-            self.fixed_value.min(incumbent),
-        )?
+        let Some(s) = self
+            .root
+            .as_ref()
+            .and_then(|r| r.search(self.options, &self.rank, self.fixed_value.min(incumbent)))
         else {
             return Ok(());
         };
@@ -1736,6 +1816,31 @@ impl<'m, 'a> BoundedSearch<'m, 'a> {
         Ok(())
     }
 
+    /// Where the search's points do not realise at the bound: what the backend's path tries
+    /// before its pad MILP, the relaxation with the pad binaries in `[0, 1]` and its assignment
+    /// fixed, each realised; the pad MILP then breaks symmetry along that relaxation's charge
+    /// times. Another optimal point may realise where the search's did not.
+    fn backend_relaxation(&mut self) -> Result<()> {
+        let (model, objective, options) = (self.model, self.objective, self.options);
+        let Solved::Values(v) = model.solve(objective, options, Attempt::exact(Pads::Relaxed))?
+        else {
+            return Ok(());
+        };
+        self.keep_realised(&v.theta)?;
+        self.rank = model.rank_by_charge_time(&v.theta);
+        if self.reached() {
+            return Ok(());
+        }
+        if let Some(a) = model.pad_assignment(objective, &v.theta)? {
+            if let Solved::Values(f) =
+                model.solve(objective, options, Attempt::exact(Pads::Fixed(&a)))?
+            {
+                self.keep_realised(&f.theta)?;
+            }
+        }
+        Ok(())
+    }
+
     /// The pad MILP: where the search does not apply, and where the search's optimum does not
     /// realise (another optimal point of the MILP's may: its schedule is tried before margins).
     /// A microlp failure leaves the relaxation's bound, said so by epsilon. Its symmetry broken
@@ -1745,6 +1850,12 @@ impl<'m, 'a> BoundedSearch<'m, 'a> {
         let has_binaries = matches!(self.objective, Objective::NodeTime(EndPads { .. }));
         if !has_binaries || self.reached() {
             return Ok(Proven::Open);
+        }
+        if self.root.is_some() {
+            self.backend_relaxation()?;
+            if self.reached() {
+                return Ok(Proven::Open);
+            }
         }
         let (model, objective, options) = (self.model, self.objective, self.options);
         let by_index: Vec<usize> = (0..model.problem.drones.len()).collect();

@@ -65,6 +65,26 @@ impl Charge {
     }
 }
 
+/// The load row of `drones` on one pad, `sum ct_d - M <= 0`, as terms over the columns and its
+/// right-hand side; `makespan` the column of `M`.
+pub(super) fn load_row(
+    charges: &[Charge],
+    makespan: usize,
+    drones: &[usize],
+) -> (Vec<(usize, f64)>, f64) {
+    let mut terms = Vec::with_capacity(drones.len() + 1);
+    let mut rhs = 0.0;
+    for &d in drones {
+        let c = &charges[d];
+        rhs -= c.constant;
+        if let Some(b) = c.battery {
+            terms.push((b, -c.per_min));
+        }
+    }
+    terms.push((makespan, -1.0));
+    (terms, rhs)
+}
+
 /// The search's settings and state.
 struct Search<'a> {
     charges: &'a [Charge],
@@ -142,21 +162,6 @@ impl Search<'_> {
             || self.deadline.is_some_and(|d| Instant::now() >= d)
     }
 
-    /// The load row of `drones` on one pad: `sum ct_d - M <= 0`.
-    fn load_row(&self, drones: &[usize]) -> (Vec<(usize, f64)>, f64) {
-        let mut terms = Vec::with_capacity(drones.len() + 1);
-        let mut rhs = 0.0;
-        for &d in drones {
-            let c = &self.charges[d];
-            rhs -= c.constant;
-            if let Some(b) = c.battery {
-                terms.push((b, -c.per_min));
-            }
-        }
-        terms.push((self.makespan, -1.0));
-        (terms, rhs)
-    }
-
     /// The pad's load at `node`'s point less `M`: positive when its row is violated.
     fn excess(&self, drones: &[usize], node: &Tableau) -> f64 {
         let load: f64 = drones.iter().map(|&d| self.charges[d].at(node)).sum();
@@ -183,7 +188,7 @@ impl Search<'_> {
             let Some((_, drones)) = worst else {
                 return Ok(node);
             };
-            let (terms, rhs) = self.load_row(drones);
+            let (terms, rhs) = load_row(self.charges, self.makespan, drones);
             let mut child = node.into_owned();
             child.add_row(&terms, Sense::Le, rhs)?;
             node = Cow::Owned(child);
@@ -301,6 +306,19 @@ mod tests {
         }
     }
 
+    /// The pad search from its root, no incumbent; `None` when the root does not solve.
+    fn search_from_the_root(
+        model: &Model<'_>,
+        objective: &Objective,
+        options: &ContinuousOptions,
+        rank: &[usize],
+    ) -> Option<super::super::Searched> {
+        model.search_root(objective, options).map(|root| {
+            root.search(options, rank, f64::INFINITY)
+                .expect("the search runs")
+        })
+    }
+
     /// Every assignment of `n` drones to `k` pads, as the pad of each drone.
     fn assignments(n: usize, k: usize) -> Vec<Vec<usize>> {
         let mut all = vec![Vec::new()];
@@ -343,18 +361,16 @@ mod tests {
                 })
                 .fold(f64::INFINITY, f64::min);
             let rank: Vec<usize> = (0..p.drones.len()).collect();
-            let s = model
-                .pad_search(&objective, &options, &rank, f64::INFINITY)
-                .unwrap()
-                .expect("the search runs on microlp");
-            assert!(s.complete, "seed {seed}");
+            let s = search_from_the_root(&model, &objective, &options, &rank);
             if !brute.is_finite() {
                 assert!(
-                    s.leaf.is_none(),
+                    s.is_none_or(|s| s.leaf.is_none()),
                     "seed {seed}: a leaf where no assignment flies"
                 );
                 continue;
             }
+            let s = s.expect("the root of a hop that flies solves");
+            assert!(s.complete, "seed {seed}");
             searched += 1;
             let tol = 1e-7 * (1.0 + brute.abs());
             assert!(
@@ -393,23 +409,17 @@ mod tests {
             let configs = configurations(&p, Reorder::Paper, 20_000).unwrap();
             let model = Model::of(&p, &configs, Reorder::Paper);
             let rank: Vec<usize> = (0..p.drones.len()).collect();
-            let full = model
-                .pad_search(
-                    &objective,
-                    &ContinuousOptions::default(),
-                    &rank,
-                    f64::INFINITY,
-                )
-                .unwrap()
-                .expect("the search runs on microlp");
+            let Some(full) =
+                search_from_the_root(&model, &objective, &ContinuousOptions::default(), &rank)
+            else {
+                continue;
+            };
             let limited = ContinuousOptions {
                 node_limit: Some(2),
                 ..ContinuousOptions::default()
             };
-            let s = model
-                .pad_search(&objective, &limited, &rank, f64::INFINITY)
-                .unwrap()
-                .expect("the search runs on microlp");
+            let s = search_from_the_root(&model, &objective, &limited, &rank)
+                .expect("the same root solves");
             if !full.value.is_finite() {
                 continue;
             }
