@@ -8,7 +8,7 @@ use super::plan::{Plan, PlanOutcome, RouteOptimality};
 use super::walks::{HeadPotentials, WalkBounds, WalkSearch};
 use super::{HopPaths, Planner};
 #[cfg(feature = "microlp")]
-use crate::eaas::exact::continuous;
+use crate::eaas::exact::continuous::{self, RelaxedNodeTime};
 use crate::eaas::exact::fluid;
 use crate::eaas::exact::EndPads;
 use crate::eaas::exact::{ExactStatus, Objective};
@@ -165,9 +165,10 @@ impl ArcValues {
 impl Planner {
     /// `tt` plus a lower bound on the node time at `v` of flying `path` from full batteries
     /// (`l2`): the configuration LP with the pads relaxed to their aggregate (the pad search's
-    /// root, [`continuous::relaxed_node_time`]), or where that tells nothing the fluid LP's
-    /// bound; lowered by a relative [`FLUID_BOUND_MARGIN`]. An infeasible LP, or a failed one,
-    /// bounds nothing (`tt`), and the arc is then flown, whose exact solve proves what it proves.
+    /// root, [`continuous::relaxed_node_time`]), or where that tells nothing (infeasible, too
+    /// large, a simplex failure) the fluid LP's bound; lowered by a relative
+    /// [`FLUID_BOUND_MARGIN`]. An infeasible or failed fluid LP bounds nothing (`tt`), and the
+    /// arc is then flown, whose exact solve proves what it proves.
     fn l2_bound_min(&self, path: &crate::network::Route, v: usize) -> Result<f64> {
         let tt_min = path.distance_m / self.speed_m_per_min();
         let problem = self.hop_problem(path, &self.full_battery_mah())?;
@@ -177,15 +178,19 @@ impl Planner {
         });
         let settings = self.exact_settings();
         #[cfg(feature = "microlp")]
-        if let Some(nt_min) = continuous::relaxed_node_time(
+        match continuous::relaxed_node_time(
             &problem,
             &objective,
             settings.milp.reorder,
             continuous::DEFAULT_MAX_CONFIGURATIONS,
         ) {
-            return Ok((tt_min + nt_min.max(0.0)) * (1.0 - FLUID_BOUND_MARGIN));
+            RelaxedNodeTime::Bound(nt_min) => {
+                return Ok((tt_min + nt_min.max(0.0)) * (1.0 - FLUID_BOUND_MARGIN));
+            }
+            RelaxedNodeTime::Infeasible | RelaxedNodeTime::Unknown => {}
         }
-        // The configuration LP infeasible too, or past its size: the fluid LP (clarabel).
+        // The configuration LP infeasible (the fluid LP may still bound the arc: taking no bound
+        // flew more arcs), past its size or failed: the fluid LP (clarabel).
         let nt_min = match fluid::bound(
             &problem,
             &objective,

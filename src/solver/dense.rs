@@ -332,12 +332,24 @@ impl Tableau {
     }
 
     /// Pivots column `q` into the basis of row `p`; the leaving column goes to the bound it
-    /// violated (`direction` as in [`Tableau::leaving`]).
+    /// violated (`direction` as in [`Tableau::leaving`]), and the basic values follow: `x_q`
+    /// moves by `delta` from its bound so that row `p`'s value reaches that bound.
     fn pivot(&mut self, p: usize, q: usize, direction: f64) {
         let n = self.columns();
         let stride = self.stride;
         let leaving = self.basis[p];
         let pivot = self.table[p * stride + q];
+        let target = if direction > 0.0 {
+            self.lower[leaving]
+        } else {
+            self.upper[leaving]
+        };
+        let delta = (self.beta[p] - target) / pivot;
+        let entering_value = self.value_of(q) + delta;
+        for i in 0..self.basis.len() {
+            self.beta[i] -= self.table[i * stride + q] * delta;
+        }
+        self.beta[p] = entering_value;
         for x in &mut self.table[p * stride..p * stride + n] {
             *x /= pivot;
         }
@@ -372,12 +384,19 @@ impl Tableau {
         };
     }
 
-    /// The dual simplex from the current (dual feasible) basis to the optimum.
+    /// The dual simplex from the current (dual feasible) basis to the optimum. The basic values
+    /// are updated at each pivot and computed afresh from the nonbasic columns at the start and
+    /// before the optimum is declared, so round-off in the updates never decides it.
     fn optimise(&mut self) -> Result<(), DenseFailure> {
         let limit = ITERATIONS_PER_SIZE * (self.basis.len() + self.columns());
+        self.compute_beta();
         for _ in 0..limit {
-            self.compute_beta();
-            let Some((p, direction)) = self.leaving() else {
+            let mut next = self.leaving();
+            if next.is_none() {
+                self.compute_beta();
+                next = self.leaving();
+            }
+            let Some((p, direction)) = next else {
                 return Ok(());
             };
             let Some(q) = self.entering(p, direction) else {

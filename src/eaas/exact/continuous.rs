@@ -1572,12 +1572,23 @@ pub fn solve_continuous(
     Ok(out)
 }
 
+/// What the configuration LP with its pads relaxed says of a hop's node time
+/// ([`relaxed_node_time`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum RelaxedNodeTime {
+    /// A lower bound on the node time of every continuous-time schedule, minutes.
+    Bound(f64),
+    /// The LP is infeasible, as the simplex found it: no bound is taken from it (the hop's exact
+    /// solve decides whether a schedule flies).
+    Infeasible,
+    /// Nothing: another objective than the node time, more configurations than allowed, or a
+    /// simplex failure.
+    Unknown,
+}
+
 /// A lower bound on the node time of every continuous-time schedule of `problem` in mode
 /// `reorder`: the value of the pad search's root (the configuration LP with every `ct_d <= M` and
-/// `sum_d ct_d <= min(k, n) M`, valid under every pad assignment), by the dense simplex. `None`
-/// when it tells nothing: another objective than the node time, more configurations than
-/// `max_configurations`, a simplex failure, or an infeasible model (no schedule flies, which the
-/// hop's exact solve then proves).
+/// `sum_d ct_d <= min(k, n) M`, valid under every pad assignment), by the dense simplex.
 ///
 /// The configuration LP's feasible set lies within the fluid LP's (`models/eaas_fluid.md`), so
 /// this bound is at least [`super::fluid::bound`]'s.
@@ -1587,11 +1598,19 @@ pub fn relaxed_node_time(
     objective: &Objective,
     reorder: Reorder,
     max_configurations: usize,
-) -> Option<f64> {
-    let configs = configurations(problem, reorder, max_configurations).ok()?;
+) -> RelaxedNodeTime {
+    let Ok(configs) = configurations(problem, reorder, max_configurations) else {
+        return RelaxedNodeTime::Unknown;
+    };
     let model = Model::of(problem, &configs, reorder);
-    let root = model.dense_root(objective)?;
-    root.lp.solve().ok().map(|t| t.objective())
+    let Some(root) = model.dense_root(objective) else {
+        return RelaxedNodeTime::Unknown;
+    };
+    match root.lp.solve() {
+        Ok(t) => RelaxedNodeTime::Bound(t.objective()),
+        Err(crate::solver::dense::DenseFailure::Infeasible) => RelaxedNodeTime::Infeasible,
+        Err(_) => RelaxedNodeTime::Unknown,
+    }
 }
 
 /// The phases of [`solve_continuous`] (`models/eaas_continuous.md`): incumbents, the relaxation
