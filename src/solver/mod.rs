@@ -5,12 +5,13 @@
 //!
 //! Backends are chosen by enum, never by string: `microlp` (pure Rust, default) and, with the
 //! `highs` feature, HiGHS, both through good_lp ([`run_on`]); convex models go to clarabel
-//! ([`conic`]). How a solve ended (optimal, feasible with an incumbent after a limit, stopped
-//! without one, infeasible, unbounded) is a [`BackendStatus`], data read from each backend's own
-//! status codes, never from its messages; `Err` is for bad input and broken backends. The
-//! models' statuses (`ExactStatus` of the hop models, [`SolveStatus`] of the node time) are
-//! derived from it by a match. [`lp_file`] writes a good_lp model in CPLEX LP or free MPS format
-//! instead of solving it.
+//! ([`conic`]); the pad search's small LPs, which gain a row at each node, to a dense dual
+//! simplex of the crate's own ([`dense`]). How a solve ended (optimal, feasible with an
+//! incumbent after a limit, stopped without one, infeasible, unbounded) is a
+//! [`BackendStatus`], data read from each backend's own status codes, never from its messages;
+//! `Err` is for bad input and broken backends. The models' statuses (`ExactStatus` of the hop
+//! models, [`SolveStatus`] of the node time) are derived from it by a match. [`lp_file`] writes
+//! a good_lp model in CPLEX LP or free MPS format instead of solving it.
 
 use crate::error::Violation;
 use serde::{Deserialize, Serialize};
