@@ -3,7 +3,7 @@
 //!
 //! Written here rather than taken from microlp because of what it measured on those LPs: its
 //! warm re-solve after [`microlp::Solution::add_constraint`] took about 47 µs per row added on
-//! the 9-drone, 4-pad hops of `bench --joint` (about 25 rows, 30 columns), most of it in
+//! the 9-drone, 4-pad hops of `bench` (about 25 rows, 30 columns), most of it in
 //! rebuilding the sparse constraint matrix and refactorising the basis, which microlp does on
 //! every row added; this tableau does the same re-solve in a few microseconds
 //! (`models/experiments/eaas_config.md`, "The pad search on a dense tableau").
@@ -188,6 +188,11 @@ impl Tableau {
             At::Lower => self.lower[j],
             At::Upper => self.upper[j],
         }
+    }
+
+    /// The rows of the LP, those added included.
+    pub fn rows(&self) -> usize {
+        self.basis.len()
     }
 
     /// The optimal value `c x`.

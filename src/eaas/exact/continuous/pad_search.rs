@@ -93,6 +93,8 @@ struct Search<'a> {
     pads: usize,
     node_limit: Option<u64>,
     deadline: Option<Instant>,
+    /// A pad's row is kept when it exceeds `M` by at most this, relative ([`SETTLE_REL`]).
+    settle_rel: f64,
     nodes: u64,
     /// The least upper bound on `V`.
     ub: f64,
@@ -124,7 +126,25 @@ pub(super) fn search(
     node_limit: Option<u64>,
     deadline: Option<Instant>,
 ) -> Result<PadSearchEnd, DenseFailure> {
+    let limits = (node_limit, deadline);
+    search_settling_within(root, charges, makespan, order, pads, incumbent, limits, SETTLE_REL)
+}
+
+/// [`search`], a pad's load row counted as kept when it exceeds `M` by at most `settle_rel`
+/// times `max(1, |M|)`.
+#[allow(clippy::too_many_arguments)]
+fn search_settling_within(
+    root: Tableau,
+    charges: &[Charge],
+    makespan: usize,
+    order: &[usize],
+    pads: usize,
+    incumbent: f64,
+    (node_limit, deadline): (Option<u64>, Option<Instant>),
+    settle_rel: f64,
+) -> Result<PadSearchEnd, DenseFailure> {
     let mut s = Search {
+        settle_rel,
         charges,
         makespan,
         order,
@@ -171,24 +191,31 @@ impl Search<'_> {
     /// The node LP of the assignment `on_pad`, from its parent's optimum `parent`: the pads' load
     /// rows are added lazily, each only while the point violates it (the parent's rows hold), so
     /// a child whose new row the parent's point already keeps is the parent's optimum itself, no
-    /// re-solve.
+    /// re-solve. A pad's row is added at most once: once in the LP, the simplex keeps it within
+    /// its own tolerance ([`crate::solver::dense::PRIMAL_TOL`], relative to the row's
+    /// right-hand side), which can exceed [`SETTLE_REL`]; adding it again would change nothing
+    /// and loop.
     fn settle<'n>(
         &self,
         parent: &'n Tableau,
         on_pad: &[Vec<usize>],
     ) -> Result<Cow<'n, Tableau>, DenseFailure> {
         let mut node = Cow::Borrowed(parent);
+        let mut added = vec![false; on_pad.len()];
         loop {
-            let tolerance = SETTLE_REL * node.objective().abs().max(1.0);
+            let tolerance = self.settle_rel * node.objective().abs().max(1.0);
             let worst = on_pad
                 .iter()
-                .map(|drones| (self.excess(drones, &node), drones))
-                .filter(|(e, drones)| !drones.is_empty() && *e > tolerance)
+                .enumerate()
+                .filter(|&(p, drones)| !added[p] && !drones.is_empty())
+                .map(|(p, drones)| (self.excess(drones, &node), p))
+                .filter(|&(e, _)| e > tolerance)
                 .max_by(|a, b| a.0.total_cmp(&b.0));
-            let Some((_, drones)) = worst else {
+            let Some((_, p)) = worst else {
                 return Ok(node);
             };
-            let (terms, rhs) = load_row(self.charges, self.makespan, drones);
+            added[p] = true;
+            let (terms, rhs) = load_row(self.charges, self.makespan, &on_pad[p]);
             let mut child = node.into_owned();
             child.add_row(&terms, Sense::Le, rhs)?;
             node = Cow::Owned(child);
@@ -395,6 +422,72 @@ mod tests {
             );
         }
         assert!(searched >= 40, "only {searched} hops fly");
+    }
+
+    /// A pad's row the simplex keeps only within its own tolerance (relative to the row's
+    /// right-hand side, which can exceed the search's) is not added again: the search once
+    /// looped there, adding the same row forever (request r02859 of paper-195 on findings-195,
+    /// a 3.8e-8 excess against a 2.9e-8 tolerance). A zero tolerance makes such rows common (a
+    /// row at its bound evaluates a few ulps above it about half the time); the search still
+    /// ends, adds at most one row per pad and node, and finds brute force's optimum.
+    #[test]
+    fn a_row_kept_only_within_the_simplexs_tolerance_is_added_once() {
+        let mut searched = 0;
+        for seed in 0..40u64 {
+            let p = stop_hop(seed);
+            let pads = 2 + (seed % 2) as usize;
+            let objective = Objective::NodeTime(EndPads {
+                pads,
+                pad_rate_mah_per_min: 7.0,
+            });
+            let configs = configurations(&p, Reorder::Paper, 20_000).unwrap();
+            let model = Model::of(&p, &configs, Reorder::Paper);
+            let options = ContinuousOptions::default();
+            let brute = assignments(p.drones.len(), pads)
+                .iter()
+                .filter_map(|a| {
+                    match model.solve(&objective, &options, Attempt::exact(Pads::Fixed(a))) {
+                        Ok(Solved::Values(v)) => Some(v.value),
+                        _ => None,
+                    }
+                })
+                .fold(f64::INFINITY, f64::min);
+            let Some(root) = model.search_root(&objective, &options) else {
+                continue;
+            };
+            if !brute.is_finite() {
+                continue;
+            }
+            let order: Vec<usize> = (0..p.drones.len()).collect();
+            let rows_at_root = root.tableau.rows();
+            let end = super::search_settling_within(
+                root.tableau.clone(),
+                &root.charges,
+                root.makespan,
+                &order,
+                root.pads,
+                f64::INFINITY,
+                (None, None),
+                0.0,
+            )
+            .expect("the search runs");
+            assert!(end.complete, "seed {seed}");
+            let tol = 1e-7 * (1.0 + brute.abs());
+            assert!(
+                (end.value - brute).abs() <= tol,
+                "seed {seed}: search {} brute {brute}",
+                end.value
+            );
+            // A leaf holds the root's rows and at most one row per pad and drone placed.
+            let (_, leaf) = end.leaf.expect("a leaf");
+            assert!(
+                leaf.rows() <= rows_at_root + pads * p.drones.len(),
+                "seed {seed}: {} rows",
+                leaf.rows()
+            );
+            searched += 1;
+        }
+        assert!(searched >= 25, "only {searched} hops fly");
     }
 
     #[test]
