@@ -99,7 +99,7 @@ fn without_times(dir: &Path) -> Value {
 fn thread_counts_give_identical_files_and_shards_merge_into_one_run() {
     let one = bench("threads-1", &["--threads", "1"]);
     let two = bench("threads-2", &["--threads", "2"]);
-    for file in ["config.json", "requests.csv", "hops.csv", "stops.csv"] {
+    for file in ["config.json", "requests.csv", "hops.csv", "stops.csv", "joint.csv"] {
         assert_eq!(
             read(&one, file),
             read(&two, file),
@@ -123,7 +123,7 @@ fn thread_counts_give_identical_files_and_shards_merge_into_one_run() {
     ];
     let run = swarmplan(&args);
     assert!(run.status.success(), "{run:?}");
-    for file in ["config.json", "requests.csv", "hops.csv", "stops.csv"] {
+    for file in ["config.json", "requests.csv", "hops.csv", "stops.csv", "joint.csv"] {
         assert_eq!(
             read(&one, file),
             read(&merged, file),
@@ -392,8 +392,9 @@ fn request_rows_agree_with_solve() {
 }
 
 #[test]
-fn joint_split_adds_up_agrees_with_solve_and_merges_like_one_run() {
-    let one = bench("joint-1", &["--joint", "--threads", "1"]);
+fn joint_split_adds_up_and_agrees_with_solve() {
+    // The default run computes the joint optimum and the split.
+    let one = bench("joint-1", &["--threads", "1"]);
     let rows = csv_rows(&one, "requests.csv");
     let joint = csv_rows(&one, "joint.csv");
     let num = |r: &BTreeMap<String, String>, k: &str| -> Option<f64> {
@@ -475,29 +476,7 @@ fn joint_split_adds_up_agrees_with_solve_and_merges_like_one_run() {
     let doc: Value = serde_json::from_slice(&out.stdout).unwrap();
     let dt = doc["plan"]["dt_min"].as_f64().unwrap();
     assert_eq!(dt, num(first, "dt_min").unwrap(), "request {id}");
-    // Two shards merge into the files of one run.
-    let shards: Vec<_> = (0..2)
-        .map(|i| {
-            bench(
-                &format!("joint-shard-{i}"),
-                &["--joint", "--shard", &format!("{i}/2")],
-            )
-        })
-        .collect();
-    let merged = tmp("joint-merged");
-    let _ = std::fs::remove_dir_all(&merged);
-    let run = swarmplan(&[
-        "bench",
-        "merge",
-        shards[1].to_str().unwrap(),
-        shards[0].to_str().unwrap(),
-        "--out",
-        merged.to_str().unwrap(),
-    ]);
-    assert!(run.status.success(), "{run:?}");
-    for file in ["config.json", "requests.csv", "joint.csv"] {
-        assert_eq!(read(&one, file), read(&merged, file), "{file}");
-    }
+    // Shards merge into one run, joint.csv included: see the test of thread counts and shards.
     let summary: Value = serde_json::from_str(&read(&one, "summary.json")).unwrap();
     assert!(
         summary["joint"]["requests"].as_u64() == Some(12),
@@ -513,6 +492,51 @@ fn joint_split_adds_up_agrees_with_solve_and_merges_like_one_run() {
         "{}",
         summary["figures"]
     );
+}
+
+/// `--no-joint` leaves the joint optimum and the split out, and nothing else: `joint.csv` has its
+/// header only, the split columns of `requests.csv` are empty and every other column is the
+/// default run's; `--joint`, the default, is still accepted, and not with `--no-joint`.
+#[test]
+fn no_joint_leaves_out_the_split_and_nothing_else() {
+    const SPLIT: [&str; 10] = [
+        "joint_dt_min",
+        "split_label",
+        "exact_schedule_dt_min",
+        "swarm_optimum_dt_min",
+        "gap_total_min",
+        "gap_sharing_min",
+        "gap_route_min",
+        "gap_swarm_min",
+        "split_epsilon_min",
+        "split_proven",
+    ];
+    let with = bench("with-joint", &["--joint", "--no-gap"]);
+    let without = bench("no-joint", &["--no-joint", "--no-gap"]);
+    assert!(csv_rows(&without, "joint.csv").is_empty());
+    assert!(!csv_rows(&with, "joint.csv").is_empty());
+    let (a, b) = (
+        csv_rows(&with, "requests.csv"),
+        csv_rows(&without, "requests.csv"),
+    );
+    assert_eq!(a.len(), b.len());
+    assert!(a.iter().any(|r| !r["gap_total_min"].is_empty()));
+    for (a, b) in a.iter().zip(&b) {
+        for (k, v) in b {
+            if SPLIT.contains(&k.as_str()) {
+                assert_eq!(v, "", "{k}");
+            } else {
+                assert_eq!(&a[k], v, "{k}");
+            }
+        }
+    }
+    for file in ["hops.csv", "stops.csv"] {
+        assert_eq!(read(&with, file), read(&without, file), "{file}");
+    }
+    let summary: Value = serde_json::from_str(&read(&without, "summary.json")).unwrap();
+    assert!(summary["joint"].is_null(), "{}", summary["joint"]);
+    let both = swarmplan(&["bench", "--joint", "--no-joint", "--out", "x"]);
+    assert_eq!(both.status.code(), Some(2), "{both:?}");
 }
 
 /// Hop solves stop on node limits, not on the clock: a run of 60 requests on a CPU kept busy by

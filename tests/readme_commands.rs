@@ -23,7 +23,7 @@ const SHORTER: [(&str, &str, &str); 2] = [
         "--request-limit 20",
     ),
     (
-        "bench --request-limit 500 --joint",
+        "bench --request-limit 500 --no-joint",
         "--request-limit 500",
         "--request-limit 20",
     ),

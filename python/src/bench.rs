@@ -58,7 +58,7 @@ fn count(py: Python<'_>, n: Option<Whole>, name: &str, what: &str) -> PyResult<O
 #[pyfunction]
 #[pyo3(signature = (
     out, *, limit = None, sharing = None, positioning = None, route = None, gap = true,
-    joint = false, exact_limit = None, backend = None, hop_time_limit_s = None,
+    joint = true, exact_limit = None, backend = None, hop_time_limit_s = None,
     hop_node_limit = None, period_min = 1.0, reorder = "paper", node_limit = None,
     distance_bucket_km = None, shard = None, threads = None, time_budget_s = None,
     network = None, profile = None, literal = false, requests = None, force = false,

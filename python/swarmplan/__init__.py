@@ -228,7 +228,8 @@ def bench(
         ``sharing``, ``positioning``, ``route`` (lists of names; default ``["none", "pb",
         "fb"]``, both positionings, ``["sequential", "astar", "dijkstra",
         "floyd-warshall"]``), ``gap`` (bool, default True: plan the optimal routes the route
-        gaps are measured against), ``joint`` (bool, default False), ``exact_limit`` (default
+        gaps are measured against), ``joint`` (bool, default True: each request's joint
+        optimum and every combination's gap to it split), ``exact_limit`` (default
         :data:`DEFAULT_EXACT_LIMIT`), ``backend`` (default :data:`DEFAULT_BACKEND`),
         ``hop_time_limit_s`` (default None), ``hop_node_limit`` (default
         :data:`DEFAULT_HOP_NODE_LIMIT`), ``period_min`` (default 1.0), ``reorder`` (default

@@ -434,7 +434,7 @@ def run_bench(
     positioning: Optional[Sequence[Positioning]] = None,
     route: Optional[Sequence[Route]] = None,
     gap: bool = True,
-    joint: bool = False,
+    joint: bool = True,
     exact_limit: Optional[int] = None,
     backend: Optional[str] = None,
     hop_time_limit_s: Optional[float] = None,

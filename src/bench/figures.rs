@@ -154,7 +154,7 @@ impl Time {
 /// - `hop-gap-histogram.svg`: each sharing heuristic's loss per hop against the hop's
 ///   continuous-time optimum;
 /// - `stop-gap-histogram.svg`: LPT's gap against the exact node time per stop;
-/// - `gap-split.svg`: with `--joint`, the mean parts of each combination's gap to the joint
+/// - `gap-split.svg`: unless `--no-joint`, the mean parts of each combination's gap to the joint
 ///   optimum.
 ///
 /// The names are written with hyphens, as the copies shipped under `instances/`. Only the
@@ -252,7 +252,7 @@ fn delivered(summary: &Summary) -> Option<Bars> {
     )
 }
 
-/// `--joint`: the mean parts of every combination's gap to the joint optimum, minutes.
+/// Unless `--no-joint`: the mean parts of every combination's gap to the joint optimum, minutes.
 fn gap_split(summary: &Summary) -> Option<StackedBars> {
     let split: Vec<&MethodSummary> = summary
         .methods

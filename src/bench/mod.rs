@@ -225,35 +225,39 @@ pub struct RequestRow {
     /// `(dt - dt_opt) / dt_opt` when both deliver (negative only for Dijkstra and
     /// Floyd–Warshall, whose hops follow their own route).
     pub route_gap: Option<f64>,
-    /// `--joint`: the request's joint optimum over swarms, stop sequences, continuous-time
-    /// sharing schedules and pads, min (empty when it does not deliver or was not computed).
+    /// Unless `--no-joint`: the request's joint optimum over swarms, stop sequences,
+    /// continuous-time sharing schedules and pads, min (empty when it does not deliver or was not
+    /// computed).
     pub joint_dt_min: Option<f64>,
-    /// `--joint`: why the split below is not (wholly) taken: `not_delivered`, `no_reference`,
-    /// `unproven` (a hop solve stopped by a limit left a reference undecided),
+    /// Unless `--no-joint`: why the split below is not (wholly) taken: `not_delivered`,
+    /// `no_reference`, `unproven` (a hop solve stopped by a limit left a reference undecided),
     /// `different_policy`, `outside_reference` (a hop off the hop-path rule: only the sharing
     /// part); empty when every part is taken or for a reference row.
     pub split_label: String,
-    /// `--joint`: the plan's stop sequence and hop paths flown with the exact schedule and pads
-    /// on every hop, `dt` min.
+    /// Unless `--no-joint`: the plan's stop sequence and hop paths flown with the exact schedule
+    /// and pads on every hop, `dt` min.
     pub exact_schedule_dt_min: Option<f64>,
-    /// `--joint`: the optimum of the plan's own swarm under `--sharing exact`, min.
+    /// Unless `--no-joint`: the optimum of the plan's own swarm under `--sharing exact`, min.
     pub swarm_optimum_dt_min: Option<f64>,
-    /// `--joint`: `dt - joint_dt` = sharing + route + swarm, min.
+    /// Unless `--no-joint`: `dt - joint_dt` = sharing + route + swarm, min.
     pub gap_total_min: Option<f64>,
-    /// `--joint`: `dt - exact_schedule_dt`, min: the cost of the heuristic's sharing schedules.
+    /// Unless `--no-joint`: `dt - exact_schedule_dt`, min: the cost of the heuristic's sharing
+    /// schedules.
     pub gap_sharing_min: Option<f64>,
-    /// `--joint`: `exact_schedule_dt - swarm_optimum_dt`, min: the cost of the route choice.
+    /// Unless `--no-joint`: `exact_schedule_dt - swarm_optimum_dt`, min: the cost of the route
+    /// choice.
     pub gap_route_min: Option<f64>,
-    /// `--joint`: `swarm_optimum_dt - joint_dt`, min: the cost of pre-composition's swarm.
+    /// Unless `--no-joint`: `swarm_optimum_dt - joint_dt`, min: the cost of pre-composition's
+    /// swarm.
     pub gap_swarm_min: Option<f64>,
-    /// `--joint`: each part is at least `-split_epsilon_min` (0 when every hop optimum is
+    /// Unless `--no-joint`: each part is at least `-split_epsilon_min` (0 when every hop optimum is
     /// attained).
     pub split_epsilon_min: Option<f64>,
-    /// `--joint`: whether every solve behind the split's references is proven.
+    /// Unless `--no-joint`: whether every solve behind the split's references is proven.
     pub split_proven: Option<bool>,
 }
 
-/// `--joint`: one swarm's optimum under `--sharing exact` for one request: a row of
+/// Unless `--no-joint`: one swarm's optimum under `--sharing exact` for one request: a row of
 /// `joint.csv`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct JointRow {
@@ -399,7 +403,7 @@ pub struct BenchData {
     pub stops: Vec<StopRow>,
     /// `timings.csv`.
     pub timings: Vec<TimingRow>,
-    /// `joint.csv` (`--joint`).
+    /// `joint.csv` (unless `--no-joint`).
     pub joint: Vec<JointRow>,
 }
 
@@ -470,7 +474,8 @@ pub fn run(
 }
 
 /// The rows of one request: each combination's row, hops, stops and timings (the route gaps
-/// are filled in by [`run`], across combinations), and with `--joint` the joint optimum's rows.
+/// are filled in by [`run`], across combinations), and unless `--no-joint` the joint optimum's
+/// rows.
 fn rows_of_request(
     context: &Context,
     config: &BenchConfig,

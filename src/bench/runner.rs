@@ -63,9 +63,10 @@ pub struct BenchSettings {
 impl BenchSettings {
     /// The settings of `swarmplan bench --out OUT` with every other option at its default: the
     /// whole shipped request set, sharing `none,pb,fb`, both positionings, the four heuristic
-    /// route methods, the route gaps, no joint optimum, 5 exact requests, the default hop
-    /// settings ([`ExactChoices::default`]), [`crate::node_time::DEFAULT_STOP_NODE_LIMIT`] nodes
-    /// per stop, 1 km buckets, the whole run, every core, no time budget.
+    /// route methods, the route gaps, the joint optimum and the gap split, 5 exact requests, the
+    /// default hop settings ([`ExactChoices::default`]),
+    /// [`crate::node_time::DEFAULT_STOP_NODE_LIMIT`] nodes per stop, 1 km buckets, the whole run,
+    /// every core, no time budget.
     pub fn new(out: PathBuf) -> BenchSettings {
         BenchSettings {
             instance: InstanceFiles::default(),
@@ -80,7 +81,7 @@ impl BenchSettings {
                 RouteMethod::FloydWarshall,
             ],
             gap: true,
-            joint: false,
+            joint: true,
             exact_limit: DEFAULT_EXACT_LIMIT,
             exact: ExactChoices::default(),
             node_limit: crate::node_time::DEFAULT_STOP_NODE_LIMIT,

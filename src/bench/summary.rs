@@ -113,7 +113,7 @@ pub struct MethodSummary {
     /// `route-gap-cdf.svg`. Not in `summary.json`: `requests.csv` holds them, per request.
     #[serde(skip)]
     pub route_gaps: Option<Vec<f64>>,
-    /// `--joint`: the gap to the joint optimum split into its parts.
+    /// Unless `--no-joint`: the gap to the joint optimum split into its parts.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub gap_split: Option<GapSplitSummary>,
     /// The requests by source–destination distance.
@@ -126,7 +126,7 @@ pub struct MethodSummary {
     pub exec_ms_max: f64,
 }
 
-/// One combination's gaps to the joint optimum, split (`--joint`; models/compose.md, "Gap
+/// One combination's gaps to the joint optimum, split (unless `--no-joint`; models/compose.md, "Gap
 /// split"). Means are over the requests split wholly (`split`), in minutes, and in % of the
 /// joint optimum's `dt` (the mean of each part over `dt_joint`).
 #[derive(Debug, Clone, Serialize)]
@@ -166,7 +166,7 @@ pub struct GapSplitSummary {
     pub max_epsilon_min: f64,
 }
 
-/// The joint optimum over the requests of the run (`--joint`).
+/// The joint optimum over the requests of the run (unless `--no-joint`).
 #[derive(Debug, Clone, Serialize)]
 pub struct JointSummary {
     /// Requests.
@@ -269,7 +269,7 @@ pub struct Summary {
     pub hop_gaps: Vec<HopGapSummary>,
     /// The stops of the exact subset.
     pub stop_gaps: StopGapSummary,
-    /// `--joint`: the joint optimum over the requests.
+    /// Unless `--no-joint`: the joint optimum over the requests.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub joint: Option<JointSummary>,
     /// The paper's findings.

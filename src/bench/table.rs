@@ -18,7 +18,8 @@ pub const METHOD_COLUMNS: [&str; 9] = [
     "ms/request",
 ];
 
-/// The columns of the gap split table (`--joint`), one row per combination ([`split_row`]).
+/// The columns of the gap split table (unless `--no-joint`), one row per combination
+/// ([`split_row`]).
 pub const SPLIT_COLUMNS: [&str; 7] = [
     "gap to the joint optimum, min (%)",
     "split",
@@ -69,7 +70,7 @@ pub fn method_row(m: &MethodSummary) -> [String; 9] {
 }
 
 /// A combination's row of the gap split table, in the order of [`SPLIT_COLUMNS`] (`None`
-/// without `--joint`).
+/// with `--no-joint`).
 pub fn split_row(m: &MethodSummary) -> Option<[String; 7]> {
     let g: &GapSplitSummary = m.gap_split.as_ref()?;
     let cell = |min: f64, pct: f64| format!("{} ({})", round(min, 1), percent(pct));
@@ -152,7 +153,7 @@ pub fn exact_subset_lines(s: &Summary) -> Vec<String> {
     lines
 }
 
-/// The joint optimum over the requests (`--joint`), above the split table.
+/// The joint optimum over the requests (unless `--no-joint`), above the split table.
 pub fn joint_line(j: &JointSummary) -> String {
     format!(
         "joint optimum (route, continuous-time sharing and pads, over the swarms of both \

@@ -9,7 +9,7 @@
 //!   `tt`, `nt`, stops, energy shared; LPT's node time at every proven stop (the checker's own
 //!   LPT) and its gap against the stop's `nt`; the route gap `(dt - optimal_dt) / optimal_dt`;
 //! * from the method run again: the optimal route's `dt` and whether it is proven, and with
-//!   `--joint` the joint optimum and the parts of the gap split.
+//!   (unless `--no-joint`) the joint optimum and the parts of the gap split.
 //!
 //! The other tables are compared with the rows the run's own code writes for the plans made
 //! again (those plans checked as above): every row of `hops.csv`, `stops.csv` and `joint.csv` of
@@ -67,8 +67,8 @@ pub struct BenchCheck {
 /// Those of planning a request again (an input the run could plan always plans again).
 ///
 /// # Complexity
-/// Planning each request again with every combination of the run (and the joint optimum with
-/// `--joint`), plus [`check_report`] on each plan.
+/// Planning each request again with every combination of the run (and the joint optimum unless
+/// `--no-joint`), plus [`check_report`] on each plan.
 pub fn check_bench_rows(
     network: &Network,
     profile: &Profile,
@@ -484,7 +484,7 @@ impl Columns<'_> {
         self.option("route_gap", row.route_gap, gap);
     }
 
-    /// `--joint`: the joint optimum and the parts of the gap split.
+    /// Unless `--no-joint`: the joint optimum and the parts of the gap split.
     fn compare_split(
         &mut self,
         row: &RequestRow,

@@ -63,7 +63,7 @@ pub struct SolveArgs {
     /// The swarms `--route optimal --sharing exact` ranges over: `this`, the swarm
     /// pre-composition gives for `--positioning` and `--support`; `best`, the least delivery
     /// time over both positionings (with `--support`) and the swarm without support drones,
-    /// the swarms `bench --joint` compares with (`swarms_compared` in the JSON).
+    /// the swarms `bench` compares with (`swarms_compared` in the JSON).
     #[arg(long, value_enum, default_value = "this")]
     pub swarm: SwarmScope,
     /// Print the full report as JSON.

@@ -163,7 +163,7 @@ pub fn applicable_options(
 ///   positioning and support drones ([`Experiment::route_reference`]), planned with it;
 /// - LPT's gap at every recharging stop, always, against the stop's exact node time when proven
 ///   ([`lpt_gaps`]);
-/// - the joint optimum (with `joint`, `bench --joint`): every heuristic combination's gap to the
+/// - the joint optimum (with `joint`, `bench`): every heuristic combination's gap to the
 ///   request's joint optimum, split into sharing, route and swarm parts
 ///   ([`crate::compose::Context::joint_split`]).
 #[derive(Debug, Clone, PartialEq, Eq)]
