@@ -9,7 +9,9 @@ use common::{close, drone, integral_hop, known_optima};
 use nalgebra::Vector2;
 use proptest::prelude::*;
 use swarmplan::check::{check_free_hop, check_hop};
-use swarmplan::eaas::exact::continuous::{solve_continuous, ContinuousOptions, PadMethod};
+use swarmplan::eaas::exact::continuous::{
+    relaxed_node_time, solve_continuous, ContinuousOptions, PadMethod, RelaxedNodeTime,
+};
 use swarmplan::eaas::exact::fluid;
 use swarmplan::eaas::exact::milp::{solve_milp, MilpOptions};
 use swarmplan::eaas::exact::EndPads;
@@ -171,6 +173,43 @@ fn the_pad_search_agrees_with_the_pad_milp_on_200_random_hops() {
     }
     assert!(failing.is_empty(), "{}", failing.join("\n"));
     assert!(compared >= 200, "only {compared} solves with a bound");
+}
+
+/// The joint search's arc bound `l2` ([`relaxed_node_time`]) against the exact hop solved by the
+/// pad MILP (no dense simplex on that path) on 200 random hops: an infeasible relaxation only
+/// where no schedule flies (the search then takes the arc as infinite), a bound never above the
+/// MILP's proven bound, and hops of both kinds among them.
+#[test]
+fn the_relaxed_node_time_is_infeasible_only_where_no_schedule_flies() {
+    let (mut infeasible, mut bounded) = (0, 0);
+    for seed in 0..200u64 {
+        let p = full_start_hop(seed);
+        let objective = Objective::NodeTime(EndPads {
+            pads: 1 + (seed % 3) as usize,
+            pad_rate_mah_per_min: 9.0,
+        });
+        for reorder in [Reorder::None, Reorder::Paper] {
+            let o = ContinuousOptions {
+                pad_method: PadMethod::Milp,
+                ..options(MilpBackend::Microlp, reorder)
+            };
+            let m = solve_continuous(&p, &objective, &o).unwrap();
+            match relaxed_node_time(&p, &objective, &o) {
+                RelaxedNodeTime::Infeasible => {
+                    assert_eq!(m.status, ExactStatus::Infeasible, "seed {seed} {reorder}");
+                    infeasible += 1;
+                }
+                RelaxedNodeTime::Bound(b) => {
+                    assert_ne!(m.status, ExactStatus::Infeasible, "seed {seed} {reorder}");
+                    let mb = m.bound.expect("a hop that flies has a bound");
+                    assert!(b <= mb + 1e-7 * (1.0 + mb.abs()), "seed {seed}: {b} > {mb}");
+                    bounded += 1;
+                }
+                RelaxedNodeTime::Unknown => {}
+            }
+        }
+    }
+    assert!(infeasible >= 20 && bounded >= 100, "{infeasible} infeasible, {bounded} bounded");
 }
 
 #[test]

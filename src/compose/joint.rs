@@ -165,10 +165,11 @@ impl ArcValues {
 impl Planner {
     /// `tt` plus a lower bound on the node time at `v` of flying `path` from full batteries
     /// (`l2`): the configuration LP with the pads relaxed to their aggregate (the pad search's
-    /// root, [`continuous::relaxed_node_time`]), or where that tells nothing (infeasible, too
-    /// large, a simplex failure) the fluid LP's bound; lowered by a relative
-    /// [`FLUID_BOUND_MARGIN`]. An infeasible or failed fluid LP bounds nothing (`tt`), and the
-    /// arc is then flown, whose exact solve proves what it proves.
+    /// root, [`continuous::relaxed_node_time`]); infinite when that LP is infeasible (no schedule
+    /// flies the arc, as its exact solve would find); where it tells nothing (too large, a
+    /// simplex failure) the fluid LP's bound; lowered by a relative [`FLUID_BOUND_MARGIN`]. An
+    /// infeasible or failed fluid LP bounds nothing (`tt`), and the arc is then flown, whose
+    /// exact solve proves what it proves.
     fn l2_bound_min(&self, path: &crate::network::Route, v: usize) -> Result<f64> {
         let tt_min = path.distance_m / self.speed_m_per_min();
         let problem = self.hop_problem(path, &self.full_battery_mah())?;
@@ -178,19 +179,18 @@ impl Planner {
         });
         let settings = self.exact_settings();
         #[cfg(feature = "microlp")]
-        match continuous::relaxed_node_time(
-            &problem,
-            &objective,
-            settings.milp.reorder,
-            continuous::DEFAULT_MAX_CONFIGURATIONS,
-        ) {
-            RelaxedNodeTime::Bound(nt_min) => {
-                return Ok((tt_min + nt_min.max(0.0)) * (1.0 - FLUID_BOUND_MARGIN));
+        {
+            let readings = crate::eaas::PolicyOptions::from(self.readings());
+            let options = continuous::ContinuousOptions::like(&settings.milp, readings);
+            match continuous::relaxed_node_time(&problem, &objective, &options) {
+                RelaxedNodeTime::Bound(nt_min) => {
+                    return Ok((tt_min + nt_min.max(0.0)) * (1.0 - FLUID_BOUND_MARGIN));
+                }
+                RelaxedNodeTime::Infeasible => return Ok(f64::INFINITY),
+                RelaxedNodeTime::Unknown => {}
             }
-            RelaxedNodeTime::Infeasible | RelaxedNodeTime::Unknown => {}
         }
-        // The configuration LP infeasible (the fluid LP may still bound the arc: taking no bound
-        // flew more arcs), past its size or failed: the fluid LP (clarabel).
+        // The configuration LP past its size or failed: the fluid LP (clarabel).
         let nt_min = match fluid::bound(
             &problem,
             &objective,

@@ -1578,17 +1578,20 @@ pub fn solve_continuous(
 pub enum RelaxedNodeTime {
     /// A lower bound on the node time of every continuous-time schedule, minutes.
     Bound(f64),
-    /// The LP is infeasible, as the simplex found it: no bound is taken from it (the hop's exact
-    /// solve decides whether a schedule flies).
+    /// No continuous-time schedule flies the hop: the LP is infeasible, as the dense simplex
+    /// found it and the backend's solve of the same relaxation confirmed (the test the hop's
+    /// exact solve makes, [`solve_continuous`]).
     Infeasible,
-    /// Nothing: another objective than the node time, more configurations than allowed, or a
-    /// simplex failure.
+    /// Nothing: another objective than the node time, more configurations than allowed, a
+    /// simplex failure, or an infeasibility the backend did not confirm.
     Unknown,
 }
 
-/// A lower bound on the node time of every continuous-time schedule of `problem` in mode
-/// `reorder`: the value of the pad search's root (the configuration LP with every `ct_d <= M` and
-/// `sum_d ct_d <= min(k, n) M`, valid under every pad assignment), by the dense simplex.
+/// A lower bound on the node time of every continuous-time schedule of `problem` in the mode of
+/// `options`: the value of the pad search's root (the configuration LP with every `ct_d <= M`
+/// and `sum_d ct_d <= min(k, n) M`, valid under every pad assignment), by the dense simplex.
+/// When the dense simplex finds the LP infeasible, the backend solves the relaxation of the pad
+/// binaries (what [`solve_continuous`] solves when the root does not) and decides.
 ///
 /// The configuration LP's feasible set lies within the fluid LP's (`models/eaas_fluid.md`), so
 /// this bound is at least [`super::fluid::bound`]'s.
@@ -1596,19 +1599,23 @@ pub enum RelaxedNodeTime {
 pub fn relaxed_node_time(
     problem: &HopProblem,
     objective: &Objective,
-    reorder: Reorder,
-    max_configurations: usize,
+    options: &ContinuousOptions,
 ) -> RelaxedNodeTime {
-    let Ok(configs) = configurations(problem, reorder, max_configurations) else {
+    let Ok(configs) = configurations(problem, options.reorder, options.max_configurations) else {
         return RelaxedNodeTime::Unknown;
     };
-    let model = Model::of(problem, &configs, reorder);
+    let model = Model::of(problem, &configs, options.reorder);
     let Some(root) = model.dense_root(objective) else {
         return RelaxedNodeTime::Unknown;
     };
     match root.lp.solve() {
         Ok(t) => RelaxedNodeTime::Bound(t.objective()),
-        Err(crate::solver::dense::DenseFailure::Infeasible) => RelaxedNodeTime::Infeasible,
+        Err(crate::solver::dense::DenseFailure::Infeasible) => {
+            match model.solve(objective, options, Attempt::exact(Pads::Relaxed)) {
+                Ok(Solved::Infeasible) => RelaxedNodeTime::Infeasible,
+                _ => RelaxedNodeTime::Unknown,
+            }
+        }
         Err(_) => RelaxedNodeTime::Unknown,
     }
 }
