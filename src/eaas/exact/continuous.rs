@@ -1578,9 +1578,12 @@ pub fn solve_continuous(
 pub enum RelaxedNodeTime {
     /// A lower bound on the node time of every continuous-time schedule, minutes.
     Bound(f64),
-    /// No continuous-time schedule flies the hop: the LP is infeasible, as the dense simplex
-    /// found it and the backend's solve of the same relaxation confirmed (the test the hop's
-    /// exact solve makes, [`solve_continuous`]).
+    /// No schedule flies the hop: the LP is infeasible, as the dense simplex found it and the
+    /// backend's solve of the same relaxation confirmed (what [`solve_continuous`] tests when the
+    /// hop has more than the empty configuration), and the empty schedule does not fly in the
+    /// simulation either (what a hop's exact flight falls back to when the model finds no
+    /// schedule, [`crate::eaas::exact_hop::fly_exact`], and what [`solve_continuous`] tests when
+    /// the empty configuration is the only one).
     Infeasible,
     /// Nothing: another objective than the node time, more configurations than allowed, a
     /// simplex failure, or an infeasibility the backend did not confirm.
@@ -1591,7 +1594,9 @@ pub enum RelaxedNodeTime {
 /// `options`: the value of the pad search's root (the configuration LP with every `ct_d <= M`
 /// and `sum_d ct_d <= min(k, n) M`, valid under every pad assignment), by the dense simplex.
 /// When the dense simplex finds the LP infeasible, the backend solves the relaxation of the pad
-/// binaries (what [`solve_continuous`] solves when the root does not) and decides.
+/// binaries (what [`solve_continuous`] solves when the root does not) and decides; the hop is
+/// infeasible only when the empty schedule does not fly either (the simulation's tolerances are
+/// not the LP's).
 ///
 /// The configuration LP's feasible set lies within the fluid LP's (`models/eaas_fluid.md`), so
 /// this bound is at least [`super::fluid::bound`]'s.
@@ -1611,9 +1616,19 @@ pub fn relaxed_node_time(
     match root.lp.solve() {
         Ok(t) => RelaxedNodeTime::Bound(t.objective()),
         Err(crate::solver::dense::DenseFailure::Infeasible) => {
-            match model.solve(objective, options, Attempt::exact(Pads::Relaxed)) {
-                Ok(Solved::Infeasible) => RelaxedNodeTime::Infeasible,
-                _ => RelaxedNodeTime::Unknown,
+            let confirmed = matches!(
+                model.solve(objective, options, Attempt::exact(Pads::Relaxed)),
+                Ok(Solved::Infeasible)
+            );
+            let empty = crate::eaas::simulate_with(
+                problem,
+                crate::eaas::Heuristic::None,
+                &crate::eaas::PolicyOptions::default(),
+            );
+            if confirmed && empty.is_ok_and(|e| !e.feasible) {
+                RelaxedNodeTime::Infeasible
+            } else {
+                RelaxedNodeTime::Unknown
             }
         }
         Err(_) => RelaxedNodeTime::Unknown,
