@@ -89,8 +89,14 @@ fn split_times(
         let start = Instant::now();
         let split = context.joint_split(r, &reports)?;
         let joint_ms = start.elapsed().as_secs_f64() * 1e3;
-        let dt = split.joint.dt_min().map_or(String::new(), |d| format!("{d:.6}"));
-        println!("{i},{},{plan_ms:.1},{joint_ms:.1},{dt},{}", r.id, split.joint.proven);
+        let dt = split
+            .joint
+            .dt_min()
+            .map_or(String::new(), |d| format!("{d:.6}"));
+        println!(
+            "{i},{},{plan_ms:.1},{joint_ms:.1},{dt},{}",
+            r.id, split.joint.proven
+        );
     }
     Ok(())
 }

@@ -99,7 +99,13 @@ fn without_times(dir: &Path) -> Value {
 fn thread_counts_give_identical_files_and_shards_merge_into_one_run() {
     let one = bench("threads-1", &["--threads", "1"]);
     let two = bench("threads-2", &["--threads", "2"]);
-    for file in ["config.json", "requests.csv", "hops.csv", "stops.csv", "joint.csv"] {
+    for file in [
+        "config.json",
+        "requests.csv",
+        "hops.csv",
+        "stops.csv",
+        "joint.csv",
+    ] {
         assert_eq!(
             read(&one, file),
             read(&two, file),
@@ -123,7 +129,13 @@ fn thread_counts_give_identical_files_and_shards_merge_into_one_run() {
     ];
     let run = swarmplan(&args);
     assert!(run.status.success(), "{run:?}");
-    for file in ["config.json", "requests.csv", "hops.csv", "stops.csv", "joint.csv"] {
+    for file in [
+        "config.json",
+        "requests.csv",
+        "hops.csv",
+        "stops.csv",
+        "joint.csv",
+    ] {
         assert_eq!(
             read(&one, file),
             read(&merged, file),

@@ -96,7 +96,13 @@ fn a_bench_stopped_by_its_budget_writes_the_files_of_its_prefix() {
         b.to_str().unwrap(),
     ]);
     assert_eq!(again.status.code(), Some(0), "{}", stderr(&again));
-    for file in ["config.json", "requests.csv", "hops.csv", "stops.csv", "joint.csv"] {
+    for file in [
+        "config.json",
+        "requests.csv",
+        "hops.csv",
+        "stops.csv",
+        "joint.csv",
+    ] {
         assert_eq!(
             std::fs::read_to_string(a.join(file)).unwrap(),
             std::fs::read_to_string(b.join(file)).unwrap(),

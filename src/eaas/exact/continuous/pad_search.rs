@@ -127,7 +127,9 @@ pub(super) fn search(
     deadline: Option<Instant>,
 ) -> Result<PadSearchEnd, DenseFailure> {
     let limits = (node_limit, deadline);
-    search_settling_within(root, charges, makespan, order, pads, incumbent, limits, SETTLE_REL)
+    search_settling_within(
+        root, charges, makespan, order, pads, incumbent, limits, SETTLE_REL,
+    )
 }
 
 /// [`search`], a pad's load row counted as kept when it exceeds `M` by at most `settle_rel`
