@@ -95,23 +95,27 @@ fn without_times(dir: &Path) -> Value {
     v
 }
 
+/// The files a run writes that depend on nothing but its inputs and options.
+const REPRODUCIBLE: [&str; 5] = [
+    "config.json",
+    "requests.csv",
+    "hops.csv",
+    "stops.csv",
+    "joint.csv",
+];
+
+/// `a` and `b` hold the same reproducible files, byte for byte.
+fn assert_same_files(a: &Path, b: &Path, what: &str) {
+    for file in REPRODUCIBLE {
+        assert_eq!(read(a, file), read(b, file), "{file} differs {what}");
+    }
+}
+
 #[test]
 fn thread_counts_give_identical_files_and_shards_merge_into_one_run() {
     let one = bench("threads-1", &["--threads", "1"]);
     let two = bench("threads-2", &["--threads", "2"]);
-    for file in [
-        "config.json",
-        "requests.csv",
-        "hops.csv",
-        "stops.csv",
-        "joint.csv",
-    ] {
-        assert_eq!(
-            read(&one, file),
-            read(&two, file),
-            "{file} differs with 2 threads"
-        );
-    }
+    assert_same_files(&one, &two, "with 2 threads");
     // Three shards, merged in a scrambled order.
     let shards: Vec<_> = (0..3)
         .map(|i| bench(&format!("shard-{i}"), &["--shard", &format!("{i}/3")]))
@@ -129,19 +133,7 @@ fn thread_counts_give_identical_files_and_shards_merge_into_one_run() {
     ];
     let run = swarmplan(&args);
     assert!(run.status.success(), "{run:?}");
-    for file in [
-        "config.json",
-        "requests.csv",
-        "hops.csv",
-        "stops.csv",
-        "joint.csv",
-    ] {
-        assert_eq!(
-            read(&one, file),
-            read(&merged, file),
-            "{file}: merge differs from one run"
-        );
-    }
+    assert_same_files(&one, &merged, "merged from shards");
     // Each shard planned its own requests: 12 requests at positions i, i + 3, ...
     let rows = csv_rows(&shards[1], "requests.csv");
     let positions: Vec<usize> = rows
@@ -588,19 +580,7 @@ fn a_loaded_cpu_gives_the_same_files() {
     for s in spinners {
         s.join().unwrap();
     }
-    for file in [
-        "config.json",
-        "requests.csv",
-        "hops.csv",
-        "stops.csv",
-        "joint.csv",
-    ] {
-        assert_eq!(
-            read(&quiet, file),
-            read(&loaded, file),
-            "{file} differs under load"
-        );
-    }
+    assert_same_files(&quiet, &loaded, "under load");
     let config: Value = serde_json::from_str(&read(&quiet, "config.json")).unwrap();
     assert!(config["milp"]["node_limit"].as_u64().is_some(), "{config}");
     // No wall-clock limit unless asked for.

@@ -366,6 +366,26 @@ mod tests {
         all
     }
 
+    /// Brute force: the least value of the fixed-assignment LP over every assignment of `drones`
+    /// drones to `pads` pads, each solved by the backend; infinite when none flies.
+    fn brute_force(
+        model: &Model<'_>,
+        objective: &Objective,
+        options: &ContinuousOptions,
+        drones: usize,
+        pads: usize,
+    ) -> f64 {
+        assignments(drones, pads)
+            .iter()
+            .filter_map(
+                |a| match model.solve(objective, options, Attempt::exact(Pads::Fixed(a))) {
+                    Ok(Solved::Values(v)) => Some(v.value),
+                    _ => None,
+                },
+            )
+            .fold(f64::INFINITY, f64::min)
+    }
+
     #[test]
     fn the_pad_search_finds_the_least_lp_over_every_assignment() {
         let mut searched = 0;
@@ -379,16 +399,7 @@ mod tests {
             let configs = configurations(&p, Reorder::Paper, 20_000).unwrap();
             let model = Model::of(&p, &configs, Reorder::Paper);
             let options = ContinuousOptions::default();
-            // Brute force: the fixed-assignment LP of every assignment, the least value.
-            let brute = assignments(p.drones.len(), pads)
-                .iter()
-                .filter_map(|a| {
-                    match model.solve(&objective, &options, Attempt::exact(Pads::Fixed(a))) {
-                        Ok(Solved::Values(v)) => Some(v.value),
-                        _ => None,
-                    }
-                })
-                .fold(f64::INFINITY, f64::min);
+            let brute = brute_force(&model, &objective, &options, p.drones.len(), pads);
             let rank: Vec<usize> = (0..p.drones.len()).collect();
             let s = search_from_the_root(&model, &objective, &options, &rank);
             if !brute.is_finite() {
@@ -445,15 +456,7 @@ mod tests {
             let configs = configurations(&p, Reorder::Paper, 20_000).unwrap();
             let model = Model::of(&p, &configs, Reorder::Paper);
             let options = ContinuousOptions::default();
-            let brute = assignments(p.drones.len(), pads)
-                .iter()
-                .filter_map(|a| {
-                    match model.solve(&objective, &options, Attempt::exact(Pads::Fixed(a))) {
-                        Ok(Solved::Values(v)) => Some(v.value),
-                        _ => None,
-                    }
-                })
-                .fold(f64::INFINITY, f64::min);
+            let brute = brute_force(&model, &objective, &options, p.drones.len(), pads);
             let Some(root) = model.search_root(&objective, &options) else {
                 continue;
             };
