@@ -168,26 +168,43 @@ fn bench_writes_a_self_contained_report_the_seal_covers() {
     assert!(stderr(&out).contains("report.html in"), "{}", stderr(&out));
     assert_report_matches_summary(&dir);
 
-    // The table printed on stdout and the page show the same cells.
+    // The tables printed on stdout (the combinations', then the gap split's) and the page show
+    // the same cells.
     let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
     let text = unescape(&std::fs::read_to_string(dir.join("report.html")).unwrap());
     let rows: Vec<&str> = stdout
         .lines()
         .filter(|l| l.starts_with("none/") || l.starts_with("pb/"))
         .collect();
-    assert_eq!(rows.len(), 6, "{stdout}");
-    for row in rows {
-        let cells: Vec<&str> = row.split_whitespace().collect();
-        // ms/request (the last column) is machine-dependent but printed from the same summary.
-        let html_row = format!(
+    assert_eq!(rows.len(), 12, "{stdout}");
+    let html_row = |cells: &[&str]| {
+        format!(
             "<tr><td>{}</td>{}</tr>",
             cells[0],
             cells[1..]
                 .iter()
                 .map(|c| format!("<td class=\"num\">{c}</td>"))
                 .collect::<String>()
-        );
-        assert!(text.contains(&html_row), "{html_row} missing");
+        )
+    };
+    for row in &rows[..6] {
+        // ms/request (the last column) is machine-dependent but printed from the same summary.
+        let html = html_row(&row.split_whitespace().collect::<Vec<_>>());
+        assert!(text.contains(&html), "{html} missing");
+    }
+    for row in &rows[6..] {
+        // Cells with spaces (`166.4 (129.1%)`): the columns' widths, 36, 7, 7 and 17.
+        let mut at = 0;
+        let cells: Vec<&str> = [36, 7, 7, 17, 17, 17, 17]
+            .iter()
+            .map(|&w| {
+                let cell = row[at..at + w].trim();
+                at += w + 1;
+                cell
+            })
+            .collect();
+        let html = html_row(&cells);
+        assert!(text.contains(&html), "{html} missing");
     }
 
     assert!(sealed_files(&dir).contains(&"report.html".to_string()));
